@@ -1,0 +1,108 @@
+#pragma once
+// A scene: everything a run needs to know about the world, loaded from a YAML file.
+// Plain data only; loadScene() validates every field and reports file:line: field: problem.
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace zonesim {
+
+/// Plain 3-vector for scene data (keeps Eigen out of this widely included header).
+struct SceneVec3 {
+  double x = 0, y = 0, z = 0;
+};
+
+/// An axis-aligned box, y up; the ground plane is x-z.
+struct SceneBox {
+  SceneVec3 min, max;
+};
+
+/// How the ground plane is split among zone ranks.
+struct ZoneLayout {
+  enum class Kind { Grid };
+  Kind kind = Kind::Grid;
+  int columns = 1;  ///< zones along x
+  int rows = 1;     ///< zones along z
+};
+
+/// Walking NPCs wandering between random waypoints.
+struct NpcPopulation {
+  int count = 0;
+  double min_speed = 1.0;       ///< m/s, each NPC draws its top speed in [min, max]
+  double max_speed = 2.0;
+  double acceleration = 2.0;    ///< m/s^2 toward the waypoint
+  double waypoint_radius = 30;  ///< next waypoint drawn within this distance
+  double arrive_distance = 1.0; ///< waypoint counts as reached inside this distance
+  SceneBox region;              ///< where they start (defaults to the world)
+};
+
+/// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).
+struct RigidBodyPopulation {
+  int count = 0;
+  double radius = 0.5;
+  double mass = 1.0;
+  double restitution = 0.5;
+  double drop_height = 10.0;    ///< start height above the ground
+  SceneBox region;
+};
+
+/// Particle emitters: each spawns `rate` particles per second with the given lifetime.
+struct EmitterPopulation {
+  int count = 0;
+  double rate = 100;       ///< particles per second per emitter
+  double lifetime = 2.0;   ///< seconds
+  double speed = 5.0;      ///< initial speed, m/s, upward cone
+  double restitution = 0.4;
+  double drag = 0.1;       ///< linear drag coefficient, 1/s
+  int max_particles = 4096;///< per emitter; the oldest are recycled first
+  SceneBox region;
+};
+
+/// Defaults for simulated players attached by client_stub.
+struct ClientProfile {
+  int players = 32;
+  double speed = 5.0;          ///< m/s avatar walking speed
+  double input_hz = 20;        ///< inputs per second per player
+  double nimbus = 60;          ///< range of interest, metres
+  double retarget_seconds = 8; ///< how long a player walks toward one target before choosing anew
+};
+
+/// Sender-side dead reckoning settings (first order for now).
+struct DeadReckoning {
+  double position_threshold = 0.5;  ///< metres of prediction error before an update is sent
+  double heartbeat_seconds = 5.0;   ///< an update at least this often per entity
+};
+
+struct Scene {
+  std::string name;
+  std::string source_path;  ///< file it was loaded from
+  SceneBox world;
+  double tick_rate = 30;    ///< ticks per second of wall time when running real-time
+  double dt = 1.0 / 30;     ///< simulated seconds per tick
+  std::uint64_t seed = 1;
+  ZoneLayout zones;
+  double interest_cell_size = 50;  ///< metres; one DDS partition per cell
+  int keyframe_every = 90;         ///< ticks between per-cell keyframes
+  double halo_width = 10;
+  DeadReckoning dead_reckoning;
+  std::vector<NpcPopulation> npcs;
+  std::vector<RigidBodyPopulation> rigid_bodies;
+  std::vector<EmitterPopulation> emitters;
+  ClientProfile clients;
+};
+
+/// A scene file problem; what() is "file:line: field: what is wrong".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Loads and validates a scene file; throws SceneError on the first problem.
+Scene loadScene(const std::string& path);
+
+/// Parses scene text (the name is used in error messages as the file).
+Scene parseScene(const std::string& text, const std::string& name);
+
+}  // namespace zonesim
