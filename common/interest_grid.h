@@ -1,0 +1,50 @@
+#pragma once
+// The interest-cell grid: a fixed uniform grid over the ground plane (x-z), independent of
+// zones. Cell (ix, iz) has id iz * columns + ix and is DDS partition "c.<ix>.<iz>".
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/scene.h"
+
+namespace zonesim {
+
+class InterestGrid {
+ public:
+  InterestGrid(const SceneBox& world, double cell_size)
+      : min_x_(world.min.x), min_z_(world.min.z), cell_size_(cell_size),
+        columns_(std::max(1, int(std::ceil((world.max.x - world.min.x) / cell_size)))),
+        rows_(std::max(1, int(std::ceil((world.max.z - world.min.z) / cell_size)))) {}
+
+  int columns() const { return columns_; }
+  int rows() const { return rows_; }
+  int cellCount() const { return columns_ * rows_; }
+  double cellSize() const { return cell_size_; }
+
+  int columnOf(double x) const { return std::clamp(int(std::floor((x - min_x_) / cell_size_)), 0, columns_ - 1); }
+  int rowOf(double z) const { return std::clamp(int(std::floor((z - min_z_) / cell_size_)), 0, rows_ - 1); }
+  /// Cell id of a ground-plane point (clamped into the grid).
+  int cellOf(double x, double z) const { return rowOf(z) * columns_ + columnOf(x); }
+  int columnOfCell(int cell) const { return cell % columns_; }
+  int rowOfCell(int cell) const { return cell / columns_; }
+
+  /// Cells whose square overlaps the disc of radius r around (x, z), in id order.
+  std::vector<int> cellsWithin(double x, double z, double r) const {
+    std::vector<int> out;
+    int c0 = columnOf(x - r), c1 = columnOf(x + r), r0 = rowOf(z - r), r1 = rowOf(z + r);
+    for (int iz = r0; iz <= r1; ++iz)
+      for (int ix = c0; ix <= c1; ++ix) {
+        double cx = std::clamp(x, min_x_ + ix * cell_size_, min_x_ + (ix + 1) * cell_size_);
+        double cz = std::clamp(z, min_z_ + iz * cell_size_, min_z_ + (iz + 1) * cell_size_);
+        if ((cx - x) * (cx - x) + (cz - z) * (cz - z) <= r * r) out.push_back(iz * columns_ + ix);
+      }
+    return out;
+  }
+
+ private:
+  double min_x_, min_z_, cell_size_;
+  int columns_, rows_;
+};
+
+}  // namespace zonesim

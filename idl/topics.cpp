@@ -1,0 +1,17 @@
+#include "idl/topics.h"
+
+#include "zonesim.h"
+
+namespace zonesim::dds {
+
+Topics makeTopics(dds_entity_t participant) {
+  Topics t;
+  t.cell_updates = makeTopic(participant, &zonesim_dds_CellUpdateBatch_desc, "zs_cell_updates", nullptr);
+  t.cell_keyframes = makeTopic(participant, &zonesim_dds_CellKeyframe_desc, "zs_cell_keyframes", nullptr);
+  t.ownership = makeTopic(participant, &zonesim_dds_OwnershipEvent_desc, "zs_ownership", nullptr);
+  t.player_input = makeTopic(participant, &zonesim_dds_PlayerInput_desc, "zs_player_input", nullptr);
+  t.spawn_requests = makeTopic(participant, &zonesim_dds_SpawnRequest_desc, "zs_spawn_requests", nullptr);
+  return t;
+}
+
+}  // namespace zonesim::dds

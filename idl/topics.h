@@ -1,0 +1,24 @@
+#pragma once
+// The DDS topics of a zonesim domain, created once per participant with their agreed names.
+//   zs_cell_updates    CellUpdateBatch  partition c.<ix>.<iz>  zone -> gateway, cellUpdateQos
+//   zs_cell_keyframes  CellKeyframe     partition c.<ix>.<iz>  zone -> gateway, cellKeyframeQos
+//   zs_ownership       OwnershipEvent   default partition      zone -> gateway, reliableKeepAll
+//   zs_player_input    PlayerInput      partition z.<rank>     gateway -> zone, reliableKeepAll
+//   zs_spawn_requests  SpawnRequest     default partition      gateway -> zones, reliableKeepAll
+
+#include "idl/dds_entity.h"
+
+namespace zonesim::dds {
+
+struct Topics {
+  Entity cell_updates;
+  Entity cell_keyframes;
+  Entity ownership;
+  Entity player_input;
+  Entity spawn_requests;
+};
+
+/// Creates all zonesim topics on the participant.
+Topics makeTopics(dds_entity_t participant);
+
+}  // namespace zonesim::dds
