@@ -1,0 +1,58 @@
+#pragma once
+// What one client has been sent, and the per-tick diff against what it should see now:
+// entities new to it (Spawn, full state), gone from it (Despawn), and known ones that got a
+// fresher sample since last sent (StateBatch).
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "common/interest_grid.h"
+
+namespace zonesim::gateway {
+
+class WorldCache;
+
+/// An entity the client should see now, with the cache version of its state.
+struct VisibleEntity {
+  std::uint64_t id = 0;
+  std::uint64_t version = 0;
+};
+
+/// The result of one diff; each list is in ascending id order.
+struct ViewDiff {
+  std::vector<std::uint64_t> spawns, despawns, updates;
+  bool empty() const { return spawns.empty() && despawns.empty() && updates.empty(); }
+};
+
+/// Entity id -> version last sent to one client.
+class ClientView {
+ public:
+  /// Diffs visible (any order, no duplicates) against what was sent and records the new state.
+  ViewDiff diff(const std::vector<VisibleEntity>& visible);
+  bool knows(std::uint64_t id) const { return known_.contains(id); }
+  std::size_t size() const { return known_.size(); }
+
+ private:
+  struct Sent {
+    std::uint64_t version;
+    std::uint64_t epoch;  // diff() call that last saw it visible
+  };
+  std::unordered_map<std::uint64_t, Sent> known_;
+  std::uint64_t epoch_ = 0;
+};
+
+/// Where a player looks from, and how far.
+struct ViewPoint {
+  double x = 0, z = 0;
+  double nimbus = 60;      ///< entities within this planar distance are shown
+  double keep = 66;        ///< entities already shown stay until beyond this (no edge flicker)
+  std::uint64_t self = 0;  ///< the player's avatar: always visible once known
+  double sim_now = 0;      ///< positions are extrapolated to this time before measuring
+};
+
+/// The entities a player should see: within nimbus (or keep, if already known) of the point.
+std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,
+                                         const ViewPoint& at, const ClientView& known);
+
+}  // namespace zonesim::gateway

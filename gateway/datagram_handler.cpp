@@ -1,0 +1,132 @@
+#include "gateway/datagram_handler.h"
+
+#include "common/timer.h"
+
+namespace zonesim::gateway {
+
+void Outbox::clear() {
+  replies.clear();
+  spawns.clear();
+  inputs.clear();
+  closed.clear();
+}
+
+DatagramHandler::DatagramHandler(SessionTable& sessions, const HandlerConfig& config)
+    : sessions_(sessions), config_(config), spawn_rng_(config.spawn_seed, 0x5a17) {}
+
+Bytes DatagramHandler::welcomeFor(const Session& s) const {
+  WelcomeInfo w;
+  w.client_nonce = s.client_nonce;
+  w.token = s.token;
+  w.player_id = s.player_id;
+  w.avatar_id = s.avatar_id;
+  w.zone = s.zone;
+  w.tick_rate = config_.tick_rate;
+  const SceneBox& b = config_.world;
+  w.world_min = proto::Vec3f(float(b.min.x), float(b.min.y), float(b.min.z));
+  w.world_max = proto::Vec3f(float(b.max.x), float(b.max.y), float(b.max.z));
+  return encodeWelcome(w);
+}
+
+void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint& from,
+                             std::int64_t now_ns, Outbox& out) {
+  Verified v = verifyDatagram(bytes, Direction::ToGateway);
+  if (!v.ok()) {
+    drops_.add(v.reason);
+    return;
+  }
+  const proto::Datagram& d = *v.datagram;
+  if (d.msg_type() == proto::Message::Hello) {
+    onHello(d, from, bytes.size(), now_ns, out);
+    return;
+  }
+  SlotHandle h;
+  Session* s = authenticate(d, from, h);
+  if (s == nullptr) return;
+  s->last_heard_ns = now_ns;
+  ++s->traffic.datagrams_in;
+  s->traffic.bytes_in += bytes.size();
+  switch (d.msg_type()) {
+    case proto::Message::Input:
+      onInput(*d.msg_as_Input(), *s, out);
+      return;
+    case proto::Message::Ping:
+      out.replies.push_back(
+          {from, s->token, encodePong(s->token, d.msg_as_Ping()->client_time_us(), wallTimeUs())});
+      ++accepted_;
+      return;
+    case proto::Message::Bye: {
+      Session ended = *s;
+      sessions_.erase(h);
+      out.closed.push_back(std::move(ended));
+      ++accepted_;
+      return;
+    }
+    default:
+      drops_.add(DropReason::UnexpectedType);
+      return;
+  }
+}
+
+Session* DatagramHandler::authenticate(const proto::Datagram& d, const Endpoint& from,
+                                       SlotHandle& handle) {
+  auto found = sessions_.findByToken(d.token());
+  Session* s = found ? sessions_.get(*found) : nullptr;
+  if (s == nullptr) {
+    drops_.add(DropReason::BadToken);
+    return nullptr;
+  }
+  // A leaked or sniffed token used from elsewhere must not steer someone else's avatar.
+  if (s->address != from) {
+    drops_.add(DropReason::WrongAddress);
+    return nullptr;
+  }
+  handle = *found;
+  return s;
+}
+
+void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, std::size_t size,
+                              std::int64_t now_ns, Outbox& out) {
+  std::uint64_t nonce = d.msg_as_Hello()->client_nonce();
+  if (auto existing = sessions_.findByHello(from, nonce)) {
+    Session* s = sessions_.get(*existing);
+    s->last_heard_ns = now_ns;
+    ++s->traffic.datagrams_in;
+    s->traffic.bytes_in += size;
+    // A retry: the Welcome (or the Hello) was lost. Never a second session for one Hello.
+    if (s->welcomed) out.replies.push_back({from, s->token, welcomeFor(*s)});
+    ++accepted_;
+    return;
+  }
+  auto created = sessions_.create(from, nonce, now_ns);
+  if (!created) {
+    drops_.add(DropReason::SessionLimit);
+    return;
+  }
+  Session* s = sessions_.get(*created);
+  const SceneBox& b = config_.world;
+  s->spawn_x = spawn_rng_.uniform(b.min.x, b.max.x);
+  s->spawn_z = spawn_rng_.uniform(b.min.z, b.max.z);
+  s->traffic.datagrams_in = 1;
+  s->traffic.bytes_in = size;
+  out.spawns.push_back({s->player_id, float(s->spawn_x), 0.0f, float(s->spawn_z)});
+  ++accepted_;
+}
+
+void DatagramHandler::onInput(const proto::Input& in, Session& s, Outbox& out) {
+  if (!s.welcomed) {
+    drops_.add(DropReason::NotReady);
+    return;
+  }
+  // Zones apply each seq once, in order: duplicates and late reorderings are useless to them.
+  if (in.seq() <= s.last_input_seq) {
+    drops_.add(DropReason::StaleInput);
+    return;
+  }
+  s.last_input_seq = in.seq();
+  ++s.traffic.inputs_forwarded;
+  out.inputs.push_back({s.player_id, s.avatar_id, s.zone, in.seq(), in.move_x(), in.move_z()});
+  ++accepted_;
+}
+
+}  // namespace zonesim::gateway

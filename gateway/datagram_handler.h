@@ -1,0 +1,86 @@
+#pragma once
+// Turns one received datagram into effects: replies to send, avatars to request, inputs to
+// forward, sessions that ended. It does no I/O itself, so every path is testable with crafted
+// bytes; the gateway carries the effects out on UDP and DDS. Anything malformed, forged or from
+// the wrong address is dropped and counted by reason.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/rng.h"
+#include "common/scene.h"
+#include "gateway/session_table.h"
+#include "gateway/wire_encode.h"
+#include "gateway/wire_verify.h"
+
+namespace zonesim::gateway {
+
+/// Ask the zones to create an avatar for a player at a position.
+struct SpawnCommand {
+  std::uint64_t player_id = 0;
+  float x = 0, y = 0, z = 0;
+};
+
+/// One player input to forward to the avatar's owning zone.
+struct InputCommand {
+  std::uint64_t player_id = 0;
+  std::uint64_t avatar_id = 0;
+  int zone = 0;
+  std::uint32_t seq = 0;
+  float move_x = 0, move_z = 0;
+};
+
+/// A datagram to send back to the address a request came from.
+struct Reply {
+  Endpoint to;
+  std::uint64_t token = 0;  ///< the session it belongs to (for per-player counts)
+  Bytes bytes;
+};
+
+/// Effects of handling datagrams, carried out by the caller.
+struct Outbox {
+  std::vector<Reply> replies;
+  std::vector<SpawnCommand> spawns;
+  std::vector<InputCommand> inputs;
+  std::vector<Session> closed;  ///< sessions ended by Bye (already erased): release interest
+  void clear();
+};
+
+/// What the handler needs to know of the world.
+struct HandlerConfig {
+  SceneBox world;
+  float tick_rate = 30;
+  std::uint64_t spawn_seed = 1;  ///< seeds spawn positions (reproducible runs)
+};
+
+class DatagramHandler {
+ public:
+  DatagramHandler(SessionTable& sessions, const HandlerConfig& config);
+
+  /// Handles one datagram of size bytes.size() from `from`.
+  void handle(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns,
+              Outbox& out);
+  /// The Welcome for a session whose avatar is known.
+  Bytes welcomeFor(const Session& s) const;
+
+  const DropCounters& drops() const { return drops_; }
+  /// Counts an oversize datagram the socket truncated before it reached handle().
+  void countTooLarge() { drops_.add(DropReason::TooLarge); }
+  std::uint64_t accepted() const { return accepted_; }
+
+ private:
+  void onHello(const proto::Datagram& d, const Endpoint& from, std::size_t size,
+               std::int64_t now_ns, Outbox& out);
+  void onInput(const proto::Input& in, Session& s, Outbox& out);
+  /// The session the datagram's token names, if it comes from that session's address.
+  Session* authenticate(const proto::Datagram& d, const Endpoint& from, SlotHandle& handle);
+
+  SessionTable& sessions_;
+  HandlerConfig config_;
+  Pcg32 spawn_rng_;
+  DropCounters drops_;
+  std::uint64_t accepted_ = 0;
+};
+
+}  // namespace zonesim::gateway

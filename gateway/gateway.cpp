@@ -1,0 +1,300 @@
+#include "gateway/gateway.h"
+
+#include <poll.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <system_error>
+
+#include "common/log.h"
+#include "common/timer.h"
+
+namespace zonesim::gateway {
+
+namespace {
+constexpr std::int64_t kSecondNs = 1'000'000'000;
+// Bounded so a flood of datagrams cannot starve the tick.
+constexpr int kMaxDatagramsPerWake = 4096;
+
+std::int64_t seconds(double s) {
+  return std::int64_t(s * 1e9);
+}
+
+HandlerConfig handlerConfig(const GatewayConfig& c) {
+  return {c.scene.world, float(c.scene.tick_rate), c.spawn_seed};
+}
+
+std::int64_t graceNs(const GatewayConfig& c) {
+  if (c.handoff_grace_s > 0) return seconds(c.handoff_grace_s);
+  return std::max(seconds(2.0 / c.scene.tick_rate), seconds(0.05));
+}
+
+int expectedZones(const GatewayConfig& c) {
+  return c.expected_zones > 0 ? c.expected_zones : c.scene.zones.columns * c.scene.zones.rows;
+}
+
+double interestRadius(const GatewayConfig& c) {
+  // The visibility keep radius (nimbus * 1.1) plus a margin ahead of motion.
+  return c.scene.clients.nimbus * 1.1 + c.scene.clients.speed * c.lookahead_s;
+}
+}  // namespace
+
+Gateway::Gateway(GatewayConfig config)
+    : config_(std::move(config)),
+      grid_(config_.scene.world, config_.scene.interest_cell_size),
+      tick_ns_(std::max<std::int64_t>(1, seconds(1.0 / config_.scene.tick_rate))),
+      socket_(config_.port),
+      sessions_(config_.gateway_id, config_.max_sessions),
+      handler_(sessions_, handlerConfig(config_)),
+      cache_(graceNs(config_)),
+      clock_(config_.scene.tick_rate * config_.scene.dt),
+      interest_(grid_, interestRadius(config_), grid_.cellSize() * 0.5),
+      link_(config_.dds_domain, expectedZones(config_)),
+      rx_buffer_(kMaxDatagramBytes + 1) {
+  if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
+}
+
+void Gateway::run(const std::atomic<bool>& stop, double duration_s) {
+  start_ns_ = nowNs();
+  std::int64_t end_ns = duration_s > 0 ? start_ns_ + seconds(duration_s) : INT64_MAX;
+  std::int64_t next_tick = start_ns_;
+  next_metrics_ns_ = start_ns_ + kSecondNs;
+  while (!stop.load(std::memory_order_relaxed)) {
+    std::int64_t now = nowNs();
+    if (now >= end_ns) break;
+    if (now >= next_tick) {
+      tick(now);
+      next_tick += tick_ns_;
+      // After a stall, resume the cadence from now instead of bursting to catch up.
+      if (next_tick <= now) next_tick = now + tick_ns_;
+    }
+    std::int64_t wait_ns = std::min(next_tick, end_ns) - nowNs();
+    int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
+    pollfd p{socket_.fd(), POLLIN, 0};
+    int r = ::poll(&p, 1, timeout_ms);
+    if (r < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "poll");
+    if (r > 0) receiveAll(nowNs());
+  }
+  writeMetrics(nowNs());
+  metrics_.flush();
+}
+
+void Gateway::receiveAll(std::int64_t now_ns) {
+  for (int i = 0; i < kMaxDatagramsPerWake; ++i) {
+    auto got = socket_.receive(rx_buffer_);
+    if (!got) break;
+    ++counters_.datagrams_in;
+    counters_.bytes_in += got->size;
+    // The buffer holds kMaxDatagramBytes + 1: anything that filled it is over the limit.
+    if (got->truncated || got->size > kMaxDatagramBytes) {
+      handler_.countTooLarge();
+      continue;
+    }
+    handler_.handle(std::span(rx_buffer_.data(), got->size), got->from, now_ns, outbox_);
+  }
+  carryOut(outbox_);
+}
+
+void Gateway::carryOut(Outbox& out) {
+  for (const Reply& r : out.replies) {
+    auto h = sessions_.findByToken(r.token);
+    Session* s = h ? sessions_.get(*h) : nullptr;
+    if (s != nullptr)
+      sendTo(*s, r.bytes);
+    else
+      sendTo(r.to, r.bytes);
+  }
+  for (const SpawnCommand& c : out.spawns) {
+    link_.requestSpawn(c);
+    ++counters_.spawn_requests;
+    ++counters_.sessions_opened;
+  }
+  for (const InputCommand& c : out.inputs) {
+    link_.sendInput(c);
+    ++counters_.inputs_forwarded;
+  }
+  CellDelta delta;
+  for (const Session& s : out.closed) {
+    finished_players_.push_back({s.player_id, double(nowNs() - s.created_ns) * 1e-9, s.traffic});
+    interest_.remove(s.player_id, delta);
+    ++counters_.sessions_closed;
+  }
+  applyCellDelta(delta);
+  out.clear();
+}
+
+void Gateway::tick(std::int64_t now_ns) {
+  for (const zonesim_dds_OwnershipEvent& e : link_.takeOwnership()) applyOwnership(e);
+  link_.flushSpawns();
+  counters_.dds_samples += link_.takeCells(cache_, clock_, now_ns);
+  cache_.sweep(now_ns);
+  expireSessions(now_ns);
+  updateInterest(now_ns);
+  sendViews(now_ns);
+  if (now_ns >= next_metrics_ns_) {
+    writeMetrics(now_ns);
+    next_metrics_ns_ += kSecondNs;
+  }
+}
+
+void Gateway::applyOwnership(const zonesim_dds_OwnershipEvent& e) {
+  auto h = sessions_.findByPlayer(e.player_id);
+  Session* s = h ? sessions_.get(*h) : nullptr;
+  if (s == nullptr) {
+    // Another gateway's player, or a session that already ended.
+    ++counters_.ownership_foreign;
+    return;
+  }
+  if (s->avatar_id != 0 && s->avatar_id != e.avatar_id) return;
+  s->avatar_id = e.avatar_id;
+  s->zone = e.to_zone;
+  if (!s->welcomed) {
+    s->welcomed = true;
+    s->last_input_seq = std::max(s->last_input_seq, e.last_input_seq);
+    sendTo(*s, handler_.welcomeFor(*s));
+    ++counters_.welcomes;
+    return;
+  }
+  if (e.from_zone < 0) return;  // a repeated creation notice: nothing moved
+  HandoffInfo info{e.avatar_id, e.from_zone, e.to_zone, e.tick, e.last_input_seq};
+  sendTo(*s, encodeHandoff(s->token, info));
+  ++s->traffic.handoffs;
+  ++counters_.handoffs;
+}
+
+void Gateway::expireSessions(std::int64_t now_ns) {
+  std::vector<std::pair<SlotHandle, bool>> dead;
+  sessions_.forEach([&](SlotHandle h, Session& s) {
+    bool silent = now_ns - s.last_heard_ns > seconds(config_.session_timeout_s);
+    bool unborn = !s.welcomed && now_ns - s.created_ns > seconds(config_.pending_timeout_s);
+    if (silent || unborn) dead.emplace_back(h, true);
+  });
+  for (auto& [h, expired] : dead) closeSession(h, expired);
+}
+
+void Gateway::closeSession(SlotHandle h, bool expired) {
+  Session* s = sessions_.get(h);
+  if (s == nullptr) return;
+  finished_players_.push_back({s->player_id, double(nowNs() - s->created_ns) * 1e-9, s->traffic});
+  CellDelta delta;
+  interest_.remove(s->player_id, delta);
+  sessions_.erase(h);
+  applyCellDelta(delta);
+  ++(expired ? counters_.sessions_expired : counters_.sessions_closed);
+}
+
+void Gateway::avatarPosition(const Session& s, double sim_now, double& x, double& z) const {
+  const CachedEntity* e = s.avatar_id != 0 ? cache_.find(s.avatar_id) : nullptr;
+  if (e == nullptr) {
+    x = s.spawn_x;
+    z = s.spawn_z;
+    return;
+  }
+  proto::EntityState now = extrapolatedState(*e, sim_now);
+  x = now.pos().x();
+  z = now.pos().z();
+}
+
+void Gateway::updateInterest(std::int64_t now_ns) {
+  double sim_now = clock_.simNow(now_ns);
+  CellDelta delta;
+  sessions_.forEach([&](SlotHandle, Session& s) {
+    double x, z;
+    avatarPosition(s, sim_now, x, z);
+    interest_.update(s.player_id, x, z, delta);
+  });
+  applyCellDelta(delta);
+}
+
+void Gateway::applyCellDelta(const CellDelta& delta) {
+  // One player's release and another's acquire of a cell in the same pass cancel out.
+  for (int cell : delta.removed) {
+    if (interest_.refcount(cell) > 0 || !link_.subscribed(cell)) continue;
+    link_.unsubscribeCell(cell);
+    cache_.dropCell(cell);
+  }
+  for (int cell : delta.added)
+    if (interest_.refcount(cell) > 0)
+      link_.subscribeCell(cell, grid_.columnOfCell(cell), grid_.rowOfCell(cell));
+}
+
+void Gateway::sendViews(std::int64_t now_ns) {
+  double sim_now = clock_.simNow(now_ns);
+  const ClientProfile& profile = config_.scene.clients;
+  sessions_.forEach([&](SlotHandle, Session& s) {
+    if (!s.welcomed) return;
+    ViewPoint at;
+    avatarPosition(s, sim_now, at.x, at.z);
+    at.nimbus = profile.nimbus;
+    at.keep = profile.nimbus * 1.1;
+    at.self = s.avatar_id;
+    at.sim_now = sim_now;
+    ViewDiff diff = s.view.diff(selectVisible(cache_, grid_, at, s.view));
+    if (!diff.empty()) sendView(s, diff, sim_now);
+  });
+}
+
+void Gateway::sendView(Session& s, const ViewDiff& diff, double sim_now) {
+  std::uint64_t tick = clock_.tick();
+  auto states = [&](const std::vector<std::uint64_t>& ids) {
+    std::vector<proto::EntityState> out;
+    out.reserve(ids.size());
+    for (std::uint64_t id : ids) out.push_back(extrapolatedState(*cache_.find(id), sim_now));
+    return out;
+  };
+  for (const Bytes& b : encodeDespawnChunks(s.token, tick, diff.despawns)) sendTo(s, b);
+  for (const Bytes& b : encodeSpawnChunks(s.token, tick, states(diff.spawns))) sendTo(s, b);
+  for (const Bytes& b : encodeStateChunks(s.token, tick, states(diff.updates))) sendTo(s, b);
+  s.traffic.despawns_sent += diff.despawns.size();
+  s.traffic.spawns_sent += diff.spawns.size();
+  s.traffic.updates_sent += diff.updates.size();
+  counters_.despawns_sent += diff.despawns.size();
+  counters_.spawns_sent += diff.spawns.size();
+  counters_.updates_forwarded += diff.updates.size();
+}
+
+void Gateway::sendTo(Session& s, const Bytes& bytes) {
+  ++s.traffic.datagrams_out;
+  s.traffic.bytes_out += bytes.size();
+  sendTo(s.address, bytes);
+}
+
+void Gateway::sendTo(const Endpoint& to, const Bytes& bytes) {
+  if (!socket_.sendTo(to, bytes)) {
+    ++counters_.send_failures;
+    return;
+  }
+  ++counters_.datagrams_out;
+  counters_.bytes_out += bytes.size();
+}
+
+GatewayGauges Gateway::gauges(std::int64_t now_ns) {
+  GatewayGauges g;
+  g.elapsed_s = double(now_ns - start_ns_) * 1e-9;
+  g.sessions = sessions_.size();
+  sessions_.forEach([&](SlotHandle, Session& s) { g.pending_sessions += s.welcomed ? 0 : 1; });
+  g.cells_subscribed = link_.subscribedCells();
+  g.entities_cached = cache_.size();
+  g.held_spawns = link_.heldSpawns();
+  g.zone_tick = clock_.tick();
+  return g;
+}
+
+void Gateway::writeMetrics(std::int64_t now_ns) {
+  if (!metrics_.enabled()) return;
+  metrics_.write(metricsLine(counters_, handler_.drops(), gauges(now_ns)));
+}
+
+std::string Gateway::summaryJson() {
+  std::int64_t now = nowNs();
+  std::vector<PlayerRecord> players = finished_players_;
+  sessions_.forEach([&](SlotHandle, Session& s) {
+    players.push_back({s.player_id, double(now - s.created_ns) * 1e-9, s.traffic});
+  });
+  std::sort(players.begin(), players.end(),
+            [](const auto& a, const auto& b) { return a.player_id < b.player_id; });
+  return gateway::summaryJson(counters_, handler_.drops(), gauges(now), players);
+}
+
+}  // namespace zonesim::gateway

@@ -1,0 +1,94 @@
+#pragma once
+// The gateway process: a UDP server for simulated players and a DDS link to the zones, driven
+// by one loop that sleeps in poll() on the socket until the next gateway tick. Per datagram: the
+// handler's checks and effects. Per tick: ownership events (Welcome, Handoff), cell samples into
+// the world cache, interest (cell readers), and each player's Spawn / Despawn / StateBatch.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/interest_grid.h"
+#include "common/metrics.h"
+#include "common/scene.h"
+#include "gateway/datagram_handler.h"
+#include "gateway/gateway_metrics.h"
+#include "gateway/interest_manager.h"
+#include "gateway/session_table.h"
+#include "gateway/udp_socket.h"
+#include "gateway/world_cache.h"
+#include "gateway/zone_clock.h"
+#include "gateway/zone_link.h"
+
+namespace zonesim::gateway {
+
+/// Everything a gateway is configured with.
+struct GatewayConfig {
+  Scene scene;
+  std::uint16_t port = 0;        ///< 0 = ephemeral
+  std::uint32_t gateway_id = 1;  ///< top 32 bits of the player ids issued here
+  int dds_domain = 0;
+  std::uint64_t spawn_seed = 1;   ///< seeds avatar spawn positions
+  int expected_zones = 0;         ///< readers awaited before spawning; 0 = the scene's grid
+  double session_timeout_s = 10;  ///< a session silent this long is closed
+  double pending_timeout_s = 5;   ///< a session still without avatar after this is dropped
+  std::size_t max_sessions = 4096;
+  double lookahead_s = 1.0;    ///< interest margin ahead of motion: speed * lookahead
+  double handoff_grace_s = 0;  ///< leave grace; 0 = two zone ticks, at least 50 ms
+  std::string metrics_path;    ///< gateway.jsonl; empty = no metrics
+};
+
+class Gateway {
+ public:
+  /// Binds the socket and joins the DDS domain; throws on failure.
+  explicit Gateway(GatewayConfig config);
+
+  /// The bound UDP port.
+  std::uint16_t port() const { return socket_.localPort(); }
+  /// Runs until stop is true or duration_s (if > 0) has passed. Returns within one tick.
+  void run(const std::atomic<bool>& stop, double duration_s = 0);
+  /// The exit summary as JSON.
+  std::string summaryJson();
+  const GatewayCounters& counters() const { return counters_; }
+  const DropCounters& drops() const { return handler_.drops(); }
+
+ private:
+  void receiveAll(std::int64_t now_ns);
+  void carryOut(Outbox& out);
+  void tick(std::int64_t now_ns);
+  void applyOwnership(const zonesim_dds_OwnershipEvent& e);
+  void expireSessions(std::int64_t now_ns);
+  void updateInterest(std::int64_t now_ns);
+  void applyCellDelta(const CellDelta& delta);
+  void sendViews(std::int64_t now_ns);
+  void sendView(Session& s, const ViewDiff& diff, double sim_now);
+  void sendTo(Session& s, const Bytes& bytes);
+  void sendTo(const Endpoint& to, const Bytes& bytes);
+  void closeSession(SlotHandle h, bool expired);
+  void writeMetrics(std::int64_t now_ns);
+  GatewayGauges gauges(std::int64_t now_ns);
+  /// The avatar's position as last heard (extrapolated), or the spawn point before that.
+  void avatarPosition(const Session& s, double sim_now, double& x, double& z) const;
+
+  GatewayConfig config_;
+  InterestGrid grid_;
+  std::int64_t tick_ns_;
+  std::int64_t start_ns_ = 0;
+  UdpSocket socket_;
+  SessionTable sessions_;
+  DatagramHandler handler_;
+  WorldCache cache_;
+  ZoneClock clock_;
+  InterestManager interest_;
+  ZoneLink link_;
+  MetricsWriter metrics_;
+  GatewayCounters counters_;
+  std::vector<PlayerRecord> finished_players_;
+  Outbox outbox_;
+  std::vector<std::uint8_t> rx_buffer_;
+  std::int64_t next_metrics_ns_ = 0;
+};
+
+}  // namespace zonesim::gateway

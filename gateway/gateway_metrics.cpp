@@ -1,0 +1,95 @@
+#include "gateway/gateway_metrics.h"
+
+#include <string>
+
+namespace zonesim::gateway {
+
+namespace {
+
+void addCounters(JsonLine& j, const GatewayCounters& c) {
+  j.add("datagrams_in", c.datagrams_in)
+      .add("bytes_in", c.bytes_in)
+      .add("datagrams_out", c.datagrams_out)
+      .add("bytes_out", c.bytes_out)
+      .add("send_failures", c.send_failures)
+      .add("updates_forwarded", c.updates_forwarded)
+      .add("spawns_sent", c.spawns_sent)
+      .add("despawns_sent", c.despawns_sent)
+      .add("inputs_forwarded", c.inputs_forwarded)
+      .add("spawn_requests", c.spawn_requests)
+      .add("welcomes", c.welcomes)
+      .add("handoffs", c.handoffs)
+      .add("sessions_opened", c.sessions_opened)
+      .add("sessions_closed", c.sessions_closed)
+      .add("sessions_expired", c.sessions_expired)
+      .add("dds_samples", c.dds_samples)
+      .add("ownership_foreign", c.ownership_foreign);
+}
+
+void addGauges(JsonLine& j, const GatewayGauges& g) {
+  j.add("t", g.elapsed_s)
+      .add("sessions", std::uint64_t(g.sessions))
+      .add("pending_sessions", std::uint64_t(g.pending_sessions))
+      .add("cells_subscribed", std::uint64_t(g.cells_subscribed))
+      .add("entities_cached", std::uint64_t(g.entities_cached))
+      .add("held_spawns", std::uint64_t(g.held_spawns))
+      .add("zone_tick", g.zone_tick);
+}
+
+JsonLine dropsObject(const DropCounters& drops) {
+  JsonLine j;
+  for (std::size_t r = 0; r < std::size_t(DropReason::Count); ++r)
+    j.add(dropReasonName(DropReason(r)), drops[DropReason(r)]);
+  return j;
+}
+
+std::string playerJson(const PlayerRecord& p) {
+  const SessionTraffic& t = p.traffic;
+  double s = p.seconds > 0 ? p.seconds : 1;
+  JsonLine j;
+  j.add("player_id", p.player_id)
+      .add("seconds", p.seconds)
+      .add("datagrams_in", t.datagrams_in)
+      .add("bytes_in", t.bytes_in)
+      .add("datagrams_out", t.datagrams_out)
+      .add("bytes_out", t.bytes_out)
+      .add("bytes_out_per_s", double(t.bytes_out) / s)
+      .add("updates_sent", t.updates_sent)
+      .add("spawns_sent", t.spawns_sent)
+      .add("despawns_sent", t.despawns_sent)
+      .add("inputs_forwarded", t.inputs_forwarded)
+      .add("handoffs", t.handoffs);
+  return j.str();
+}
+
+}  // namespace
+
+JsonLine metricsLine(const GatewayCounters& c, const DropCounters& drops, const GatewayGauges& g) {
+  JsonLine j;
+  addGauges(j, g);
+  addCounters(j, c);
+  // Flat keys, so tools can plot any reason without parsing nested objects.
+  for (std::size_t r = 0; r < std::size_t(DropReason::Count); ++r)
+    j.add(std::string("dropped_") + dropReasonName(DropReason(r)), drops[DropReason(r)]);
+  j.add("dropped_total", drops.total());
+  return j;
+}
+
+std::string summaryJson(const GatewayCounters& c, const DropCounters& drops, const GatewayGauges& g,
+                        const std::vector<PlayerRecord>& players) {
+  JsonLine j;
+  addGauges(j, g);
+  addCounters(j, c);
+  j.add("dropped_total", drops.total());
+  j.addRaw("dropped", dropsObject(drops).str());
+  std::string list = "[";
+  for (std::size_t i = 0; i < players.size(); ++i) {
+    if (i > 0) list += ',';
+    list += playerJson(players[i]);
+  }
+  list += ']';
+  j.addRaw("players", list);
+  return j.str();
+}
+
+}  // namespace zonesim::gateway

@@ -1,0 +1,46 @@
+#pragma once
+// The gateway's counters and their JSON forms: one flat line per second in gateway.jsonl, and a
+// summary at exit that adds per-player traffic.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/metrics.h"
+#include "gateway/session_table.h"
+#include "gateway/wire_verify.h"
+
+namespace zonesim::gateway {
+
+/// Cumulative counters since start.
+struct GatewayCounters {
+  std::uint64_t datagrams_in = 0, bytes_in = 0;
+  std::uint64_t datagrams_out = 0, bytes_out = 0, send_failures = 0;
+  std::uint64_t updates_forwarded = 0, spawns_sent = 0, despawns_sent = 0;
+  std::uint64_t inputs_forwarded = 0, spawn_requests = 0, welcomes = 0, handoffs = 0;
+  std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;
+  std::uint64_t dds_samples = 0, ownership_foreign = 0;
+};
+
+/// Gauges sampled when a line is written.
+struct GatewayGauges {
+  double elapsed_s = 0;
+  std::size_t sessions = 0, pending_sessions = 0, cells_subscribed = 0, entities_cached = 0;
+  std::size_t held_spawns = 0;
+  std::uint64_t zone_tick = 0;
+};
+
+/// Traffic of one player, kept after the session ends for the summary.
+struct PlayerRecord {
+  std::uint64_t player_id = 0;
+  double seconds = 0;
+  SessionTraffic traffic;
+};
+
+/// One per-second metrics line.
+JsonLine metricsLine(const GatewayCounters& c, const DropCounters& drops, const GatewayGauges& g);
+/// The exit summary as one JSON object (counters, drops by reason, per-player traffic).
+std::string summaryJson(const GatewayCounters& c, const DropCounters& drops, const GatewayGauges& g,
+                        const std::vector<PlayerRecord>& players);
+
+}  // namespace zonesim::gateway

@@ -1,0 +1,100 @@
+// gateway: UDP server for simulated players, DDS client of the zones. Prints
+// "gateway listening on 127.0.0.1:PORT" once ready; exits cleanly on SIGINT/SIGTERM or after
+// --duration, printing a JSON summary line; exits non-zero with a message on any error.
+
+#include <signal.h>
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "common/cli.h"
+#include "common/log.h"
+#include "common/scene.h"
+#include "gateway/gateway.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void onSignal(int) {
+  g_stop.store(true);
+}
+
+void installSignalHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = onSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: poll() returns EINTR and the loop sees the flag at once
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+// Written to a temporary name and renamed, so a script polling for the file never reads it half
+// written.
+void writeFile(const std::string& path, const std::string& text) {
+  std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+    f << text << '\n';
+    if (!f.flush()) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"zonesim gateway: connects simulated players to the zone cluster"};
+  zonesim::CommonOptions common;
+  zonesim::addCommonOptions(app, common);
+  std::string scene_path, port_file, metrics_dir;
+  zonesim::gateway::GatewayConfig cfg;
+  double duration = 0;
+  std::int64_t seed = -1;
+  int port = 0;
+  app.add_option("--scene", scene_path, "scene file")->required();
+  app.add_option("--port", port, "UDP port on 127.0.0.1 (0 = ephemeral)")
+      ->check(CLI::Range(0, 65535));
+  app.add_option("--port-file", port_file, "write the bound port to this file");
+  app.add_option("--dds-domain", cfg.dds_domain, "DDS domain id")->check(CLI::Range(0, 230));
+  app.add_option("--gateway-id", cfg.gateway_id, "gateway id (top 32 bits of player ids)")
+      ->check(CLI::Range(1u, 0xffffffffu));
+  app.add_option("--metrics", metrics_dir, "write DIR/gateway.jsonl and DIR/gateway_summary.json");
+  app.add_option("--duration", duration, "exit after this many seconds (0 = until signalled)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", seed, "seed of avatar spawn positions (default: the scene seed)");
+  app.add_option("--expect-zones", cfg.expected_zones,
+                 "zone readers to wait for before spawning (default: the scene's zone grid)");
+  app.add_option("--session-timeout", cfg.session_timeout_s, "close sessions silent this long (s)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-sessions", cfg.max_sessions, "refuse Hellos beyond this many sessions");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    zonesim::applyCommonOptions(common, "gateway");
+    cfg.scene = zonesim::loadScene(scene_path);
+    cfg.port = std::uint16_t(port);
+    cfg.spawn_seed = seed >= 0 ? std::uint64_t(seed) : cfg.scene.seed;
+    if (!metrics_dir.empty()) {
+      std::filesystem::create_directories(metrics_dir);
+      cfg.metrics_path = metrics_dir + "/gateway.jsonl";
+    }
+    installSignalHandlers();
+    zonesim::gateway::Gateway gateway(cfg);
+    if (!port_file.empty()) writeFile(port_file, std::to_string(gateway.port()));
+    std::printf("gateway listening on 127.0.0.1:%u\n", unsigned(gateway.port()));
+    std::fflush(stdout);
+    gateway.run(g_stop, duration);
+    std::string summary = gateway.summaryJson();
+    std::printf("gateway summary %s\n", summary.c_str());
+    std::fflush(stdout);
+    if (!metrics_dir.empty()) writeFile(metrics_dir + "/gateway_summary.json", summary);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gateway: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

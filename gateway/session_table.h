@@ -1,0 +1,91 @@
+#pragma once
+// The gateway's sessions, one per connected player, in generation-checked slots so that a handle
+// kept across a session's end never resolves to the player who got the slot next. Lookups by
+// token, by player id and by (address, hello nonce) all go through handles.
+
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <unordered_map>
+
+#include "common/generational_pool.h"
+#include "gateway/client_view.h"
+#include "gateway/udp_socket.h"
+
+namespace zonesim::gateway {
+
+/// Traffic figures of one session.
+struct SessionTraffic {
+  std::uint64_t datagrams_in = 0, bytes_in = 0;
+  std::uint64_t datagrams_out = 0, bytes_out = 0;
+  std::uint64_t updates_sent = 0, spawns_sent = 0, despawns_sent = 0;
+  std::uint64_t inputs_forwarded = 0, handoffs = 0;
+};
+
+/// One player connected through this gateway.
+struct Session {
+  std::uint64_t token = 0;
+  std::uint64_t player_id = 0;
+  std::uint64_t client_nonce = 0;
+  Endpoint address;
+  std::uint64_t avatar_id = 0;       ///< 0 until the owning zone announced the avatar
+  int zone = -1;                     ///< owning zone rank, -1 until announced
+  bool welcomed = false;             ///< Welcome sent: inputs are accepted from now on
+  std::uint32_t last_input_seq = 0;  ///< last seq forwarded to the zone
+  double spawn_x = 0, spawn_z = 0;   ///< where the avatar was requested (interest until it shows)
+  std::int64_t created_ns = 0, last_heard_ns = 0;
+  ClientView view;  ///< what the client has been sent
+  SessionTraffic traffic;
+};
+
+/// All sessions of one gateway.
+class SessionTable {
+ public:
+  /// gateway_id goes into the top 32 bits of every player id issued here.
+  SessionTable(std::uint32_t gateway_id, std::size_t max_sessions);
+
+  /// A new pending session for a Hello; nullopt when max_sessions are open.
+  std::optional<SlotHandle> create(const Endpoint& address, std::uint64_t client_nonce,
+                                   std::int64_t now_ns);
+  /// The session a (repeated) Hello from this address with this nonce created.
+  std::optional<SlotHandle> findByHello(const Endpoint& address, std::uint64_t client_nonce) const;
+  std::optional<SlotHandle> findByToken(std::uint64_t token) const;
+  std::optional<SlotHandle> findByPlayer(std::uint64_t player_id) const;
+  /// The session, or nullptr if the handle is stale.
+  Session* get(SlotHandle h) { return pool_.get(h); }
+  const Session* get(SlotHandle h) const { return pool_.get(h); }
+  /// Ends a session; false if the handle was already stale.
+  bool erase(SlotHandle h);
+  std::size_t size() const { return pool_.size(); }
+  /// Visits sessions in slot order.
+  template <typename F>
+  void forEach(F&& f) {
+    pool_.forEach(std::forward<F>(f));
+  }
+
+ private:
+  struct HelloKey {
+    Endpoint address;
+    std::uint64_t nonce;
+    friend bool operator==(const HelloKey&, const HelloKey&) = default;
+  };
+  struct HelloKeyHash {
+    std::size_t operator()(const HelloKey& k) const {
+      return EndpointHash()(k.address) ^
+             std::hash<std::uint64_t>()(k.nonce * 0x9e3779b97f4a7c15ULL);
+    }
+  };
+  std::uint64_t freshToken();
+
+  std::uint32_t gateway_id_;
+  std::size_t max_sessions_;
+  std::uint32_t player_counter_ = 0;
+  // Tokens must not be guessable: seeded from the OS entropy source, not from the scene seed.
+  std::mt19937_64 token_rng_;
+  GenerationalPool<Session> pool_;
+  std::unordered_map<std::uint64_t, SlotHandle> by_token_;
+  std::unordered_map<std::uint64_t, SlotHandle> by_player_;
+  std::unordered_map<HelloKey, SlotHandle, HelloKeyHash> by_hello_;
+};
+
+}  // namespace zonesim::gateway

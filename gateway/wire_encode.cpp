@@ -1,0 +1,101 @@
+#include "gateway/wire_encode.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace zonesim::gateway {
+
+namespace {
+
+template <typename T>
+Bytes finish(flatbuffers::FlatBufferBuilder& fbb, std::uint64_t token, proto::Message type,
+             flatbuffers::Offset<T> msg) {
+  auto root = proto::CreateDatagram(fbb, token, type, msg.Union());
+  proto::FinishDatagramBuffer(fbb, root);
+  Bytes out(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  assert(out.size() <= kMaxDatagramBytes);
+  return out;
+}
+
+// Splits items into runs of at most per_chunk and encodes each run with make(fbb, run).
+template <typename Item, typename Make>
+std::vector<Bytes> chunked(std::span<const Item> items, std::size_t per_chunk, Make make) {
+  std::vector<Bytes> out;
+  out.reserve((items.size() + per_chunk - 1) / per_chunk);
+  flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
+  for (std::size_t begin = 0; begin < items.size(); begin += per_chunk) {
+    fbb.Clear();
+    std::size_t n = std::min(per_chunk, items.size() - begin);
+    out.push_back(make(fbb, items.subspan(begin, n)));
+  }
+  return out;
+}
+
+}  // namespace
+
+Bytes encodeHello(std::uint64_t client_nonce, std::string_view name) {
+  flatbuffers::FlatBufferBuilder fbb(128);
+  auto n = fbb.CreateString(name.data(), name.size());
+  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n));
+}
+
+Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  return finish(fbb, token, proto::Message::Input, proto::CreateInput(fbb, seq, move_x, move_z));
+}
+
+Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  return finish(fbb, token, proto::Message::Ping, proto::CreatePing(fbb, client_time_us));
+}
+
+Bytes encodeBye(std::uint64_t token) {
+  flatbuffers::FlatBufferBuilder fbb(64);
+  return finish(fbb, token, proto::Message::Bye, proto::CreateBye(fbb));
+}
+
+Bytes encodeWelcome(const WelcomeInfo& w) {
+  flatbuffers::FlatBufferBuilder fbb(192);
+  auto msg = proto::CreateWelcome(fbb, w.client_nonce, w.token, w.player_id, w.avatar_id, w.zone,
+                                  w.tick_rate, &w.world_min, &w.world_max);
+  return finish(fbb, w.token, proto::Message::Welcome, msg);
+}
+
+Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  return finish(fbb, token, proto::Message::Pong,
+                proto::CreatePong(fbb, client_time_us, gateway_time_us));
+}
+
+Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h) {
+  flatbuffers::FlatBufferBuilder fbb(128);
+  auto msg =
+      proto::CreateHandoff(fbb, h.avatar_id, h.from_zone, h.to_zone, h.tick, h.last_input_seq);
+  return finish(fbb, token, proto::Message::Handoff, msg);
+}
+
+std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
+                                     std::span<const proto::EntityState> states) {
+  return chunked(states, kStatesPerDatagram, [&](auto& fbb, auto run) {
+    auto v = fbb.CreateVectorOfStructs(run.data(), run.size());
+    return finish(fbb, token, proto::Message::StateBatch, proto::CreateStateBatch(fbb, tick, v));
+  });
+}
+
+std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
+                                     std::span<const proto::EntityState> states) {
+  return chunked(states, kStatesPerDatagram, [&](auto& fbb, auto run) {
+    auto v = fbb.CreateVectorOfStructs(run.data(), run.size());
+    return finish(fbb, token, proto::Message::Spawn, proto::CreateSpawn(fbb, tick, v));
+  });
+}
+
+std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
+                                       std::span<const std::uint64_t> ids) {
+  return chunked(ids, kIdsPerDatagram, [&](auto& fbb, auto run) {
+    auto v = fbb.CreateVector(run.data(), run.size());
+    return finish(fbb, token, proto::Message::Despawn, proto::CreateDespawn(fbb, tick, v));
+  });
+}
+
+}  // namespace zonesim::gateway

@@ -1,0 +1,67 @@
+#pragma once
+// Builds client-protocol datagrams. Lists of entities are split into chunks so that every
+// datagram stays within kMaxDatagramBytes and nothing is lost between chunks.
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "client_protocol_generated.h"
+#include "gateway/wire_verify.h"
+
+namespace zonesim::gateway {
+
+/// One encoded datagram.
+using Bytes = std::vector<std::uint8_t>;
+
+static_assert(sizeof(proto::EntityState) == 56, "EntityState layout changed: recheck chunking");
+/// Room left for the Datagram and message tables, vtables and vector headers (measured < 100).
+inline constexpr std::size_t kChunkOverheadBytes = 128;
+/// Entity states per StateBatch or Spawn datagram.
+inline constexpr std::size_t kStatesPerDatagram =
+    (kMaxDatagramBytes - kChunkOverheadBytes) / sizeof(proto::EntityState);
+/// Ids per Despawn datagram.
+inline constexpr std::size_t kIdsPerDatagram =
+    (kMaxDatagramBytes - kChunkOverheadBytes) / sizeof(std::uint64_t);
+
+/// World bounds and rates announced in a Welcome.
+struct WelcomeInfo {
+  std::uint64_t client_nonce = 0;
+  std::uint64_t token = 0;
+  std::uint64_t player_id = 0;
+  std::uint64_t avatar_id = 0;
+  int zone = 0;
+  float tick_rate = 30;
+  proto::Vec3f world_min, world_max;
+};
+
+/// Handoff notice fields.
+struct HandoffInfo {
+  std::uint64_t avatar_id = 0;
+  int from_zone = -1;
+  int to_zone = 0;
+  std::uint64_t tick = 0;
+  std::uint32_t last_input_seq = 0;
+};
+
+Bytes encodeHello(std::uint64_t client_nonce, std::string_view name);
+Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z);
+Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us);
+Bytes encodeBye(std::uint64_t token);
+/// The Datagram's token is the new session token too, so the client can check it.
+Bytes encodeWelcome(const WelcomeInfo& w);
+Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
+Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
+
+/// StateBatch datagrams carrying all states, kStatesPerDatagram per datagram, in order.
+std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
+                                     std::span<const proto::EntityState> states);
+/// Spawn datagrams carrying all states, kStatesPerDatagram per datagram, in order.
+std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
+                                     std::span<const proto::EntityState> states);
+/// Despawn datagrams carrying all ids, kIdsPerDatagram per datagram, in order.
+std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
+                                       std::span<const std::uint64_t> ids);
+
+}  // namespace zonesim::gateway

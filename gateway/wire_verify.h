@@ -1,0 +1,79 @@
+#pragma once
+// Checks every datagram from the network before anything reads it: size limits, the file
+// identifier, the FlatBuffers Verifier (bounded depth and table count), then value ranges, since
+// the Verifier checks structure only. Both the gateway and the clients use it: neither trusts
+// the other side.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "client_protocol_generated.h"
+
+namespace zonesim::gateway {
+
+/// Largest datagram either side sends or accepts (fits one Ethernet MTU with headers).
+inline constexpr std::size_t kMaxDatagramBytes = 1400;
+/// Smallest buffer that can hold a root offset and a file identifier.
+inline constexpr std::size_t kMinDatagramBytes = 8;
+/// Longest player name accepted in a Hello.
+inline constexpr std::size_t kMaxNameBytes = 64;
+/// Slack on |move| <= 1 for rounding on the client.
+inline constexpr float kMoveEpsilon = 1e-3f;
+/// Positions beyond this magnitude (metres) are nonsense whatever the scene.
+inline constexpr float kMaxCoordinate = 1e7f;
+/// Speeds beyond this (m/s) are nonsense for anything zonesim simulates.
+inline constexpr float kMaxSpeed = 1e4f;
+/// Entity kinds: 0 NPC, 1 avatar, 2 rigid body, 3 particle emitter.
+inline constexpr std::uint8_t kMaxEntityKind = 3;
+
+/// Why a datagram was dropped; each is counted separately.
+enum class DropReason : std::uint8_t {
+  TooLarge,        ///< over kMaxDatagramBytes
+  Truncated,       ///< too short to be a FlatBuffer
+  BadIdentifier,   ///< not a ZSCP buffer
+  Malformed,       ///< the Verifier rejected its structure
+  NoMessage,       ///< union empty or of an unknown type
+  UnexpectedType,  ///< a message that never travels in this direction
+  OutOfRange,      ///< a value out of range (NaN, |move| > 1, ...)
+  BadToken,        ///< no session has this token (forged or expired)
+  WrongAddress,    ///< a real token sent from another address than the session's
+  NotReady,        ///< input for a session that has no avatar yet
+  StaleInput,      ///< input seq not newer than the last forwarded one
+  SessionLimit,    ///< Hello refused: too many sessions
+  Count
+};
+
+/// Stable snake_case name used in metrics.
+const char* dropReasonName(DropReason reason);
+
+/// Counts of dropped datagrams per reason.
+class DropCounters {
+ public:
+  void add(DropReason r, std::uint64_t n = 1) { counts_[std::size_t(r)] += n; }
+  std::uint64_t operator[](DropReason r) const { return counts_[std::size_t(r)]; }
+  /// All drops together.
+  std::uint64_t total() const;
+
+ private:
+  std::array<std::uint64_t, std::size_t(DropReason::Count)> counts_{};
+};
+
+/// Which side receives: the set of acceptable messages and checks differ.
+enum class Direction { ToGateway, ToClient };
+
+/// A datagram that passed every check, or why it did not.
+struct Verified {
+  const proto::Datagram* datagram = nullptr;
+  DropReason reason = DropReason::Malformed;
+  bool ok() const { return datagram != nullptr; }
+};
+
+/// Runs all checks in order; the returned pointer aliases bytes. bytes must be 4-byte aligned.
+Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction);
+
+/// True if every field of an entity state is finite and in range.
+bool validEntityState(const proto::EntityState& s);
+
+}  // namespace zonesim::gateway

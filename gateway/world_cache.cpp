@@ -1,0 +1,152 @@
+#include "gateway/world_cache.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "gateway/wire_verify.h"
+
+namespace zonesim::gateway {
+
+namespace {
+// Long enough to outlive any reordering between zones' writers, short enough to stay small.
+constexpr std::int64_t kTombstoneNs = 5'000'000'000;
+// A sender heartbeats every few seconds; extrapolating further than this is guessing.
+constexpr double kMaxExtrapolationSeconds = 10.0;
+
+proto::EntityState toWire(const zonesim_dds_EntityUpdate& e, float dt) {
+  return proto::EntityState(
+      e.id, e.kind,
+      proto::Vec3f(e.pos.x + e.vel.x * dt, e.pos.y + e.vel.y * dt, e.pos.z + e.vel.z * dt),
+      proto::Vec3f(e.vel.x, e.vel.y, e.vel.z), proto::Quatf(e.rot.x, e.rot.y, e.rot.z, e.rot.w));
+}
+}  // namespace
+
+proto::EntityState extrapolatedState(const CachedEntity& e, double at) {
+  double dt = std::clamp(at - e.sim_time, 0.0, kMaxExtrapolationSeconds);
+  return toWire(e.state, float(dt));
+}
+
+WorldCache::WorldCache(std::int64_t grace_ns) : grace_ns_(grace_ns) {}
+
+void WorldCache::index(std::uint64_t id, int old_cell, int new_cell) {
+  if (old_cell == new_cell) return;
+  if (old_cell >= 0) {
+    auto it = by_cell_.find(old_cell);
+    if (it != by_cell_.end()) {
+      it->second.erase(id);
+      if (it->second.empty()) by_cell_.erase(it);
+    }
+  }
+  if (new_cell >= 0) by_cell_[new_cell].insert(id);
+}
+
+bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e) {
+  // Zones quarantine non-finite states; if one slips through it must not reach a client.
+  if (!validEntityState(toWire(e, 0))) {
+    ++stats_.invalid;
+    return false;
+  }
+  if (auto t = tombstones_.find(e.id); t != tombstones_.end() && sim_time < t->second.sim_time) {
+    ++stats_.stale;
+    return false;
+  }
+  auto [it, inserted] = entities_.try_emplace(e.id);
+  CachedEntity& c = it->second;
+  if (!inserted && sim_time < c.sim_time) {
+    ++stats_.stale;
+    return false;
+  }
+  int old_cell = inserted ? -1 : c.cell;
+  c.state = e;
+  c.sim_time = sim_time;
+  c.cell = cell;
+  c.zone = zone;
+  c.version = ++version_counter_;
+  if (c.remove_at_ns != 0) pending_.erase(e.id);
+  c.remove_at_ns = 0;
+  index(e.id, old_cell, cell);
+  tombstones_.erase(e.id);
+  ++stats_.upserts;
+  return true;
+}
+
+bool WorldCache::leave(int cell, int zone, double sim_time, std::uint64_t id, std::int64_t now_ns) {
+  auto it = entities_.find(id);
+  // A leave for a source that is no longer current, or older than the state held, means a
+  // newer enter (another cell or zone) already arrived: the entity stays.
+  if (it == entities_.end() || it->second.cell != cell || it->second.zone != zone ||
+      sim_time < it->second.sim_time) {
+    ++stats_.ignored_leaves;
+    return false;
+  }
+  CachedEntity& c = it->second;
+  c.sim_time = sim_time;
+  if (c.remove_at_ns == 0) {
+    c.remove_at_ns = now_ns + grace_ns_;
+    pending_[id] = c.remove_at_ns;
+  }
+  ++stats_.leaves;
+  return true;
+}
+
+void WorldCache::applyBatch(const zonesim_dds_CellUpdateBatch& b, std::int64_t now_ns) {
+  for (std::uint32_t i = 0; i < b.enters._length; ++i)
+    upsert(b.cell, b.zone, b.sim_time, b.enters._buffer[i]);
+  for (std::uint32_t i = 0; i < b.updates._length; ++i)
+    upsert(b.cell, b.zone, b.sim_time, b.updates._buffer[i]);
+  for (std::uint32_t i = 0; i < b.leaves._length; ++i)
+    leave(b.cell, b.zone, b.sim_time, b.leaves._buffer[i].id, now_ns);
+}
+
+void WorldCache::applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t now_ns) {
+  std::unordered_set<std::uint64_t> present;
+  present.reserve(k.entities._length);
+  for (std::uint32_t i = 0; i < k.entities._length; ++i) {
+    upsert(k.cell, k.zone, k.sim_time, k.entities._buffer[i]);
+    present.insert(k.entities._buffer[i].id);
+  }
+  // The keyframe is the full state of (cell, zone): whatever we hold from there that is older
+  // and absent has left, even if its leave sample never reached us.
+  std::vector<std::uint64_t> gone;
+  forEachInCell(k.cell, [&](std::uint64_t id, const CachedEntity& c) {
+    if (c.zone == k.zone && c.sim_time < k.sim_time && !present.contains(id)) gone.push_back(id);
+  });
+  for (std::uint64_t id : gone) leave(k.cell, k.zone, k.sim_time, id, now_ns);
+}
+
+void WorldCache::remove(std::uint64_t id, std::int64_t now_ns) {
+  auto it = entities_.find(id);
+  if (it == entities_.end()) return;
+  tombstones_[id] = Tombstone{it->second.sim_time, now_ns + kTombstoneNs};
+  index(id, it->second.cell, -1);
+  entities_.erase(it);
+  pending_.erase(id);
+  ++stats_.removals;
+}
+
+std::size_t WorldCache::sweep(std::int64_t now_ns) {
+  std::vector<std::uint64_t> due;
+  for (const auto& [id, at] : pending_)
+    if (at <= now_ns) due.push_back(id);
+  for (std::uint64_t id : due) remove(id, now_ns);
+  std::erase_if(tombstones_, [&](const auto& kv) { return kv.second.expires_ns <= now_ns; });
+  return due.size();
+}
+
+void WorldCache::dropCell(int cell) {
+  auto it = by_cell_.find(cell);
+  if (it == by_cell_.end()) return;
+  std::vector<std::uint64_t> ids(it->second.begin(), it->second.end());
+  for (std::uint64_t id : ids) {
+    entities_.erase(id);
+    pending_.erase(id);
+  }
+  by_cell_.erase(cell);
+}
+
+const CachedEntity* WorldCache::find(std::uint64_t id) const {
+  auto it = entities_.find(id);
+  return it == entities_.end() ? nullptr : &it->second;
+}
+
+}  // namespace zonesim::gateway

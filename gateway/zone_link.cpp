@@ -1,0 +1,133 @@
+#include "gateway/zone_link.h"
+
+#include <algorithm>
+
+#include "common/log.h"
+
+namespace zonesim::gateway {
+
+namespace {
+
+constexpr std::uint32_t kTakeBatch = 64;
+
+// Takes all samples from reader in batches of loans, calling f on each valid one.
+template <typename T, typename F>
+std::size_t takeAll(dds_entity_t reader, F&& f) {
+  std::size_t total = 0;
+  void* samples[kTakeBatch];
+  dds_sample_info_t infos[kTakeBatch];
+  for (;;) {
+    std::fill(std::begin(samples), std::end(samples), nullptr);
+    int n = dds_take(reader, samples, infos, kTakeBatch, kTakeBatch);
+    if (n < 0) throw dds::DdsError("dds_take", n);
+    for (int i = 0; i < n; ++i)
+      if (infos[i].valid_data) f(*static_cast<const T*>(samples[i]));
+    if (n > 0) dds_return_loan(reader, samples, n);
+    total += std::size_t(n);
+    if (std::uint32_t(n) < kTakeBatch) return total;
+  }
+}
+
+}  // namespace
+
+ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
+    : expected_zones_(std::max(1, expected_zones)),
+      participant_(dds::makeParticipant(domain)),
+      topics_(dds::makeTopics(participant_.get())),
+      keep_all_qos_(dds::reliableKeepAllQos()),
+      update_qos_(dds::cellUpdateQos()),
+      keyframe_qos_(dds::cellKeyframeQos()) {
+  spawn_writer_ = dds::makePartitionWriter(participant_.get(), topics_.spawn_requests.get(), "",
+                                           keep_all_qos_.get());
+  ownership_reader_ = dds::makePartitionReader(participant_.get(), topics_.ownership.get(), "",
+                                               keep_all_qos_.get());
+  // Input writers for the zones we expect, created now so they are matched before the first
+  // input: an input written before its reader is discovered would be lost.
+  for (int z = 0; z < expected_zones_; ++z) inputWriter(z);
+}
+
+void ZoneLink::requestSpawn(const SpawnCommand& c) {
+  held_spawns_.push_back(c);
+  flushSpawns();
+}
+
+std::size_t ZoneLink::flushSpawns() {
+  if (held_spawns_.empty()) return 0;
+  dds_publication_matched_status_t st{};
+  dds::check(dds_get_publication_matched_status(spawn_writer_.writer.get(), &st),
+             "dds_get_publication_matched_status");
+  if (int(st.current_count) < expected_zones_) return 0;
+  for (const SpawnCommand& c : held_spawns_) {
+    zonesim_dds_SpawnRequest r{};
+    r.player_id = c.player_id;
+    r.position = {c.x, c.y, c.z};
+    dds::check(dds_write(spawn_writer_.writer.get(), &r), "dds_write SpawnRequest");
+  }
+  std::size_t n = held_spawns_.size();
+  held_spawns_.clear();
+  return n;
+}
+
+dds::PartitionWriter& ZoneLink::inputWriter(int zone) {
+  auto it = input_writers_.find(zone);
+  if (it != input_writers_.end()) return it->second;
+  auto w = dds::makePartitionWriter(participant_.get(), topics_.player_input.get(),
+                                    dds::zonePartition(zone), keep_all_qos_.get());
+  return input_writers_.emplace(zone, std::move(w)).first->second;
+}
+
+void ZoneLink::sendInput(const InputCommand& c) {
+  zonesim_dds_PlayerInput in{};
+  in.player_id = c.player_id;
+  in.avatar_id = c.avatar_id;
+  in.seq = c.seq;
+  in.move_x = c.move_x;
+  in.move_z = c.move_z;
+  dds::check(dds_write(inputWriter(c.zone).writer.get(), &in), "dds_write PlayerInput");
+}
+
+void ZoneLink::subscribeCell(int cell, int ix, int iz) {
+  if (cells_.contains(cell)) return;
+  std::string partition = dds::cellPartition(ix, iz);
+  CellReaders r;
+  r.updates = dds::makePartitionReader(participant_.get(), topics_.cell_updates.get(), partition,
+                                       update_qos_.get());
+  r.keyframes = dds::makePartitionReader(participant_.get(), topics_.cell_keyframes.get(),
+                                         partition, keyframe_qos_.get());
+  cells_.emplace(cell, std::move(r));
+  ZS_DEBUG("subscribed %s", partition.c_str());
+}
+
+void ZoneLink::unsubscribeCell(int cell) {
+  cells_.erase(cell);
+}
+
+std::vector<zonesim_dds_OwnershipEvent> ZoneLink::takeOwnership() {
+  std::vector<zonesim_dds_OwnershipEvent> out;
+  takeAll<zonesim_dds_OwnershipEvent>(
+      ownership_reader_.reader.get(),
+      [&](const zonesim_dds_OwnershipEvent& e) { out.push_back(e); });
+  return out;
+}
+
+std::size_t ZoneLink::takeCells(WorldCache& cache, ZoneClock& clock, std::int64_t now_ns) {
+  std::size_t n = 0;
+  for (auto& [cell, r] : cells_) {
+    // Keyframes first: a batch of the same tick then applies on top of a complete picture.
+    n += takeAll<zonesim_dds_CellKeyframe>(r.keyframes.reader.get(),
+                                           [&](const zonesim_dds_CellKeyframe& k) {
+                                             if (k.cell != cell) return;  // misaddressed
+                                             clock.observe(k.tick, k.sim_time, now_ns);
+                                             cache.applyKeyframe(k, now_ns);
+                                           });
+    n += takeAll<zonesim_dds_CellUpdateBatch>(r.updates.reader.get(),
+                                              [&](const zonesim_dds_CellUpdateBatch& b) {
+                                                if (b.cell != cell) return;  // misaddressed
+                                                clock.observe(b.tick, b.sim_time, now_ns);
+                                                cache.applyBatch(b, now_ns);
+                                              });
+  }
+  return n;
+}
+
+}  // namespace zonesim::gateway

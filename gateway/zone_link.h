@@ -1,0 +1,65 @@
+#pragma once
+// The gateway's DDS side: spawn requests and inputs out to the zones, ownership events and
+// per-cell state in. One subscriber+reader pair (updates, keyframes) per subscribed interest
+// cell, since Cyclone cannot change a subscriber's partitions; one publisher+writer per zone
+// partition for inputs. All reads are dds_take loops over loaned samples, once per gateway tick.
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "gateway/datagram_handler.h"
+#include "gateway/world_cache.h"
+#include "gateway/zone_clock.h"
+#include "idl/dds_entity.h"
+#include "idl/dds_qos.h"
+#include "idl/topics.h"
+#include "zonesim.h"
+
+namespace zonesim::gateway {
+
+class ZoneLink {
+ public:
+  /// Joins the domain; spawn requests are held until expected_zones readers listen, so the
+  /// zone that should create an avatar is never missed because it had not been discovered yet.
+  ZoneLink(dds_domainid_t domain, int expected_zones);
+
+  /// Publishes (or holds) a request for an avatar.
+  void requestSpawn(const SpawnCommand& c);
+  /// Writes held spawn requests if enough zones listen now; returns how many were written.
+  std::size_t flushSpawns();
+  std::size_t heldSpawns() const { return held_spawns_.size(); }
+  /// Writes one input on the owning zone's partition.
+  void sendInput(const InputCommand& c);
+
+  /// Creates the readers of cell (ix, iz) with id cell; nothing if already there.
+  void subscribeCell(int cell, int ix, int iz);
+  /// Deletes the readers of a cell; nothing if not there.
+  void unsubscribeCell(int cell);
+  std::size_t subscribedCells() const { return cells_.size(); }
+  bool subscribed(int cell) const { return cells_.contains(cell); }
+
+  /// Takes every pending ownership event.
+  std::vector<zonesim_dds_OwnershipEvent> takeOwnership();
+  /// Takes every pending cell sample into the cache and the clock; returns samples taken.
+  std::size_t takeCells(WorldCache& cache, ZoneClock& clock, std::int64_t now_ns);
+
+ private:
+  struct CellReaders {
+    dds::PartitionReader updates, keyframes;
+  };
+  dds::PartitionWriter& inputWriter(int zone);
+
+  int expected_zones_;
+  // Declared first so it is deleted last; deleting it would delete every child anyway.
+  dds::Entity participant_;
+  dds::Topics topics_;
+  dds::Qos keep_all_qos_, update_qos_, keyframe_qos_;
+  dds::PartitionWriter spawn_writer_;
+  dds::PartitionReader ownership_reader_;
+  std::map<int, dds::PartitionWriter> input_writers_;
+  std::map<int, CellReaders> cells_;
+  std::vector<SpawnCommand> held_spawns_;
+};
+
+}  // namespace zonesim::gateway
