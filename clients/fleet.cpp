@@ -1,0 +1,73 @@
+#include "clients/fleet.h"
+
+#include <poll.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <system_error>
+
+#include "clients/fleet_summary.h"
+#include "common/timer.h"
+
+namespace zonesim::clients {
+
+namespace {
+constexpr std::int64_t kSecondNs = 1'000'000'000;
+}
+
+ClientFleet::ClientFleet(const FleetConfig& config) : config_(config), start_ns_(nowNs()) {
+  players_.reserve(std::size_t(config.players));
+  for (int i = 0; i < config.players; ++i)
+    players_.push_back(std::make_unique<SimPlayer>(config.player, std::uint32_t(i), start_ns_));
+  if (!config.metrics_path.empty()) metrics_ = MetricsWriter(config.metrics_path);
+}
+
+int ClientFleet::welcomed() const {
+  return int(
+      std::count_if(players_.begin(), players_.end(), [](const auto& p) { return p->welcomed(); }));
+}
+
+void ClientFleet::run(const std::atomic<bool>& stop) {
+  start_ns_ = nowNs();
+  std::int64_t end_ns = start_ns_ + std::int64_t(config_.duration_s * 1e9);
+  std::int64_t next_metrics = start_ns_ + kSecondNs;
+  std::vector<pollfd> fds(players_.size());
+  for (std::size_t i = 0; i < players_.size(); ++i) fds[i] = {players_[i]->fd(), POLLIN, 0};
+  while (!stop.load(std::memory_order_relaxed)) {
+    std::int64_t now = nowNs();
+    if (now >= end_ns) break;
+    std::int64_t next = std::min(end_ns, next_metrics);
+    for (auto& p : players_) next = std::min(next, p->act(now));
+    if (now >= next_metrics) {
+      writeMetrics(now);
+      next_metrics += kSecondNs;
+    }
+    std::int64_t wait_ns = next - nowNs();
+    int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
+    int r = ::poll(fds.data(), fds.size(), timeout_ms);
+    if (r < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "poll");
+    if (r <= 0) continue;
+    now = nowNs();
+    for (std::size_t i = 0; i < fds.size(); ++i)
+      if (fds[i].revents & POLLIN) players_[i]->receive(now);
+  }
+  elapsed_s_ = double(nowNs() - start_ns_) * 1e-9;
+  for (auto& p : players_) p->bye();
+  writeMetrics(nowNs());
+  metrics_.flush();
+}
+
+void ClientFleet::writeMetrics(std::int64_t now_ns) {
+  if (!metrics_.enabled()) return;
+  PlayerCounters now = totalCounters(players_, false);
+  double t = double(now_ns - start_ns_) * 1e-9;
+  metrics_.write(fleetMetricsLine(players_, t, now, last_totals_, 1.0));
+  last_totals_ = std::move(now);
+}
+
+std::string ClientFleet::summaryJson() const {
+  double s = elapsed_s_ > 0 ? elapsed_s_ : double(nowNs() - start_ns_) * 1e-9;
+  return fleetSummaryJson(players_, s);
+}
+
+}  // namespace zonesim::clients

@@ -1,0 +1,49 @@
+#pragma once
+// N simulated players in one process, driven by one single-threaded loop: poll() over every
+// player's socket with a timeout to the earliest thing any player must send next. Writes one
+// metrics line per second and, at the end, a JSON summary per player and in total.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "clients/sim_player.h"
+#include "common/metrics.h"
+
+namespace zonesim::clients {
+
+/// How the fleet runs.
+struct FleetConfig {
+  PlayerConfig player;
+  int players = 32;
+  double duration_s = 10;
+  std::string metrics_path;  ///< clients.jsonl; empty = none
+};
+
+class ClientFleet {
+ public:
+  /// Opens one socket per player; throws on failure.
+  explicit ClientFleet(const FleetConfig& config);
+
+  /// Runs until duration_s passes or stop is set, then says Bye for every player.
+  void run(const std::atomic<bool>& stop);
+  /// The summary JSON (players, duration_s, clients[], totals).
+  std::string summaryJson() const;
+  const std::vector<std::unique_ptr<SimPlayer>>& players() const { return players_; }
+  /// Players that completed the handshake.
+  int welcomed() const;
+
+ private:
+  void writeMetrics(std::int64_t now_ns);
+
+  FleetConfig config_;
+  std::int64_t start_ns_;
+  double elapsed_s_ = 0;
+  std::vector<std::unique_ptr<SimPlayer>> players_;
+  MetricsWriter metrics_;
+  PlayerCounters last_totals_;
+};
+
+}  // namespace zonesim::clients

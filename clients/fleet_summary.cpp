@@ -1,0 +1,128 @@
+#include "clients/fleet_summary.h"
+
+#include "common/stats.h"
+
+namespace zonesim::clients {
+
+namespace {
+
+void addSum(PlayerCounters& t, const PlayerCounters& c, bool samples) {
+  t.datagrams_in += c.datagrams_in;
+  t.bytes_in += c.bytes_in;
+  t.datagrams_out += c.datagrams_out;
+  t.bytes_out += c.bytes_out;
+  t.updates += c.updates;
+  t.spawns += c.spawns;
+  t.despawns += c.despawns;
+  t.handoffs += c.handoffs;
+  t.pongs += c.pongs;
+  t.hellos += c.hellos;
+  t.inputs += c.inputs;
+  t.send_failures += c.send_failures;
+  for (std::size_t r = 0; r < std::size_t(gateway::DropReason::Count); ++r)
+    t.drops.add(gateway::DropReason(r), c.drops[gateway::DropReason(r)]);
+  if (!samples) return;
+  t.rtt_ms.merge(c.rtt_ms);
+  t.dr_error_m.merge(c.dr_error_m);
+}
+
+double rate(std::uint64_t n, double s) {
+  return s > 0 ? double(n) / s : 0.0;
+}
+
+// Fields common to one client and the totals.
+void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
+  j.add("bytes_in_per_s", rate(c.bytes_in, s))
+      .add("bytes_out_per_s", rate(c.bytes_out, s))
+      .add("datagrams_in_per_s", rate(c.datagrams_in, s))
+      .add("datagrams_out_per_s", rate(c.datagrams_out, s))
+      .add("updates_per_s", rate(c.updates, s))
+      .add("bytes_in", c.bytes_in)
+      .add("bytes_out", c.bytes_out)
+      .add("updates", c.updates)
+      .add("spawns", c.spawns)
+      .add("despawns", c.despawns)
+      .add("handoffs", c.handoffs)
+      .add("inputs", c.inputs)
+      .add("dropped", c.drops.total())
+      .add("rtt_ms_p50", percentile(c.rtt_ms.samples(), 50))
+      .add("rtt_ms_p99", percentile(c.rtt_ms.samples(), 99))
+      .add("dr_error_m_p50", percentile(c.dr_error_m.samples(), 50))
+      .add("dr_error_m_p99", percentile(c.dr_error_m.samples(), 99));
+}
+
+std::string clientJson(const SimPlayer& p, double s) {
+  JsonLine j;
+  j.add("player_id", p.playerId())
+      .add("avatar_id", p.avatarId())
+      .add("zone", p.zone())
+      .add("welcomed", p.welcomed() ? 1 : 0)
+      .add("welcome_ms", p.welcomeSeconds() * 1e3);
+  addTraffic(j, p.counters(), s);
+  j.add("visible_entities", std::uint64_t(p.view().size()));
+  return j.str();
+}
+
+}  // namespace
+
+PlayerCounters totalCounters(const std::vector<std::unique_ptr<SimPlayer>>& players, bool samples) {
+  PlayerCounters t;
+  for (const auto& p : players) addSum(t, p->counters(), samples);
+  return t;
+}
+
+JsonLine fleetMetricsLine(const std::vector<std::unique_ptr<SimPlayer>>& players, double t,
+                          const PlayerCounters& now, const PlayerCounters& before,
+                          double interval_s) {
+  std::uint64_t visible = 0, welcomed = 0;
+  std::vector<double> latest_rtt;
+  for (const auto& p : players) {
+    visible += p->view().size();
+    welcomed += p->welcomed() ? 1 : 0;
+    if (p->counters().rtt_ms.seen() > 0) latest_rtt.push_back(p->counters().last_rtt_ms);
+  }
+  JsonLine j;
+  j.add("t", t)
+      .add("players", std::uint64_t(players.size()))
+      .add("welcomed", welcomed)
+      .add("visible_entities", visible)
+      .add("bytes_in", now.bytes_in)
+      .add("bytes_out", now.bytes_out)
+      .add("datagrams_in", now.datagrams_in)
+      .add("datagrams_out", now.datagrams_out)
+      .add("updates", now.updates)
+      .add("spawns", now.spawns)
+      .add("despawns", now.despawns)
+      .add("handoffs", now.handoffs)
+      .add("dropped", now.drops.total())
+      .add("bytes_in_per_s", rate(now.bytes_in - before.bytes_in, interval_s))
+      .add("bytes_out_per_s", rate(now.bytes_out - before.bytes_out, interval_s))
+      .add("updates_per_s", rate(now.updates - before.updates, interval_s))
+      .add("rtt_ms_p50", percentile(latest_rtt, 50));
+  return j;
+}
+
+std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& players,
+                             double duration_s) {
+  std::string list = "[";
+  std::uint64_t visible = 0, welcomed = 0;
+  for (std::size_t i = 0; i < players.size(); ++i) {
+    if (i > 0) list += ',';
+    list += clientJson(*players[i], duration_s);
+    visible += players[i]->view().size();
+    welcomed += players[i]->welcomed() ? 1 : 0;
+  }
+  list += ']';
+  JsonLine totals;
+  totals.add("welcomed", welcomed);
+  addTraffic(totals, totalCounters(players, true), duration_s);
+  totals.add("visible_entities", visible);
+  JsonLine j;
+  j.add("players", std::uint64_t(players.size()))
+      .add("duration_s", duration_s)
+      .addRaw("clients", list)
+      .addRaw("totals", totals.str());
+  return j.str();
+}
+
+}  // namespace zonesim::clients

@@ -1,0 +1,175 @@
+#include "clients/sim_player.h"
+
+#include <algorithm>
+
+#include "common/entity_id.h"
+#include "common/timer.h"
+
+namespace zonesim::clients {
+
+namespace {
+std::int64_t seconds(double s) {
+  return std::int64_t(s * 1e9);
+}
+}  // namespace
+
+SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns)
+    : config_(config),
+      // Nonces only match replies to requests; mixing in the port keeps two runs apart.
+      nonce_(mix64(config.seed ^ (std::uint64_t{index} << 32)) ^
+             std::uint64_t(socket_.localPort())),
+      start_ns_(start_ns),
+      next_hello_ns_(start_ns),
+      next_input_ns_(INT64_MAX),
+      next_ping_ns_(INT64_MAX),
+      input_period_ns_(std::max<std::int64_t>(1, seconds(1.0 / config.input_hz))),
+      wander_(config.world, config.retarget_seconds, config.seed, index),
+      rx_buffer_(gateway::kMaxDatagramBytes + 1) {
+  if (nonce_ == 0) nonce_ = 1;
+}
+
+double SimPlayer::welcomeSeconds() const {
+  if (welcome_ns_ < 0 || first_hello_ns_ < 0) return -1;
+  return double(welcome_ns_ - first_hello_ns_) * 1e-9;
+}
+
+void SimPlayer::send(const gateway::Bytes& bytes) {
+  if (!socket_.sendTo(config_.gateway, bytes)) {
+    ++counters_.send_failures;
+    return;
+  }
+  ++counters_.datagrams_out;
+  counters_.bytes_out += bytes.size();
+}
+
+std::int64_t SimPlayer::act(std::int64_t now_ns) {
+  if (!welcomed()) {
+    if (now_ns >= next_hello_ns_) {
+      send(gateway::encodeHello(nonce_, "player"));
+      ++counters_.hellos;
+      if (first_hello_ns_ < 0) first_hello_ns_ = now_ns;
+      next_hello_ns_ = now_ns + seconds(config_.hello_retry_s);
+    }
+    return next_hello_ns_;
+  }
+  if (now_ns >= next_input_ns_) {
+    sendInput(now_ns);
+    next_input_ns_ += input_period_ns_;
+    if (next_input_ns_ <= now_ns) next_input_ns_ = now_ns + input_period_ns_;
+  }
+  if (now_ns >= next_ping_ns_) {
+    send(gateway::encodePing(token_, std::uint64_t(now_ns / 1000)));
+    next_ping_ns_ = now_ns + seconds(config_.ping_every_s);
+  }
+  return std::min(next_input_ns_, next_ping_ns_);
+}
+
+void SimPlayer::sendInput(std::int64_t now_ns) {
+  Move m;
+  // Until the avatar's own state arrives the player does not know where it is: stand still.
+  if (auto self = view_.predicted(avatar_id_, now_ns))
+    m = wander_.step(self->x, self->z, double(now_ns - start_ns_) * 1e-9);
+  send(gateway::encodeInput(token_, ++seq_, m.x, m.z));
+  ++counters_.inputs;
+}
+
+void SimPlayer::bye() {
+  if (welcomed()) send(gateway::encodeBye(token_));
+}
+
+void SimPlayer::receive(std::int64_t now_ns) {
+  for (;;) {
+    auto got = socket_.receive(rx_buffer_);
+    if (!got) return;
+    ++counters_.datagrams_in;
+    counters_.bytes_in += got->size;
+    if (got->truncated || got->size > gateway::kMaxDatagramBytes) {
+      counters_.drops.add(gateway::DropReason::TooLarge);
+      continue;
+    }
+    handle(std::span(rx_buffer_.data(), got->size), got->from, now_ns);
+  }
+}
+
+void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from,
+                       std::int64_t now_ns) {
+  using gateway::DropReason;
+  if (from != config_.gateway) {
+    counters_.drops.add(DropReason::WrongAddress);
+    return;
+  }
+  gateway::Verified v = gateway::verifyDatagram(bytes, gateway::Direction::ToClient);
+  if (!v.ok()) {
+    counters_.drops.add(v.reason);
+    return;
+  }
+  const proto::Datagram& d = *v.datagram;
+  if (d.msg_type() == proto::Message::Welcome) {
+    onWelcome(d, now_ns);
+    return;
+  }
+  if (!welcomed()) {
+    counters_.drops.add(DropReason::NotReady);
+    return;
+  }
+  if (d.token() != token_) {
+    counters_.drops.add(DropReason::BadToken);
+    return;
+  }
+  onMessage(d, now_ns);
+}
+
+void SimPlayer::onWelcome(const proto::Datagram& d, std::int64_t now_ns) {
+  const proto::Welcome* w = d.msg_as_Welcome();
+  // The Welcome must answer our Hello and carry the token it announces.
+  if (w->client_nonce() != nonce_ || d.token() != w->token()) {
+    counters_.drops.add(gateway::DropReason::BadToken);
+    return;
+  }
+  if (welcomed()) return;  // a re-sent Welcome for our own retry
+  token_ = w->token();
+  player_id_ = w->player_id();
+  avatar_id_ = w->avatar_id();
+  zone_ = w->zone();
+  welcome_ns_ = now_ns;
+  next_input_ns_ = now_ns;
+  next_ping_ns_ = now_ns;
+}
+
+void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
+  switch (d.msg_type()) {
+    case proto::Message::Spawn:
+      for (const proto::EntityState* s : *d.msg_as_Spawn()->entities()) view_.spawn(*s, now_ns);
+      counters_.spawns += d.msg_as_Spawn()->entities()->size();
+      return;
+    case proto::Message::StateBatch:
+      for (const proto::EntityState* s : *d.msg_as_StateBatch()->updates()) {
+        if (auto err = view_.update(*s, now_ns)) counters_.dr_error_m.add(*err);
+        ++counters_.updates;
+      }
+      return;
+    case proto::Message::Despawn:
+      for (std::uint64_t id : *d.msg_as_Despawn()->ids()) counters_.despawns += view_.despawn(id);
+      return;
+    case proto::Message::Handoff:
+      zone_ = d.msg_as_Handoff()->to_zone();
+      ++counters_.handoffs;
+      return;
+    case proto::Message::Pong: {
+      std::int64_t sent_us = std::int64_t(d.msg_as_Pong()->client_time_us());
+      double rtt_ms = double(now_ns / 1000 - sent_us) * 1e-3;
+      // A Pong echoes our own clock; anything negative or ancient is not ours.
+      if (rtt_ms >= 0 && rtt_ms < 60'000) {
+        counters_.rtt_ms.add(rtt_ms);
+        counters_.last_rtt_ms = rtt_ms;
+      }
+      ++counters_.pongs;
+      return;
+    }
+    default:
+      counters_.drops.add(gateway::DropReason::UnexpectedType);
+      return;
+  }
+}
+
+}  // namespace zonesim::clients

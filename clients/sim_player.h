@@ -1,0 +1,93 @@
+#pragma once
+// One simulated player: its own UDP socket, the Hello/Welcome handshake (retried until
+// answered), inputs at a fixed rate from the wander profile, a Ping a second for RTT, and a
+// RemoteView fed by Spawn/StateBatch/Despawn. Everything from the network is verified first:
+// the client does not trust the gateway either.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "clients/remote_view.h"
+#include "clients/reservoir.h"
+#include "clients/wander.h"
+#include "common/scene.h"
+#include "gateway/udp_socket.h"
+#include "gateway/wire_encode.h"
+#include "gateway/wire_verify.h"
+
+namespace zonesim::clients {
+
+using gateway::DropCounters;
+using gateway::Endpoint;
+
+/// Settings shared by all players of one run.
+struct PlayerConfig {
+  Endpoint gateway;
+  SceneBox world;
+  double input_hz = 20;
+  double retarget_seconds = 8;
+  double hello_retry_s = 0.5;
+  double ping_every_s = 1.0;
+  std::uint64_t seed = 1;
+};
+
+/// What one player counted.
+struct PlayerCounters {
+  std::uint64_t datagrams_in = 0, bytes_in = 0, datagrams_out = 0, bytes_out = 0;
+  std::uint64_t updates = 0, spawns = 0, despawns = 0, handoffs = 0, pongs = 0;
+  std::uint64_t hellos = 0, inputs = 0, send_failures = 0;
+  DropCounters drops;
+  Reservoir rtt_ms;      ///< round trips, one per Pong
+  Reservoir dr_error_m;  ///< correction seen at each update of a known entity
+  double last_rtt_ms = 0;
+};
+
+class SimPlayer {
+ public:
+  /// index selects the player's nonce stream and wander generator; start_ns staggers its inputs.
+  SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns);
+
+  int fd() const { return socket_.fd(); }
+  /// Sends whatever is due at now_ns; returns when it next has something to send.
+  std::int64_t act(std::int64_t now_ns);
+  /// Reads and handles every pending datagram.
+  void receive(std::int64_t now_ns);
+  /// Sends Bye if a session is open.
+  void bye();
+
+  bool welcomed() const { return token_ != 0; }
+  std::uint64_t playerId() const { return player_id_; }
+  std::uint64_t avatarId() const { return avatar_id_; }
+  int zone() const { return zone_; }
+  /// Seconds from the first Hello to the Welcome (negative if none yet).
+  double welcomeSeconds() const;
+  const RemoteView& view() const { return view_; }
+  const PlayerCounters& counters() const { return counters_; }
+  const Wander& wander() const { return wander_; }
+
+  /// Handles one datagram from `from` (public so tests can feed crafted bytes).
+  void handle(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns);
+
+ private:
+  void send(const gateway::Bytes& bytes);
+  void sendInput(std::int64_t now_ns);
+  void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
+  void onMessage(const proto::Datagram& d, std::int64_t now_ns);
+
+  PlayerConfig config_;
+  gateway::UdpSocket socket_;
+  std::uint64_t nonce_;
+  std::uint64_t token_ = 0, player_id_ = 0, avatar_id_ = 0;
+  int zone_ = -1;
+  std::uint32_t seq_ = 0;
+  std::int64_t start_ns_, first_hello_ns_ = -1, welcome_ns_ = -1;
+  std::int64_t next_hello_ns_, next_input_ns_, next_ping_ns_;
+  std::int64_t input_period_ns_;
+  Wander wander_;
+  RemoteView view_;
+  PlayerCounters counters_;
+  std::vector<std::uint8_t> rx_buffer_;
+};
+
+}  // namespace zonesim::clients

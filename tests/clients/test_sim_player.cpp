@@ -1,0 +1,163 @@
+// A simulated player against a UDP socket that plays the gateway with crafted datagrams:
+// the client verifies everything and counts what it drops.
+#include <gtest/gtest.h>
+#include <poll.h>
+
+#include <cmath>
+#include <limits>
+
+#include "clients/sim_player.h"
+#include "common/timer.h"
+
+namespace zonesim::clients {
+namespace {
+
+using gateway::Bytes;
+using gateway::DropReason;
+
+class SimPlayerTest : public ::testing::Test {
+ protected:
+  SimPlayerTest() {
+    PlayerConfig c;
+    c.gateway = Endpoint::loopback(gateway_.localPort());
+    c.world = {{0, 0, 0}, {100, 10, 100}};
+    player_ = std::make_unique<SimPlayer>(c, 0, nowNs());
+    player_addr_ = Endpoint::loopback(0);
+  }
+
+  // Waits for the next datagram the player sent to the "gateway".
+  const proto::Datagram* fromPlayer() {
+    pollfd p{gateway_.fd(), POLLIN, 0};
+    if (::poll(&p, 1, 2000) <= 0) return nullptr;
+    auto got = gateway_.receive(buf_);
+    if (!got) return nullptr;
+    player_addr_ = got->from;
+    auto v =
+        gateway::verifyDatagram(std::span(buf_.data(), got->size), gateway::Direction::ToGateway);
+    return v.datagram;
+  }
+
+  // Sends bytes to the player from `from` and lets it read them.
+  void toPlayer(const Bytes& b, gateway::UdpSocket& from) {
+    from.sendTo(player_addr_, b);
+    pollfd p{player_->fd(), POLLIN, 0};
+    ASSERT_EQ(::poll(&p, 1, 2000), 1);
+    player_->receive(nowNs());
+  }
+  void toPlayer(const Bytes& b) { toPlayer(b, gateway_); }
+
+  // Lets the player send its Hello and records the nonce.
+  void hello() {
+    player_->act(nowNs());
+    const proto::Datagram* d = fromPlayer();
+    ASSERT_TRUE(d && d->msg_type() == proto::Message::Hello);
+    nonce_ = d->msg_as_Hello()->client_nonce();
+  }
+
+  // Completes the handshake and returns the token.
+  std::uint64_t welcome() {
+    if (nonce_ == 0) hello();
+    gateway::WelcomeInfo w;
+    w.client_nonce = nonce_;
+    w.token = 0xabcdef;
+    w.player_id = (1ull << 32) | 1;
+    w.avatar_id = 77;
+    w.zone = 2;
+    w.world_max = proto::Vec3f(100, 10, 100);
+    toPlayer(gateway::encodeWelcome(w));
+    return w.token;
+  }
+
+  std::uint64_t dropped(DropReason r) const { return player_->counters().drops[r]; }
+
+  gateway::UdpSocket gateway_;
+  std::unique_ptr<SimPlayer> player_;
+  Endpoint player_addr_;
+  std::uint64_t nonce_ = 0;
+  std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(2048);
+};
+
+proto::EntityState state(std::uint64_t id, float x) {
+  return proto::EntityState(id, 0, proto::Vec3f(x, 0, 5), proto::Vec3f(1, 0, 0),
+                            proto::Quatf(0, 0, 0, 1));
+}
+
+TEST_F(SimPlayerTest, HandshakeThenInputsAndPings) {
+  std::uint64_t token = welcome();
+  ASSERT_TRUE(player_->welcomed());
+  EXPECT_EQ(player_->avatarId(), 77u);
+  EXPECT_EQ(player_->zone(), 2);
+  player_->act(nowNs());
+  bool input = false, ping = false;
+  for (int i = 0; i < 2; ++i) {
+    const proto::Datagram* d = fromPlayer();
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->token(), token);
+    if (d->msg_type() == proto::Message::Input) {
+      input = true;
+      EXPECT_EQ(d->msg_as_Input()->seq(), 1u);
+    }
+    ping |= d->msg_type() == proto::Message::Ping;
+  }
+  EXPECT_TRUE(input && ping);
+}
+
+TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
+  hello();
+  std::vector<proto::EntityState> one{state(5, 1)};
+  toPlayer(gateway::encodeSpawnChunks(1, 1, one)[0]);  // before any Welcome
+  EXPECT_EQ(dropped(DropReason::NotReady), 1u);
+  gateway::WelcomeInfo w;
+  w.client_nonce = 12345;  // not our nonce
+  w.token = 9;
+  w.world_max = proto::Vec3f(1, 1, 1);
+  toPlayer(gateway::encodeWelcome(w));
+  EXPECT_EQ(dropped(DropReason::BadToken), 1u);
+  EXPECT_FALSE(player_->welcomed());
+
+  std::uint64_t token = welcome();
+  toPlayer(gateway::encodeSpawnChunks(token + 1, 1, one)[0]);  // forged token
+  EXPECT_EQ(dropped(DropReason::BadToken), 2u);
+  gateway::UdpSocket stranger;
+  toPlayer(gateway::encodeSpawnChunks(token, 1, one)[0], stranger);  // not from the gateway
+  EXPECT_EQ(dropped(DropReason::WrongAddress), 1u);
+  toPlayer(Bytes{1, 2, 3});
+  EXPECT_EQ(dropped(DropReason::Truncated), 1u);
+  std::vector<proto::EntityState> bad{
+      proto::EntityState(6, 0, proto::Vec3f(std::numeric_limits<float>::infinity(), 0, 0),
+                         proto::Vec3f(0, 0, 0), proto::Quatf(0, 0, 0, 1))};
+  toPlayer(gateway::encodeStateChunks(token, 1, bad)[0]);
+  EXPECT_EQ(dropped(DropReason::OutOfRange), 1u);
+  toPlayer(gateway::encodeInput(token, 1, 0, 0));  // a gateway-bound message
+  EXPECT_EQ(dropped(DropReason::UnexpectedType), 1u);
+  EXPECT_EQ(player_->view().size(), 0u) << "nothing dropped reached the view";
+}
+
+TEST_F(SimPlayerTest, SpawnUpdateDespawnAndHandoffAreCounted) {
+  std::uint64_t token = welcome();
+  std::vector<proto::EntityState> two{state(5, 1), state(77, 2)};
+  toPlayer(gateway::encodeSpawnChunks(token, 1, two)[0]);
+  EXPECT_EQ(player_->view().size(), 2u);
+  EXPECT_EQ(player_->counters().spawns, 2u);
+  std::vector<proto::EntityState> upd{state(5, 3)};
+  toPlayer(gateway::encodeStateChunks(token, 2, upd)[0]);
+  EXPECT_EQ(player_->counters().updates, 1u);
+  EXPECT_EQ(player_->counters().dr_error_m.seen(), 1u);
+  std::vector<std::uint64_t> gone{5};
+  toPlayer(gateway::encodeDespawnChunks(token, 3, gone)[0]);
+  EXPECT_EQ(player_->view().size(), 1u);
+  EXPECT_EQ(player_->counters().despawns, 1u);
+  toPlayer(gateway::encodeHandoff(token, {77, 2, 3, 10, 4}));
+  EXPECT_EQ(player_->counters().handoffs, 1u);
+  EXPECT_EQ(player_->zone(), 3);
+  // The avatar is known now: inputs steer toward the wander target.
+  player_->act(nowNs());
+  const proto::Datagram* d = fromPlayer();
+  while (d && d->msg_type() != proto::Message::Input) d = fromPlayer();
+  ASSERT_NE(d, nullptr);
+  const proto::Input* in = d->msg_as_Input();
+  EXPECT_NEAR(std::hypot(in->move_x(), in->move_z()), 1.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace zonesim::clients
