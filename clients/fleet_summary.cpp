@@ -57,7 +57,7 @@ std::string clientJson(const SimPlayer& p, double s) {
       .add("avatar_id", p.avatarId())
       .add("zone", p.zone())
       .add("welcomed", p.welcomed() ? 1 : 0)
-      .add("welcome_ms", p.welcomeSeconds() * 1e3);
+      .add("welcome_ms", p.welcomed() ? p.welcomeSeconds() * 1e3 : -1.0);
   addTraffic(j, p.counters(), s);
   j.add("visible_entities", std::uint64_t(p.view().size()));
   return j.str();

@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
   app.add_option("--metrics", metrics_dir, "write DIR/clients.jsonl, a line per second");
   app.add_option("--summary", summary_path, "write the summary JSON here");
   CLI11_PARSE(app, argc, argv);
+  // First, so a signal during start-up also ends in a clean exit rather than a kill.
+  installSignalHandlers();
 
   try {
     zonesim::applyCommonOptions(common, "clients");
@@ -65,7 +67,6 @@ int main(int argc, char** argv) {
       std::filesystem::create_directories(metrics_dir);
       cfg.metrics_path = metrics_dir + "/clients.jsonl";
     }
-    installSignalHandlers();
     zonesim::clients::ClientFleet fleet(cfg);
     fleet.run(g_stop);
     std::string summary = fleet.summaryJson();

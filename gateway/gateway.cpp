@@ -44,6 +44,7 @@ Gateway::Gateway(GatewayConfig config)
     : config_(std::move(config)),
       grid_(config_.scene.world, config_.scene.interest_cell_size),
       tick_ns_(std::max<std::int64_t>(1, seconds(1.0 / config_.scene.tick_rate))),
+      start_ns_(nowNs()),
       socket_(config_.port),
       sessions_(config_.gateway_id, config_.max_sessions),
       handler_(sessions_, handlerConfig(config_)),

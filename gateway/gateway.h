@@ -75,7 +75,7 @@ class Gateway {
   GatewayConfig config_;
   InterestGrid grid_;
   std::int64_t tick_ns_;
-  std::int64_t start_ns_ = 0;
+  std::int64_t start_ns_;
   UdpSocket socket_;
   SessionTable sessions_;
   DatagramHandler handler_;

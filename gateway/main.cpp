@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--max-sessions", cfg.max_sessions, "refuse Hellos beyond this many sessions");
   CLI11_PARSE(app, argc, argv);
+  // First, so a signal during start-up also ends in a clean exit rather than a kill.
+  installSignalHandlers();
 
   try {
     zonesim::applyCommonOptions(common, "gateway");
@@ -82,7 +84,6 @@ int main(int argc, char** argv) {
       std::filesystem::create_directories(metrics_dir);
       cfg.metrics_path = metrics_dir + "/gateway.jsonl";
     }
-    installSignalHandlers();
     zonesim::gateway::Gateway gateway(cfg);
     if (!port_file.empty()) writeFile(port_file, std::to_string(gateway.port()));
     std::printf("gateway listening on 127.0.0.1:%u\n", unsigned(gateway.port()));

@@ -22,9 +22,10 @@ TEST(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
   gateway::GatewayConfig gcfg;
   gcfg.scene = scene;
   gcfg.dds_domain = domain;
+  gcfg.gateway_id = testing::privateGatewayId();
   gcfg.expected_zones = 1;
   gateway::Gateway gw(gcfg);
-  testing::ZoneEmulator zone(domain, scene);
+  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
 
   std::string metrics = ::testing::TempDir() + "/clients_" + std::to_string(domain) + ".jsonl";
   FleetConfig fcfg;

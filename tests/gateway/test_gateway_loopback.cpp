@@ -24,9 +24,10 @@ class GatewayLoopback : public ::testing::Test {
     GatewayConfig cfg;
     cfg.scene = testing::smallScene();
     cfg.dds_domain = domain;
+    cfg.gateway_id = testing::privateGatewayId();
     cfg.expected_zones = 1;
     gateway_ = std::make_unique<Gateway>(cfg);
-    zone_ = std::make_unique<testing::ZoneEmulator>(domain, cfg.scene);
+    zone_ = std::make_unique<testing::ZoneEmulator>(domain, cfg.scene, cfg.gateway_id);
     gateway_addr_ = Endpoint::loopback(gateway_->port());
   }
   void TearDown() override {
@@ -48,6 +49,80 @@ class GatewayLoopback : public ::testing::Test {
     return v.datagram;
   }
 
+  // Plays client and zone until the client has its Welcome, both entities and a StateBatch.
+  std::uint64_t handshakeAndFirstState() {
+    std::uint64_t token = 0;
+    std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0;
+    while (nowNs() < deadline && !(token && spawned_avatar_ && spawned_npc_ && got_batch_)) {
+      if (token == 0 && nowNs() >= next_hello) {
+        client_.sendTo(gateway_addr_, encodeHello(99, "tester"));
+        next_hello = nowNs() + 500'000'000;
+      }
+      if (nowNs() >= next_tick) {
+        zoneTick();
+        next_tick = nowNs() + 33'000'000;
+      }
+      if (const proto::Datagram* d = receive()) observe(*d, token);
+    }
+    return token;
+  }
+
+  // The zone: answers spawn requests, then publishes the avatar and an NPC near it each tick.
+  void zoneTick() {
+    for (const auto& r : zone_->takeSpawnRequests()) {
+      player_ = r.player_id;
+      spawn_x_ = r.position.x, spawn_z_ = r.position.z;
+      zone_->publishOwnership(player_, kAvatar, -1, 0, tick_, 0);
+    }
+    if (player_ == 0) return;
+    ++tick_;
+    auto avatar = entity(kAvatar, 1, spawn_x_, spawn_z_, 1, 0);
+    auto npc = entity(kNpc, 0, spawn_x_ + 5, spawn_z_, 0, 1);
+    zone_->publishBatch(spawn_x_, spawn_z_, 0, tick_, {}, {avatar, npc});
+  }
+
+  void observe(const proto::Datagram& d, std::uint64_t& token) {
+    switch (d.msg_type()) {
+      case proto::Message::Welcome: {
+        const proto::Welcome* w = d.msg_as_Welcome();
+        EXPECT_EQ(w->client_nonce(), 99u);
+        EXPECT_EQ(w->avatar_id(), kAvatar);
+        EXPECT_EQ(w->player_id(), player_);
+        EXPECT_EQ(w->zone(), 0);
+        token = w->token();
+        break;
+      }
+      case proto::Message::Spawn:
+        for (const proto::EntityState* s : *d.msg_as_Spawn()->entities()) {
+          spawned_avatar_ |= s->id() == kAvatar;
+          spawned_npc_ |= s->id() == kNpc;
+        }
+        break;
+      case proto::Message::StateBatch:
+        got_batch_ = true;
+        break;
+      default:
+        break;
+    }
+  }
+
+  // Sends inputs until the zone reads some on partition z.<zone>.
+  std::vector<zonesim_dds_PlayerInput> inputsArrivingAt(int zone, std::uint64_t token) {
+    std::vector<zonesim_dds_PlayerInput> inputs;
+    std::int64_t deadline = nowNs() + kTimeoutNs;
+    while (inputs.empty() && nowNs() < deadline) {
+      client_.sendTo(gateway_addr_, encodeInput(token, ++seq_, 0.6f, 0.8f));
+      receive();
+      inputs = zone_->takeInputs(zone);
+    }
+    return inputs;
+  }
+
+  static constexpr std::uint64_t kAvatar = 0x1000000000001ULL, kNpc = 0x1000000000002ULL;
+  std::uint64_t player_ = 0, tick_ = 0;
+  std::uint32_t seq_ = 0;
+  float spawn_x_ = 0, spawn_z_ = 0;
+  bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
   std::unique_ptr<Gateway> gateway_;
   std::unique_ptr<testing::ZoneEmulator> zone_;
   std::atomic<bool> stop_{false};
@@ -58,95 +133,36 @@ class GatewayLoopback : public ::testing::Test {
 };
 
 TEST_F(GatewayLoopback, WelcomeSpawnStateBatchInputsAndHandoff) {
-  const std::uint64_t kAvatar = 0x1000000000001ULL, kNpc = 0x1000000000002ULL;
-  std::uint64_t token = 0, player = 0, tick = 0;
-  float spawn_x = 0, spawn_z = 0;
   startGateway();
-  bool spawned_avatar = false, spawned_npc = false, got_batch = false;
-  std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0;
-  while (nowNs() < deadline && !(token && spawned_avatar && spawned_npc && got_batch)) {
-    if (token == 0 && nowNs() >= next_hello) {
-      client_.sendTo(gateway_addr_, encodeHello(99, "tester"));
-      next_hello = nowNs() + 500'000'000;
-    }
-    // The zone: answer spawn requests, then publish a batch every tick near the avatar.
-    for (const auto& r : zone_->takeSpawnRequests()) {
-      player = r.player_id;
-      spawn_x = r.position.x, spawn_z = r.position.z;
-      zone_->publishOwnership(player, kAvatar, -1, 0, tick, 0);
-    }
-    if (player != 0 && nowNs() >= next_tick) {
-      ++tick;
-      auto avatar = entity(kAvatar, 1, spawn_x, spawn_z, 1, 0);
-      auto npc = entity(kNpc, 0, spawn_x + 5, spawn_z, 0, 1);
-      zone_->publishBatch(spawn_x, spawn_z, 0, tick, {}, {avatar, npc});
-      next_tick = nowNs() + 33'000'000;
-    }
-    const proto::Datagram* d = receive();
-    if (d == nullptr) continue;
-    switch (d->msg_type()) {
-      case proto::Message::Welcome:
-        EXPECT_EQ(d->msg_as_Welcome()->client_nonce(), 99u);
-        EXPECT_EQ(d->msg_as_Welcome()->avatar_id(), kAvatar);
-        EXPECT_EQ(d->msg_as_Welcome()->player_id(), player);
-        EXPECT_EQ(d->msg_as_Welcome()->zone(), 0);
-        token = d->msg_as_Welcome()->token();
-        break;
-      case proto::Message::Spawn:
-        for (const proto::EntityState* s : *d->msg_as_Spawn()->entities()) {
-          spawned_avatar |= s->id() == kAvatar;
-          spawned_npc |= s->id() == kNpc;
-        }
-        break;
-      case proto::Message::StateBatch:
-        got_batch = true;
-        break;
-      default:
-        break;
-    }
-  }
+  std::uint64_t token = handshakeAndFirstState();
   ASSERT_NE(token, 0u) << "no Welcome";
-  EXPECT_TRUE(spawned_avatar);
-  EXPECT_TRUE(spawned_npc);
-  EXPECT_TRUE(got_batch);
+  EXPECT_TRUE(spawned_avatar_);
+  EXPECT_TRUE(spawned_npc_);
+  EXPECT_TRUE(got_batch_);
 
   // Inputs reach the owning zone's partition.
-  std::vector<zonesim_dds_PlayerInput> inputs;
-  std::uint32_t seq = 0;
-  deadline = nowNs() + kTimeoutNs;
-  while (inputs.empty() && nowNs() < deadline) {
-    client_.sendTo(gateway_addr_, encodeInput(token, ++seq, 0.6f, 0.8f));
-    receive();
-    inputs = zone_->takeInputs(0);
-  }
+  std::vector<zonesim_dds_PlayerInput> inputs = inputsArrivingAt(0, token);
   ASSERT_FALSE(inputs.empty());
-  EXPECT_EQ(inputs[0].player_id, player);
+  EXPECT_EQ(inputs[0].player_id, player_);
   EXPECT_EQ(inputs[0].avatar_id, kAvatar);
   EXPECT_FLOAT_EQ(inputs[0].move_x, 0.6f);
 
   // Zone 1 takes the avatar over: the client hears of it, later inputs go to z.1.
-  zone_->publishOwnership(player, kAvatar, 0, 1, tick + 1, seq);
-  bool handoff = false;
-  deadline = nowNs() + kTimeoutNs;
-  while (!handoff && nowNs() < deadline) {
+  zone_->publishOwnership(player_, kAvatar, 0, 1, tick_ + 1, seq_);
+  const proto::Handoff* handoff = nullptr;
+  std::int64_t deadline = nowNs() + kTimeoutNs;
+  while (handoff == nullptr && nowNs() < deadline) {
     const proto::Datagram* d = receive();
-    if (d && d->msg_type() == proto::Message::Handoff) {
-      EXPECT_EQ(d->msg_as_Handoff()->from_zone(), 0);
-      EXPECT_EQ(d->msg_as_Handoff()->to_zone(), 1);
-      EXPECT_EQ(d->msg_as_Handoff()->last_input_seq(), seq);
-      handoff = true;
-    }
+    if (d && d->msg_type() == proto::Message::Handoff) handoff = d->msg_as_Handoff();
   }
-  ASSERT_TRUE(handoff);
-  inputs.clear();
-  deadline = nowNs() + kTimeoutNs;
-  while (inputs.empty() && nowNs() < deadline) {
-    client_.sendTo(gateway_addr_, encodeInput(token, ++seq, 0, 1));
-    receive();
-    inputs = zone_->takeInputs(1);
-  }
+  ASSERT_NE(handoff, nullptr);
+  EXPECT_EQ(handoff->from_zone(), 0);
+  EXPECT_EQ(handoff->to_zone(), 1);
+  EXPECT_EQ(handoff->last_input_seq(), seq_);
+  std::uint32_t seq_at_handoff = seq_;
+  inputs = inputsArrivingAt(1, token);
   ASSERT_FALSE(inputs.empty());
-  EXPECT_GT(inputs[0].seq, 1u);
+  EXPECT_GT(inputs[0].seq, seq_at_handoff);
 }
 
 TEST_F(GatewayLoopback, ForgedTrafficIsCountedAndHarmless) {

@@ -41,6 +41,14 @@ inline int privateDdsDomain() {
   return 100 + int((std::uint64_t(getpid()) * 7919 + std::uint64_t(t)) % 100);
 }
 
+/// A gateway id unlikely to be shared with a test in another process that drew the same domain;
+/// the zone emulator answers only its players.
+inline std::uint32_t privateGatewayId() {
+  auto t = std::chrono::steady_clock::now().time_since_epoch().count();
+  return 1 +
+         std::uint32_t((std::uint64_t(getpid()) * 2654435761u + std::uint64_t(t)) % 0xfffffff0u);
+}
+
 /// An entity state for DDS samples.
 inline zonesim_dds_EntityUpdate entity(std::uint64_t id, std::uint8_t kind, float x, float z,
                                        float vx = 0, float vz = 0) {
@@ -56,8 +64,10 @@ inline zonesim_dds_EntityUpdate entity(std::uint64_t id, std::uint8_t kind, floa
 /// The zones' side of the DDS contract, for one test.
 class ZoneEmulator {
  public:
-  ZoneEmulator(int domain, const Scene& scene)
-      : grid_(scene.world, scene.interest_cell_size),
+  /// Serves the players of gateway_id on the domain.
+  ZoneEmulator(int domain, const Scene& scene, std::uint32_t gateway_id)
+      : gateway_id_(gateway_id),
+        grid_(scene.world, scene.interest_cell_size),
         participant_(dds::makeParticipant(domain)),
         topics_(dds::makeTopics(participant_.get())),
         keep_all_(dds::reliableKeepAllQos()),
@@ -68,9 +78,11 @@ class ZoneEmulator {
         dds::makePartitionWriter(participant_.get(), topics_.ownership.get(), "", keep_all_.get());
   }
 
-  /// Takes pending spawn requests.
+  /// Takes pending spawn requests of our gateway's players.
   std::vector<zonesim_dds_SpawnRequest> takeSpawnRequests() {
-    return take<zonesim_dds_SpawnRequest>(spawn_reader_.reader.get());
+    auto all = take<zonesim_dds_SpawnRequest>(spawn_reader_.reader.get());
+    std::erase_if(all, [&](const auto& r) { return (r.player_id >> 32) != gateway_id_; });
+    return all;
   }
 
   /// Announces that `to_zone` owns the player's avatar.
@@ -130,6 +142,7 @@ class ZoneEmulator {
     }
   }
 
+  std::uint32_t gateway_id_;
   InterestGrid grid_;
   dds::Entity participant_;
   dds::Topics topics_;
