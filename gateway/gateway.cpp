@@ -112,8 +112,10 @@ void Gateway::carryOut(Outbox& out) {
     ++counters_.sessions_opened;
   }
   for (const InputCommand& c : out.inputs) {
-    link_.sendInput(c);
-    ++counters_.inputs_forwarded;
+    if (link_.sendInput(c))
+      ++counters_.inputs_forwarded;
+    else
+      ++counters_.input_write_failures;
   }
   CellDelta delta;
   for (const Session& s : out.closed) {

@@ -16,6 +16,7 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("spawns_sent", c.spawns_sent)
       .add("despawns_sent", c.despawns_sent)
       .add("inputs_forwarded", c.inputs_forwarded)
+      .add("input_write_failures", c.input_write_failures)
       .add("spawn_requests", c.spawn_requests)
       .add("welcomes", c.welcomes)
       .add("handoffs", c.handoffs)

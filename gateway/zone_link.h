@@ -29,8 +29,8 @@ class ZoneLink {
   /// Writes held spawn requests if enough zones listen now; returns how many were written.
   std::size_t flushSpawns();
   std::size_t heldSpawns() const { return held_spawns_.size(); }
-  /// Writes one input on the owning zone's partition.
-  void sendInput(const InputCommand& c);
+  /// Writes one input on the owning zone's partition; false if the write failed (timed out).
+  bool sendInput(const InputCommand& c);
 
   /// Creates the readers of cell (ix, iz) with id cell; nothing if already there.
   void subscribeCell(int cell, int ix, int iz);
