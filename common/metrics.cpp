@@ -1,9 +1,11 @@
 #include "common/metrics.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <system_error>
 #include <utility>
 
 namespace zonesim {
@@ -42,9 +44,10 @@ JsonLine& JsonLine::add(std::string_view k, double value) {
   if (!std::isfinite(value)) {
     body_ += "null";  // JSON has no NaN/inf
   } else {
+    // Shortest text that reads back as the same double (%.9g rounded epoch seconds to 10 s).
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", value);
-    body_ += buf;
+    auto [end, ec] = std::to_chars(buf, buf + sizeof buf, value);
+    body_.append(buf, ec == std::errc() ? end : buf);
   }
   return *this;
 }

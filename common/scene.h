@@ -30,12 +30,12 @@ struct ZoneLayout {
 /// Walking NPCs wandering between random waypoints.
 struct NpcPopulation {
   int count = 0;
-  double min_speed = 1.0;       ///< m/s, each NPC draws its top speed in [min, max]
+  double min_speed = 1.0;  ///< m/s, each NPC draws its top speed in [min, max]
   double max_speed = 2.0;
-  double acceleration = 2.0;    ///< m/s^2 toward the waypoint
-  double waypoint_radius = 30;  ///< next waypoint drawn within this distance
-  double arrive_distance = 1.0; ///< waypoint counts as reached inside this distance
-  SceneBox region;              ///< where they start (defaults to the world)
+  double acceleration = 2.0;     ///< m/s^2 toward the waypoint
+  double waypoint_radius = 30;   ///< next waypoint drawn within this distance
+  double arrive_distance = 1.0;  ///< waypoint counts as reached inside this distance
+  SceneBox region;               ///< where they start (defaults to the world)
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).
@@ -44,29 +44,30 @@ struct RigidBodyPopulation {
   double radius = 0.5;
   double mass = 1.0;
   double restitution = 0.5;
-  double drop_height = 10.0;    ///< start height above the ground
-  SceneBox region;
+  double drop_height = 10.0;      ///< start gap between ground and body (lowest of the range)
+  double max_drop_height = 10.0;  ///< start heights are drawn uniformly in [drop_height, this]
+  SceneBox region;                ///< where they start on x-z (defaults to the world)
 };
 
 /// Particle emitters: each spawns `rate` particles per second with the given lifetime.
 struct EmitterPopulation {
   int count = 0;
-  double rate = 100;       ///< particles per second per emitter
-  double lifetime = 2.0;   ///< seconds
-  double speed = 5.0;      ///< initial speed, m/s, upward cone
+  double rate = 100;      ///< particles per second per emitter
+  double lifetime = 2.0;  ///< seconds
+  double speed = 5.0;     ///< initial speed, m/s, upward cone
   double restitution = 0.4;
-  double drag = 0.1;       ///< linear drag coefficient, 1/s
-  int max_particles = 4096;///< per emitter; the oldest are recycled first
-  SceneBox region;
+  double drag = 0.1;         ///< linear drag coefficient, 1/s
+  int max_particles = 4096;  ///< per emitter; the oldest are recycled first
+  SceneBox region;           ///< where the emitters stand (defaults to the world)
 };
 
 /// Defaults for simulated players attached by client_stub.
 struct ClientProfile {
   int players = 32;
-  double speed = 5.0;          ///< m/s avatar walking speed
-  double input_hz = 20;        ///< inputs per second per player
-  double nimbus = 60;          ///< range of interest, metres
-  double retarget_seconds = 8; ///< how long a player walks toward one target before choosing anew
+  double speed = 5.0;           ///< m/s avatar walking speed
+  double input_hz = 20;         ///< inputs per second per player
+  double nimbus = 60;           ///< range of interest, metres
+  double retarget_seconds = 8;  ///< how long a player walks toward one target before choosing anew
 };
 
 /// Sender-side dead reckoning settings (first order for now).
@@ -75,12 +76,13 @@ struct DeadReckoning {
   double heartbeat_seconds = 5.0;   ///< an update at least this often per entity
 };
 
+/// A whole scene; the docs for every key are in docs/scene-format.md.
 struct Scene {
   std::string name;
-  std::string source_path;  ///< file it was loaded from
+  std::string source_path;  ///< file it was loaded from; empty from parseScene()
   SceneBox world;
-  double tick_rate = 30;    ///< ticks per second of wall time when running real-time
-  double dt = 1.0 / 30;     ///< simulated seconds per tick
+  double tick_rate = 30;  ///< ticks per second of wall time when running real-time
+  double dt = 1.0 / 30;   ///< simulated seconds per tick
   std::uint64_t seed = 1;
   ZoneLayout zones;
   double interest_cell_size = 50;  ///< metres; one DDS partition per cell

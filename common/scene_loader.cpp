@@ -1,0 +1,254 @@
+// The scene file format (docs/scene-format.md) mapped onto Scene. Each section has one reader
+// that names its allowed keys, its required fields and each value's limits; SceneNode turns
+// any violation into "file:line: field: what is wrong".
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ios>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "common/scene.h"
+#include "common/scene_document.h"
+#include "common/scene_node.h"
+
+namespace zonesim {
+namespace {
+
+// Entity ids give the creating rank 16 bits, so a grid may have at most 2^16 zone ranks.
+constexpr int kMaxZonesPerAxis = 256;
+// Every interest cell is a DDS partition; far more than this is a unit mistake.
+constexpr double kMaxInterestCells = 65536;
+
+constexpr std::array<std::pair<const char*, double SceneVec3::*>, 3> kAxes{
+    {{"x", &SceneVec3::x}, {"y", &SceneVec3::y}, {"z", &SceneVec3::z}}};
+
+SceneBox readWorld(const SceneMap& root) {
+  SceneMap world = root.required("world").map({"min", "max"});
+  SceneNode max_node = world.required("max");
+  SceneBox box{world.required("min").vec3(), max_node.vec3()};
+  for (auto [axis, member] : kAxes) {
+    if (box.max.*member <= box.min.*member) {
+      max_node.fail(std::string("must be greater than world.min on every axis; ") + axis + " " +
+                    formatNumber(box.max.*member) + " <= " + formatNumber(box.min.*member));
+    }
+  }
+  return box;
+}
+
+void checkInside(const SceneNode& node, const SceneVec3& point, const SceneBox& world) {
+  for (auto [axis, member] : kAxes) {
+    double v = point.*member, lo = world.min.*member, hi = world.max.*member;
+    if (v < lo || v > hi) {
+      node.fail(std::string(axis) + " " + formatNumber(v) + " is outside the world [" +
+                formatNumber(lo) + ", " + formatNumber(hi) + "]");
+    }
+  }
+}
+
+// Where a population starts; the whole world unless narrowed.
+SceneBox readRegion(const SceneMap& population, const SceneBox& world) {
+  std::optional<SceneNode> node = population.optional("region");
+  if (!node) return world;
+  SceneMap region = node->map({"min", "max"});
+  SceneNode min_node = region.required("min"), max_node = region.required("max");
+  SceneBox box{min_node.vec3(), max_node.vec3()};
+  checkInside(min_node, box.min, world);
+  checkInside(max_node, box.max, world);
+  for (auto [axis, member] : kAxes) {
+    if (box.max.*member < box.min.*member) {
+      max_node.fail(std::string(axis) + " " + formatNumber(box.max.*member) +
+                    " is below region.min " + formatNumber(box.min.*member));
+    }
+  }
+  return box;
+}
+
+void readNpcs(const SceneNode& node, Scene& scene) {
+  SceneMap m = node.map(
+      {"kind", "count", "speed", "acceleration", "waypoint_radius", "arrive_distance", "region"});
+  NpcPopulation p;
+  p.count = m.required("count").integer(Limit::atLeast(0));
+  m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
+  m.read("acceleration", p.acceleration, Limit::above(0));
+  m.read("waypoint_radius", p.waypoint_radius, Limit::above(0));
+  m.read("arrive_distance", p.arrive_distance, Limit::above(0));
+  p.region = readRegion(m, scene.world);
+  scene.npcs.push_back(p);
+}
+
+void readRigidBodies(const SceneNode& node, Scene& scene) {
+  SceneMap m =
+      node.map({"kind", "count", "radius", "mass", "restitution", "drop_height", "region"});
+  RigidBodyPopulation p;
+  p.count = m.required("count").integer(Limit::atLeast(0));
+  m.read("radius", p.radius, Limit::above(0));
+  m.read("mass", p.mass, Limit::above(0));
+  m.read("restitution", p.restitution, Limit::between(0, 1));
+  m.read("drop_height", p.drop_height, p.max_drop_height, Limit::atLeast(0));
+  p.region = readRegion(m, scene.world);
+  // drop_height is the gap under the body, so its top starts 2 radii higher.
+  double room = scene.world.max.y - scene.world.min.y;
+  if (p.max_drop_height + 2 * p.radius > room) {
+    m.failAt("drop_height", "bodies of radius " + formatNumber(p.radius) + " dropped from " +
+                                formatNumber(p.max_drop_height) + " m stick out of the world (" +
+                                formatNumber(room) + " m high)");
+  }
+  scene.rigid_bodies.push_back(p);
+}
+
+void readEmitters(const SceneNode& node, Scene& scene) {
+  SceneMap m = node.map({"kind", "count", "rate", "lifetime", "speed", "restitution", "drag",
+                         "max_particles", "region"});
+  EmitterPopulation p;
+  p.count = m.required("count").integer(Limit::atLeast(0));
+  m.read("rate", p.rate, Limit::atLeast(0));
+  m.read("lifetime", p.lifetime, Limit::above(0));
+  m.read("speed", p.speed, Limit::atLeast(0));
+  m.read("restitution", p.restitution, Limit::between(0, 1));
+  m.read("drag", p.drag, Limit::atLeast(0));
+  m.read("max_particles", p.max_particles, Limit::atLeast(1));
+  p.region = readRegion(m, scene.world);
+  scene.emitters.push_back(p);
+}
+
+struct PopulationKind {
+  std::string_view name;
+  void (*read)(const SceneNode&, Scene&);
+};
+
+constexpr std::array<PopulationKind, 3> kPopulationKinds{{
+    {"npc", readNpcs},
+    {"rigid_body", readRigidBodies},
+    {"particle_emitter", readEmitters},
+}};
+
+void readPopulations(const SceneMap& root, Scene& scene) {
+  std::optional<SceneNode> list = root.optional("populations");
+  if (!list) return;
+  for (const SceneNode& item : list->items()) {
+    std::optional<SceneNode> kind = item.peek("kind");
+    if (!kind) item.failChild("kind", "required field is missing");
+    std::string name = kind->text();
+    auto found = std::find_if(kPopulationKinds.begin(), kPopulationKinds.end(),
+                              [&](const PopulationKind& k) { return k.name == name; });
+    if (found == kPopulationKinds.end()) {
+      kind->fail("unknown kind '" + name + "' (allowed: npc, rigid_body, particle_emitter)");
+    }
+    found->read(item, scene);
+  }
+}
+
+void readZones(const SceneMap& root, Scene& scene) {
+  SceneMap zones = root.required("zones").map({"layout", "columns", "rows"});
+  if (std::optional<SceneNode> layout = zones.optional("layout")) {
+    std::string name = layout->text();
+    if (name != "grid") layout->fail("unknown layout '" + name + "' (allowed: grid)");
+  }
+  scene.zones.kind = ZoneLayout::Kind::Grid;
+  scene.zones.columns = zones.required("columns").integer(Limit::between(1, kMaxZonesPerAxis));
+  scene.zones.rows = zones.required("rows").integer(Limit::between(1, kMaxZonesPerAxis));
+}
+
+void readInterest(const SceneMap& root, Scene& scene) {
+  SceneMap interest = root.section("interest", {"cell_size", "keyframe_every"});
+  interest.read("cell_size", scene.interest_cell_size, Limit::above(0));
+  interest.read("keyframe_every", scene.keyframe_every, Limit::atLeast(1));
+  double size = scene.interest_cell_size;
+  double cells = std::ceil((scene.world.max.x - scene.world.min.x) / size) *
+                 std::ceil((scene.world.max.z - scene.world.min.z) / size);
+  if (cells > kMaxInterestCells) {
+    interest.failAt("cell_size", "gives " + formatNumber(cells) + " cells, more than " +
+                                     formatNumber(kMaxInterestCells) +
+                                     " (each cell is a DDS partition)");
+  }
+}
+
+// Ghosts come only from neighbouring zones, so the halo may not reach past one zone.
+void readHalo(const SceneMap& root, Scene& scene) {
+  SceneMap halo = root.section("halo", {"width"});
+  halo.read("width", scene.halo_width, Limit::atLeast(0));
+  double zone_x = (scene.world.max.x - scene.world.min.x) / scene.zones.columns;
+  double zone_z = (scene.world.max.z - scene.world.min.z) / scene.zones.rows;
+  if ((scene.zones.columns > 1 && scene.halo_width > zone_x) ||
+      (scene.zones.rows > 1 && scene.halo_width > zone_z)) {
+    halo.failAt("width", formatNumber(scene.halo_width) + " m is wider than a zone (" +
+                             formatNumber(zone_x) + " m x " + formatNumber(zone_z) + " m)");
+  }
+}
+
+void readTick(const SceneMap& root, Scene& scene) {
+  SceneMap tick = root.required("tick").map({"rate_hz", "dt"});
+  scene.dt = tick.required("dt").number(Limit::above(0));
+  scene.tick_rate = 1.0 / scene.dt;  // real time unless told otherwise
+  tick.read("rate_hz", scene.tick_rate, Limit::above(0));
+}
+
+void readDeadReckoning(const SceneMap& root, DeadReckoning& dr) {
+  SceneMap m = root.section("dead_reckoning", {"position_threshold", "heartbeat_s"});
+  m.read("position_threshold", dr.position_threshold, Limit::atLeast(0));
+  m.read("heartbeat_s", dr.heartbeat_seconds, Limit::above(0));
+}
+
+void readClients(const SceneMap& root, ClientProfile& clients) {
+  SceneMap m = root.section("clients", {"players", "speed", "input_hz", "nimbus", "retarget_s"});
+  m.read("players", clients.players, Limit::atLeast(0));
+  m.read("speed", clients.speed, Limit::atLeast(0));
+  m.read("input_hz", clients.input_hz, Limit::above(0));
+  m.read("nimbus", clients.nimbus, Limit::above(0));
+  m.read("retarget_s", clients.retarget_seconds, Limit::above(0));
+}
+
+Scene readScene(const SceneNode& document, const std::string& file) {
+  SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
+                                "dead_reckoning", "populations", "clients"});
+  Scene scene;
+  scene.name = std::filesystem::path(file).stem().string();
+  if (std::optional<SceneNode> name = root.optional("name")) {
+    scene.name = name->text();
+    if (scene.name.empty()) name->fail("must not be empty");
+  }
+  scene.world = readWorld(root);
+  readTick(root, scene);
+  scene.seed = root.required("seed").unsignedInteger();
+  readZones(root, scene);
+  readInterest(root, scene);
+  readHalo(root, scene);
+  readDeadReckoning(root, scene.dead_reckoning);
+  readPopulations(root, scene);
+  readClients(root, scene.clients);
+  return scene;
+}
+
+// Nothing for a path that cannot be read, a directory included (libstdc++ throws on its read).
+std::optional<std::string> readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  try {
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::ios_base::failure&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& name) {
+  return readScene(SceneNode::root(parseSceneDocument(text, name), name), name);
+}
+
+Scene loadScene(const std::string& path) {
+  std::optional<std::string> text = readFile(path);
+  if (!text) throwSceneError(path, 0, "file", "cannot open");
+  Scene scene = parseScene(*text, path);
+  scene.source_path = path;
+  return scene;
+}
+
+}  // namespace zonesim

@@ -1,0 +1,183 @@
+// Scene files that must be rejected, each with the exact "file:line: field: problem" message.
+// The broken files in tests/data/scenes_bad/ carry their expected message in a first-line
+// comment "# expect-error: LINE: FIELD: PROBLEM", so adding a case is adding a file.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "scene_test_util.h"
+
+namespace zonesim {
+namespace {
+
+using test::sceneError;
+using test::sourcePath;
+
+std::vector<std::string> badSceneFiles() {
+  return test::yamlStems("tests/data/scenes_bad");
+}
+
+class BadSceneFile : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BadSceneFile, FailsWithTheMessageItDeclares) {
+  std::string path = sourcePath("tests/data/scenes_bad/" + GetParam() + ".yaml");
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  const std::string tag = "# expect-error: ";
+  ASSERT_EQ(header.rfind(tag, 0), 0u) << path << " lacks an expect-error first line";
+  EXPECT_EQ(sceneError([&] { loadScene(path); }), path + ":" + header.substr(tag.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, BadSceneFile, ::testing::ValuesIn(badSceneFiles()),
+                         [](const auto& info) { return info.param; });
+
+TEST(BadSceneFiles, CoverEveryKindOfMistake) {
+  std::vector<std::string> stems = badSceneFiles();
+  for (const char* wanted : {"unknown_key", "wrong_type", "scalar_for_list", "negative_count",
+                             "missing_seed", "bad_yaml", "unknown_kind"}) {
+    EXPECT_NE(std::find(stems.begin(), stems.end(), wanted), stems.end()) << wanted;
+  }
+}
+
+// Lines 1-4; each case appends from line 5. Zones are 50 m x 50 m.
+constexpr const char* kBase =
+    "world: {min: [0, 0, 0], max: [100, 10, 100]}\n"
+    "tick: {dt: 0.05}\n"
+    "seed: 1\n"
+    "zones: {columns: 2, rows: 2}\n";
+
+struct InlineCase {
+  const char* label;
+  std::string text;
+  std::string message;  ///< what() after "inline.yaml:"
+};
+
+// Names the case in gtest output instead of dumping its bytes.
+void PrintTo(const InlineCase& c, std::ostream* os) {
+  *os << c.label;
+}
+
+std::string withBase(const char* extra) {
+  return std::string(kBase) + extra;
+}
+
+const InlineCase kInlineCases[] = {
+    {"negative_halo", withBase("halo:\n  width: -1\n"), "6: halo.width: must be >= 0, got -1"},
+    {"zero_cell", withBase("interest:\n  cell_size: 0\n"),
+     "6: interest.cell_size: must be > 0, got 0"},
+    {"too_many_cells", withBase("interest: {cell_size: 0.1}\n"),
+     "5: interest.cell_size: gives 1000000 cells, more than 65536 (each cell is a DDS partition)"},
+    {"halo_wider_than_zone", withBase("halo: {width: 60}\n"),
+     "5: halo.width: 60 m is wider than a zone (50 m x 50 m)"},
+    {"default_halo_wider_than_zone",
+     "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.05}\nseed: 1\n"
+     "zones: {columns: 20, rows: 1}\n",
+     "1: halo.width: 10 m is wider than a zone (5 m x 100 m)"},
+    {"zero_keyframe", withBase("interest:\n  keyframe_every: 0\n"),
+     "6: interest.keyframe_every: must be >= 1, got 0"},
+    {"duplicate_key", withBase("seed: 2\n"), "5: seed: duplicate key (first given on line 3)"},
+    {"unknown_top_level", withBase("colour: red\n"),
+     "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
+     "dead_reckoning, populations, clients)"},
+    {"empty_value", withBase("clients:\n  players:\n  speed: 3\n"),
+     "6: clients.players: expected a whole number, got nothing"},
+    {"fractional_count", withBase("clients: {players: 2.5}\n"),
+     "5: clients.players: expected a whole number, got '2.5'"},
+    {"huge_count", withBase("clients: {players: 99999999999}\n"),
+     "5: clients.players: is too large, got 99999999999"},
+    {"not_finite", withBase("dead_reckoning: {heartbeat_s: .nan}\n"),
+     "5: dead_reckoning.heartbeat_s: expected a finite number, got '.nan'"},
+    {"overflow", withBase("dead_reckoning: {position_threshold: 1e999}\n"),
+     "5: dead_reckoning.position_threshold: expected a finite number, got '1e999'"},
+    {"section_not_mapping", withBase("clients: 4\n"), "5: clients: expected a mapping, got '4'"},
+    {"populations_not_list", withBase("populations: {kind: npc}\n"),
+     "5: populations: expected a list, got a mapping"},
+    {"population_not_mapping", withBase("populations:\n  - npc\n"),
+     "6: populations[0]: expected a mapping, got 'npc'"},
+    {"missing_kind", withBase("populations:\n  - count: 5\n"),
+     "6: populations[0].kind: required field is missing"},
+    {"missing_count", withBase("populations:\n  - kind: npc\n    speed: [1, 2]\n"),
+     "6: populations[0].count: required field is missing"},
+    {"key_of_other_kind", withBase("populations:\n  - kind: npc\n    count: 1\n    rate: 5\n"),
+     "8: populations[0].rate: unknown key (allowed: kind, count, speed, acceleration, "
+     "waypoint_radius, arrive_distance, region)"},
+    {"speed_scalar", withBase("populations:\n  - {kind: npc, count: 1, speed: 2}\n"),
+     "6: populations[0].speed: expected a list [min, max], got '2'"},
+    {"speed_element",
+     withBase("populations:\n  - kind: npc\n    count: 1\n    speed: [1,\n      x]\n"),
+     "9: populations[0].speed[1]: expected a finite number, got 'x'"},
+    {"negative_speed", withBase("populations:\n  - {kind: npc, count: 1, speed: [-1, 2]}\n"),
+     "6: populations[0].speed[0]: must be >= 0, got -1"},
+    {"restitution",
+     withBase("populations:\n  - kind: rigid_body\n    count: 1\n    restitution: 1.5\n"),
+     "8: populations[0].restitution: must be in [0, 1], got 1.5"},
+    {"drop_too_high",
+     withBase("populations:\n  - {kind: rigid_body, count: 1, drop_height: [5, 12]}\n"),
+     "6: populations[0].drop_height: bodies of radius 0.5 dropped from 12 m stick out of the world "
+     "(10 m high)"},
+    {"default_drop_too_high",
+     "world: {min: [0, 0, 0], max: [100, 5, 100]}\n"
+     "tick: {dt: 0.05}\nseed: 1\nzones: {columns: 1, rows: 1}\n"
+     "populations:\n  - kind: rigid_body\n    count: 1\n",
+     "6: populations[0].drop_height: bodies of radius 0.5 dropped from 10 m stick out of the world "
+     "(5 m high)"},
+    {"region_inverted",
+     withBase("populations:\n  - kind: npc\n    count: 1\n    region: {min: [50, 0, 50], max: [40, "
+              "0, 60]}\n"),
+     "8: populations[0].region.max: x 40 is below region.min 50"},
+    {"region_missing_max",
+     withBase("populations:\n  - kind: npc\n    count: 1\n    region:\n      min: [1, 0, 1]\n"),
+     "9: populations[0].region.max: required field is missing"},
+    {"zero_columns",
+     "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.05}\nseed: 1\nzones:\n  columns: "
+     "0\n  rows: 1\n",
+     "5: zones.columns: must be in [1, 256], got 0"},
+    {"unknown_layout",
+     "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.05}\nseed: 1\n"
+     "zones: {layout: hex, columns: 1, rows: 1}\n",
+     "4: zones.layout: unknown layout 'hex' (allowed: grid)"},
+    {"negative_seed",
+     "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.05}\nseed: -1\nzones: {columns: "
+     "1, rows: 1}\n",
+     "3: seed: must be >= 0, got -1"},
+    {"short_vector", "world:\n  min: [0, 0]\n  max: [1, 1, 1]\n",
+     "2: world.min: expected a list [x, y, z], got a list of 2 items"},
+    {"missing_world", "\n# nothing yet\ntick: {dt: 0.05}\nseed: 1\nzones: {columns: 1, rows: 1}\n",
+     "3: world: required field is missing"},
+    {"empty_name", withBase("name: ''\n"), "5: name: must not be empty"},
+    {"empty_file", "# only a comment\n",
+     "1: document: the file is empty; expected world, tick, seed and zones"},
+    {"top_level_list", "- 1\n- 2\n", "1: document: expected a mapping, got a list of 2 items"},
+    {"two_documents", withBase("---\nseed: 2\n"),
+     "5: document: a scene file holds one YAML document, found more"},
+    {"stray_comma", "# a comment\n, world: {}\n",
+     "2: yaml: unexpected token (a ',' outside [ ] or { }?)"},
+    {"stray_comma_after_list", "[1, 2]\n, 3\n",
+     "2: yaml: unexpected token (a ',' outside [ ] or { }?)"},
+    {"syntax", "world:\n  min: [0, 0, 0]\n   max: [1, 1, 1]\n", "3: yaml: end of map not found"},
+};
+
+class InlineBadScene : public ::testing::TestWithParam<InlineCase> {};
+
+TEST_P(InlineBadScene, FailsWithFileLineAndField) {
+  const InlineCase& c = GetParam();
+  EXPECT_EQ(sceneError([&] { parseScene(c.text, "inline.yaml"); }), "inline.yaml:" + c.message);
+}
+
+INSTANTIATE_TEST_SUITE_P(Texts, InlineBadScene, ::testing::ValuesIn(kInlineCases),
+                         [](const auto& info) { return std::string(info.param.label); });
+
+TEST(SceneErrors, BaseTextOfTheInlineCasesIsValid) {
+  Scene s = parseScene(kBase, "inline.yaml");
+  EXPECT_EQ(s.zones.columns, 2);
+}
+
+}  // namespace
+}  // namespace zonesim

@@ -1,0 +1,205 @@
+// Scene files that should load: the shipped scenes, the demo's values, and the defaults
+// that fill in optional keys.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "scene_test_util.h"
+
+namespace zonesim {
+namespace {
+
+using test::sceneError;
+using test::sourcePath;
+
+std::vector<std::string> shippedScenes() {
+  return test::yamlStems("scenes");
+}
+
+class ShippedScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedScene, LoadsWithItsNameAndPath) {
+  std::string path = sourcePath("scenes/" + GetParam() + ".yaml");
+  Scene scene = loadScene(path);
+  EXPECT_EQ(scene.name, GetParam());
+  EXPECT_EQ(scene.source_path, path);
+  EXPECT_GT(scene.npcs.size() + scene.rigid_bodies.size() + scene.emitters.size(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shippedScenes()),
+                         [](const auto& info) { return info.param; });
+
+TEST(ShippedScenes, IncludeTheOnesOtherTestsUse) {
+  std::vector<std::string> names = shippedScenes();
+  for (const char* wanted : {"demo", "test_small", "test_npc_only", "test_single_zone"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), wanted), names.end()) << wanted;
+  }
+}
+
+TEST(DemoScene, ValuesComeThrough) {
+  Scene s = loadScene(sourcePath("scenes/demo.yaml"));
+  EXPECT_DOUBLE_EQ(s.world.max.x - s.world.min.x, 400);
+  EXPECT_DOUBLE_EQ(s.world.max.z - s.world.min.z, 400);
+  EXPECT_DOUBLE_EQ(s.world.min.y, 0);
+  EXPECT_DOUBLE_EQ(s.world.max.y, 100);
+  EXPECT_EQ(s.dt, 1.0 / 30);
+  EXPECT_DOUBLE_EQ(s.tick_rate, 30);
+  EXPECT_EQ(s.zones.kind, ZoneLayout::Kind::Grid);
+  EXPECT_EQ(s.zones.columns, 2);
+  EXPECT_EQ(s.zones.rows, 2);
+  EXPECT_DOUBLE_EQ(s.interest_cell_size, 50);
+  EXPECT_DOUBLE_EQ(s.halo_width, 10);
+
+  ASSERT_EQ(s.npcs.size(), 1u);
+  EXPECT_EQ(s.npcs[0].count, 4000);
+  EXPECT_DOUBLE_EQ(s.npcs[0].min_speed, 1.0);
+  EXPECT_DOUBLE_EQ(s.npcs[0].max_speed, 2.5);
+  EXPECT_DOUBLE_EQ(s.npcs[0].waypoint_radius, 60);
+  EXPECT_DOUBLE_EQ(s.npcs[0].region.max.x, 400);
+
+  ASSERT_EQ(s.rigid_bodies.size(), 1u);
+  EXPECT_EQ(s.rigid_bodies[0].count, 40);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[0].drop_height, 10);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[0].max_drop_height, 20);
+
+  ASSERT_EQ(s.emitters.size(), 1u);
+  EXPECT_EQ(s.emitters[0].count, 4);
+  EXPECT_DOUBLE_EQ(s.emitters[0].rate, 200);
+  EXPECT_DOUBLE_EQ(s.emitters[0].lifetime, 2);
+
+  EXPECT_EQ(s.clients.players, 32);
+  EXPECT_DOUBLE_EQ(s.clients.speed, 6);
+  EXPECT_DOUBLE_EQ(s.clients.input_hz, 20);
+  EXPECT_DOUBLE_EQ(s.clients.nimbus, 60);
+}
+
+TEST(TestScenes, HaveTheShapeTheirNamesPromise) {
+  Scene small = loadScene(sourcePath("scenes/test_small.yaml"));
+  EXPECT_EQ(small.zones.columns * small.zones.rows, 4);
+  ASSERT_EQ(small.npcs.size(), 1u);
+  EXPECT_EQ(small.npcs[0].count, 200);
+  EXPECT_EQ(small.emitters.size(), 1u);
+
+  Scene npc_only = loadScene(sourcePath("scenes/test_npc_only.yaml"));
+  EXPECT_FALSE(npc_only.npcs.empty());
+  EXPECT_TRUE(npc_only.rigid_bodies.empty());
+  EXPECT_TRUE(npc_only.emitters.empty());
+
+  Scene single = loadScene(sourcePath("scenes/test_single_zone.yaml"));
+  EXPECT_EQ(single.zones.columns, 1);
+  EXPECT_EQ(single.zones.rows, 1);
+}
+
+constexpr const char* kMinimal =
+    "world: {min: [-10, 0, -20], max: [90, 20, 80]}\n"
+    "tick: {dt: 0.025}\n"
+    "seed: 18446744073709551615\n"
+    "zones: {columns: 3, rows: 1}\n";
+
+TEST(SceneDefaults, AppliedWhenOptionalKeysAreAbsent) {
+  Scene s = parseScene(kMinimal, "dir/minimal.scene.yaml");
+  EXPECT_EQ(s.name, "minimal.scene");
+  EXPECT_EQ(s.source_path, "");
+  EXPECT_EQ(s.seed, 18446744073709551615ULL);
+  EXPECT_DOUBLE_EQ(s.tick_rate, 40);  // real time: 1 / dt
+  EXPECT_DOUBLE_EQ(s.world.min.z, -20);
+  EXPECT_EQ(s.zones.columns, 3);
+  Scene plain;
+  EXPECT_DOUBLE_EQ(s.interest_cell_size, plain.interest_cell_size);
+  EXPECT_EQ(s.keyframe_every, plain.keyframe_every);
+  EXPECT_DOUBLE_EQ(s.halo_width, plain.halo_width);
+  EXPECT_DOUBLE_EQ(s.dead_reckoning.position_threshold, plain.dead_reckoning.position_threshold);
+  EXPECT_DOUBLE_EQ(s.dead_reckoning.heartbeat_seconds, plain.dead_reckoning.heartbeat_seconds);
+  EXPECT_EQ(s.clients.players, plain.clients.players);
+  EXPECT_DOUBLE_EQ(s.clients.nimbus, plain.clients.nimbus);
+  EXPECT_DOUBLE_EQ(s.clients.retarget_seconds, plain.clients.retarget_seconds);
+  EXPECT_TRUE(s.npcs.empty());
+  EXPECT_TRUE(s.rigid_bodies.empty());
+  EXPECT_TRUE(s.emitters.empty());
+}
+
+TEST(SceneDefaults, PopulationsTakeTheirDefaultsAndTheWorldAsRegion) {
+  Scene s = parseScene(std::string(kMinimal) +
+                           "populations:\n"
+                           "  - {kind: npc, count: 3}\n"
+                           "  - {kind: rigid_body, count: 2}\n"
+                           "  - {kind: particle_emitter, count: 1}\n"
+                           "  - {kind: npc, count: 0, speed: [0, 0]}\n",
+                       "pops");
+  ASSERT_EQ(s.npcs.size(), 2u);
+  ASSERT_EQ(s.rigid_bodies.size(), 1u);
+  ASSERT_EQ(s.emitters.size(), 1u);
+  NpcPopulation npc;
+  EXPECT_DOUBLE_EQ(s.npcs[0].min_speed, npc.min_speed);
+  EXPECT_DOUBLE_EQ(s.npcs[0].max_speed, npc.max_speed);
+  EXPECT_DOUBLE_EQ(s.npcs[0].waypoint_radius, npc.waypoint_radius);
+  EXPECT_DOUBLE_EQ(s.npcs[0].region.min.x, -10);
+  EXPECT_DOUBLE_EQ(s.npcs[0].region.max.z, 80);
+  EXPECT_EQ(s.npcs[1].count, 0);
+  EXPECT_DOUBLE_EQ(s.npcs[1].max_speed, 0);
+  RigidBodyPopulation body;
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[0].radius, body.radius);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[0].drop_height, body.drop_height);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[0].max_drop_height, body.max_drop_height);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[0].region.max.y, 20);
+  EmitterPopulation emitter;
+  EXPECT_DOUBLE_EQ(s.emitters[0].rate, emitter.rate);
+  EXPECT_EQ(s.emitters[0].max_particles, emitter.max_particles);
+}
+
+TEST(SceneDefaults, ExplicitValuesOverrideThem) {
+  Scene s = parseScene(
+      "name: custom\n"
+      "world: {min: [0, 0, 0], max: [10, 10, 10]}\n"
+      "tick: {dt: 0.025, rate_hz: 10}\n"
+      "seed: 5\n"
+      "zones: {layout: grid, columns: 1, rows: 1}\n"
+      "interest: {cell_size: 2.5, keyframe_every: 1}\n"
+      "halo: {width: 0}\n"
+      "dead_reckoning: {position_threshold: 0, heartbeat_s: 0.5}\n"
+      "clients: {players: 0, speed: 0, input_hz: 1, nimbus: 4, retarget_s: 2}\n",
+      "x");
+  EXPECT_EQ(s.name, "custom");
+  EXPECT_DOUBLE_EQ(s.tick_rate, 10);
+  EXPECT_DOUBLE_EQ(s.interest_cell_size, 2.5);
+  EXPECT_EQ(s.keyframe_every, 1);
+  EXPECT_DOUBLE_EQ(s.halo_width, 0);
+  EXPECT_DOUBLE_EQ(s.dead_reckoning.position_threshold, 0);
+  EXPECT_DOUBLE_EQ(s.dead_reckoning.heartbeat_seconds, 0.5);
+  EXPECT_EQ(s.clients.players, 0);
+  EXPECT_DOUBLE_EQ(s.clients.input_hz, 1);
+  EXPECT_DOUBLE_EQ(s.clients.nimbus, 4);
+  EXPECT_DOUBLE_EQ(s.clients.retarget_seconds, 2);
+}
+
+TEST(SceneFormatDoc, CompleteExampleLoads) {
+  std::ifstream in(sourcePath("docs/scene-format.md"));
+  std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t start = doc.find("```yaml\n");
+  ASSERT_NE(start, std::string::npos);
+  start += 8;
+  std::string example = doc.substr(start, doc.find("```", start) - start);
+  Scene s = parseScene(example, "scene-format.md");
+  EXPECT_EQ(s.name, "plaza");
+  EXPECT_EQ(s.npcs.size() + s.rigid_bodies.size() + s.emitters.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.tick_rate, 60);
+}
+
+TEST(LoadScene, MissingFileIsAnError) {
+  std::string path = sourcePath("scenes/no_such_scene.yaml");
+  EXPECT_EQ(sceneError([&] { loadScene(path); }), path + ":0: file: cannot open");
+}
+
+TEST(LoadScene, DirectoryIsAnError) {
+  std::string path = sourcePath("scenes");
+  EXPECT_EQ(sceneError([&] { loadScene(path); }), path + ":0: file: cannot open");
+}
+
+}  // namespace
+}  // namespace zonesim
