@@ -135,8 +135,12 @@ void Gateway::tick(std::int64_t now_ns) {
   expireSessions(now_ns);
   updateInterest(now_ns);
   sendViews(now_ns);
+  double ms = double(nowNs() - now_ns) * 1e-6;
+  tick_window_.add(ms);
+  tick_total_.add(ms);
   if (now_ns >= next_metrics_ns_) {
     writeMetrics(now_ns);
+    tick_window_ = {};
     next_metrics_ns_ += kSecondNs;
   }
 }
@@ -281,6 +285,7 @@ GatewayGauges Gateway::gauges(std::int64_t now_ns) {
   g.entities_cached = cache_.size();
   g.held_spawns = link_.heldSpawns();
   g.zone_tick = clock_.tick();
+  g.tick_ms = tick_window_;
   return g;
 }
 
@@ -297,7 +302,9 @@ std::string Gateway::summaryJson() {
   });
   std::sort(players.begin(), players.end(),
             [](const auto& a, const auto& b) { return a.player_id < b.player_id; });
-  return gateway::summaryJson(counters_, handler_.drops(), gauges(now), players);
+  GatewayGauges g = gauges(now);
+  g.tick_ms = tick_total_;
+  return gateway::summaryJson(counters_, handler_.drops(), g, players);
 }
 
 }  // namespace zonesim::gateway

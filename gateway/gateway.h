@@ -89,6 +89,7 @@ class Gateway {
   Outbox outbox_;
   std::vector<std::uint8_t> rx_buffer_;
   std::int64_t next_metrics_ns_ = 0;
+  TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
 };
 
 }  // namespace zonesim::gateway

@@ -34,7 +34,10 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("cells_subscribed", std::uint64_t(g.cells_subscribed))
       .add("entities_cached", std::uint64_t(g.entities_cached))
       .add("held_spawns", std::uint64_t(g.held_spawns))
-      .add("zone_tick", g.zone_tick);
+      .add("zone_tick", g.zone_tick)
+      .add("ticks", g.tick_ms.count)
+      .add("tick_ms_mean", g.tick_ms.meanMs())
+      .add("tick_ms_max", g.tick_ms.max_ms);
 }
 
 JsonLine dropsObject(const DropCounters& drops) {

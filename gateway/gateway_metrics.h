@@ -23,12 +23,25 @@ struct GatewayCounters {
   std::uint64_t dds_samples = 0, ownership_foreign = 0;
 };
 
+/// Wall time of gateway ticks (everything but receiving datagrams), in milliseconds.
+struct TickTimes {
+  std::uint64_t count = 0;
+  double sum_ms = 0, max_ms = 0;
+  void add(double ms) {
+    ++count;
+    sum_ms += ms;
+    max_ms = ms > max_ms ? ms : max_ms;
+  }
+  double meanMs() const { return count > 0 ? sum_ms / double(count) : 0.0; }
+};
+
 /// Gauges sampled when a line is written.
 struct GatewayGauges {
   double elapsed_s = 0;
   std::size_t sessions = 0, pending_sessions = 0, cells_subscribed = 0, entities_cached = 0;
   std::size_t held_spawns = 0;
   std::uint64_t zone_tick = 0;
+  TickTimes tick_ms;
 };
 
 /// Traffic of one player, kept after the session ends for the summary.
