@@ -52,6 +52,10 @@ struct IdSetDigest {
     ++count;
     hash += mix64(id.value);
   }
+  void remove(EntityId id) {
+    --count;
+    hash -= mix64(id.value);
+  }
   void merge(const IdSetDigest& o) {
     count += o.count;
     hash += o.hash;

@@ -11,6 +11,8 @@ Topics makeTopics(dds_entity_t participant) {
   t.ownership = makeTopic(participant, &zonesim_dds_OwnershipEvent_desc, "zs_ownership", nullptr);
   t.player_input = makeTopic(participant, &zonesim_dds_PlayerInput_desc, "zs_player_input", nullptr);
   t.spawn_requests = makeTopic(participant, &zonesim_dds_SpawnRequest_desc, "zs_spawn_requests", nullptr);
+  t.despawn_requests =
+      makeTopic(participant, &zonesim_dds_DespawnRequest_desc, "zs_despawn_requests", nullptr);
   return t;
 }
 

@@ -5,6 +5,7 @@
 //   zs_ownership       OwnershipEvent   default partition      zone -> gateway, reliableKeepAll
 //   zs_player_input    PlayerInput      partition z.<rank>     gateway -> zone, reliableKeepAll
 //   zs_spawn_requests  SpawnRequest     default partition      gateway -> zones, reliableKeepAll
+//   zs_despawn_requests DespawnRequest  default partition      gateway -> zones, reliableKeepAll
 
 #include "idl/dds_entity.h"
 
@@ -16,6 +17,7 @@ struct Topics {
   Entity ownership;
   Entity player_input;
   Entity spawn_requests;
+  Entity despawn_requests;
 };
 
 /// Creates all zonesim topics on the participant.
