@@ -1,0 +1,28 @@
+#pragma once
+// Small scenes built in code for zone tests (no files needed).
+
+#include "common/scene.h"
+
+namespace zonesim::testing {
+
+/// A 200 m x 200 m world, 2x2 zones, 30 Hz, with the given NPC count and nothing else.
+inline Scene npcScene(int npcs, std::uint64_t seed = 7) {
+  Scene s;
+  s.name = "npc_test";
+  s.world = {{0, 0, 0}, {200, 50, 200}};
+  s.dt = 1.0 / 30;
+  s.seed = seed;
+  s.zones.columns = 2;
+  s.zones.rows = 2;
+  s.interest_cell_size = 50;
+  NpcPopulation p;
+  p.count = npcs;
+  p.min_speed = 1;
+  p.max_speed = 3;
+  p.waypoint_radius = 60;
+  p.region = s.world;
+  s.npcs.push_back(p);
+  return s;
+}
+
+}  // namespace zonesim::testing

@@ -1,0 +1,125 @@
+#include "zone_node/cluster/entity_codec.h"
+
+#include "entity_record_generated.h"
+
+namespace zonesim::zone {
+
+namespace fb = zonesim::rec;
+
+namespace {
+
+fb::Vec3d toFb(const Vec3& v) {
+  return fb::Vec3d(v.x(), v.y(), v.z());
+}
+fb::Quatd toFb(const Quat& q) {
+  return fb::Quatd(q.x(), q.y(), q.z(), q.w());
+}
+Vec3 fromFb(const fb::Vec3d* v) {
+  return v ? Vec3(v->x(), v->y(), v->z()) : Vec3::Zero();
+}
+Quat fromFb(const fb::Quatd* q) {
+  return q ? Quat(q->w(), q->x(), q->y(), q->z()) : Quat::Identity();
+}
+
+flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilder& b,
+                                                   const EntityRecordData& r) {
+  flatbuffers::Offset<fb::NpcState> npc;
+  flatbuffers::Offset<fb::AvatarState> avatar;
+  flatbuffers::Offset<fb::BodyState> body;
+  flatbuffers::Offset<fb::EmitterState> emitter;
+  switch (r.kind) {
+    case EntityKind::Npc: {
+      fb::Vec3d wp = toFb(r.npc.waypoint);
+      npc = fb::CreateNpcState(b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius,
+                               r.npc.arrive_distance);
+      break;
+    }
+    case EntityKind::Avatar:
+      avatar = fb::CreateAvatarState(b, r.avatar.player_id, r.avatar.last_input_seq,
+                                     r.avatar.move_x, r.avatar.move_z, r.avatar.max_speed);
+      break;
+    case EntityKind::RigidBody: {
+      fb::Vec3d w = toFb(r.body.angular_velocity);
+      body = fb::CreateBodyState(b, r.body.radius, r.body.mass, r.body.restitution, &w,
+                                 r.body.sleeping);
+      break;
+    }
+    case EntityKind::Emitter:
+      emitter = fb::CreateEmitterState(b, r.emitter.rate, r.emitter.lifetime, r.emitter.speed,
+                                       r.emitter.spawn_accumulator, r.emitter.drag,
+                                       r.emitter.restitution, r.emitter.max_particles);
+      break;
+  }
+  fb::Vec3d pos = toFb(r.pos), vel = toFb(r.vel);
+  fb::Quatd rot = toFb(r.rot);
+  return fb::CreateEntityRecord(b, r.id.value, fb::EntityKind(r.kind), &pos, &vel, &rot,
+                                r.rng_state, npc, avatar, body, emitter);
+}
+
+EntityRecordData decodeEntity(const fb::EntityRecord& e) {
+  EntityRecordData r;
+  r.id = EntityId{e.id()};
+  auto kind = std::uint8_t(e.kind());
+  if (kind >= kEntityKindCount) throw CodecError("entity record with unknown kind");
+  r.kind = EntityKind(kind);
+  r.pos = fromFb(e.pos());
+  r.vel = fromFb(e.vel());
+  r.rot = fromFb(e.rot());
+  r.rng_state = e.rng_state();
+  if (const fb::NpcState* n = e.npc()) {
+    r.npc = {fromFb(n->waypoint()), n->max_speed(), n->accel(), n->waypoint_radius(),
+             n->arrive_distance()};
+  }
+  if (const fb::AvatarState* a = e.avatar()) {
+    r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(), a->move_z(), a->max_speed()};
+  }
+  if (const fb::BodyState* s = e.body()) {
+    r.body = {s->radius(), s->mass(), s->restitution(), fromFb(s->angular_velocity()),
+              s->sleeping()};
+  }
+  if (const fb::EmitterState* m = e.emitter()) {
+    r.emitter = {m->rate(), m->lifetime(),    m->speed(),        m->spawn_accumulator(),
+                 m->drag(), m->restitution(), m->max_particles()};
+  }
+  if (!r.id) throw CodecError("entity record without id");
+  return r;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodeMigration(const MigrationPayload& p) {
+  flatbuffers::FlatBufferBuilder b(256 + 256 * p.entities.size());
+  std::vector<flatbuffers::Offset<fb::EntityRecord>> entities;
+  entities.reserve(p.entities.size());
+  for (const EntityRecordData& r : p.entities) entities.push_back(encodeEntity(b, r));
+  std::vector<flatbuffers::Offset<fb::ForwardedInput>> inputs;
+  inputs.reserve(p.inputs.size());
+  for (const ForwardedInput& in : p.inputs)
+    inputs.push_back(
+        fb::CreateForwardedInput(b, in.player_id, in.avatar_id, in.seq, in.move_x, in.move_z));
+  auto root = fb::CreateMigrationBatch(b, p.tick, p.from_rank, b.CreateVector(entities),
+                                       b.CreateVector(inputs));
+  fb::FinishMigrationBatchBuffer(b, root);
+  return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
+}
+
+MigrationPayload decodeMigration(std::span<const std::uint8_t> bytes) {
+  flatbuffers::Verifier verifier(bytes.data(), bytes.size());
+  if (!fb::VerifyMigrationBatchBuffer(verifier))
+    throw CodecError("migration batch failed verification");
+  const fb::MigrationBatch* m = fb::GetMigrationBatch(bytes.data());
+  MigrationPayload p;
+  p.tick = m->tick();
+  p.from_rank = m->from_rank();
+  if (const auto* es = m->entities()) {
+    p.entities.reserve(es->size());
+    for (const fb::EntityRecord* e : *es) p.entities.push_back(decodeEntity(*e));
+  }
+  if (const auto* ins = m->inputs()) {
+    for (const fb::ForwardedInput* in : *ins)
+      p.inputs.push_back({in->player_id(), in->avatar_id(), in->seq(), in->move_x(), in->move_z()});
+  }
+  return p;
+}
+
+}  // namespace zonesim::zone

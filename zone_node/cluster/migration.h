@@ -1,0 +1,55 @@
+#pragma once
+// Ownership transfer: every tick, entities whose position lies in another rank's zone are packed
+// (FlatBuffers), sent, removed here and added there, exactly once. Counts go first with
+// MPI_Alltoall, payloads with MPI_Alltoallv (LAMMPS' exchange(), with one collective).
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "zone_node/cluster/entity_codec.h"
+#include "zone_node/entity_store.h"
+#include "zone_node/zone_layout.h"
+
+namespace zonesim::zone {
+
+/// An entity that left this rank during the exchange.
+struct Departure {
+  EntityId id;
+  EntityKind kind;
+  int to_rank;              ///< -1: destroyed rather than migrated
+  int last_cell;            ///< interest cell it was last published in here (-1: never)
+  std::uint64_t player_id;  ///< for avatars
+};
+
+/// An entity that arrived during the exchange.
+struct Arrival {
+  std::size_t index;  ///< its index in the store right after the exchange
+  int from_rank;
+};
+
+struct MigrationResult {
+  std::vector<Departure> departed;
+  std::vector<Arrival> arrived;
+  std::vector<ForwardedInput> inputs;  ///< inputs other ranks forwarded to us
+  std::uint64_t bytes_sent = 0;
+};
+
+class Migrator {
+ public:
+  Migrator(MPI_Comm comm, int rank, int size);
+
+  /// Moves leavers to their owners; `forward[r]` are inputs to pass to rank r with them.
+  MigrationResult exchange(EntityStore& store, const ZoneLayout& layout, std::uint64_t tick,
+                           std::vector<std::vector<ForwardedInput>>& forward);
+
+ private:
+  MPI_Comm comm_;
+  int rank_, size_;
+  // Reused across ticks so the exchange does not allocate once warmed up.
+  std::vector<int> send_counts_, recv_counts_, send_displs_, recv_displs_;
+  std::vector<std::uint8_t> send_buf_, recv_buf_;
+};
+
+}  // namespace zonesim::zone

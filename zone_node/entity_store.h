@@ -1,0 +1,112 @@
+#pragma once
+// The zone's entities as dense arrays, one per component, indexed 0..size()-1.
+// Removal swaps the last entity into the hole, so indices are not stable across a tick's
+// migrations: hold EntityIds, and look them up with indexOf().
+
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "common/entity_id.h"
+#include "common/math.h"
+
+namespace zonesim::zone {
+
+enum class EntityKind : std::uint8_t { Npc = 0, Avatar = 1, RigidBody = 2, Emitter = 3 };
+constexpr int kEntityKindCount = 4;
+
+/// Walking NPC: waypoint wandering.
+struct NpcData {
+  Vec3 waypoint = Vec3::Zero();
+  double max_speed = 1.0;
+  double accel = 2.0;
+  double waypoint_radius = 30.0;
+  double arrive_distance = 1.0;
+};
+
+/// A player's avatar, driven by inputs applied exactly once by sequence number.
+struct AvatarData {
+  std::uint64_t player_id = 0;
+  std::uint32_t last_input_seq = 0;
+  float move_x = 0, move_z = 0;
+  double max_speed = 5.0;
+};
+
+/// A sphere under gravity bouncing on the ground.
+struct BodyData {
+  double radius = 0.5;
+  double mass = 1.0;
+  double restitution = 0.5;
+  Vec3 angular_velocity = Vec3::Zero();
+  bool sleeping = false;
+};
+
+/// A particle emitter; its particles are zone-local effects (see systems/emitters.h).
+struct EmitterData {
+  double rate = 100;
+  double lifetime = 2;
+  double speed = 5;
+  double spawn_accumulator = 0;
+  double drag = 0.1;
+  double restitution = 0.4;
+  int max_particles = 4096;
+};
+
+/// What the publish phase last told subscribers about the entity (sender-side dead reckoning).
+struct DeadReckoningState {
+  int cell = -1;  ///< interest cell it was last published in; -1 = never published here
+  Vec3 pos = Vec3::Zero();
+  Vec3 vel = Vec3::Zero();
+  double time = 0;
+};
+
+/// One entity with all its components, for creation and migration.
+struct EntityRecordData {
+  EntityId id;
+  EntityKind kind = EntityKind::Npc;
+  Vec3 pos = Vec3::Zero();
+  Vec3 vel = Vec3::Zero();
+  Quat rot = Quat::Identity();
+  std::uint64_t rng_state = 0;
+  NpcData npc;
+  AvatarData avatar;
+  BodyData body;
+  EmitterData emitter;
+};
+
+class EntityStore {
+ public:
+  std::size_t size() const { return id.size(); }
+  std::size_t count(EntityKind k) const { return kind_count_[std::size_t(k)]; }
+
+  /// Appends an entity; the id must not be present.
+  std::size_t add(const EntityRecordData& r);
+  /// Removes the entity at index i by moving the last one into its place.
+  void removeAt(std::size_t i);
+  /// Copies the entity at index i out, with all its components.
+  EntityRecordData record(std::size_t i) const;
+  std::optional<std::size_t> indexOf(EntityId e) const;
+  /// The avatar of a player, if this zone owns it.
+  std::optional<std::size_t> avatarOf(std::uint64_t player_id) const;
+
+  // Dense component arrays (public: systems iterate them directly).
+  std::vector<EntityId> id;
+  std::vector<EntityKind> kind;
+  std::vector<Vec3> pos;
+  std::vector<Vec3> vel;
+  std::vector<Quat> rot;
+  std::vector<std::uint64_t> rng_state;
+  std::vector<NpcData> npc;
+  std::vector<AvatarData> avatar;
+  std::vector<BodyData> body;
+  std::vector<EmitterData> emitter;
+  std::vector<DeadReckoningState> dr;
+
+ private:
+  std::unordered_map<std::uint64_t, std::size_t> index_of_;  // lookups only, never iterated
+  std::unordered_map<std::uint64_t, std::size_t> avatar_of_player_;
+  std::size_t kind_count_[kEntityKindCount] = {};
+};
+
+}  // namespace zonesim::zone

@@ -1,0 +1,143 @@
+// zone_node: one MPI rank per zone. Runs as a singleton without mpirun (one zone).
+//   mpirun -np 4 zone_node --scene scenes/demo.yaml --duration 20 --realtime --metrics runs/x
+
+#include <mpi.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include "common/cli.h"
+#include "common/metrics.h"
+#include "common/scene.h"
+#include "zone_node/state_dump.h"
+#include "zone_node/zone_node.h"
+#include "zone_node/zone_report.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void onSignal(int) {
+  g_stop = true;
+}
+
+struct Options {
+  std::string scene;
+  std::uint64_t ticks = 0;
+  double duration = 0;
+  bool realtime = false;
+  std::string metrics_dir;
+  std::string dump_state;
+  zonesim::zone::ZoneOptions zone;
+  zonesim::CommonOptions common;
+};
+
+/// Sleeps until an absolute CLOCK_MONOTONIC time (fixed-rate ticks without drift).
+void sleepUntil(const timespec& t) {
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR && !g_stop) {
+  }
+}
+
+timespec addSeconds(timespec t, double s) {
+  auto ns = std::int64_t(s * 1e9) + t.tv_nsec;
+  t.tv_sec += ns / 1000000000;
+  t.tv_nsec = ns % 1000000000;
+  return t;
+}
+
+/// All ranks stop together: any rank that saw a signal stops everyone.
+bool anyRankStopping(MPI_Comm comm) {
+  int mine = g_stop ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
+int run(const Options& o, MPI_Comm comm) {
+  using namespace zonesim;
+  Scene scene = loadScene(o.scene);
+  zone::ZoneNode node(scene, comm, o.zone);
+  log::setTag("zone " + std::to_string(node.rank()));
+  std::uint64_t ticks = o.ticks ? o.ticks : std::uint64_t(std::ceil(o.duration * scene.tick_rate));
+  if (ticks == 0) ticks = 300;
+
+  MetricsWriter metrics;
+  if (!o.metrics_dir.empty()) {
+    std::filesystem::create_directories(o.metrics_dir);
+    metrics = MetricsWriter(o.metrics_dir + "/zone_" + std::to_string(node.rank()) + ".jsonl");
+  }
+  zone::ZoneReport report(node);
+  ZS_INFO("zone %d/%d rect [%.1f,%.1f]-[%.1f,%.1f]: %zu entities, particles on %s, %llu ticks",
+          node.rank(), node.size(), node.layout().rect(node.rank()).min_x,
+          node.layout().rect(node.rank()).min_z, node.layout().rect(node.rank()).max_x,
+          node.layout().rect(node.rank()).max_z, node.store().size(),
+          node.particleBackend().c_str(), (unsigned long long)ticks);
+
+  Stopwatch wall;
+  timespec next;
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  const double period = 1.0 / scene.tick_rate;
+  for (std::uint64_t t = 0; t < ticks; ++t) {
+    if (anyRankStopping(comm)) break;
+    Stopwatch tick_time;
+    node.tick();
+    report.recordTick(node, tick_time.elapsedSeconds(), metrics);
+    if (o.realtime) {
+      next = addSeconds(next, period);
+      sleepUntil(next);
+    }
+  }
+  metrics.flush();
+  std::string summary = report.summaryJson(node, wall.elapsedSeconds());
+  if (!o.metrics_dir.empty()) {
+    std::ofstream(o.metrics_dir + "/zone_" + std::to_string(node.rank()) + "_summary.json")
+        << summary << "\n";
+  }
+  std::printf("%s\n", summary.c_str());
+  std::fflush(stdout);
+  if (!o.dump_state.empty()) zone::dumpState(comm, node.store(), o.dump_state);
+  return node.conservation().failures == 0 ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"zonesim zone node: one MPI rank per zone"};
+  app.add_option("--scene", o.scene, "scene file (YAML)")->required();
+  app.add_option("--ticks", o.ticks, "number of ticks to run");
+  app.add_option("--duration", o.duration,
+                 "seconds of simulated time to run (ticks = duration * tick rate)");
+  app.add_flag("--realtime", o.realtime,
+               "pace ticks at the scene's tick rate (otherwise as fast as possible)");
+  app.add_option("--metrics", o.metrics_dir,
+                 "folder for zone_<rank>.jsonl and zone_<rank>_summary.json");
+  app.add_option("--dump-state", o.dump_state,
+                 "write every entity's final state (JSON lines) here");
+  app.add_option("--dds-domain", o.zone.dds_domain, "DDS domain id");
+  bool no_dds = false;
+  app.add_flag("--no-dds", no_dds, "run without DDS (no gateway can attach)");
+  app.add_option("--check-every", o.zone.check_every, "ticks between conservation checks");
+  app.add_option("--gpu", o.zone.gpu, "particle integration on OpenCL: on, off or auto")
+      ->check(CLI::IsMember({"on", "off", "auto"}));
+  zonesim::addCommonOptions(app, o.common);
+  CLI11_PARSE(app, argc, argv);
+  o.zone.dds = !no_dds;
+  zonesim::applyCommonOptions(o.common, "zone");
+
+  MPI_Init(&argc, &argv);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  int rc = 1;
+  try {
+    rc = run(o, MPI_COMM_WORLD);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "zone_node: %s\n", e.what());
+    MPI_Abort(MPI_COMM_WORLD, 2);
+  }
+  MPI_Finalize();
+  return rc;
+}

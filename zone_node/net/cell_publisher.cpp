@@ -1,0 +1,145 @@
+#include "zone_node/net/cell_publisher.h"
+
+#include "idl/dds_qos.h"
+#include "zone_node/net/dead_reckoning.h"
+
+namespace zonesim::zone {
+
+namespace {
+
+zonesim_dds_EntityUpdate toSample(const EntityStore& s, std::size_t i) {
+  zonesim_dds_EntityUpdate u{};
+  u.id = s.id[i].value;
+  u.kind = std::uint8_t(s.kind[i]);
+  u.pos = {float(s.pos[i].x()), float(s.pos[i].y()), float(s.pos[i].z())};
+  u.vel = {float(s.vel[i].x()), float(s.vel[i].y()), float(s.vel[i].z())};
+  u.rot = {float(s.rot[i].x()), float(s.rot[i].y()), float(s.rot[i].z()), float(s.rot[i].w())};
+  return u;
+}
+
+template <typename Seq, typename T>
+void view(Seq& seq, std::vector<T>& v) {
+  seq._maximum = seq._length = std::uint32_t(v.size());
+  seq._buffer = v.data();
+  seq._release = false;  // the vector owns the memory
+}
+
+std::uint32_t matchedReaders(dds_entity_t writer) {
+  dds_publication_matched_status_t st{};
+  dds::check(dds_get_publication_matched_status(writer, &st), "dds_get_publication_matched_status");
+  return st.current_count;
+}
+
+}  // namespace
+
+CellPublisher::CellPublisher(dds_entity_t participant, const dds::Topics& topics,
+                             const InterestGrid& grid, int zone, const DeadReckoning& dr,
+                             int keyframe_every)
+    : participant_(participant),
+      update_topic_(topics.cell_updates.get()),
+      keyframe_topic_(topics.cell_keyframes.get()),
+      grid_(grid),
+      zone_(zone),
+      dr_(dr),
+      keyframe_every_(keyframe_every) {}
+
+CellPublisher::Channel& CellPublisher::channel(int cell) {
+  auto it = channels_.find(cell);
+  if (it != channels_.end()) return it->second;
+  std::string partition = dds::cellPartition(grid_.columnOfCell(cell), grid_.rowOfCell(cell));
+  Channel ch;
+  dds::Qos uq = dds::cellUpdateQos(), kq = dds::cellKeyframeQos();
+  ch.updates = dds::makePartitionWriter(participant_, update_topic_, partition, uq.get());
+  ch.keyframes = dds::makePartitionWriter(participant_, keyframe_topic_, partition, kq.get());
+  return channels_.emplace(cell, std::move(ch)).first->second;
+}
+
+void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats) {
+  bool periodic = keyframe_every_ > 0 && tick % std::uint64_t(keyframe_every_) == 0;
+  for (auto& [cell, ch] : channels_) {
+    std::uint32_t matched =
+        matchedReaders(ch.updates.writer.get()) + matchedReaders(ch.keyframes.writer.get());
+    // A new reader gets a fresh keyframe, so it starts from the current state.
+    ch.keyframe_due = matched > 0 && (matched > ch.matched || periodic);
+    ch.subscribed = matched > 0;
+    ch.matched = matched;
+    stats.subscribed_cells += ch.subscribed;
+  }
+}
+
+PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departure> leavers,
+                                    std::uint64_t tick, double sim_time) {
+  PublishStats stats;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    channel(grid_.cellOf(store.pos[i].x(), store.pos[i].z()));
+  refreshSubscriptions(tick, stats);
+
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    int cell = grid_.cellOf(store.pos[i].x(), store.pos[i].z());
+    DeadReckoningState& dr = store.dr[i];
+    Channel& ch = channels_.find(cell)->second;
+    int previous = dr.cell;
+    dr.cell = cell;
+    if (previous != cell && previous >= 0) {
+      Channel& old = channels_.find(previous)->second;
+      if (old.subscribed) old.leaves.push_back({store.id[i].value, zonesim_dds_LEAVE_MOVED_CELL});
+    }
+    if (!ch.subscribed) continue;  // not encoded; a keyframe resynchronises on subscription
+    if (ch.keyframe_due) {
+      ch.keyframe.push_back(toSample(store, i));
+      markSent(dr, store.pos[i], store.vel[i], sim_time);
+    } else if (previous != cell) {
+      ch.enters.push_back(toSample(store, i));
+      markSent(dr, store.pos[i], store.vel[i], sim_time);
+    } else if (needsUpdate(dr, store.pos[i], sim_time, dr_)) {
+      ch.updates_out.push_back(toSample(store, i));
+      markSent(dr, store.pos[i], store.vel[i], sim_time);
+    } else {
+      ++stats.suppressed;
+    }
+  }
+  for (const Departure& d : leavers) {
+    if (d.last_cell < 0) continue;
+    auto it = channels_.find(d.last_cell);
+    std::uint8_t reason = d.to_rank >= 0 ? zonesim_dds_LEAVE_MIGRATED : zonesim_dds_LEAVE_DESTROYED;
+    if (it != channels_.end() && it->second.subscribed)
+      it->second.leaves.push_back({d.id.value, reason});
+  }
+  for (auto& [cell, ch] : channels_) write(cell, ch, tick, sim_time, stats);
+  return stats;
+}
+
+void CellPublisher::write(int cell, Channel& ch, std::uint64_t tick, double sim_time,
+                          PublishStats& stats) {
+  if (!ch.enters.empty() || !ch.updates_out.empty() || !ch.leaves.empty()) {
+    zonesim_dds_CellUpdateBatch b{};
+    b.cell = cell;
+    b.zone = zone_;
+    b.tick = tick;
+    b.sim_time = sim_time;
+    view(b.enters, ch.enters);
+    view(b.updates, ch.updates_out);
+    view(b.leaves, ch.leaves);
+    dds::check(dds_write(ch.updates.writer.get(), &b), "dds_write cell batch");
+    ++stats.cells_written;
+    stats.enters += ch.enters.size();
+    stats.updates += ch.updates_out.size();
+    stats.leaves += ch.leaves.size();
+  }
+  if (ch.keyframe_due) {
+    zonesim_dds_CellKeyframe k{};
+    k.cell = cell;
+    k.zone = zone_;
+    k.tick = tick;
+    k.sim_time = sim_time;
+    view(k.entities, ch.keyframe);
+    dds::check(dds_write(ch.keyframes.writer.get(), &k), "dds_write keyframe");
+    ++stats.keyframes;
+  }
+  ch.enters.clear();
+  ch.updates_out.clear();
+  ch.leaves.clear();
+  ch.keyframe.clear();
+}
+
+}  // namespace zonesim::zone

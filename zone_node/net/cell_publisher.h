@@ -1,0 +1,66 @@
+#pragma once
+// The publish phase: per interest cell, one CellUpdateBatch per tick carrying that cell's
+// enters, dead-reckoning updates and leaves, and a CellKeyframe every K ticks or when a new
+// subscriber appears. A cell nobody subscribes to is not encoded at all.
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <vector>
+
+#include "common/interest_grid.h"
+#include "common/scene.h"
+#include "idl/dds_entity.h"
+#include "idl/topics.h"
+#include "zone_node/cluster/migration.h"
+#include "zone_node/entity_store.h"
+#include "zonesim.h"
+
+namespace zonesim::zone {
+
+/// What one publish phase did (for the tick metrics).
+struct PublishStats {
+  std::uint64_t cells_written = 0;
+  std::uint64_t enters = 0;
+  std::uint64_t updates = 0;
+  std::uint64_t leaves = 0;
+  std::uint64_t keyframes = 0;
+  std::uint64_t suppressed = 0;  ///< dead-reckoning checks that needed no update
+  std::uint64_t subscribed_cells = 0;
+};
+
+class CellPublisher {
+ public:
+  CellPublisher(dds_entity_t participant, const dds::Topics& topics, const InterestGrid& grid,
+                int zone, const DeadReckoning& dr, int keyframe_every);
+
+  /// Publishes this tick's changes; leavers are the entities migrated away (to_rank >= 0) or
+  /// destroyed (to_rank < 0) this tick.
+  PublishStats publish(EntityStore& store, std::span<const Departure> leavers, std::uint64_t tick,
+                       double sim_time);
+
+ private:
+  struct Channel {
+    dds::PartitionWriter updates;
+    dds::PartitionWriter keyframes;
+    std::uint32_t matched = 0;  // readers matched on either writer at the last check
+    bool subscribed = false;
+    bool keyframe_due = false;
+    std::vector<zonesim_dds_EntityUpdate> enters, updates_out, keyframe;
+    std::vector<zonesim_dds_EntityLeave> leaves;
+  };
+
+  Channel& channel(int cell);
+  void refreshSubscriptions(std::uint64_t tick, PublishStats& stats);
+  void write(int cell, Channel& ch, std::uint64_t tick, double sim_time, PublishStats& stats);
+
+  dds_entity_t participant_;
+  dds_entity_t update_topic_, keyframe_topic_;
+  const InterestGrid& grid_;
+  int zone_;
+  DeadReckoning dr_;
+  int keyframe_every_;
+  std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
+};
+
+}  // namespace zonesim::zone

@@ -1,0 +1,62 @@
+#pragma once
+// The zone's DDS endpoints other than the per-cell streams: player inputs addressed to this
+// zone (partition z.<rank>), avatar spawn requests, and ownership announcements.
+
+#include <cstdint>
+#include <vector>
+
+#include "idl/dds_entity.h"
+#include "idl/topics.h"
+
+namespace zonesim::zone {
+
+/// One player input as the gateway sent it.
+struct PlayerInputMsg {
+  std::uint64_t player_id = 0;
+  std::uint64_t avatar_id = 0;
+  std::uint32_t seq = 0;
+  float move_x = 0, move_z = 0;
+};
+
+/// A request to create a player's avatar at a ground-plane position.
+struct SpawnRequestMsg {
+  std::uint64_t player_id = 0;
+  double x = 0, z = 0;
+};
+
+/// An avatar changed owner (from_zone -1: newly created).
+struct OwnershipMsg {
+  std::uint64_t player_id = 0;
+  std::uint64_t avatar_id = 0;
+  int from_zone = -1;
+  int to_zone = -1;
+  std::uint64_t tick = 0;
+  std::uint32_t last_input_seq = 0;
+};
+
+class ZoneLink {
+ public:
+  /// Joins the DDS domain as zone `rank`; throws dds::DdsError on failure.
+  ZoneLink(int domain, int rank);
+
+  dds_entity_t participant() const { return participant_.get(); }
+  const dds::Topics& topics() const { return topics_; }
+
+  /// All inputs received since the last call, in arrival order.
+  std::vector<PlayerInputMsg> takeInputs();
+  /// All spawn requests received since the last call.
+  std::vector<SpawnRequestMsg> takeSpawnRequests();
+  /// Players whose avatars are to be removed (the player left), since the last call.
+  std::vector<std::uint64_t> takeDespawnRequests();
+  void announce(const OwnershipMsg& m);
+
+ private:
+  dds::Entity participant_;
+  dds::Topics topics_;
+  dds::PartitionReader inputs_;
+  dds::PartitionReader spawns_;
+  dds::PartitionReader despawns_;
+  dds::PartitionWriter ownership_;
+};
+
+}  // namespace zonesim::zone

@@ -1,0 +1,92 @@
+#include "zone_node/population.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/rng.h"
+
+namespace zonesim::zone {
+
+namespace {
+
+Vec3 uniformIn(Pcg32& rng, const SceneBox& box, double y) {
+  return Vec3(rng.uniform(box.min.x, box.max.x), y, rng.uniform(box.min.z, box.max.z));
+}
+
+/// Each entity's generator: stream from its id, so draws never depend on which rank runs it.
+Pcg32 entityRng(const Scene& scene, EntityId id) {
+  return Pcg32(scene.seed, id.value);
+}
+
+}  // namespace
+
+Vec3 nextWaypoint(const Scene& scene, const Vec3& from, double radius, std::uint64_t& rng_state,
+                  EntityId id) {
+  Pcg32 rng = Pcg32::fromState(rng_state, id.value);
+  double angle = rng.uniform(0.0, 2.0 * M_PI);
+  double dist = radius * std::sqrt(rng.uniform());
+  rng_state = rng.state();
+  const double margin = 0.5;
+  return Vec3(std::clamp(from.x() + dist * std::cos(angle), scene.world.min.x + margin,
+                         scene.world.max.x - margin),
+              scene.world.min.y,
+              std::clamp(from.z() + dist * std::sin(angle), scene.world.min.z + margin,
+                         scene.world.max.z - margin));
+}
+
+void forEachInitialEntity(const Scene& scene,
+                          const std::function<void(const EntityRecordData&)>& keep) {
+  std::uint64_t counter = 0;
+  for (const NpcPopulation& p : scene.npcs) {
+    for (int i = 0; i < p.count; ++i) {
+      EntityRecordData r;
+      r.id = EntityId::make(kSceneCreator, ++counter);
+      r.kind = EntityKind::Npc;
+      Pcg32 rng = entityRng(scene, r.id);
+      r.pos = uniformIn(rng, p.region, scene.world.min.y);
+      r.npc.max_speed = rng.uniform(p.min_speed, p.max_speed);
+      r.npc.accel = p.acceleration;
+      r.npc.waypoint_radius = p.waypoint_radius;
+      r.npc.arrive_distance = p.arrive_distance;
+      r.rng_state = rng.state();
+      r.npc.waypoint = nextWaypoint(scene, r.pos, p.waypoint_radius, r.rng_state, r.id);
+      keep(r);
+    }
+  }
+  for (const RigidBodyPopulation& p : scene.rigid_bodies) {
+    for (int i = 0; i < p.count; ++i) {
+      EntityRecordData r;
+      r.id = EntityId::make(kSceneCreator, ++counter);
+      r.kind = EntityKind::RigidBody;
+      Pcg32 rng = entityRng(scene, r.id);
+      r.pos =
+          uniformIn(rng, p.region,
+                    scene.world.min.y + p.radius + rng.uniform(p.drop_height, p.max_drop_height));
+      r.vel = Vec3(rng.uniform(-2, 2), 0, rng.uniform(-2, 2));
+      r.body.radius = p.radius;
+      r.body.mass = p.mass;
+      r.body.restitution = p.restitution;
+      r.rng_state = rng.state();
+      keep(r);
+    }
+  }
+  for (const EmitterPopulation& p : scene.emitters) {
+    for (int i = 0; i < p.count; ++i) {
+      EntityRecordData r;
+      r.id = EntityId::make(kSceneCreator, ++counter);
+      r.kind = EntityKind::Emitter;
+      Pcg32 rng = entityRng(scene, r.id);
+      r.pos = uniformIn(rng, p.region, scene.world.min.y);
+      r.emitter.rate = p.rate;
+      r.emitter.lifetime = p.lifetime;
+      r.emitter.speed = p.speed;
+      r.emitter.drag = p.drag;
+      r.emitter.restitution = p.restitution;
+      r.emitter.max_particles = p.max_particles;
+      r.rng_state = rng.state();
+      keep(r);
+    }
+  }
+}
+
+}  // namespace zonesim::zone

@@ -1,0 +1,74 @@
+#include "zone_node/systems/emitters.h"
+
+#include <cmath>
+
+#include "common/rng.h"
+#include "gpu/backend.h"
+#include "gpu/particle_system.h"
+
+namespace zonesim::zone {
+
+namespace {
+constexpr gpu::Vec3d kGravity{0.0, -9.81, 0.0};
+/// Sprays go up in a cone of this half angle (radians).
+constexpr double kConeHalfAngle = 0.6;
+}  // namespace
+
+EmitterSystem::EmitterSystem(const Scene& scene, const std::string& gpu_mode) {
+  std::size_t total = 0;
+  for (const EmitterPopulation& p : scene.emitters) {
+    std::size_t budget = std::size_t(p.count) * std::size_t(p.max_particles);
+    capacity_[{p.drag, p.restitution}] += budget;
+    total += budget;
+  }
+  if (total == 0) return;
+  // One decision for the zone, from the scene's whole particle budget: on for big batches only.
+  opencl_ = gpu::selectBackend(gpu_mode, total) == gpu::Backend::OpenCl;
+  backend_ = gpu::backendName(opencl_ ? gpu::Backend::OpenCl : gpu::Backend::Cpu);
+}
+
+EmitterSystem::~EmitterSystem() = default;
+
+std::string EmitterSystem::backendName() const {
+  return backend_;
+}
+
+gpu::ParticleSystem& EmitterSystem::batchFor(const EmitterData& e) {
+  Medium key{e.drag, e.restitution};
+  auto it = batches_.find(key);
+  if (it != batches_.end()) return *it->second;
+  std::size_t capacity = capacity_.count(key) ? capacity_[key] : std::size_t(e.max_particles);
+  auto system = std::make_unique<gpu::ParticleSystem>(
+      opencl_ ? gpu::Backend::OpenCl : gpu::Backend::Cpu, capacity);
+  system->reserve(capacity);
+  return *batches_.emplace(key, std::move(system)).first->second;
+}
+
+std::uint64_t EmitterSystem::step(EntityStore& store, double dt) {
+  if (store.count(EntityKind::Emitter) == 0 && batches_.empty()) return 0;
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    if (store.kind[i] != EntityKind::Emitter) continue;
+    EmitterData& e = store.emitter[i];
+    e.spawn_accumulator += e.rate * dt;
+    auto count = std::size_t(std::floor(e.spawn_accumulator));
+    if (count == 0) continue;
+    e.spawn_accumulator -= double(count);
+    gpu::EmitSpec spec;
+    spec.origin = {store.pos[i].x(), std::max(0.0, store.pos[i].y()), store.pos[i].z()};
+    spec.cone_half_angle = kConeHalfAngle;
+    spec.speed = e.speed;
+    spec.lifetime = e.lifetime;
+    Pcg32 rng = Pcg32::fromState(store.rng_state[i], store.id[i].value);
+    batchFor(e).emit(spec, count, rng);
+    store.rng_state[i] = rng.state();
+  }
+  std::uint64_t alive = 0;
+  for (auto& [medium, system] : batches_) {
+    if (system->aliveCount() == 0) continue;  // nothing to integrate: no launch
+    system->step(dt, kGravity, medium.first, medium.second);
+    alive += system->aliveCount();
+  }
+  return alive;
+}
+
+}  // namespace zonesim::zone

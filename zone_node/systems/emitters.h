@@ -1,0 +1,45 @@
+#pragma once
+// Particle emitters: each emitter entity spawns particles at its rate; the particles of all
+// emitters that share drag and restitution are integrated as one batch (gravity, drag, ground
+// bounce) on OpenCL when it pays, else on the CPU (gpu/). Particles are zone-local effects:
+// they neither migrate nor get published; an emitter that leaves the zone leaves its particles
+// to die out here.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "common/scene.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::gpu {
+class ParticleSystem;
+}
+
+namespace zonesim::zone {
+
+class EmitterSystem {
+ public:
+  /// gpu_mode is "on", "off" or "auto" (see gpu/backend.h).
+  EmitterSystem(const Scene& scene, const std::string& gpu_mode);
+  ~EmitterSystem();
+
+  /// Emits for every emitter in the store and integrates all particles; returns particles alive.
+  std::uint64_t step(EntityStore& store, double dt);
+  /// "cpu", "opencl", or "none" when the scene has no emitters.
+  std::string backendName() const;
+
+ private:
+  using Medium = std::pair<double, double>;  // (drag, restitution) shared by a batch
+
+  gpu::ParticleSystem& batchFor(const EmitterData& e);
+
+  bool opencl_ = false;                     // decided once from the scene's particle budget
+  std::map<Medium, std::size_t> capacity_;  // from the scene: every emitter that could come here
+  std::map<Medium, std::unique_ptr<gpu::ParticleSystem>> batches_;
+  std::string backend_ = "none";
+};
+
+}  // namespace zonesim::zone

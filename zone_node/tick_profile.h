@@ -1,0 +1,68 @@
+#pragma once
+// The phases of a zone tick, in order (DESIGN.md), and the per-tick figures the metrics report.
+
+#include <array>
+#include <cstdint>
+
+#include "common/timer.h"
+
+namespace zonesim::zone {
+
+enum class Phase { Input, Ai, Physics, Gpu, Migrate, Publish, Checks, Count };
+constexpr std::size_t kPhaseCount = std::size_t(Phase::Count);
+constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
+    "input", "ai", "physics", "gpu", "migrate", "publish", "checks"};
+
+using TickProfile = PhaseProfile<Phase, kPhaseCount>;
+
+/// Counters of one tick (reset at the start of each tick).
+struct TickCounters {
+  std::uint64_t migrated_out = 0;
+  std::uint64_t migrated_in = 0;
+  std::uint64_t handoffs_out = 0;
+  std::uint64_t handoffs_in = 0;
+  std::uint64_t inputs_applied = 0;
+  std::uint64_t inputs_duplicate = 0;
+  std::uint64_t inputs_forwarded = 0;
+  std::uint64_t inputs_unroutable = 0;
+  std::uint64_t avatars_spawned = 0;
+  std::uint64_t entities_destroyed = 0;
+  std::uint64_t migration_bytes = 0;
+  std::uint64_t bodies_awake = 0;
+  std::uint64_t particles_alive = 0;
+  std::uint64_t published_updates = 0;
+  std::uint64_t published_enters = 0;
+  std::uint64_t published_leaves = 0;
+  std::uint64_t published_cells = 0;
+  std::uint64_t published_keyframes = 0;
+  std::uint64_t subscribed_cells = 0;
+};
+
+/// Every counter with its name: totals, metrics lines and summaries iterate this one list.
+struct CounterField {
+  const char* name;
+  std::uint64_t TickCounters::*field;
+  bool gauge;  ///< a level (last value matters), not an event count (the sum matters)
+};
+inline constexpr CounterField kCounterFields[] = {
+    {"migrated_out", &TickCounters::migrated_out, false},
+    {"migrated_in", &TickCounters::migrated_in, false},
+    {"handoffs_out", &TickCounters::handoffs_out, false},
+    {"handoffs_in", &TickCounters::handoffs_in, false},
+    {"inputs_applied", &TickCounters::inputs_applied, false},
+    {"inputs_duplicate", &TickCounters::inputs_duplicate, false},
+    {"inputs_forwarded", &TickCounters::inputs_forwarded, false},
+    {"inputs_unroutable", &TickCounters::inputs_unroutable, false},
+    {"avatars_spawned", &TickCounters::avatars_spawned, false},
+    {"entities_destroyed", &TickCounters::entities_destroyed, false},
+    {"migration_bytes", &TickCounters::migration_bytes, false},
+    {"bodies_awake", &TickCounters::bodies_awake, true},
+    {"particles_alive", &TickCounters::particles_alive, true},
+    {"published_updates", &TickCounters::published_updates, false},
+    {"published_enters", &TickCounters::published_enters, false},
+    {"published_leaves", &TickCounters::published_leaves, false},
+    {"published_cells", &TickCounters::published_cells, false},
+    {"published_keyframes", &TickCounters::published_keyframes, false},
+    {"subscribed_cells", &TickCounters::subscribed_cells, true}};
+
+}  // namespace zonesim::zone

@@ -1,0 +1,240 @@
+#include "zone_node/zone_node.h"
+
+#include <stdexcept>
+
+#include "common/log.h"
+#include "zone_node/cluster/conservation.h"
+#include "zone_node/net/cell_publisher.h"
+#include "zone_node/net/zone_link.h"
+#include "zone_node/population.h"
+#include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/emitters.h"
+#include "zone_node/systems/ground_bodies.h"
+#include "zone_node/systems/npc_movement.h"
+
+namespace zonesim::zone {
+
+ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options)
+    : scene_(scene),
+      comm_(comm),
+      rank_(0),
+      size_(1),
+      options_(options),
+      layout_(ZoneLayout::forRanks(scene,
+                                   [&] {
+                                     int s = 1;
+                                     MPI_Comm_size(comm, &s);
+                                     return s;
+                                   }())),
+      grid_(scene.world, scene.interest_cell_size),
+      ids_(0),
+      migrator_(comm, 0, 1) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  ids_ = EntityIdAllocator(std::uint32_t(rank_));
+  migrator_ = Migrator(comm_, rank_, size_);
+  forward_.resize(std::size_t(size_));
+
+  forEachInitialEntity(scene_, [&](const EntityRecordData& r) {
+    if (layout_.ownerOf(r.pos.x(), r.pos.z()) != rank_) return;
+    store_.add(r);
+    ledger_.add(r.id);
+  });
+  if (options_.dds) {
+    link_ = std::make_unique<ZoneLink>(options_.dds_domain, rank_);
+    publisher_ =
+        std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_, rank_,
+                                        scene_.dead_reckoning, scene_.keyframe_every);
+  }
+  emitters_ = std::make_unique<EmitterSystem>(scene_, options_.gpu);
+}
+
+ZoneNode::~ZoneNode() = default;
+
+std::string ZoneNode::particleBackend() const {
+  return emitters_->backendName();
+}
+
+void ZoneNode::tick() {
+  profile_ = {};
+  counters_ = {};
+  leavers_.clear();
+  {
+    ScopedTimer t(profile_[Phase::Input]);
+    input();
+  }
+  {
+    ScopedTimer t(profile_[Phase::Ai]);
+    ai();
+  }
+  {
+    ScopedTimer t(profile_[Phase::Physics]);
+    physics();
+  }
+  {
+    ScopedTimer t(profile_[Phase::Gpu]);
+    gpu();
+  }
+  {
+    ScopedTimer t(profile_[Phase::Migrate]);
+    migrate();
+  }
+  {
+    ScopedTimer t(profile_[Phase::Publish]);
+    publish();
+  }
+  ++tick_;
+  {
+    ScopedTimer t(profile_[Phase::Checks]);
+    checks();
+  }
+}
+
+void ZoneNode::input() {
+  for (const ForwardedInput& f : forwarded_in_) applyInput(f.player_id, f.seq, f.move_x, f.move_z);
+  forwarded_in_.clear();
+  if (!link_) return;
+  for (const SpawnRequestMsg& s : link_->takeSpawnRequests()) spawnAvatar(s.player_id, s.x, s.z);
+  for (std::uint64_t player : link_->takeDespawnRequests()) despawnAvatar(player);
+  for (const PlayerInputMsg& in : link_->takeInputs())
+    applyInput(in.player_id, in.seq, in.move_x, in.move_z);
+}
+
+void ZoneNode::spawnAvatar(std::uint64_t player_id, double x, double z) {
+  // Every zone reads every request, so all agree on which players exist; repeats are ignored.
+  bool seen = !known_players_.insert(player_id).second;
+  std::optional<std::size_t> mine = store_.avatarOf(player_id);
+  if (seen) {
+    if (mine && link_) {
+      link_->announce({player_id, store_.id[*mine].value, -1, rank_, tick_,
+                       store_.avatar[*mine].last_input_seq});
+    }
+    return;
+  }
+  x = std::clamp(x, scene_.world.min.x, scene_.world.max.x - 1e-6);
+  z = std::clamp(z, scene_.world.min.z, scene_.world.max.z - 1e-6);
+  if (layout_.ownerOf(x, z) != rank_) return;
+  EntityRecordData r;
+  r.id = ids_.next();
+  r.kind = EntityKind::Avatar;
+  r.pos = Vec3(x, scene_.world.min.y, z);
+  r.avatar.player_id = player_id;
+  r.avatar.max_speed = scene_.clients.speed;
+  store_.add(r);
+  ledger_.add(r.id);
+  ++counters_.avatars_spawned;
+  if (link_) link_->announce({player_id, r.id.value, -1, rank_, tick_, 0});
+  ZS_DEBUG("spawned avatar %s for player %llu", toString(r.id).c_str(),
+           (unsigned long long)player_id);
+}
+
+void ZoneNode::despawnAvatar(std::uint64_t player_id) {
+  // Every zone remembers the request: an avatar migrating while zones read it is removed on
+  // arrival at a zone that has already seen it.
+  despawned_players_.insert(player_id);
+  departed_players_.erase(player_id);
+  if (std::optional<std::size_t> i = store_.avatarOf(player_id)) destroyAt(*i);
+}
+
+void ZoneNode::destroyAt(std::size_t index) {
+  leavers_.push_back({store_.id[index], store_.kind[index], -1, store_.dr[index].cell,
+                      store_.avatar[index].player_id});
+  ledger_.remove(store_.id[index]);
+  store_.removeAt(index);
+  ++counters_.entities_destroyed;
+}
+
+void ZoneNode::applyInput(std::uint64_t player_id, std::uint32_t seq, float move_x, float move_z) {
+  if (std::optional<std::size_t> i = store_.avatarOf(player_id)) {
+    AvatarData& a = store_.avatar[*i];
+    if (seq <= a.last_input_seq) {
+      ++counters_.inputs_duplicate;  // already applied (e.g. forwarded copy): exactly once
+      return;
+    }
+    a.last_input_seq = seq;
+    a.move_x = move_x;
+    a.move_z = move_z;
+    ++counters_.inputs_applied;
+    return;
+  }
+  auto gone = departed_players_.find(player_id);
+  if (gone != departed_players_.end()) {
+    forward_[std::size_t(gone->second)].push_back({player_id, 0, seq, move_x, move_z});
+    ++counters_.inputs_forwarded;
+    return;
+  }
+  ++counters_.inputs_unroutable;
+}
+
+void ZoneNode::ai() {
+  stepNpcs(scene_, store_, scene_.dt);
+  stepAvatars(scene_.world, store_, scene_.dt);
+}
+
+void ZoneNode::physics() {
+  if (store_.count(EntityKind::RigidBody) == 0) return;
+  counters_.bodies_awake = stepGroundBodies(scene_.world, store_, scene_.dt);
+}
+
+void ZoneNode::gpu() {
+  counters_.particles_alive = emitters_->step(store_, scene_.dt);
+}
+
+void ZoneNode::migrate() {
+  last_migration_ = migrator_.exchange(store_, layout_, tick_, forward_);
+  counters_.migrated_out = last_migration_.departed.size();
+  counters_.migrated_in = last_migration_.arrived.size();
+  counters_.migration_bytes = last_migration_.bytes_sent;
+  for (const Departure& d : last_migration_.departed) {
+    if (d.kind != EntityKind::Avatar) continue;
+    departed_players_[d.player_id] = d.to_rank;
+    ++counters_.handoffs_out;
+  }
+  std::vector<EntityId> gone_players;
+  for (const Arrival& a : last_migration_.arrived) {
+    if (store_.kind[a.index] != EntityKind::Avatar) continue;
+    const AvatarData& av = store_.avatar[a.index];
+    departed_players_.erase(av.player_id);
+    if (despawned_players_.count(av.player_id)) {
+      gone_players.push_back(store_.id[a.index]);
+      continue;
+    }
+    ++counters_.handoffs_in;
+    if (link_)
+      link_->announce(
+          {av.player_id, store_.id[a.index].value, a.from_rank, rank_, tick_, av.last_input_seq});
+  }
+  // Removed after the loop: removal moves entities and would invalidate the arrival indices.
+  for (EntityId id : gone_players) destroyAt(*store_.indexOf(id));
+  forwarded_in_ = std::move(last_migration_.inputs);
+  leavers_.insert(leavers_.end(), last_migration_.departed.begin(), last_migration_.departed.end());
+}
+
+void ZoneNode::publish() {
+  if (!publisher_) return;
+  PublishStats s = publisher_->publish(store_, leavers_, tick_, double(tick_) * scene_.dt);
+  counters_.published_updates = s.updates;
+  counters_.published_enters = s.enters;
+  counters_.published_leaves = s.leaves;
+  counters_.published_cells = s.cells_written;
+  counters_.published_keyframes = s.keyframes;
+  counters_.subscribed_cells = s.subscribed_cells;
+}
+
+void ZoneNode::checks() {
+  if (options_.check_every <= 0 || tick_ % std::uint64_t(options_.check_every) != 0) return;
+  ConservationReport r = checkConservation(comm_, store_, ledger_);
+  ++conservation_.checks;
+  conservation_.last_count = r.actual.count;
+  if (!r.ok()) {
+    ++conservation_.failures;
+    ZS_ERROR(
+        "conservation violated at tick %llu: %llu entities (hash %016llx), expected %llu (hash "
+        "%016llx)",
+        (unsigned long long)tick_, (unsigned long long)r.actual.count,
+        (unsigned long long)r.actual.hash, (unsigned long long)r.expected.count,
+        (unsigned long long)r.expected.hash);
+  }
+}
+
+}  // namespace zonesim::zone

@@ -1,0 +1,102 @@
+#pragma once
+// One zone: the entities in one rectangle of the ground plane and the tick that advances them.
+// tick() reads like DESIGN.md's tick list: one call per phase, each timed into the profile.
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "common/entity_id.h"
+#include "common/interest_grid.h"
+#include "common/scene.h"
+#include "zone_node/cluster/migration.h"
+#include "zone_node/entity_store.h"
+#include "zone_node/tick_profile.h"
+#include "zone_node/zone_layout.h"
+
+namespace zonesim::zone {
+
+class ZoneLink;
+class CellPublisher;
+class EmitterSystem;
+
+struct ZoneOptions {
+  int dds_domain = 0;
+  bool dds = true;       ///< false: no DDS at all (pure MPI runs)
+  int check_every = 30;  ///< ticks between conservation checks (1: every tick)
+  std::string gpu = "auto";
+};
+
+/// Cumulative conservation results.
+struct ConservationTally {
+  std::uint64_t checks = 0;
+  std::uint64_t failures = 0;
+  std::uint64_t last_count = 0;
+};
+
+class ZoneNode {
+ public:
+  ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options);
+  ~ZoneNode();
+
+  /// Advances the zone by one fixed dt.
+  void tick();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  std::uint64_t tickCount() const { return tick_; }
+  const ZoneLayout& layout() const { return layout_; }
+  const EntityStore& store() const { return store_; }
+  const TickProfile& profile() const { return profile_; }
+  const TickCounters& counters() const { return counters_; }
+  const ConservationTally& conservation() const { return conservation_; }
+  /// Which backend the particle emitters use ("cpu", "opencl" or "none").
+  std::string particleBackend() const;
+
+ private:
+  void input();
+  void ai();
+  void physics();
+  void gpu();
+  void migrate();
+  void publish();
+  void checks();
+
+  void spawnAvatar(std::uint64_t player_id, double x, double z);
+  void applyInput(std::uint64_t player_id, std::uint32_t seq, float move_x, float move_z);
+  void despawnAvatar(std::uint64_t player_id);
+  void destroyAt(std::size_t index);
+
+  const Scene& scene_;
+  MPI_Comm comm_;
+  int rank_, size_;
+  ZoneOptions options_;
+  ZoneLayout layout_;
+  InterestGrid grid_;
+  EntityStore store_;
+  EntityIdAllocator ids_;
+  IdSetDigest ledger_;  // created here minus destroyed here
+  Migrator migrator_;
+  std::unique_ptr<ZoneLink> link_;
+  std::unique_ptr<CellPublisher> publisher_;
+  std::unique_ptr<EmitterSystem> emitters_;
+
+  std::uint64_t tick_ = 0;
+  TickProfile profile_;
+  TickCounters counters_;
+  ConservationTally conservation_;
+  MigrationResult last_migration_;
+  std::vector<Departure> leavers_;  // migrated away or destroyed this tick: publish says so
+  std::vector<std::vector<ForwardedInput>> forward_;         // per destination rank
+  std::vector<ForwardedInput> forwarded_in_;                 // to apply next input phase
+  std::unordered_map<std::uint64_t, int> departed_players_;  // player -> rank its avatar went to
+  std::unordered_set<std::uint64_t> known_players_;          // every spawn request seen
+  std::unordered_set<std::uint64_t> despawned_players_;      // every despawn request seen
+};
+
+}  // namespace zonesim::zone

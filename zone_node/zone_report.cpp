@@ -1,0 +1,48 @@
+#include "zone_node/zone_report.h"
+
+#include "common/stats.h"
+
+namespace zonesim::zone {
+
+ZoneReport::ZoneReport(const ZoneNode& zone) : entities_start_(zone.store().size()) {}
+
+void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWriter& metrics) {
+  tick_ms_.push_back(tick_seconds * 1e3);
+  const TickProfile& p = zone.profile();
+  for (std::size_t i = 0; i < kPhaseCount; ++i) phase_totals_.seconds[i] += p.seconds[i];
+  const TickCounters& c = zone.counters();
+  for (const CounterField& f : kCounterFields)
+    totals_.*f.field = f.gauge ? c.*f.field : totals_.*f.field + c.*f.field;
+  if (!metrics.enabled()) return;
+  JsonLine line;
+  line.add("tick", zone.tickCount())
+      .add("rank", zone.rank())
+      .add("entities", std::uint64_t(zone.store().size()));
+  line.add("tick_ms", tick_seconds * 1e3);
+  for (std::size_t i = 0; i < kPhaseCount; ++i)
+    line.add(std::string(kPhaseNames[i]) + "_ms", p.seconds[i] * 1e3);
+  for (const CounterField& f : kCounterFields) line.add(f.name, c.*f.field);
+  metrics.write(line);
+}
+
+std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) const {
+  const ZoneRect r = zone.layout().rect(zone.rank());
+  JsonLine s;
+  s.add("rank", zone.rank()).add("ranks", zone.size()).add("ticks", zone.tickCount());
+  s.addRaw("rect", "[" + std::to_string(r.min_x) + "," + std::to_string(r.min_z) + "," +
+                       std::to_string(r.max_x) + "," + std::to_string(r.max_z) + "]");
+  s.add("entities_start", entities_start_).add("entities_end", std::uint64_t(zone.store().size()));
+  s.add("wall_s", wall_seconds);
+  s.add("tick_ms_p50", percentile(tick_ms_, 50)).add("tick_ms_p99", percentile(tick_ms_, 99));
+  s.add("tick_ms_max", percentile(tick_ms_, 100));
+  double n = tick_ms_.empty() ? 1.0 : double(tick_ms_.size());
+  for (std::size_t i = 0; i < kPhaseCount; ++i)
+    s.add(std::string(kPhaseNames[i]) + "_ms_mean", phase_totals_.seconds[i] * 1e3 / n);
+  for (const CounterField& f : kCounterFields) s.add(f.name, totals_.*f.field);
+  s.add("conservation_checks", zone.conservation().checks);
+  s.add("conservation_failures", zone.conservation().failures);
+  s.add("particle_backend", zone.particleBackend());
+  return s.str();
+}
+
+}  // namespace zonesim::zone

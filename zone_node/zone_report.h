@@ -1,0 +1,31 @@
+#pragma once
+// What a zone writes about its run: one JSON line per tick (phases and counters) while running,
+// and one summary object at the end (entities, migrations, handoffs, tick-time percentiles).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/metrics.h"
+#include "zone_node/zone_node.h"
+
+namespace zonesim::zone {
+
+/// Accumulates a zone's run figures tick by tick.
+class ZoneReport {
+ public:
+  explicit ZoneReport(const ZoneNode& zone);
+
+  /// Records the tick just run (and writes its JSON line when metrics are on).
+  void recordTick(const ZoneNode& zone, double tick_seconds, MetricsWriter& metrics);
+  /// The end-of-run summary as one JSON object.
+  std::string summaryJson(const ZoneNode& zone, double wall_seconds) const;
+
+ private:
+  std::uint64_t entities_start_;
+  std::vector<double> tick_ms_;
+  TickProfile phase_totals_;
+  TickCounters totals_;  // event counters summed; gauges hold their last value
+};
+
+}  // namespace zonesim::zone
