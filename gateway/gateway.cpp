@@ -119,8 +119,7 @@ void Gateway::carryOut(Outbox& out) {
   }
   CellDelta delta;
   for (const Session& s : out.closed) {
-    finished_players_.push_back({s.player_id, double(nowNs() - s.created_ns) * 1e-9, s.traffic});
-    interest_.remove(s.player_id, delta);
+    retirePlayer(s, delta);
     ++counters_.sessions_closed;
   }
   applyCellDelta(delta);
@@ -180,12 +179,17 @@ void Gateway::expireSessions(std::int64_t now_ns) {
   for (auto& [h, expired] : dead) closeSession(h, expired);
 }
 
+void Gateway::retirePlayer(const Session& s, CellDelta& delta) {
+  finished_players_.push_back({s.player_id, double(nowNs() - s.created_ns) * 1e-9, s.traffic});
+  interest_.remove(s.player_id, delta);
+  link_.requestDespawn(s.player_id);
+}
+
 void Gateway::closeSession(SlotHandle h, bool expired) {
   Session* s = sessions_.get(h);
   if (s == nullptr) return;
-  finished_players_.push_back({s->player_id, double(nowNs() - s->created_ns) * 1e-9, s->traffic});
   CellDelta delta;
-  interest_.remove(s->player_id, delta);
+  retirePlayer(*s, delta);
   sessions_.erase(h);
   applyCellDelta(delta);
   ++(expired ? counters_.sessions_expired : counters_.sessions_closed);

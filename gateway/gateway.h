@@ -67,6 +67,8 @@ class Gateway {
   void sendTo(Session& s, const Bytes& bytes);
   void sendTo(const Endpoint& to, const Bytes& bytes);
   void closeSession(SlotHandle h, bool expired);
+  /// Bookkeeping for a player whose session ended: its figures, its interest, its avatar.
+  void retirePlayer(const Session& s, CellDelta& delta);
   void writeMetrics(std::int64_t now_ns);
   GatewayGauges gauges(std::int64_t now_ns);
   /// The avatar's position as last heard (extrapolated), or the spawn point before that.

@@ -39,6 +39,8 @@ ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
       keyframe_qos_(dds::cellKeyframeQos()) {
   spawn_writer_ = dds::makePartitionWriter(participant_.get(), topics_.spawn_requests.get(), "",
                                            keep_all_qos_.get());
+  despawn_writer_ = dds::makePartitionWriter(participant_.get(), topics_.despawn_requests.get(), "",
+                                             keep_all_qos_.get());
   ownership_reader_ = dds::makePartitionReader(participant_.get(), topics_.ownership.get(), "",
                                                keep_all_qos_.get());
   // Input writers for the zones we expect, created now so they are matched before the first
@@ -68,6 +70,18 @@ std::size_t ZoneLink::flushSpawns() {
   }
   held_spawns_.erase(held_spawns_.begin(), held_spawns_.begin() + long(written));
   return written;
+}
+
+void ZoneLink::requestDespawn(std::uint64_t player_id) {
+  auto held = std::find_if(held_spawns_.begin(), held_spawns_.end(),
+                           [&](const SpawnCommand& c) { return c.player_id == player_id; });
+  if (held != held_spawns_.end()) {
+    held_spawns_.erase(held);  // never reached a zone: nothing to remove there
+    return;
+  }
+  zonesim_dds_DespawnRequest r{};
+  r.player_id = player_id;
+  dds::check(dds_write(despawn_writer_.writer.get(), &r), "dds_write DespawnRequest");
 }
 
 dds::PartitionWriter& ZoneLink::inputWriter(int zone) {

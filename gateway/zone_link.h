@@ -29,6 +29,8 @@ class ZoneLink {
   /// Writes held spawn requests if enough zones listen now; returns how many were written.
   std::size_t flushSpawns();
   std::size_t heldSpawns() const { return held_spawns_.size(); }
+  /// The player left: drops its held spawn request, or asks the zones to remove its avatar.
+  void requestDespawn(std::uint64_t player_id);
   /// Writes one input on the owning zone's partition; false if the write failed (timed out).
   bool sendInput(const InputCommand& c);
 
@@ -56,6 +58,7 @@ class ZoneLink {
   dds::Topics topics_;
   dds::Qos keep_all_qos_, update_qos_, keyframe_qos_;
   dds::PartitionWriter spawn_writer_;
+  dds::PartitionWriter despawn_writer_;
   dds::PartitionReader ownership_reader_;
   std::map<int, dds::PartitionWriter> input_writers_;
   std::map<int, CellReaders> cells_;
