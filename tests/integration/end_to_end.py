@@ -1,0 +1,53 @@
+"""Zones, a gateway and a client_stub for a few seconds: players get welcomed, receive updates,
+and at least one avatar changes zone, with the handoff seen by zones and clients alike."""
+import tempfile
+import time
+from pathlib import Path
+
+import harness as h
+
+SCENE = h.SOURCE_DIR / "scenes/test_e2e.yaml"
+CLIENT_SECONDS = 8
+
+with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
+    out = Path(tmp)
+    domain = h.free_dds_domain()
+    env = h.base_env()
+    zones = h.start(h.mpirun(4, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", CLIENT_SECONDS + 8,
+                             "--realtime", "--metrics", out, "--dds-domain", domain),
+                    out / "zones.log", env)
+    gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file", out / "port",
+                       "--dds-domain", domain, "--metrics", out], out / "gateway.log", env)
+    for _ in range(100):
+        if (out / "port").exists() and (out / "port").read_text().strip():
+            break
+        time.sleep(0.1)
+    h.check((out / "port").exists(), "gateway wrote its port")
+    port = (out / "port").read_text().strip()
+    time.sleep(2)
+    h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway", f"127.0.0.1:{port}", "--players", 12,
+           "--duration", CLIENT_SECONDS, "--summary", out / "clients.json", "--metrics", out],
+          out / "clients.log", env, timeout=60)
+    h.stop(gateway)
+    rc = zones.wait(timeout=60)
+    if rc != 0:
+        h.fail("zones exited %d\n%s" % (rc, h.tail(out / "zones.log")))
+
+    clients = h.load_json(out / "clients.json")["clients"]
+    zone_summaries = [h.load_json(out / f"zone_{r}_summary.json") for r in range(4)]
+    h.check(len(clients) == 12, "12 players reported")
+    welcomed = [c for c in clients if c.get("avatar_id", 0) != 0]
+    h.check(len(welcomed) == 12, f"every player was welcomed with an avatar ({len(welcomed)})")
+    h.check(all(c["updates_per_s"] > 0 for c in clients), "every player received entity updates")
+    h.check(all(c["bytes_in_per_s"] > 0 and c["bytes_out_per_s"] > 0 for c in clients), "traffic both ways")
+    handoffs = sum(z["handoffs_in"] for z in zone_summaries)
+    h.check(handoffs >= 1, f"at least one avatar changed zone ({handoffs})")
+    h.check(sum(c.get("handoffs", 0) for c in clients) >= 1, "clients were told of a handoff")
+    h.check(sum(z["inputs_applied"] for z in zone_summaries) > 0, "zones applied player inputs")
+    h.check(sum(z["conservation_failures"] for z in zone_summaries) == 0, "nothing lost or doubled")
+    spawned = sum(z["avatars_spawned"] for z in zone_summaries)
+    destroyed = sum(z["entities_destroyed"] for z in zone_summaries)
+    h.check(spawned == 12 and destroyed == 12, f"12 avatars created and removed when players left ({spawned}, {destroyed})")
+    h.check(sum(z["entities_start"] for z in zone_summaries) == sum(z["entities_end"] for z in zone_summaries),
+            "the world ends with the entities it started with")
+print("end-to-end passed")

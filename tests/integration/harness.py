@@ -1,0 +1,103 @@
+"""Helpers for tests that start zonesim processes: paths, isolation and clean-up.
+
+Every run gets its own DDS domain id and its own ports, and every process is started in its
+own process group and killed on exit, so parallel ctest runs never see each other and never
+leave processes behind.
+"""
+import atexit
+import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+SOURCE_DIR = Path(__file__).resolve().parents[2]
+_children = []
+
+
+def bin_dir():
+    return Path(os.environ.get("ZONESIM_BIN", SOURCE_DIR / "build" / "bin"))
+
+
+def base_env(domain=None):
+    env = dict(os.environ)
+    env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
+    env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
+    env["CYCLONEDDS_URI"] = "file://" + str(SOURCE_DIR / "deploy" / "cyclonedds.xml")
+    if domain is not None:
+        env["ZONESIM_DDS_DOMAIN"] = str(domain)
+    return env
+
+
+def free_dds_domain():
+    """A domain id for this run only (Cyclone accepts 0..232; each uses its own ports)."""
+    return random.Random(os.getpid() ^ time.time_ns()).randint(10, 230)
+
+
+def mpirun(np, *args):
+    return ["mpirun", "-np", str(np), "--oversubscribe", "--bind-to", "none", *map(str, args)]
+
+
+def start(cmd, log_path, env):
+    log = open(log_path, "w")
+    cmd = [str(c) for c in cmd]
+    p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+    _children.append(p)
+    return p
+
+
+def run(cmd, log_path, env, timeout):
+    p = start(cmd, log_path, env)
+    try:
+        rc = p.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        stop(p)
+        fail(f"timed out after {timeout} s: {' '.join(map(str, cmd))}\n{tail(log_path)}")
+    if rc != 0:
+        fail(f"exit {rc}: {' '.join(map(str, cmd))}\n{tail(log_path)}")
+
+
+def stop(p, grace=5.0):
+    """SIGTERM the process group, then SIGKILL what is left."""
+    if p.poll() is not None:
+        return p.returncode
+    try:
+        os.killpg(p.pid, signal.SIGTERM)
+        return p.wait(timeout=grace)
+    except (ProcessLookupError, subprocess.TimeoutExpired):
+        try:
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        return p.wait()
+
+
+@atexit.register
+def _cleanup():
+    for p in _children:
+        stop(p, grace=2.0)
+
+
+def tail(path, lines=40):
+    try:
+        return "".join(Path(path).read_text(errors="replace").splitlines(True)[-lines:])
+    except OSError:
+        return ""
+
+
+def load_json(path):
+    return json.loads(Path(path).read_text())
+
+
+def fail(msg):
+    print("FAIL: " + msg, file=sys.stderr)
+    sys.exit(1)
+
+
+def check(cond, msg):
+    if not cond:
+        fail(msg)
+    print("ok: " + msg)
