@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# The main job: a local cluster of 4 zone ranks, one gateway and one client_stub with 32 players
+# on scenes/demo.yaml for about 20 s, then the handoff/bandwidth report (printed and report.json).
+# Usage: deploy/demo.sh [RUN_DIR]   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS)
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+
+SECONDS_RUN="${ZONESIM_DEMO_SECONDS:-20}"
+PLAYERS="${ZONESIM_DEMO_PLAYERS:-32}"
+SCENE="$ZONESIM_ROOT/scenes/demo.yaml"
+RUN_DIR="$(realpath -m "${1:-$ZONESIM_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}")"
+BIN="$BUILD_DIR/bin"
+mkdir -p "$RUN_DIR"
+export CYCLONEDDS_URI="file://$ZONESIM_ROOT/deploy/cyclonedds.xml"
+DOMAIN="${ZONESIM_DDS_DOMAIN:-$(( (RANDOM % 200) + 20 ))}"
+
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
+trap cleanup EXIT
+
+echo "== run folder: $RUN_DIR (DDS domain $DOMAIN)"
+# Zones run a little longer than the clients so that every client second has live zones.
+ZONE_SECONDS=$(( SECONDS_RUN + 6 ))
+mpirun -np 4 --oversubscribe --bind-to none "$BIN/zone_node" --scene "$SCENE" --duration "$ZONE_SECONDS" \
+  --realtime --metrics "$RUN_DIR" --dds-domain "$DOMAIN" >"$RUN_DIR/zones.log" 2>&1 &
+zones_pid=$!
+pids+=("$zones_pid")
+
+"$BIN/gateway" --scene "$SCENE" --port 0 --port-file "$RUN_DIR/gateway.port" --dds-domain "$DOMAIN" \
+  --metrics "$RUN_DIR" >"$RUN_DIR/gateway.log" 2>&1 &
+gateway_pid=$!
+pids+=("$gateway_pid")
+for _ in $(seq 100); do [ -s "$RUN_DIR/gateway.port" ] && break; sleep 0.1; done
+[ -s "$RUN_DIR/gateway.port" ] || { echo "gateway did not start:"; cat "$RUN_DIR/gateway.log"; exit 1; }
+PORT="$(cat "$RUN_DIR/gateway.port")"
+sleep 2  # let DDS discovery between zones and gateway settle before players ask for avatars
+
+echo "== $PLAYERS players for $SECONDS_RUN s against 127.0.0.1:$PORT"
+"$BIN/client_stub" --scene "$SCENE" --gateway "127.0.0.1:$PORT" --players "$PLAYERS" \
+  --duration "$SECONDS_RUN" --metrics "$RUN_DIR" --summary "$RUN_DIR/clients_summary.json" \
+  >"$RUN_DIR/clients.log" 2>&1 &
+clients_pid=$!
+pids+=("$clients_pid")
+# Progress every 5 s from the clients' per-second metrics line.
+while kill -0 "$clients_pid" 2>/dev/null; do
+  sleep 5
+  [ -s "$RUN_DIR/clients.jsonl" ] && python3 "$ZONESIM_ROOT/deploy/report.py" --progress "$RUN_DIR" || true
+done
+wait "$clients_pid" || { echo "client_stub failed:"; tail -20 "$RUN_DIR/clients.log"; exit 1; }
+
+kill -TERM "$gateway_pid" 2>/dev/null || true
+wait "$gateway_pid" 2>/dev/null || true
+wait "$zones_pid" || { echo "zones failed:"; tail -20 "$RUN_DIR/zones.log"; exit 1; }
+pids=()
+python3 "$ZONESIM_ROOT/deploy/report.py" "$RUN_DIR"

@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Joins a run folder's zone, gateway and client summaries into one report.
+
+Prints the handoff/bandwidth report and writes the same figures to RUN_DIR/report.json.
+Usage: deploy/report.py RUN_DIR              (the report)
+       deploy/report.py --progress RUN_DIR   (one line on the clients' latest second)
+"""
+import json
+import statistics
+import sys
+from pathlib import Path
+
+
+def load(path):
+    return json.loads(Path(path).read_text())
+
+
+def last_json_line(path):
+    lines = [l for l in Path(path).read_text().splitlines() if l.strip()] if Path(path).exists() else []
+    return json.loads(lines[-1]) if lines else {}
+
+
+def build_report(run):
+    zones = sorted((load(p) for p in run.glob("zone_*_summary.json")), key=lambda z: z["rank"])
+    clients = load(run / "clients_summary.json") if (run / "clients_summary.json").exists() else {}
+    gateway = last_json_line(run / "gateway.jsonl")
+    per_client = clients.get("clients", [])
+    return {
+        "run": str(run),
+        "zones": [{
+            "rank": z["rank"], "rect": z["rect"], "ticks": z["ticks"],
+            "entities_start": z["entities_start"], "entities_end": z["entities_end"],
+            "migrated_out": z["migrated_out"], "migrated_in": z["migrated_in"],
+            "handoffs_out": z["handoffs_out"], "handoffs_in": z["handoffs_in"],
+            "tick_ms_p50": z["tick_ms_p50"], "tick_ms_p99": z["tick_ms_p99"],
+            "inputs_applied": z["inputs_applied"], "published_updates": z["published_updates"],
+            "conservation_failures": z["conservation_failures"],
+        } for z in zones],
+        "totals": {
+            "entities_start": sum(z["entities_start"] for z in zones),
+            "entities_end": sum(z["entities_end"] for z in zones),
+            "migrations": sum(z["migrated_out"] for z in zones),
+            "avatar_handoffs": sum(z["handoffs_in"] for z in zones),
+            "conservation_failures": sum(z["conservation_failures"] for z in zones),
+            "clients": len(per_client),
+            "client_handoffs_observed": sum(c.get("handoffs", 0) for c in per_client),
+            "bytes_in_per_s_mean": statistics.mean([c["bytes_in_per_s"] for c in per_client]) if per_client else 0,
+            "bytes_out_per_s_mean": statistics.mean([c["bytes_out_per_s"] for c in per_client]) if per_client else 0,
+            "updates_per_s_mean": statistics.mean([c["updates_per_s"] for c in per_client]) if per_client else 0,
+        },
+        "clients": per_client,
+        "gateway": gateway,
+    }
+
+
+def print_report(r):
+    print(f"\n== zonesim run report: {r['run']}")
+    print(f"{'zone':>4} {'entities start':>14} {'end':>6} {'migr out':>8} {'migr in':>8} "
+          f"{'handoff out':>11} {'in':>4} {'tick p50 ms':>11} {'p99 ms':>7}")
+    for z in r["zones"]:
+        print(f"{z['rank']:>4} {z['entities_start']:>14} {z['entities_end']:>6} {z['migrated_out']:>8} "
+              f"{z['migrated_in']:>8} {z['handoffs_out']:>11} {z['handoffs_in']:>4} "
+              f"{z['tick_ms_p50']:>11.3f} {z['tick_ms_p99']:>7.3f}")
+    t = r["totals"]
+    print(f"total entities {t['entities_start']} -> {t['entities_end']}, migrations {t['migrations']}, "
+          f"avatar handoffs {t['avatar_handoffs']} (clients observed {t['client_handoffs_observed']}), "
+          f"conservation failures {t['conservation_failures']}")
+    print(f"\n{'client':>6} {'player':>14} {'bytes/s in':>11} {'bytes/s out':>11} {'updates/s':>9} {'handoffs':>8}")
+    for i, c in enumerate(r["clients"]):
+        print(f"{i:>6} {c.get('player_id', 0):>14} {c['bytes_in_per_s']:>11.0f} {c['bytes_out_per_s']:>11.0f} "
+              f"{c['updates_per_s']:>9.1f} {c.get('handoffs', 0):>8}")
+    print(f"mean per client: {t['bytes_in_per_s_mean']:.0f} B/s in, {t['bytes_out_per_s_mean']:.0f} B/s out, "
+          f"{t['updates_per_s_mean']:.1f} updates/s")
+
+
+def print_progress(run):
+    l = last_json_line(run / "clients.jsonl")
+    if l:
+        print(f"   t={l['t']:5.1f} s  welcomed {l['welcomed']}/{l['players']}  updates/s {l['updates_per_s']}  "
+              f"in {l['bytes_in_per_s'] / 1e3:.1f} kB/s  out {l['bytes_out_per_s'] / 1e3:.1f} kB/s  "
+              f"handoffs {l['handoffs']}", flush=True)
+
+
+def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--progress":
+        print_progress(Path(sys.argv[2]))
+        return
+    if len(sys.argv) != 2:
+        sys.exit("usage: report.py RUN_DIR | report.py --progress RUN_DIR")
+    run = Path(sys.argv[1])
+    report = build_report(run)
+    (run / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+    print_report(report)
+    print(f"\nreport.json written to {run / 'report.json'}")
+
+
+if __name__ == "__main__":
+    main()
