@@ -11,6 +11,7 @@ SCENE="$ZONESIM_ROOT/scenes/demo.yaml"
 RUN_DIR="$(realpath -m "${1:-$ZONESIM_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}")"
 BIN="$BUILD_DIR/bin"
 mkdir -p "$RUN_DIR"
+rm -f "$RUN_DIR/gateway.port"  # a port left by an earlier run in the same folder would mislead us
 export CYCLONEDDS_URI="file://$ZONESIM_ROOT/deploy/cyclonedds.xml"
 DOMAIN="${ZONESIM_DDS_DOMAIN:-$(( (RANDOM % 200) + 20 ))}"
 

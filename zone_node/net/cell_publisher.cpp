@@ -61,6 +61,7 @@ void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats
         matchedReaders(ch.updates.writer.get()) + matchedReaders(ch.keyframes.writer.get());
     // A new reader gets a fresh keyframe, so it starts from the current state.
     ch.keyframe_due = matched > 0 && (matched > ch.matched || periodic);
+    ch.all_readers_new = matched > 0 && ch.matched == 0;
     ch.subscribed = matched > 0;
     ch.matched = matched;
     stats.subscribed_cells += ch.subscribed;
@@ -87,11 +88,18 @@ PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departur
     if (!ch.subscribed) continue;  // not encoded; a keyframe resynchronises on subscription
     if (ch.keyframe_due) {
       ch.keyframe.push_back(toSample(store, i));
-      markSent(dr, store.pos[i], store.vel[i], sim_time);
-    } else if (previous != cell) {
+      // Readers that start with this keyframe know exactly this state. Readers already
+      // following the cell keep to the dead-reckoning stream: for them a periodic keyframe is
+      // no reason to resend anything.
+      if (ch.all_readers_new) {
+        markSent(dr, store.pos[i], store.vel[i], sim_time);
+        continue;
+      }
+    }
+    if (previous != cell) {
       ch.enters.push_back(toSample(store, i));
       markSent(dr, store.pos[i], store.vel[i], sim_time);
-    } else if (needsUpdate(dr, store.pos[i], sim_time, dr_)) {
+    } else if (needsUpdate(dr, store.id[i], store.pos[i], sim_time, dr_)) {
       ch.updates_out.push_back(toSample(store, i));
       markSent(dr, store.pos[i], store.vel[i], sim_time);
     } else {

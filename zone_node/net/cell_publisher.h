@@ -46,6 +46,7 @@ class CellPublisher {
     std::uint32_t matched = 0;  // readers matched on either writer at the last check
     bool subscribed = false;
     bool keyframe_due = false;
+    bool all_readers_new = false;  // had no reader last tick: the keyframe is all they know
     std::vector<zonesim_dds_EntityUpdate> enters, updates_out, keyframe;
     std::vector<zonesim_dds_EntityLeave> leaves;
   };
