@@ -14,6 +14,7 @@ PACKAGES=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   python3 python3-matplotlib
+  libbullet-dev
 )
 
 missing=()
