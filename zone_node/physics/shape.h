@@ -1,0 +1,31 @@
+#pragma once
+// Collision shapes as small PODs: the narrowphase dispatches on the type with a switch, never
+// through a virtual call, so bodies stay in dense arrays.
+
+#include <cstdint>
+
+#include "common/math.h"
+
+namespace zonesim::physics {
+
+/// The kinds of collision shape; planes are static half-spaces with local normal +y.
+enum class ShapeType : std::uint8_t { Sphere, Box, Capsule, Plane };
+
+/// One collision shape in its body's local frame (capsules lie along local y).
+struct Shape {
+  ShapeType type = ShapeType::Sphere;
+  Vec3 half_extents = Vec3::Zero();  ///< Box half sizes.
+  double radius = 0.0;               ///< Sphere and capsule radius.
+  double half_height = 0.0;          ///< Capsule: half length of the inner segment.
+
+  /// A sphere of radius r.
+  static Shape sphere(double r) { return Shape{ShapeType::Sphere, Vec3::Zero(), r, 0.0}; }
+  /// A box with the given half sizes.
+  static Shape box(const Vec3& half) { return Shape{ShapeType::Box, half, 0.0, 0.0}; }
+  /// A capsule: a segment of half length h along local y, swept by radius r.
+  static Shape capsule(double r, double h) { return Shape{ShapeType::Capsule, Vec3::Zero(), r, h}; }
+  /// A half-space whose surface passes through the body origin with normal along local +y.
+  static Shape plane() { return Shape{ShapeType::Plane, Vec3::Zero(), 0.0, 0.0}; }
+};
+
+}  // namespace zonesim::physics
