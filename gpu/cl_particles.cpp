@@ -19,7 +19,11 @@ ClParticles::ClParticles(std::shared_ptr<const ClRuntime> runtime)
     : runtime_(std::move(runtime)),
       program_(runtime_->buildEmbeddedProgram("particles")),
       integrate_(program_.createKernel("integrate_particles")),
-      scatter_(program_.createKernel("scatter_emitted")) {}
+      scatter_(program_.createKernel("scatter_emitted")) {
+  sphere_capacity_ = 1;
+  spheres_ = runtime_->createBuffer(sizeof(cl_float4), CL_MEM_READ_ONLY);
+  integrate_.setArg(15, spheres_.get());
+}
 
 ClParticles::~ClParticles() {
   // No throwing from a destructor: a failed finish has nothing left to protect.
@@ -91,8 +95,40 @@ void ClParticles::upload(std::span<const NewParticle> batch, std::size_t slot_co
   ++stats_.launches;
 }
 
+void ClParticles::uploadSpheres(std::span<const Sphere> spheres) {
+  bool same = spheres.size() == spheres_host_.size();
+  for (std::size_t k = 0; same && k < spheres.size(); ++k) {
+    const cl_float4& h = spheres_host_[k];
+    const Sphere& s = spheres[k];
+    same = h.s[0] == cl_float(s.center.x) && h.s[1] == cl_float(s.center.y) &&
+           h.s[2] == cl_float(s.center.z) && h.s[3] == cl_float(s.radius);
+  }
+  if (same) return;
+  spheres_host_.resize(spheres.size());
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const Sphere& s = spheres[k];
+    spheres_host_[k] = {
+        {cl_float(s.center.x), cl_float(s.center.y), cl_float(s.center.z), cl_float(s.radius)}};
+  }
+  if (spheres.size() > sphere_capacity_) {
+    sphere_capacity_ = spheres.size();
+    spheres_ = runtime_->createBuffer(sphere_capacity_ * sizeof(cl_float4), CL_MEM_READ_ONLY);
+    integrate_.setArg(15, spheres_.get());
+  }
+  if (spheres.empty()) return;
+  std::size_t bytes = spheres.size() * sizeof(cl_float4);
+  // Blocking: the list is small and spheres_host_ may change on the next step.
+  checkCl(clEnqueueWriteBuffer(runtime_->queue(), spheres_.get(), CL_TRUE, 0, bytes,
+                               spheres_host_.data(), 0, nullptr, nullptr),
+          "clEnqueueWriteBuffer");
+  ++stats_.writes;
+  stats_.bytes_written += bytes;
+}
+
 void ClParticles::step(const StepParams& params, std::size_t slot_count) {
   if (slot_count == 0) return;
+  uploadSpheres(params.spheres);
+  integrate_.setArg(16, cl_uint(params.spheres.size()));
   integrate_.setArg(7, cl_uint(slot_count));
   integrate_.setArg(8, cl_float(params.dt));
   integrate_.setArg(9, cl_uint(params.dt_us));

@@ -44,6 +44,7 @@ class ClParticles final : public ParticleEngine {
   void grow(std::size_t slots);
   void read3(std::size_t slot_count, Field first, std::vector<Vec3d>& out);
   void waitForUpload();
+  void uploadSpheres(std::span<const Sphere> spheres);
 
   std::shared_ptr<const ClRuntime> runtime_;
   ClProgram program_;
@@ -59,6 +60,11 @@ class ClParticles final : public ParticleEngine {
   // The non-blocking write still reading staging_host_; waited on before it is refilled.
   ClEvent staging_write_;
   std::vector<cl_float> read_scratch_;
+  // Spheres as float4 (centre, radius); written only when the list changes, since it is static
+  // in a scene. Never empty: OpenCL 1.2 has no zero-sized buffer to bind when there are none.
+  ClBuffer spheres_;
+  std::size_t sphere_capacity_ = 0;
+  std::vector<cl_float4> spheres_host_;
   TransferStats stats_;
 };
 

@@ -20,6 +20,7 @@ struct StepParams {
   Vec3d gravity;
   double drag = 0;
   double restitution = 0;
+  std::span<const Sphere> spheres;  ///< Static obstacles, valid for the duration of the call.
 };
 
 class ParticleEngine {

@@ -35,9 +35,20 @@ std::unique_ptr<ParticleEngine> makeEngine(Backend backend, std::shared_ptr<ClRu
   return std::make_unique<ClParticles>(std::move(runtime));
 }
 
-StepParams validateStep(double dt, const Vec3d& gravity, double drag, double restitution) {
-  StepParams params{dt, toMicros(dt, "step dt"), gravity, drag, restitution};
-  if (!std::isfinite(gravity.x) || !std::isfinite(gravity.y) || !std::isfinite(gravity.z)) {
+bool finite(const Vec3d& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+StepParams validateStep(double dt, const Vec3d& gravity, double drag, double restitution,
+                        std::span<const Sphere> spheres) {
+  StepParams params{dt, toMicros(dt, "step dt"), gravity, drag, restitution, spheres};
+  for (const Sphere& s : spheres) {
+    if (!finite(s.center) || !std::isfinite(s.radius) || !(s.radius > 0.0)) {
+      throw std::invalid_argument("step spheres need a finite centre and a radius > 0, not " +
+                                  std::to_string(s.radius));
+    }
+  }
+  if (!finite(gravity)) {
     throw std::invalid_argument("step gravity must be finite");
   }
   // Beyond drag * dt = 1 the explicit drag term reverses velocities instead of damping them.
@@ -80,8 +91,9 @@ std::size_t ParticleSystem::emit(const EmitSpec& spec, std::size_t count, Pcg32&
   return batch.size();
 }
 
-void ParticleSystem::step(double dt, const Vec3d& gravity, double drag, double restitution) {
-  StepParams params = validateStep(dt, gravity, drag, restitution);
+void ParticleSystem::step(double dt, const Vec3d& gravity, double drag, double restitution,
+                          std::span<const Sphere> spheres) {
+  StepParams params = validateStep(dt, gravity, drag, restitution, spheres);
   // Nothing alive: dead slots never change, so the launch would be wasted; only time moves.
   if (ledger_->aliveCount() > 0) engine_->step(params, ledger_->slotCount());
   ledger_->advance(params.dt_us);

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,10 +34,12 @@ class ParticleSystem {
   /// Emits up to count particles, dead slots first (lowest first), then new slots; returns how
   /// many fitted under max_particles. Deterministic given rng's state; one upload per call.
   std::size_t emit(const EmitSpec& spec, std::size_t count, Pcg32& rng);
-  /// Advances every live particle by dt seconds (semi-implicit Euler, see particles.cl).
-  /// Throws std::invalid_argument unless dt is in [1 us, 4294 s], all values are
-  /// finite, drag >= 0 with drag * dt <= 1 and restitution is in [0, 1].
-  void step(double dt, const Vec3d& gravity, double drag, double restitution);
+  /// Advances every live particle by dt seconds (semi-implicit Euler, see particles.cl), with
+  /// bounces on the ground and on spheres. Throws std::invalid_argument unless dt is in
+  /// [1 us, 4294 s], all values are finite, drag >= 0 with drag * dt <= 1, restitution is in
+  /// [0, 1] and every sphere radius is > 0.
+  void step(double dt, const Vec3d& gravity, double drag, double restitution,
+            std::span<const Sphere> spheres = {});
   /// Sizes storage for slots particles up front, so that emits up to there allocate nothing.
   void reserve(std::size_t slots);
 

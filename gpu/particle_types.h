@@ -21,6 +21,12 @@ struct EmitSpec {
   double lifetime = 1;           ///< Seconds, counted in whole microseconds (see ParticleLedger).
 };
 
+/// A static sphere that particles bounce off (a rock, a pillar top), with the step's restitution.
+struct Sphere {
+  Vec3d center;       ///< Centre in world space.
+  double radius = 1;  ///< Metres, > 0.
+};
+
 /// Host-device traffic so far; the CPU backend reports zeros.
 struct TransferStats {
   std::uint64_t writes = 0;         ///< Buffer writes (one per emit batch).
