@@ -27,6 +27,8 @@ struct EntityId {
 class EntityIdAllocator {
  public:
   explicit EntityIdAllocator(std::uint32_t rank) : rank_(rank) {}
+  /// Resumes after `issued` ids (restart from a checkpoint).
+  EntityIdAllocator(std::uint32_t rank, std::uint64_t issued) : rank_(rank), counter_(issued) {}
   EntityId next() { return EntityId::make(rank_, ++counter_); }
   std::uint64_t issued() const { return counter_; }
 

@@ -10,10 +10,12 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "common/cli.h"
 #include "common/metrics.h"
 #include "common/scene.h"
+#include "zone_node/cluster/checkpoint.h"
 #include "zone_node/state_dump.h"
 #include "zone_node/zone_node.h"
 #include "zone_node/zone_report.h"
@@ -32,6 +34,7 @@ struct Options {
   bool realtime = false;
   std::string metrics_dir;
   std::string dump_state;
+  std::string restart;
   zonesim::zone::ZoneOptions zone;
   zonesim::CommonOptions common;
 };
@@ -59,7 +62,13 @@ bool anyRankStopping(MPI_Comm comm) {
 int run(const Options& o, MPI_Comm comm) {
   using namespace zonesim;
   Scene scene = loadScene(o.scene);
-  zone::ZoneNode node(scene, comm, o.zone);
+  std::unique_ptr<zone::CheckpointImage> image;
+  if (!o.restart.empty())
+    image = std::make_unique<zone::CheckpointImage>(zone::readCheckpoint(o.restart));
+  zone::ZoneNode node(scene, comm, o.zone, image.get());
+  if (image)
+    ZS_INFO("restarted from %s at tick %llu", image->path.c_str(), (unsigned long long)image->tick);
+  image.reset();  // entities now live in the zone; the image is not needed any more
   log::setTag("zone " + std::to_string(node.rank()));
   std::uint64_t ticks = o.ticks ? o.ticks : std::uint64_t(std::ceil(o.duration * scene.tick_rate));
   if (ticks == 0) ticks = 300;
@@ -80,7 +89,7 @@ int run(const Options& o, MPI_Comm comm) {
   timespec next;
   clock_gettime(CLOCK_MONOTONIC, &next);
   const double period = 1.0 / scene.tick_rate;
-  for (std::uint64_t t = 0; t < ticks; ++t) {
+  while (node.tickCount() < ticks) {
     if (anyRankStopping(comm)) break;
     Stopwatch tick_time;
     node.tick();
@@ -108,7 +117,8 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app{"zonesim zone node: one MPI rank per zone"};
   app.add_option("--scene", o.scene, "scene file (YAML)")->required();
-  app.add_option("--ticks", o.ticks, "number of ticks to run");
+  app.add_option("--ticks", o.ticks,
+                 "run until this tick (counted from the scene's start, also after --restart)");
   app.add_option("--duration", o.duration,
                  "seconds of simulated time to run (ticks = duration * tick rate)");
   app.add_flag("--realtime", o.realtime,
@@ -121,6 +131,11 @@ int main(int argc, char** argv) {
   bool no_dds = false;
   app.add_flag("--no-dds", no_dds, "run without DDS (no gateway can attach)");
   app.add_option("--check-every", o.zone.check_every, "ticks between conservation checks");
+  app.add_option("--checkpoint-dir", o.zone.checkpoint_dir, "write checkpoints into this folder");
+  app.add_option("--checkpoint-every", o.zone.checkpoint_every, "ticks between checkpoints");
+  app.add_option(
+      "--restart", o.restart,
+      "continue from a checkpoint (a checkpoint folder, or a --checkpoint-dir: its LATEST)");
   app.add_option("--gpu", o.zone.gpu, "particle integration on OpenCL: on, off or auto")
       ->check(CLI::IsMember({"on", "off", "auto"}));
   zonesim::addCommonOptions(app, o.common);

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "common/log.h"
+#include "zone_node/cluster/checkpoint.h"
 #include "zone_node/cluster/conservation.h"
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/zone_link.h"
@@ -14,7 +15,8 @@
 
 namespace zonesim::zone {
 
-ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options)
+ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options,
+                   const CheckpointImage* restart)
     : scene_(scene),
       comm_(comm),
       rank_(0),
@@ -35,16 +37,31 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   migrator_ = Migrator(comm_, rank_, size_);
   forward_.resize(std::size_t(size_));
 
-  forEachInitialEntity(scene_, [&](const EntityRecordData& r) {
+  auto keepIfMine = [&](const EntityRecordData& r) {
     if (layout_.ownerOf(r.pos.x(), r.pos.z()) != rank_) return;
     store_.add(r);
     ledger_.add(r.id);
-  });
+    if (r.kind == EntityKind::Avatar) known_players_.insert(r.avatar.player_id);
+  };
+  if (restart) {
+    tick_ = restart->tick;
+    auto counter = restart->id_counters.find(std::uint32_t(rank_));
+    if (counter != restart->id_counters.end())
+      ids_ = EntityIdAllocator(std::uint32_t(rank_), counter->second);
+    for (const EntityRecordData& r : restart->entities) keepIfMine(r);
+  } else {
+    forEachInitialEntity(scene_, keepIfMine);
+  }
   if (options_.dds) {
     link_ = std::make_unique<ZoneLink>(options_.dds_domain, rank_);
     publisher_ =
         std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_, rank_,
                                         scene_.dead_reckoning, scene_.keyframe_every);
+    // After a restart the gateways must learn where the restored avatars live now.
+    for (std::size_t i = 0; i < store_.size(); ++i)
+      if (store_.kind[i] == EntityKind::Avatar)
+        link_->announce({store_.avatar[i].player_id, store_.id[i].value, -1, rank_, tick_,
+                         store_.avatar[i].last_input_seq});
   }
   emitters_ = std::make_unique<EmitterSystem>(scene_, options_.gpu);
 }
@@ -222,7 +239,15 @@ void ZoneNode::publish() {
 }
 
 void ZoneNode::checks() {
-  if (options_.check_every <= 0 || tick_ % std::uint64_t(options_.check_every) != 0) return;
+  if (options_.checkpoint_every > 0 && !options_.checkpoint_dir.empty() &&
+      tick_ % std::uint64_t(options_.checkpoint_every) == 0)
+    last_checkpoint_ =
+        writeCheckpoint(comm_, store_, tick_, ids_.issued(), options_.checkpoint_dir);
+  if (options_.check_every > 0 && tick_ % std::uint64_t(options_.check_every) == 0)
+    checkConservationNow();
+}
+
+void ZoneNode::checkConservationNow() {
   ConservationReport r = checkConservation(comm_, store_, ledger_);
   ++conservation_.checks;
   conservation_.last_count = r.actual.count;

@@ -30,7 +30,11 @@ struct ZoneOptions {
   bool dds = true;       ///< false: no DDS at all (pure MPI runs)
   int check_every = 30;  ///< ticks between conservation checks (1: every tick)
   std::string gpu = "auto";
+  std::string checkpoint_dir;  ///< empty: no checkpoints
+  int checkpoint_every = 0;    ///< ticks between checkpoints
 };
+
+struct CheckpointImage;
 
 /// Cumulative conservation results.
 struct ConservationTally {
@@ -41,7 +45,10 @@ struct ConservationTally {
 
 class ZoneNode {
  public:
-  ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options);
+  /// A zone at tick 0 with the scene's initial entities, or, given a checkpoint image, at its
+  /// tick with the entities it holds that fall in this rank's zone.
+  ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options,
+           const CheckpointImage* restart = nullptr);
   ~ZoneNode();
 
   /// Advances the zone by one fixed dt.
@@ -57,6 +64,8 @@ class ZoneNode {
   const ConservationTally& conservation() const { return conservation_; }
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
   std::string particleBackend() const;
+  /// The last checkpoint folder written ("" if none).
+  const std::string& lastCheckpoint() const { return last_checkpoint_; }
 
  private:
   void input();
@@ -66,6 +75,7 @@ class ZoneNode {
   void migrate();
   void publish();
   void checks();
+  void checkConservationNow();
 
   void spawnAvatar(std::uint64_t player_id, double x, double z);
   void applyInput(std::uint64_t player_id, std::uint32_t seq, float move_x, float move_z);
@@ -87,6 +97,7 @@ class ZoneNode {
   std::unique_ptr<EmitterSystem> emitters_;
 
   std::uint64_t tick_ = 0;
+  std::string last_checkpoint_;
   TickProfile profile_;
   TickCounters counters_;
   ConservationTally conservation_;

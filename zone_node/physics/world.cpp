@@ -1,0 +1,183 @@
+#include "zone_node/physics/world.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "zone_node/physics/narrowphase.h"
+
+namespace zonesim::physics {
+
+World::World(const WorldSettings& settings)
+    : settings_(settings), broadphase_(settings.broadphase) {}
+
+BodyIndex World::addBody(const BodyDesc& desc) { return bodies_.add(desc); }
+
+void World::step(double dt) {
+  const int n = std::max(1, settings_.substeps);
+  for (int i = 0; i < n; ++i) substep(dt / n);
+}
+
+void World::substep(double dt) {
+  bodies_.updateWorldInertia();
+  integrateForces(dt);
+  findContacts(dt);
+  warmStartFromPrevious();
+  solver_.prepare(bodies_, contacts_, settings_.solver, dt);
+  solver_.solveVelocities(bodies_, contacts_);
+  solver_.solvePositions(bodies_);
+  integratePositions(dt);
+  quarantineNonFinite();
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    bodies_.force[i].setZero();
+    bodies_.torque[i].setZero();
+  }
+}
+
+void World::integrateForces(double dt) {
+  const std::size_t n = bodies_.size();
+  for (auto* buffer : {&x_start_, &v_start_, &x_force_, &v_force_}) buffer->resize(n);
+  std::copy(bodies_.position.begin(), bodies_.position.end(), x_start_.begin());
+  std::copy(bodies_.linear_velocity.begin(), bodies_.linear_velocity.end(), v_start_.begin());
+  // The Verlet history is rebuilt every step: contacts change velocities, which a two-step
+  // position recurrence cannot see.
+  const LinearStateView view{x_start_, v_start_, bodies_.inv_mass, x_force_,
+                             v_force_, bodies_.position_prev, false, bodies_.force};
+  integrator_.step(settings_.integrator, forces_, view, dt);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyType type = bodies_.type[i];
+    if (type == BodyType::Static) continue;
+    if (type == BodyType::Kinematic) {
+      v_force_[i] = v_start_[i];
+      x_force_[i] = x_start_[i] + dt * v_start_[i];
+      continue;
+    }
+    // Damping as 1 / (1 + c dt): unconditionally stable, unlike 1 - c dt.
+    v_force_[i] /= 1.0 + dt * bodies_.linear_damping[i];
+    bodies_.linear_velocity[i] = v_force_[i];
+    if (type == BodyType::Dynamic) {
+      Vec3& w = bodies_.angular_velocity[i];
+      w += dt * (bodies_.inv_inertia_world[i] * bodies_.torque[i]);
+      w /= 1.0 + dt * bodies_.angular_damping[i];
+    }
+  }
+}
+
+void World::findContacts(double dt) {
+  const std::size_t n = bodies_.size();
+  proxy_boxes_.clear();
+  proxy_moving_.clear();
+  proxy_body_.clear();
+  planes_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies_.shape[i].type == ShapeType::Plane) {
+      planes_.push_back(static_cast<BodyIndex>(i));
+      continue;
+    }
+    Aabb box = shapeBounds(bodies_.shape[i], bodies_.position[i], bodies_.orientation[i]);
+    double grow = settings_.contact_margin;
+    if (settings_.speculative) grow += bodies_.linear_velocity[i].norm() * dt;
+    proxy_boxes_.push_back(box.expanded(0.5 * grow));
+    proxy_moving_.push_back(bodies_.type[i] != BodyType::Static);
+    proxy_body_.push_back(static_cast<BodyIndex>(i));
+  }
+  broadphase_.findPairs(proxy_boxes_, proxy_moving_, pairs_);
+  // Last step's contacts become the warm-start source; both buffers keep their capacity.
+  previous_.swap(contacts_);
+  contacts_.clear();
+  for (const ProxyPair& pair : pairs_) {
+    const BodyIndex a = proxy_body_[pair.first], b = proxy_body_[pair.second];
+    const double closing = (bodies_.linear_velocity[a] - bodies_.linear_velocity[b]).norm();
+    addContact(a, b, settings_.contact_margin + (settings_.speculative ? closing * dt : 0.0));
+  }
+  for (BodyIndex plane : planes_) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto b = static_cast<BodyIndex>(i);
+      if (b == plane || bodies_.type[b] == BodyType::Static) continue;
+      const double speed = bodies_.linear_velocity[b].norm();
+      addContact(std::min(plane, b), std::max(plane, b),
+                 settings_.contact_margin + (settings_.speculative ? speed * dt : 0.0));
+    }
+  }
+  // Pair order decides the Gauss-Seidel order: sort for determinism and warm-start lookup.
+  std::sort(contacts_.begin(), contacts_.end(), [](const BodyContact& x, const BodyContact& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+}
+
+void World::addContact(BodyIndex a, BodyIndex b, double margin) {
+  // Two immovable bodies exchange no impulses.
+  if (bodies_.inv_mass[a] == 0.0 && bodies_.inv_mass[b] == 0.0) return;
+  BodyContact contact;
+  contact.a = a;
+  contact.b = b;
+  const Pose pa{bodies_.position[a], bodies_.orientation[a]};
+  const Pose pb{bodies_.position[b], bodies_.orientation[b]};
+  if (!collideShapes(bodies_.shape[a], pa, bodies_.shape[b], pb, margin, contact.manifold)) {
+    return;
+  }
+  if (contact.manifold.count == 0) return;
+  contact.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
+  contact.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+  contacts_.push_back(contact);
+}
+
+void World::warmStartFromPrevious() {
+  // Both lists are sorted by pair: one merge walk finds each pair's previous impulses, and a
+  // point inherits them when its feature id matches.
+  std::size_t j = 0;
+  for (BodyContact& c : contacts_) {
+    while (j < previous_.size() &&
+           (previous_[j].a < c.a || (previous_[j].a == c.a && previous_[j].b < c.b))) {
+      ++j;
+    }
+    if (j == previous_.size() || previous_[j].a != c.a || previous_[j].b != c.b) continue;
+    const BodyContact& old = previous_[j];
+    for (int i = 0; i < c.manifold.count; ++i) {
+      for (int k = 0; k < old.manifold.count; ++k) {
+        if (old.manifold.points[k].feature == c.manifold.points[i].feature) {
+          c.impulse[i] = old.impulse[k];
+          break;
+        }
+      }
+    }
+  }
+}
+
+void World::integratePositions(double dt) {
+  const std::size_t n = bodies_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyType type = bodies_.type[i];
+    if (type == BodyType::Static) continue;
+    // The integrator's displacement, corrected by what the contact solve changed in velocity,
+    // plus the split-impulse pseudo-velocity (which then vanishes).
+    const Vec3 correction = bodies_.linear_velocity[i] - v_force_[i];
+    bodies_.position[i] = x_force_[i] + dt * (correction + solver_.pseudoLinear(i));
+    if (type == BodyType::Particle) continue;
+    const Vec3 w = bodies_.angular_velocity[i] + solver_.pseudoAngular(i);
+    bodies_.orientation[i] = integrateOrientation(bodies_.orientation[i], w, dt);
+  }
+}
+
+void World::quarantineNonFinite() {
+  const std::size_t n = bodies_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies_.type[i] == BodyType::Static) continue;
+    const bool finite = bodies_.position[i].allFinite() &&
+                        bodies_.linear_velocity[i].allFinite() &&
+                        bodies_.angular_velocity[i].allFinite() &&
+                        bodies_.orientation[i].coeffs().allFinite();
+    if (finite) continue;
+    // Frozen where it last was finite, with no mass: nothing it touches can catch the NaN.
+    bodies_.position[i] = x_start_[i].allFinite() ? x_start_[i] : Vec3::Zero();
+    if (!bodies_.orientation[i].coeffs().allFinite()) bodies_.orientation[i] = Quat::Identity();
+    bodies_.linear_velocity[i].setZero();
+    bodies_.angular_velocity[i].setZero();
+    bodies_.inv_mass[i] = 0.0;
+    bodies_.inv_inertia_local[i].setZero();
+    bodies_.inv_inertia_world[i].setZero();
+    bodies_.type[i] = BodyType::Static;
+    quarantined_.push_back(static_cast<BodyIndex>(i));
+  }
+}
+
+}  // namespace zonesim::physics
