@@ -24,6 +24,15 @@ void ClKernel::enqueue(cl_command_queue queue, std::size_t global_size) {
   }
 }
 
+void ClKernel::enqueue(cl_command_queue queue, std::size_t global_size, std::size_t local_size) {
+  cl_int status = clEnqueueNDRangeKernel(queue, kernel_.get(), 1, nullptr, &global_size,
+                                         &local_size, 0, nullptr, nullptr);
+  if (status != CL_SUCCESS) {
+    std::string call = "clEnqueueNDRangeKernel(" + name_ + ")";
+    checkCl(status, call.c_str());
+  }
+}
+
 ClProgram::ClProgram(ClProgramHandle program, std::string name)
     : program_(std::move(program)), name_(std::move(name)) {}
 

@@ -24,6 +24,10 @@ class ClKernel {
   void setArgBytes(cl_uint index, std::size_t size, const void* value);
   /// Enqueues a 1-D launch over global_size work items (local size left to the driver).
   void enqueue(cl_command_queue queue, std::size_t global_size);
+  /// Enqueues a 1-D launch in work-groups of local_size (global_size must be a multiple).
+  void enqueue(cl_command_queue queue, std::size_t global_size, std::size_t local_size);
+  /// The raw kernel, for queries this class does not wrap.
+  cl_kernel handle() const { return kernel_.get(); }
   /// The kernel function's name.
   const std::string& name() const { return name_; }
 

@@ -2,32 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
 #include "gpu/cl_particles.h"
 #include "gpu/cl_runtime.h"
 #include "gpu/cpu_particles.h"
+#include "gpu/default_runtime.h"
 #include "gpu/particle_emit.h"
 #include "gpu/particle_ledger.h"
 
 namespace zonesim::gpu {
 namespace {
-
-// One context and queue per process for systems built without a runtime (a zone has one
-// system per drag/restitution pair); it lives as long as some system uses it.
-std::shared_ptr<ClRuntime> defaultRuntime() {
-  static std::mutex mutex;
-  static std::weak_ptr<ClRuntime> shared;
-  std::lock_guard<std::mutex> lock(mutex);
-  std::shared_ptr<ClRuntime> runtime = shared.lock();
-  if (!runtime) {
-    runtime = std::make_shared<ClRuntime>();
-    shared = runtime;
-  }
-  return runtime;
-}
 
 std::unique_ptr<ParticleEngine> makeEngine(Backend backend, std::shared_ptr<ClRuntime> runtime) {
   if (backend == Backend::Cpu) return std::make_unique<CpuParticles>();
