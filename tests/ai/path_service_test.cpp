@@ -1,0 +1,152 @@
+// The path cache, the per-tick request budget, and re-planning when a door closes.
+
+#include "zone_node/ai/path_service.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tests/ai/reference_dijkstra.h"
+
+namespace zonesim::ai {
+namespace {
+
+GridPath straight(Cell a, Cell b) {
+  GridPath p;
+  for (int x = a.x; x <= b.x; ++x) p.cells.push_back(Cell{x, a.y});
+  p.length = pathLength(p.cells);
+  return p;
+}
+
+TEST(PathCache, HitsEvictsLeastRecentlyUsedAndDropsPathsThroughAClosedCell) {
+  PathCache cache(2);
+  cache.insert({0, 0}, {3, 0}, straight({0, 0}, {3, 0}));
+  cache.insert({0, 1}, {3, 1}, straight({0, 1}, {3, 1}));
+  ASSERT_NE(cache.find({0, 0}, {3, 0}), nullptr);  // now the most recent
+  cache.insert({0, 2}, {3, 2}, straight({0, 2}, {3, 2}));
+  EXPECT_EQ(cache.find({0, 1}, {3, 1}), nullptr) << "least recently used is evicted";
+  EXPECT_NE(cache.find({0, 2}, {3, 2}), nullptr);
+  EXPECT_EQ(cache.hits(), 2u);
+  EXPECT_EQ(cache.misses(), 1u);
+
+  cache.cellClosed({2, 0});
+  EXPECT_EQ(cache.find({0, 0}, {3, 0}), nullptr);
+  EXPECT_NE(cache.find({0, 2}, {3, 2}), nullptr);
+  cache.clear();
+  EXPECT_EQ(cache.size(), 0u);
+}
+
+// Two rooms joined by two doors in a wall at x = 20: the near door at y = 5, the far at y = 35.
+GridMap twoDoors() {
+  GridMap m(40, 40);
+  for (int y = 0; y < 40; ++y) m.setPassable(20, y, false);
+  m.setPassable(20, 5, true);
+  m.setPassable(20, 35, true);
+  return m;
+}
+
+class PathServiceTest : public ::testing::TestWithParam<PlannerKind> {};
+
+TEST_P(PathServiceTest, BudgetSpreadsRequestsOverTicks) {
+  GridMap m = test::randomMap(64, 64, 0.15, 3);
+  PathServiceConfig config;
+  config.planner = GetParam();
+  config.pathsPerTick = 4;
+  PathService service(m, config);
+  Pcg32 rng(3, 9);
+  std::vector<PathRequestId> ids;
+  for (int i = 0; i < 10; ++i) {
+    ids.push_back(service.request(test::randomFreeCell(m, rng), test::randomFreeCell(m, rng)));
+  }
+  EXPECT_EQ(service.queued(), 10u);
+  service.tick();
+  EXPECT_EQ(service.stats().planned, 4u);
+  EXPECT_EQ(service.queued(), 6u);
+  service.tick();
+  service.tick();
+  EXPECT_EQ(service.stats().planned, 10u);
+  EXPECT_EQ(service.queued(), 0u);
+  for (PathRequestId id : ids) {
+    EXPECT_NE(service.status(id), PathStatus::Queued);
+    if (service.status(id) == PathStatus::Ready) {
+      EXPECT_TRUE(isValidPath(m, service.path(id).cells));
+    }
+  }
+}
+
+TEST_P(PathServiceTest, RepeatedQueriesComeFromTheCacheAndCostNoBudget) {
+  GridMap m = twoDoors();
+  PathServiceConfig config;
+  config.planner = GetParam();
+  config.pathsPerTick = 1;
+  PathService service(m, config);
+  PathRequestId first = service.request({2, 2}, {38, 2});
+  service.tick();
+  ASSERT_EQ(service.status(first), PathStatus::Ready);
+  std::vector<PathRequestId> again;
+  for (int i = 0; i < 5; ++i) again.push_back(service.request({2, 2}, {38, 2}));
+  service.tick();
+  EXPECT_EQ(service.stats().planned, 1u);
+  EXPECT_EQ(service.stats().cacheHits, 5u);
+  for (PathRequestId id : again) EXPECT_EQ(service.path(id).cells, service.path(first).cells);
+}
+
+TEST_P(PathServiceTest, ClosingADoorReplansOnlyThePathsThroughIt) {
+  GridMap m = twoDoors();
+  PathServiceConfig config;
+  config.planner = GetParam();
+  PathService service(m, config);
+  PathRequestId cross = service.request({2, 2}, {38, 2});
+  PathRequestId local = service.request({2, 30}, {10, 38});
+  service.tick();
+  ASSERT_EQ(service.status(cross), PathStatus::Ready);
+  const auto& before = service.path(cross).cells;
+  ASSERT_NE(std::find(before.begin(), before.end(), Cell{20, 5}), before.end());
+  GridPath localBefore = service.path(local);
+
+  service.setCell({20, 5}, false);
+  EXPECT_EQ(service.status(cross), PathStatus::Queued);
+  EXPECT_EQ(service.status(local), PathStatus::Ready);
+  EXPECT_EQ(service.stats().replans, 1u);
+  service.tick();
+  ASSERT_EQ(service.status(cross), PathStatus::Ready);
+  const auto& after = service.path(cross).cells;
+  EXPECT_TRUE(isValidPath(m, after));
+  EXPECT_NE(std::find(after.begin(), after.end(), Cell{20, 35}), after.end());
+  EXPECT_EQ(service.path(local).cells, localBefore.cells);
+
+  // Both doors shut: no path; reopening one re-queues the request and finds it again.
+  service.setCell({20, 35}, false);
+  service.tick();
+  EXPECT_EQ(service.status(cross), PathStatus::NoPath);
+  EXPECT_TRUE(service.path(cross).cells.empty());
+  service.setCell({20, 5}, true);
+  service.tick();
+  ASSERT_EQ(service.status(cross), PathStatus::Ready);
+  EXPECT_TRUE(isValidPath(m, service.path(cross).cells));
+}
+
+TEST_P(PathServiceTest, ReleasedHandlesGoStale) {
+  GridMap m(16, 16);
+  PathServiceConfig config;
+  config.planner = GetParam();
+  PathService service(m, config);
+  PathRequestId a = service.request({0, 0}, {5, 5});
+  service.release(a);
+  PathRequestId b = service.request({1, 1}, {6, 6});
+  EXPECT_EQ(a.slot, b.slot);
+  service.tick();
+  EXPECT_EQ(service.status(a), PathStatus::Unknown);
+  EXPECT_EQ(service.status(b), PathStatus::Ready);
+  EXPECT_EQ(service.stats().planned, 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Planners, PathServiceTest,
+                         ::testing::Values(PlannerKind::AStar, PlannerKind::Hpa),
+                         [](const auto& info) {
+                           return info.param == PlannerKind::AStar ? std::string("AStar")
+                                                                   : std::string("Hpa");
+                         });
+
+}  // namespace
+}  // namespace zonesim::ai
