@@ -40,7 +40,8 @@ void WorldCache::index(std::uint64_t id, int old_cell, int new_cell) {
   if (new_cell >= 0) by_cell_[new_cell].insert(id);
 }
 
-bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e) {
+bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e,
+                        bool refresh_only) {
   // Zones quarantine non-finite states; if one slips through it must not reach a client.
   if (!validEntityState(toWire(e, 0))) {
     ++stats_.invalid;
@@ -57,11 +58,13 @@ bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_E
     return false;
   }
   int old_cell = inserted ? -1 : c.cell;
+  bool refresh =
+      refresh_only && !inserted && c.cell == cell && c.zone == zone && c.remove_at_ns == 0;
   c.state = e;
   c.sim_time = sim_time;
   c.cell = cell;
   c.zone = zone;
-  c.version = ++version_counter_;
+  if (!refresh) c.version = ++version_counter_;
   if (c.remove_at_ns != 0) pending_.erase(e.id);
   c.remove_at_ns = 0;
   index(e.id, old_cell, cell);
@@ -102,7 +105,7 @@ void WorldCache::applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t n
   std::unordered_set<std::uint64_t> present;
   present.reserve(k.entities._length);
   for (std::uint32_t i = 0; i < k.entities._length; ++i) {
-    upsert(k.cell, k.zone, k.sim_time, k.entities._buffer[i]);
+    upsert(k.cell, k.zone, k.sim_time, k.entities._buffer[i], /*refresh_only=*/true);
     present.insert(k.entities._buffer[i].id);
   }
   // The keyframe is the full state of (cell, zone): whatever we hold from there that is older

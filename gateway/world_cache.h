@@ -40,8 +40,11 @@ class WorldCache {
   void applyBatch(const zonesim_dds_CellUpdateBatch& b, std::int64_t now_ns);
   /// Applies a keyframe: its entities upsert; older entities of that (cell, zone) not in it leave.
   void applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t now_ns);
-  /// Upserts one state unless older than what is held; false if ignored.
-  bool upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e);
+  /// Upserts one state unless older than what is held; false if ignored. A refresh (keyframe
+  /// of an entity already held from the same source) updates the state without a new version:
+  /// clients already following it keep to the zone's dead-reckoning updates.
+  bool upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e,
+              bool refresh_only = false);
   /// A leave of id from (cell, zone) at sim_time; false if it does not apply.
   bool leave(int cell, int zone, double sim_time, std::uint64_t id, std::int64_t now_ns);
   /// Removes entities whose grace expired and forgets old tombstones; returns how many removed.
