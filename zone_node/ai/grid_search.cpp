@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace zonesim::ai {
 
@@ -16,10 +17,15 @@ bool before(const E& a, const E& b) {
   return a.idx < b.idx;
 }
 
+std::int64_t fixedKey(double v) {
+  return std::llround(v * 16777216.0);
+}
+
 }  // namespace
 
 GridSearch::GridSearch(const GridMap& map)
-    : map_(map), nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0.0, -1, 0}) {}
+    : map_(map),
+      nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0.0, -1, 0, -1}) {}
 
 void GridSearch::beginSearch() {
   // Two stamps per search (open and closed); on wrap-around every record is reset once.
@@ -32,17 +38,27 @@ void GridSearch::beginSearch() {
   stats_ = SearchStats{};
 }
 
-void GridSearch::heapPush(const HeapEntry& e) {
-  heap_.push_back(e);
-  std::size_t i = heap_.size() - 1;
+void GridSearch::siftUp(std::size_t i, const HeapEntry& e) {
   while (i > 0) {
     std::size_t parent = (i - 1) / 2;
     if (!before(e, heap_[parent])) break;
     heap_[i] = heap_[parent];
+    nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
     i = parent;
   }
   heap_[i] = e;
+  nodes_[std::size_t(e.idx)].heapPos = std::int32_t(i);
+}
+
+void GridSearch::heapPush(const HeapEntry& e) {
+  heap_.push_back(e);
+  siftUp(heap_.size() - 1, e);
   ++stats_.generated;
+}
+
+void GridSearch::heapDecrease(const HeapEntry& e) {
+  // A lower g for an open node lowers its f (same h) and only ever moves it up.
+  siftUp(std::size_t(nodes_[std::size_t(e.idx)].heapPos), e);
 }
 
 GridSearch::HeapEntry GridSearch::heapPop() {
@@ -58,9 +74,11 @@ GridSearch::HeapEntry GridSearch::heapPop() {
     if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
     if (!before(heap_[child], last)) break;
     heap_[i] = heap_[child];
+    nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
     i = child;
   }
   heap_[i] = last;
+  nodes_[std::size_t(last.idx)].heapPos = std::int32_t(i);
   return top;
 }
 
@@ -73,14 +91,12 @@ bool GridSearch::run(int start, int goal, const CellRect& bounds) {
     return goal >= 0 ? octileDistance(x - goalCell.x, y - goalCell.y) : 0.0;
   };
   Cell s = map_.cellAt(start);
-  nodes_[start] = Node{0.0, -1, open};
-  heapPush(HeapEntry{heuristic(s.x, s.y), 0.0, start});
+  nodes_[start] = Node{0.0, -1, open, -1};
+  heapPush(HeapEntry{fixedKey(heuristic(s.x, s.y)), 0, start});
 
   while (!heap_.empty()) {
     HeapEntry top = heapPop();
     Node& cur = nodes_[top.idx];
-    // Lazy deletion: an entry is stale when its node was closed or improved since the push.
-    if (cur.stamp == closed || top.g > cur.g) continue;
     cur.stamp = closed;
     ++stats_.expanded;
     if (top.idx == goal) return true;
@@ -95,9 +111,15 @@ bool GridSearch::run(int start, int goal, const CellRect& bounds) {
       Node& n = nodes_[ni];
       double g = cur.g + cost;
       if (n.stamp == closed) return;
-      if (n.stamp == open && n.g <= g) return;
-      n = Node{g, top.idx, open};
-      heapPush(HeapEntry{g + heuristic(nx, ny), g, ni});
+      if (n.stamp == open) {
+        if (n.g <= g) return;
+        n.g = g;
+        n.parent = top.idx;
+        heapDecrease(HeapEntry{fixedKey(g + heuristic(nx, ny)), fixedKey(g), ni});
+        return;
+      }
+      n = Node{g, top.idx, open, -1};
+      heapPush(HeapEntry{fixedKey(g + heuristic(nx, ny)), fixedKey(g), ni});
     };
     for (int d = 0; d < 4; ++d) {
       int nx = x + kDx[d], ny = y + kDy[d];
