@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gpu/cl_runtime.h"
+#include "gpu/offload_probe.h"
 
 namespace zonesim::gpu {
 
@@ -43,10 +44,7 @@ bool openClAvailable() {
 }
 
 Backend selectBackend(std::string_view mode, std::size_t particles) {
-  GpuMode parsed = parseGpuMode(mode);
-  // Only auto needs to probe the driver; on and off must not pay for it.
-  bool available = parsed == GpuMode::Auto && openClAvailable();
-  return chooseBackend(parsed, particles, available);
+  return selectBackend(mode, Workload::Particles, particles);
 }
 
 }  // namespace zonesim::gpu

@@ -1,0 +1,56 @@
+#pragma once
+// Per-kernel offload decisions for --gpu auto: each workload has its own item count from which
+// the device pays, taken from measured defaults or from a timed probe at start-up. The decision
+// logic is pure (testable without timing); the probe lives in gpu/offload_probe.h.
+
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <string_view>
+
+#include "gpu/backend.h"
+
+namespace zonesim::gpu {
+
+/// The kernels with their own threshold.
+enum class Workload { Particles, Boids, Crowd };
+
+/// "particles", "boids" or "crowd".
+const char* workloadName(Workload workload);
+
+/// Never offload under auto (the device lost at every probed size).
+inline constexpr std::size_t kNeverOffload = std::numeric_limits<std::size_t>::max();
+
+/// Item counts from which auto offloads, one per workload.
+struct OffloadThresholds {
+  std::size_t particles = kAutoGpuThreshold;  ///< Live particles.
+  std::size_t boids = kNeverOffload;          ///< Boids in one flock.
+  std::size_t crowd = kNeverOffload;          ///< Crowd agents in one batch.
+  /// The threshold of workload.
+  std::size_t of(Workload workload) const;
+};
+
+/// The measured defaults (bench/gpu on PoCL 3.1, 2 shared cores; docs/benchmarks.md): the
+/// particle step pays from 8,000; the flock and crowd steps never beat the CPU there, since
+/// PoCL runs on the same two cores and the flock's sort does O(n log^2 n) work.
+OffloadThresholds defaultThresholds();
+
+/// One timed probe: seconds per step on each path at n items.
+struct ProbeSample {
+  std::size_t n = 0;    ///< Items.
+  double cpu_s = 0;     ///< CPU path, seconds per step.
+  double device_s = 0;  ///< OpenCL path, seconds per step (launch, sync, needed copies).
+};
+
+/// The count from which the device wins at every larger probed size: where log(cpu / device)
+/// crosses zero, interpolated linearly in log n between the last losing and the first winning
+/// probe; the smallest n if the device wins everywhere; kNeverOffload if it loses at the
+/// largest. Samples may come in any order; empty gives kNeverOffload.
+std::size_t crossover(std::span<const ProbeSample> samples);
+
+/// Off gives Cpu; On gives OpenCl; Auto gives OpenCl only when a device exists and n reaches
+/// the workload's threshold.
+Backend chooseBackend(GpuMode mode, Workload workload, std::size_t n, bool opencl_available,
+                      const OffloadThresholds& thresholds);
+
+}  // namespace zonesim::gpu
