@@ -4,12 +4,16 @@ namespace zonesim::physics {
 
 int clipPolygon(const ClipVertex* in, int count, const Vec3& n, double offset,
                 std::uint32_t plane_id, ClipVertex* out) {
+  // Points up to a micrometre outside count as inside: the incident face of an equal-sized,
+  // aligned box lies on the side planes, and round-off would otherwise cut extra points in the
+  // middle of its edges, making the manifold lopsided (a stack then walks sideways).
+  constexpr double kTolerance = 1e-6;
   int written = 0;
   for (int i = 0; i < count; ++i) {
     const ClipVertex& a = in[i];
     const ClipVertex& b = in[(i + 1) % count];
-    const double da = n.dot(a.p) - offset;
-    const double db = n.dot(b.p) - offset;
+    const double da = n.dot(a.p) - offset - kTolerance;
+    const double db = n.dot(b.p) - offset - kTolerance;
     if (da <= 0.0) out[written++] = a;
     if ((da <= 0.0) != (db <= 0.0)) {
       const double t = da / (da - db);
@@ -20,8 +24,7 @@ int clipPolygon(const ClipVertex* in, int count, const Vec3& n, double offset,
   return written;
 }
 
-void reduceToFour(const Vec3* points, const double* depth, int count, const Vec3& n,
-                  int keep[4]) {
+void reduceToFour(const Vec3* points, const double* depth, int count, const Vec3& n, int keep[4]) {
   int first = 0;
   for (int i = 1; i < count; ++i) {
     if (depth[i] > depth[first]) first = i;
@@ -36,8 +39,7 @@ void reduceToFour(const Vec3* points, const double* depth, int count, const Vec3
   int third = first, fourth = first;
   double most = 0.0, least = 0.0;
   for (int i = 0; i < count; ++i) {
-    const double area =
-        n.dot((points[second] - points[first]).cross(points[i] - points[first]));
+    const double area = n.dot((points[second] - points[first]).cross(points[i] - points[first]));
     if (area > most) most = area, third = i;
     if (area < least) least = area, fourth = i;
   }

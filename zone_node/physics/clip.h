@@ -21,7 +21,6 @@ int clipPolygon(const ClipVertex* in, int count, const Vec3& n, double offset,
 
 /// Picks 4 of count candidate points: the deepest, then those spanning the largest area around
 /// it (normal n). Returns the chosen indices in keep.
-void reduceToFour(const Vec3* points, const double* depth, int count, const Vec3& n,
-                  int keep[4]);
+void reduceToFour(const Vec3* points, const double* depth, int count, const Vec3& n, int keep[4]);
 
 }  // namespace zonesim::physics

@@ -47,7 +47,9 @@ double separation(const Vec3& axis, const Vec3& d, const Eigen::Matrix3d& ra, co
   return std::abs(axis.dot(d)) - pa - pb;
 }
 
-double signOf(double x) { return x >= 0.0 ? 1.0 : -1.0; }
+double signOf(double x) {
+  return x >= 0.0 ? 1.0 : -1.0;
+}
 
 /// Clips the incident box's face against reference face `axis` of the reference box.
 void faceContact(const Eigen::Matrix3d& rr, const Vec3& cr, const Vec3& hr, int axis,

@@ -81,8 +81,8 @@ bool collidePlaneCapsule(const Pose& plane, const Shape& capsule, const Pose& b,
   return out.count > 0;
 }
 
-bool collideCapsules(const Shape& ca, const Pose& a, const Shape& cb, const Pose& b,
-                     double margin, Manifold& out) {
+bool collideCapsules(const Shape& ca, const Pose& a, const Shape& cb, const Pose& b, double margin,
+                     Manifold& out) {
   const Segment sa = segmentOf(ca, a), sb = segmentOf(cb, b);
   Vec3 qa, qb;
   closestBetweenSegments(sa, sb, qa, qb);

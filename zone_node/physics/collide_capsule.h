@@ -13,8 +13,8 @@ bool collideCapsuleSphere(const Shape& capsule, const Pose& a, const Vec3& b, do
 bool collidePlaneCapsule(const Pose& plane, const Shape& capsule, const Pose& b, double margin,
                          Manifold& out);
 /// Capsule A against capsule B; nearly parallel overlapping segments give two points.
-bool collideCapsules(const Shape& ca, const Pose& a, const Shape& cb, const Pose& b,
-                     double margin, Manifold& out);
+bool collideCapsules(const Shape& ca, const Pose& a, const Shape& cb, const Pose& b, double margin,
+                     Manifold& out);
 /// Box A against capsule B: the segment's ends and its point closest to the box, as spheres.
 bool collideBoxCapsule(const Vec3& half, const Pose& box, const Shape& capsule, const Pose& b,
                        double margin, Manifold& out);

@@ -17,8 +17,7 @@ bool collideSpheres(const Vec3& a, double ra, const Vec3& b, double rb, double m
   return true;
 }
 
-bool collidePlaneSphere(const Pose& plane, const Vec3& b, double rb, double margin,
-                        Manifold& out) {
+bool collidePlaneSphere(const Pose& plane, const Vec3& b, double rb, double margin, Manifold& out) {
   const Vec3 n = plane.orientation * Vec3::UnitY();
   const double gap = n.dot(b - plane.position) - rb;
   if (gap > margin) return false;
@@ -28,8 +27,8 @@ bool collidePlaneSphere(const Pose& plane, const Vec3& b, double rb, double marg
   return true;
 }
 
-bool collideBoxSphere(const Vec3& half, const Pose& box, const Vec3& b, double rb,
-                      double margin, Manifold& out) {
+bool collideBoxSphere(const Vec3& half, const Pose& box, const Vec3& b, double rb, double margin,
+                      Manifold& out) {
   const Vec3 local = box.orientation.conjugate() * (b - box.position);
   const Vec3 clamped = local.cwiseMax(-half).cwiseMin(half);
   Vec3 normal_local;

@@ -11,10 +11,9 @@ namespace zonesim::physics {
 bool collideSpheres(const Vec3& a, double ra, const Vec3& b, double rb, double margin,
                     Manifold& out);
 /// Plane A (through its origin, normal local +y) against sphere B.
-bool collidePlaneSphere(const Pose& plane, const Vec3& b, double rb, double margin,
-                        Manifold& out);
+bool collidePlaneSphere(const Pose& plane, const Vec3& b, double rb, double margin, Manifold& out);
 /// Box A against sphere B.
-bool collideBoxSphere(const Vec3& half, const Pose& box, const Vec3& b, double rb,
-                      double margin, Manifold& out);
+bool collideBoxSphere(const Vec3& half, const Pose& box, const Vec3& b, double rb, double margin,
+                      Manifold& out);
 
 }  // namespace zonesim::physics

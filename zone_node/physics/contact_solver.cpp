@@ -8,8 +8,8 @@ namespace zonesim::physics {
 namespace {
 
 /// Inverse of the effective mass along direction d at offsets ra, rb.
-double inverseMass(const BodyStorage& b, BodyIndex ia, BodyIndex ib, const Vec3& ra,
-                   const Vec3& rb, const Vec3& d) {
+double inverseMass(const BodyStorage& b, BodyIndex ia, BodyIndex ib, const Vec3& ra, const Vec3& rb,
+                   const Vec3& d) {
   const Vec3 ca = ra.cross(d), cb = rb.cross(d);
   return b.inv_mass[ia] + b.inv_mass[ib] + ca.dot(b.inv_inertia_world[ia] * ca) +
          cb.dot(b.inv_inertia_world[ib] * cb);
@@ -88,8 +88,19 @@ void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> 
     }
   }
   for (int it = 0; it < settings_.velocity_iterations; ++it) {
+    // All normals first, then all friction with the limits those normals set (as Bullet's
+    // sequential impulse solver does): the weight path down a stack converges faster when no
+    // friction solve disturbs it in between.
     for (Constraint& k : constraints_) {
-      // Friction first: the normal impulse, solved last, is the one that must hold exactly.
+      for (int i = 0; i < k.count; ++i) {
+        Point& p = k.p[i];
+        const Vec3 dv = v[k.b] + w[k.b].cross(p.rb) - v[k.a] - w[k.a].cross(p.ra);
+        const double old = p.jn;
+        p.jn = std::max(0.0, old - p.normal_mass * (dv.dot(k.n) - p.target));
+        apply(k, p, (p.jn - old) * k.n);
+      }
+    }
+    for (Constraint& k : constraints_) {
       for (int i = 0; i < k.count; ++i) {
         Point& p = k.p[i];
         const double limit = k.friction * p.jn;
@@ -99,13 +110,6 @@ void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> 
           p.jt[t] = std::clamp(old - p.tangent_mass[t] * dv.dot(k.t[t]), -limit, limit);
           apply(k, p, (p.jt[t] - old) * k.t[t]);
         }
-      }
-      for (int i = 0; i < k.count; ++i) {
-        Point& p = k.p[i];
-        const Vec3 dv = v[k.b] + w[k.b].cross(p.rb) - v[k.a] - w[k.a].cross(p.ra);
-        const double old = p.jn;
-        p.jn = std::max(0.0, old - p.normal_mass * (dv.dot(k.n) - p.target));
-        apply(k, p, (p.jn - old) * k.n);
       }
     }
   }

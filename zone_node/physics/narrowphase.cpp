@@ -24,8 +24,8 @@ int rank(ShapeType t) {
 }
 
 /// Pairs in rank order: rank(sa.type) <= rank(sb.type).
-bool collideOrdered(const Shape& sa, const Pose& a, const Shape& sb, const Pose& b,
-                    double margin, Manifold& out) {
+bool collideOrdered(const Shape& sa, const Pose& a, const Shape& sb, const Pose& b, double margin,
+                    Manifold& out) {
   switch (sa.type) {
     case ShapeType::Plane:
       switch (sb.type) {
@@ -65,8 +65,8 @@ bool collideOrdered(const Shape& sa, const Pose& a, const Shape& sb, const Pose&
 
 }  // namespace
 
-bool collideShapes(const Shape& sa, const Pose& a, const Shape& sb, const Pose& b,
-                   double margin, Manifold& out) {
+bool collideShapes(const Shape& sa, const Pose& a, const Shape& sb, const Pose& b, double margin,
+                   Manifold& out) {
   if (rank(sa.type) <= rank(sb.type)) return collideOrdered(sa, a, sb, b, margin, out);
   if (!collideOrdered(sb, b, sa, a, margin, out)) return false;
   out.normal = -out.normal;

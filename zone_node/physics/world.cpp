@@ -7,10 +7,17 @@
 
 namespace zonesim::physics {
 
+namespace {
+// A contact point within this distance (m) of last step's point inherits its impulses.
+constexpr double kPreserveDistance = 0.02;
+}  // namespace
+
 World::World(const WorldSettings& settings)
     : settings_(settings), broadphase_(settings.broadphase) {}
 
-BodyIndex World::addBody(const BodyDesc& desc) { return bodies_.add(desc); }
+BodyIndex World::addBody(const BodyDesc& desc) {
+  return bodies_.add(desc);
+}
 
 void World::step(double dt) {
   const int n = std::max(1, settings_.substeps);
@@ -20,6 +27,8 @@ void World::step(double dt) {
 void World::substep(double dt) {
   bodies_.updateWorldInertia();
   integrateForces(dt);
+  // Checked before the solve too: a NaN velocity in a contact would reach its partner.
+  quarantineNonFinite();
   findContacts(dt);
   warmStartFromPrevious();
   solver_.prepare(bodies_, contacts_, settings_.solver, dt);
@@ -40,8 +49,9 @@ void World::integrateForces(double dt) {
   std::copy(bodies_.linear_velocity.begin(), bodies_.linear_velocity.end(), v_start_.begin());
   // The Verlet history is rebuilt every step: contacts change velocities, which a two-step
   // position recurrence cannot see.
-  const LinearStateView view{x_start_, v_start_, bodies_.inv_mass, x_force_,
-                             v_force_, bodies_.position_prev, false, bodies_.force};
+  const LinearStateView view{x_start_, v_start_,     bodies_.inv_mass,
+                             x_force_, v_force_,     bodies_.position_prev,
+                             false,    bodies_.force};
   integrator_.step(settings_.integrator, forces_, view, dt);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
@@ -74,9 +84,11 @@ void World::findContacts(double dt) {
       continue;
     }
     Aabb box = shapeBounds(bodies_.shape[i], bodies_.position[i], bodies_.orientation[i]);
-    double grow = settings_.contact_margin;
+    // Half the margin on each box makes up a pair's margin; the travel this step is added in
+    // full, as the body may move that far in any direction.
+    double grow = 0.5 * settings_.contact_margin;
     if (settings_.speculative) grow += bodies_.linear_velocity[i].norm() * dt;
-    proxy_boxes_.push_back(box.expanded(0.5 * grow));
+    proxy_boxes_.push_back(box.expanded(grow));
     proxy_moving_.push_back(bodies_.type[i] != BodyType::Static);
     proxy_body_.push_back(static_cast<BodyIndex>(i));
   }
@@ -133,12 +145,22 @@ void World::warmStartFromPrevious() {
     if (j == previous_.size() || previous_[j].a != c.a || previous_[j].b != c.b) continue;
     const BodyContact& old = previous_[j];
     for (int i = 0; i < c.manifold.count; ++i) {
+      const ContactPoint& p = c.manifold.points[i];
+      // Same feature, or else the nearest old point within kPreserveDistance: clipping
+      // equal-sized aligned faces flips a point between "vertex" and "edge crossing" with
+      // round-off, and losing its impulse for that would make stacks sag and walk.
+      int match = -1;
+      double nearest = kPreserveDistance * kPreserveDistance;
       for (int k = 0; k < old.manifold.count; ++k) {
-        if (old.manifold.points[k].feature == c.manifold.points[i].feature) {
-          c.impulse[i] = old.impulse[k];
+        const ContactPoint& q = old.manifold.points[k];
+        if (q.feature == p.feature) {
+          match = k;
           break;
         }
+        const double d2 = (q.position - p.position).squaredNorm();
+        if (d2 < nearest) nearest = d2, match = k;
       }
+      if (match >= 0) c.impulse[i] = old.impulse[match];
     }
   }
 }
@@ -162,8 +184,7 @@ void World::quarantineNonFinite() {
   const std::size_t n = bodies_.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (bodies_.type[i] == BodyType::Static) continue;
-    const bool finite = bodies_.position[i].allFinite() &&
-                        bodies_.linear_velocity[i].allFinite() &&
+    const bool finite = bodies_.position[i].allFinite() && bodies_.linear_velocity[i].allFinite() &&
                         bodies_.angular_velocity[i].allFinite() &&
                         bodies_.orientation[i].coeffs().allFinite();
     if (finite) continue;
