@@ -83,8 +83,14 @@ void buildCellIndex(const GridSpec& grid, std::span<const Vec3d> positions, Cell
 void gridNeighbours(const GridSpec& grid, const CellIndex& index, std::span<const Vec3d> positions,
                     std::uint32_t i, double radius, std::vector<std::uint32_t>& out) {
   out.clear();
-  forEachNeighbour(grid, index, positions, i, radius,
-                   [&](std::uint32_t j, const Vec3d&, double) { out.push_back(j); });
+  std::vector<Vec3d> sorted(positions.size());
+  std::uint32_t slot = 0;
+  for (std::uint32_t m = 0; m < positions.size(); ++m) {
+    sorted[m] = positions[index.order[m]];
+    if (index.order[m] == i) slot = m;
+  }
+  forEachNeighbour(grid, index, sorted, slot, radius,
+                   [&](std::uint32_t m, const Vec3d&, double) { out.push_back(index.order[m]); });
 }
 
 }  // namespace zonesim::gpu

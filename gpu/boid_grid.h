@@ -27,14 +27,16 @@ std::uint32_t cellOf(const GridSpec& grid, const Vec3d& p);
 /// Builds the index by a counting sort (stable, so ids ascend within a cell, as on the device).
 void buildCellIndex(const GridSpec& grid, std::span<const Vec3d> positions, CellIndex& out);
 
-/// Calls visit(j, d, d2) for every agent j != i strictly within radius of agent i, where d is
-/// positions[j] - positions[i] and d2 its squared length, in the grid's visiting order: cells by
-/// z, y, x from the lowest, ids ascending within a cell (the order boids.cl sums in).
+/// Calls visit(m, d, d2) for every slot m != k of the sorted arrays whose position is strictly
+/// within radius of slot k's, where sorted[m] = positions[index.order[m]], d is sorted[m] -
+/// sorted[k] and d2 its squared length. The visiting order is the sum order of boids.cl: cells
+/// by z, y, x from the lowest, slots (so ids) ascending within a cell. Sorted copies keep a
+/// cell's boids together in memory; reading them through order instead is several times slower
+/// once the flock outgrows the caches.
 template <typename Visit>
-void forEachNeighbour(const GridSpec& grid, const CellIndex& index,
-                      std::span<const Vec3d> positions, std::uint32_t i, double radius,
-                      Visit&& visit) {
-  const Vec3d p = positions[i];
+void forEachNeighbour(const GridSpec& grid, const CellIndex& index, std::span<const Vec3d> sorted,
+                      std::uint32_t k, double radius, Visit&& visit) {
+  const Vec3d p = sorted[k];
   const std::uint32_t cx = cellCoordinate(p.x, grid.origin.x, grid.cell, grid.nx);
   const std::uint32_t cy = cellCoordinate(p.y, grid.origin.y, grid.cell, grid.ny);
   const std::uint32_t cz = cellCoordinate(p.z, grid.origin.z, grid.cell, grid.nz);
@@ -46,12 +48,11 @@ void forEachNeighbour(const GridSpec& grid, const CellIndex& index,
     for (std::uint32_t y = cy > 0 ? cy - 1 : 0; y <= y1; ++y) {
       for (std::uint32_t x = cx > 0 ? cx - 1 : 0; x <= x1; ++x) {
         const std::uint32_t cell = (z * grid.ny + y) * grid.nx + x;
-        for (std::uint32_t k = index.cell_start[cell]; k < index.cell_end[cell]; ++k) {
-          const std::uint32_t j = index.order[k];
-          if (j == i) continue;
-          const Vec3d d{positions[j].x - p.x, positions[j].y - p.y, positions[j].z - p.z};
+        for (std::uint32_t m = index.cell_start[cell]; m < index.cell_end[cell]; ++m) {
+          if (m == k) continue;
+          const Vec3d d{sorted[m].x - p.x, sorted[m].y - p.y, sorted[m].z - p.z};
           const double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
-          if (d2 < r2) visit(j, d, d2);
+          if (d2 < r2) visit(m, d, d2);
         }
       }
     }
@@ -59,7 +60,7 @@ void forEachNeighbour(const GridSpec& grid, const CellIndex& index,
 }
 
 /// Ids of the agents strictly within radius of agent i (i excluded), in the grid's visiting
-/// order: cells by z, y, x from the lowest, ids ascending within a cell.
+/// order (see forEachNeighbour); for tests, so it allocates freely.
 void gridNeighbours(const GridSpec& grid, const CellIndex& index, std::span<const Vec3d> positions,
                     std::uint32_t i, double radius, std::vector<std::uint32_t>& out);
 

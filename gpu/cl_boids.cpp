@@ -22,6 +22,7 @@ ClBoids::ClBoids(std::shared_ptr<const ClRuntime> runtime, const GridSpec& grid,
       program_(runtime_->buildEmbeddedProgram("boids")),
       cells_(program_.createKernel("boid_cells")),
       bounds_kernel_(program_.createKernel("cell_bounds")),
+      gather_(program_.createKernel("gather_boids")),
       step_(program_.createKernel("boid_step")),
       sort_(runtime_) {
   const std::size_t cells = grid_.cells();
@@ -59,6 +60,8 @@ void ClBoids::setAgents(std::span<const Vec3d> positions, std::span<const Vec3d>
       pos_[b] = runtime_->createBuffer(capacity_ * sizeof(cl_float4));
       vel_[b] = runtime_->createBuffer(capacity_ * sizeof(cl_float4));
     }
+    pos_sorted_ = runtime_->createBuffer(capacity_ * sizeof(cl_float4));
+    vel_sorted_ = runtime_->createBuffer(capacity_ * sizeof(cl_float4));
     keys_ = runtime_->createBuffer(padded_ * sizeof(cl_uint));
     vals_ = runtime_->createBuffer(padded_ * sizeof(cl_uint));
   }
@@ -106,8 +109,16 @@ void ClBoids::step(double dt) {
   if (count_ == 0) return;
   enqueueGrid();
   const int next = 1 - current_;
-  step_.setArg(0, pos_[current_].get());
-  step_.setArg(1, vel_[current_].get());
+  gather_.setArg(0, pos_[current_].get());
+  gather_.setArg(1, vel_[current_].get());
+  gather_.setArg(2, vals_.get());
+  gather_.setArg(3, cl_uint(count_));
+  gather_.setArg(4, pos_sorted_.get());
+  gather_.setArg(5, vel_sorted_.get());
+  gather_.enqueue(runtime_->queue(), count_);
+  ++launches_;
+  step_.setArg(0, pos_sorted_.get());
+  step_.setArg(1, vel_sorted_.get());
   step_.setArg(2, vals_.get());
   step_.setArg(6, cl_uint4{{grid_.nx, grid_.ny, grid_.nz, cl_uint(count_)}});
   step_.setArg(8, float4(params_.perception_radius, params_.min_speed, params_.max_speed, dt));

@@ -44,6 +44,7 @@ class ClBoids final : public BoidEngine {
   ClProgram program_;
   ClKernel cells_;
   ClKernel bounds_kernel_;
+  ClKernel gather_;
   ClKernel step_;
   ClPairSort sort_;
   std::size_t count_ = 0;
@@ -53,6 +54,9 @@ class ClBoids final : public BoidEngine {
   int current_ = 0;
   std::array<ClBuffer, 2> pos_;
   std::array<ClBuffer, 2> vel_;
+  // The current state in grid order, the step's input.
+  ClBuffer pos_sorted_;
+  ClBuffer vel_sorted_;
   ClBuffer keys_;
   ClBuffer vals_;
   ClBuffer cell_start_;

@@ -39,20 +39,29 @@ void CpuBoids::step(double dt) {
   buildCellIndex(grid_, x_, index_);
   const BoidParams& p = params_;
   const double r = p.perception_radius;
-  for (std::uint32_t i = 0; i < x_.size(); ++i) {
-    const Vec3d xi = x_[i];
-    const Vec3d vi = v_[i];
+  const std::size_t n = x_.size();
+  x_sorted_.resize(n);
+  v_sorted_.resize(n);
+  for (std::size_t m = 0; m < n; ++m) {
+    x_sorted_[m] = x_[index_.order[m]];
+    v_sorted_[m] = v_[index_.order[m]];
+  }
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t i = index_.order[k];
+    const Vec3d xi = x_sorted_[k];
+    const Vec3d vi = v_sorted_[k];
     Vec3d separation, offset_sum, velocity_sum;
     std::uint32_t count = 0;
-    forEachNeighbour(grid_, index_, x_, i, r, [&](std::uint32_t j, const Vec3d& d, double d2) {
-      ++count;
-      offset_sum = offset_sum + d;
-      velocity_sum = velocity_sum + v_[j];
-      if (d2 > 0.0) {
-        double dist = std::sqrt(d2);
-        separation = separation - d * ((r - dist) / (r * dist));
-      }
-    });
+    forEachNeighbour(grid_, index_, x_sorted_, k, r,
+                     [&](std::uint32_t m, const Vec3d& d, double d2) {
+                       ++count;
+                       offset_sum = offset_sum + d;
+                       velocity_sum = velocity_sum + v_sorted_[m];
+                       if (d2 > 0.0) {
+                         double dist = std::sqrt(d2);
+                         separation = separation - d * ((r - dist) / (r * dist));
+                       }
+                     });
     Vec3d acc;
     if (count > 0) {
       double inv = 1.0 / double(count);

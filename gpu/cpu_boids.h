@@ -26,6 +26,8 @@ class CpuBoids final : public BoidEngine {
   BoidParams params_;
   // Double-buffered: every boid reads the old state, so the step does not depend on order.
   std::vector<Vec3d> x_, v_, x_next_, v_next_;
+  // x_ and v_ in grid order, rebuilt every step (see forEachNeighbour).
+  std::vector<Vec3d> x_sorted_, v_sorted_;
   CellIndex index_;
 };
 

@@ -42,20 +42,35 @@ __kernel void cell_bounds(__global const uint* keys, uint count, __global uint* 
   if (i + 1u == count || keys[i + 1u] != k) end[k] = i + 1u;
 }
 
+// Copies positions and velocities into grid order, so that a cell's boids sit together in
+// memory for the neighbour loop (coalesced on a GPU, cache lines on a CPU).
+__kernel void gather_boids(__global const float4* pos, __global const float4* vel,
+                           __global const uint* order, uint count, __global float4* pos_sorted,
+                           __global float4* vel_sorted) {
+  uint k = get_global_id(0);
+  if (k >= count) return;
+  uint i = order[k];
+  pos_sorted[k] = pos[i];
+  vel_sorted[k] = vel[i];
+}
+
 // Separation pushes away from each neighbour with weight (r - dist) / r, which is continuous at
 // the perception edge; alignment pulls toward the neighbours' mean velocity, cohesion toward
 // their centre, and a boid outside the bounds is pulled back in. Speed ends in
 // [min_speed, max_speed] (a boid at rest stays at rest: it has no direction to speed up in).
 // weights: separation, alignment, cohesion, bounds. limits: radius, min speed, max speed, dt.
+// Work item k steps the boid in grid slot k (neighbouring items share cells); pos_in and vel_in
+// are in grid order, pos_out and vel_out in id order.
 __kernel void boid_step(__global const float4* pos_in, __global const float4* vel_in,
                         __global const uint* order, __global const uint* start,
                         __global const uint* end, float4 grid, uint4 dims, float4 weights,
                         float4 limits, float4 lower, float4 upper, __global float4* pos_out,
                         __global float4* vel_out) {
-  uint i = get_global_id(0);
-  if (i >= dims.w) return;
-  float3 xi = pos_in[i].xyz;
-  float3 vi = vel_in[i].xyz;
+  uint k = get_global_id(0);
+  if (k >= dims.w) return;
+  uint i = order[k];
+  float3 xi = pos_in[k].xyz;
+  float3 vi = vel_in[k].xyz;
   float r = limits.x;
   float r2 = r * r;
   uint cx = cell_coordinate(xi.x, grid.x, grid.w, dims.x);
@@ -73,15 +88,14 @@ __kernel void boid_step(__global const float4* pos_in, __global const float4* ve
       for (uint x = cx > 0u ? cx - 1u : 0u; x <= x1; ++x) {
         uint cell = (z * dims.y + y) * dims.x + x;
         uint stop = end[cell];
-        for (uint k = start[cell]; k < stop; ++k) {
-          uint j = order[k];
-          if (j == i) continue;
-          float3 d = pos_in[j].xyz - xi;
+        for (uint m = start[cell]; m < stop; ++m) {
+          if (m == k) continue;
+          float3 d = pos_in[m].xyz - xi;
           float d2 = d.x * d.x + d.y * d.y + d.z * d.z;
           if (!(d2 < r2)) continue;
           ++count;
           offset_sum += d;
-          velocity_sum += vel_in[j].xyz;
+          velocity_sum += vel_in[m].xyz;
           if (d2 > 0.0f) {
             float dist = sqrt(d2);
             separation -= d * ((r - dist) / (r * dist));
