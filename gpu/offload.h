@@ -30,9 +30,9 @@ struct OffloadThresholds {
   std::size_t of(Workload workload) const;
 };
 
-/// The measured defaults (bench/gpu on PoCL 3.1, 2 shared cores; docs/benchmarks.md): the
-/// particle step pays from 8,000; the flock and crowd steps never beat the CPU there, since
-/// PoCL runs on the same two cores and the flock's sort does O(n log^2 n) work.
+/// The thresholds when the probe fails on a device that exists: particles from
+/// kAutoGpuThreshold (measured on a quiet machine, gpu/backend.h); flocks and crowds never, since
+/// on PoCL sharing two loaded cores with the CPU path neither won reliably (docs/benchmarks.md).
 OffloadThresholds defaultThresholds();
 
 /// One timed probe: seconds per step on each path at n items.
