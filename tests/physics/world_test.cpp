@@ -152,6 +152,66 @@ TEST(World, TwentyBoxStackStandsSixtySecondsWithEightSubsteps) {
   EXPECT_LT(drift, 0.01);
 }
 
+/// Largest drift of any box from where it started after `seconds` (the floor is body 0).
+double driftAfter(World& world, const std::vector<Vec3>& start, double seconds) {
+  const int steps = static_cast<int>(std::lround(seconds * 60.0));
+  for (int s = 0; s < steps; ++s) world.step(1.0 / 60.0);
+  double drift = 0.0;
+  for (std::size_t k = 0; k < start.size(); ++k) {
+    drift = std::max(drift, (world.bodies().position[k + 1] - start[k]).norm());
+  }
+  return drift;
+}
+
+World worldOnFloor(int substeps) {
+  WorldSettings settings;
+  settings.substeps = substeps;
+  World world(settings);
+  BodyDesc floor;
+  floor.type = BodyType::Static;
+  floor.shape = Shape::box(Vec3(50, 1, 50));
+  floor.position = Vec3(0, -1, 0);
+  world.addBody(floor);
+  return world;
+}
+
+// A 15-level pyramid in one vertical plane (120 unit cubes, each level offset by half a box),
+// at the default single step per 1/60 s.
+TEST(World, FifteenLevelPyramidStandsTenSeconds) {
+  World world = worldOnFloor(1);
+  std::vector<Vec3> start;
+  for (int level = 0; level < 15; ++level) {
+    for (int j = 0; j < 15 - level; ++j) {
+      BodyDesc box;
+      box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
+      box.position = Vec3(j + 0.5 * level - 7.5, 0.5 + level, 0);
+      world.addBody(box);
+      start.push_back(box.position);
+    }
+  }
+  const double drift = driftAfter(world, start, 10.0);
+  std::printf("15-level pyramid (120 boxes) after 10 s: largest drift %.4e m\n", drift);
+  EXPECT_LT(drift, 0.02);
+}
+
+// A cube 100 times as dense on a light one. Honest limit: this needs 4 substeps; at one step
+// per 1/60 s two boxes drift 1.5 cm and three (heavy on top) fall.
+TEST(World, HundredToOneMassRatioStackHoldsWithFourSubsteps) {
+  World world = worldOnFloor(4);
+  std::vector<Vec3> start;
+  for (int k = 0; k < 2; ++k) {
+    BodyDesc box;
+    box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
+    box.position = Vec3(0, 0.5 + k, 0);
+    box.density = k == 1 ? 100000.0 : 1000.0;
+    world.addBody(box);
+    start.push_back(box.position);
+  }
+  const double drift = driftAfter(world, start, 10.0);
+  std::printf("100:1 two-box stack after 10 s: largest drift %.4e m\n", drift);
+  EXPECT_LT(drift, 0.01);
+}
+
 /// A pile of mixed shapes dropped on a floor; every body's final state, byte for byte.
 std::vector<double> pileState(BroadphaseKind broadphase, Integrator integrator) {
   WorldSettings settings;
