@@ -4,7 +4,6 @@
 #include <string>
 
 #include "gpu/cl_runtime.h"
-#include "gpu/offload_probe.h"
 
 namespace zonesim::gpu {
 
@@ -44,7 +43,10 @@ bool openClAvailable() {
 }
 
 Backend selectBackend(std::string_view mode, std::size_t particles) {
-  return selectBackend(mode, Workload::Particles, particles);
+  GpuMode parsed = parseGpuMode(mode);
+  // Only auto needs to probe the driver; on and off must not pay for it.
+  bool available = parsed == GpuMode::Auto && openClAvailable();
+  return chooseBackend(parsed, particles, available);
 }
 
 }  // namespace zonesim::gpu

@@ -42,9 +42,7 @@ Backend chooseBackend(GpuMode mode, std::size_t particles, bool opencl_available
 /// True when an OpenCL GPU or CPU device can be opened (checked once per process).
 bool openClAvailable();
 
-/// The --gpu decision for a particle system, as zone_node calls it: selectBackend(mode,
-/// Workload::Particles, particles) of gpu/offload_probe.h, so auto uses the probed threshold
-/// (kAutoGpuThreshold only where no probe can run).
+/// chooseBackend(parseGpuMode(mode), particles, openClAvailable()), as zone_node calls it.
 Backend selectBackend(std::string_view mode, std::size_t particles);
 
 }  // namespace zonesim::gpu

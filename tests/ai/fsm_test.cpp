@@ -39,7 +39,7 @@ TEST(Fsm, InterpretedGuardMatchesHandCodedGuard) {
       bool b = stepMachine(def, data, inputs);
       ASSERT_EQ(a, b) << "seed " << seed << " tick " << tick;
       ASSERT_EQ(int(coded.state()), data.state) << "seed " << seed << " tick " << tick;
-      ASSERT_EQ(coded.ticksInState(), data.ticksInState);
+      ASSERT_EQ(coded.ticksInState(), data.ticksInState(def));
       transitions += a;
     }
   }
@@ -66,6 +66,44 @@ TEST(Fsm, HysteresisStopsFlickerAtAThreshold) {
   EXPECT_EQ(guard.state(), GuardMachine::State::Patrol);
 }
 
+TEST(Fsm, HierarchicalMachineEntersSubstatesAndOuterTransitionsWin) {
+  MachineDef def =
+      loadMachineYaml(std::string(ZONESIM_SOURCE_DIR) + "/tests/ai/data/guard_hierarchical.yaml");
+  const int patrol = def.stateIndex("patrol"), combat = def.stateIndex("combat");
+  const int chase = def.stateIndex("chase"), attack = def.stateIndex("attack");
+  const int flee = def.stateIndex("flee");
+  EXPECT_EQ(def.states[std::size_t(chase)].parent, combat);
+  EXPECT_EQ(def.initial, patrol);
+  MachineState m = startMachine(def);
+  auto step = [&](double distance, double health) {
+    double in[2] = {distance, health};
+    return stepMachine(def, m, in);
+  };
+  EXPECT_TRUE(step(5, 100));
+  EXPECT_EQ(m.state, chase) << "entering combat enters its initial substate";
+  // Switching inside combat does not restart combat's timer: after 10 ticks in combat the
+  // enemy moving away ends combat although attack was entered only just now.
+  for (int i = 0; i < 9; ++i) step(5, 100);
+  EXPECT_TRUE(step(1, 100));
+  EXPECT_EQ(m.state, attack);
+  EXPECT_EQ(m.ticksInState(def), 0);
+  EXPECT_TRUE(step(20, 100));
+  EXPECT_EQ(m.state, patrol);
+  // Back into combat, then hurt while attacking: the outer transition fires from the substate.
+  step(5, 100);
+  step(1, 100);
+  ASSERT_EQ(m.state, attack);
+  EXPECT_TRUE(step(1, 10));
+  EXPECT_EQ(m.state, flee);
+  // Outer min_ticks counts from entering combat: a far enemy right after entry does not end it.
+  for (int i = 0; i < 6; ++i) step(50, 100);
+  ASSERT_EQ(m.state, patrol);
+  step(5, 100);
+  ASSERT_EQ(m.state, chase);
+  EXPECT_FALSE(step(20, 100));
+  EXPECT_EQ(m.state, chase);
+}
+
 int errorLine(const std::string& text) {
   try {
     parseMachineYaml(text, "m.yaml");
@@ -88,6 +126,9 @@ TEST(Fsm, MalformedMachinesNameTheLine) {
   EXPECT_EQ(errorLine(head + "  - name: a\n  - name: a\n"), 5);
   EXPECT_EQ(errorLine(head + "  - name: a\ninitial: q\n"), 5);
   EXPECT_EQ(errorLine("machine: m\nstates:\n  - name: a\n"), 1);
+  EXPECT_EQ(errorLine(head + "  - name: a\n    initial: b\n    substates:\n      - name: c\n"), 5);
+  EXPECT_EQ(errorLine(head + "  - name: a\n    initial: b\n"), 5);
+  EXPECT_EQ(errorLine(head + "  - name: a\n    colour: red\n"), 5);
   EXPECT_EQ(errorLine("machine: m\ninputs: [x\nstates: []\n"), 3);
 }
 

@@ -7,8 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "gpu/offload_probe.h"
-
 namespace zonesim::gpu {
 namespace {
 
@@ -44,11 +42,8 @@ TEST(SelectBackend, MatchesChooseBackendWithTheProbedDevice) {
   EXPECT_EQ(selectBackend("off", 100'000'000), Backend::Cpu);
   EXPECT_EQ(selectBackend("on", 0), Backend::OpenCl);
   EXPECT_EQ(selectBackend("auto", 0), Backend::Cpu);
-  // Auto uses the probed particle threshold (kNeverOffload when the device never won).
-  std::size_t threshold = autoThreshold(Workload::Particles);
-  if (threshold != kNeverOffload) {
-    EXPECT_EQ(selectBackend("auto", threshold), openClAvailable() ? Backend::OpenCl : Backend::Cpu);
-  }
+  EXPECT_EQ(selectBackend("auto", kAutoGpuThreshold),
+            openClAvailable() ? Backend::OpenCl : Backend::Cpu);
   EXPECT_THROW(selectBackend("gpu", 0), std::invalid_argument);
 }
 

@@ -18,6 +18,12 @@ int MachineDef::stateIndex(const std::string& n) const {
   return -1;
 }
 
+int MachineDef::enterLeaf(int state) const {
+  while (states[std::size_t(state)].initialChild >= 0)
+    state = states[std::size_t(state)].initialChild;
+  return state;
+}
+
 bool holds(const Condition& c, const double* inputs) {
   double v = inputs[c.input];
   switch (c.op) {
@@ -83,6 +89,81 @@ Condition parseCondition(const std::string& file, const YAML::Node& n, const Mac
   return c;
 }
 
+// Declares the states of one level (and, depth first, their substates) so that transitions
+// may name any state, even one declared later.
+void declareStates(const std::string& file, const YAML::Node& list, int parent, MachineDef& def,
+                   std::vector<YAML::Node>& nodes) {
+  if (!list.IsSequence() || list.size() == 0) fail(file, list, "states must be a non-empty list");
+  int depth = parent < 0 ? 0 : def.states[std::size_t(parent)].depth + 1;
+  if (depth >= kMaxStateDepth) fail(file, list, "states nest too deep");
+  int first = -1;
+  for (const auto& s : list) {
+    if (!s.IsMap()) fail(file, s, "a state must be a mapping");
+    for (const auto& kv : s) {
+      std::string key = kv.first.Scalar();
+      if (key != "name" && key != "transitions" && key != "substates" && key != "initial") {
+        fail(file, kv.first, "unknown state key '" + key + "'");
+      }
+    }
+    std::string name = scalar(file, require(file, s, "name"), "name");
+    if (def.stateIndex(name) >= 0) fail(file, s["name"], "duplicate state '" + name + "'");
+    int index = int(def.states.size());
+    if (first < 0) first = index;
+    StateDef sd;
+    sd.name = name;
+    sd.parent = parent;
+    sd.depth = depth;
+    def.states.push_back(std::move(sd));
+    nodes.push_back(s);
+    if (YAML::Node subs = s["substates"]) {
+      int firstChild = int(def.states.size());
+      declareStates(file, subs, index, def, nodes);
+      def.states[std::size_t(index)].initialChild = firstChild;
+      if (YAML::Node init = s["initial"]) {
+        int child = def.stateIndex(scalar(file, init, "initial"));
+        if (child < 0 || def.states[std::size_t(child)].parent != index) {
+          fail(file, init, "initial '" + init.Scalar() + "' is not a substate of '" + name + "'");
+        }
+        def.states[std::size_t(index)].initialChild = child;
+      }
+    } else if (s["initial"]) {
+      fail(file, s["initial"], "`initial` needs `substates`");
+    }
+  }
+}
+
+void parseTransitions(const std::string& file, const YAML::Node& s, MachineDef& def, int state) {
+  YAML::Node list = s["transitions"];
+  if (!list) return;
+  if (!list.IsSequence()) fail(file, list, "`transitions` must be a list");
+  for (const auto& t : list) {
+    if (!t.IsMap()) fail(file, t, "a transition must be a mapping");
+    for (const auto& kv : t) {
+      std::string key = kv.first.Scalar();
+      if (key != "to" && key != "when" && key != "min_ticks") {
+        fail(file, kv.first, "unknown transition key '" + key + "'");
+      }
+    }
+    TransitionDef td;
+    YAML::Node to = require(file, t, "to");
+    td.to = def.stateIndex(scalar(file, to, "to"));
+    if (td.to < 0) fail(file, to, "unknown state '" + to.Scalar() + "'");
+    if (YAML::Node when = t["when"]) {
+      if (when.IsSequence()) {
+        for (const auto& c : when) td.conditions.push_back(parseCondition(file, c, def));
+      } else {
+        td.conditions.push_back(parseCondition(file, when, def));
+      }
+    }
+    if (YAML::Node m = t["min_ticks"]) {
+      if (!parseInt(scalar(file, m, "min_ticks"), td.minTicks) || td.minTicks < 0) {
+        fail(file, m, "min_ticks must be a non-negative integer");
+      }
+    }
+    def.states[std::size_t(state)].transitions.push_back(std::move(td));
+  }
+}
+
 }  // namespace
 
 MachineDef parseMachineYaml(const std::string& text, const std::string& file) {
@@ -100,49 +181,14 @@ MachineDef parseMachineYaml(const std::string& text, const std::string& file) {
   for (const auto& in : inputs) def.inputs.push_back(scalar(file, in, "input"));
 
   YAML::Node states = require(file, root, "states");
-  if (!states.IsSequence() || states.size() == 0) fail(file, states, "`states` must be a list");
-  // Names first, so that transitions may point forward.
-  for (const auto& s : states) {
-    if (!s.IsMap()) fail(file, s, "a state must be a mapping");
-    std::string name = scalar(file, require(file, s, "name"), "name");
-    if (def.stateIndex(name) >= 0) fail(file, s["name"], "duplicate state '" + name + "'");
-    def.states.push_back(StateDef{name, {}});
-  }
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    YAML::Node list = states[i]["transitions"];
-    if (!list) continue;
-    if (!list.IsSequence()) fail(file, list, "`transitions` must be a list");
-    for (const auto& t : list) {
-      if (!t.IsMap()) fail(file, t, "a transition must be a mapping");
-      for (const auto& kv : t) {
-        std::string key = kv.first.Scalar();
-        if (key != "to" && key != "when" && key != "min_ticks") {
-          fail(file, kv.first, "unknown transition key '" + key + "'");
-        }
-      }
-      TransitionDef td;
-      YAML::Node to = require(file, t, "to");
-      td.to = def.stateIndex(scalar(file, to, "to"));
-      if (td.to < 0) fail(file, to, "unknown state '" + to.Scalar() + "'");
-      if (YAML::Node when = t["when"]) {
-        if (when.IsSequence()) {
-          for (const auto& c : when) td.conditions.push_back(parseCondition(file, c, def));
-        } else {
-          td.conditions.push_back(parseCondition(file, when, def));
-        }
-      }
-      if (YAML::Node m = t["min_ticks"]) {
-        if (!parseInt(scalar(file, m, "min_ticks"), td.minTicks) || td.minTicks < 0) {
-          fail(file, m, "min_ticks must be a non-negative integer");
-        }
-      }
-      def.states[i].transitions.push_back(std::move(td));
-    }
-  }
+  std::vector<YAML::Node> nodes;  // the YAML of each state, by state index
+  declareStates(file, states, -1, def, nodes);
+  for (std::size_t i = 0; i < nodes.size(); ++i) parseTransitions(file, nodes[i], def, int(i));
   if (YAML::Node init = root["initial"]) {
     def.initial = def.stateIndex(scalar(file, init, "initial"));
     if (def.initial < 0) fail(file, init, "unknown initial state '" + init.Scalar() + "'");
   }
+  def.initial = def.enterLeaf(def.initial);
   return def;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // A state machine defined by data: named inputs, states, and per state an ordered list of
-// transitions, each guarded by comparisons of inputs with constants. Loaded from YAML with
-// file:line errors; names are resolved to indices once, so a step compares numbers only.
+// transitions, each guarded by comparisons of inputs with constants. States may nest
+// (hierarchical machines): a composite state holds substates and enters its initial one; an
+// outer state's transitions take priority over its substates'. Loaded from YAML with file:line
+// errors; names are resolved to indices once, so a step compares numbers only.
 
 #include <cstdint>
 #include <string>
@@ -26,21 +28,29 @@ struct TransitionDef {
   int minTicks = 0;                   ///< dwell time before it may fire (hysteresis in time)
 };
 
+/// Deepest nesting of states a machine may have.
+inline constexpr int kMaxStateDepth = 8;
+
 /// One state: transitions are tried in order, the first that fires wins.
 struct StateDef {
-  std::string name;                        ///< name used in files and reports
+  std::string name;                        ///< name used in files and reports (unique)
   std::vector<TransitionDef> transitions;  ///< in priority order
+  int parent = -1;                         ///< enclosing composite state, -1 at top level
+  int initialChild = -1;                   ///< substate entered first, -1 for a leaf
+  int depth = 0;                           ///< 0 at top level
 };
 
 /// A whole machine.
 struct MachineDef {
   std::string name;                 ///< machine name
   std::vector<std::string> inputs;  ///< input names; a step gets values in this order
-  std::vector<StateDef> states;     ///< states; index 0 unless `initial` says otherwise
-  int initial = 0;                  ///< starting state index
+  std::vector<StateDef> states;     ///< all states, composite and leaf, in file order
+  int initial = 0;                  ///< starting leaf state index
 
   /// Index of a state by name, or -1.
   int stateIndex(const std::string& name) const;
+  /// The leaf entered when `state` is entered (itself for a leaf).
+  int enterLeaf(int state) const;
 };
 
 /// Parses a machine from YAML text; throws ParseError naming `file` and the offending line.
