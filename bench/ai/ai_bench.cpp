@@ -1,0 +1,117 @@
+// ai_bench [--stride N] [--clusters 8,16,32] [DATA_DIR]: for each shipped Moving AI map, times
+// A* over every N-th scenario problem, then HPA* on the same problems for each cluster size,
+// and prints one table row per (map, planner): µs per path, mean and max length overhead
+// against the listed optimum, speed-up over A*, the abstraction's size and build time, and the
+// time to repair it after one cell changes (a door).
+
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/timer.h"
+#include "zone_node/ai/grid_search.h"
+#include "zone_node/ai/hpa_planner.h"
+#include "zone_node/ai/scenario.h"
+
+namespace {
+
+using namespace zonesim::ai;
+
+struct Row {
+  double usPerPath = 0;
+  double meanOverhead = 0;
+  double maxOverhead = 0;
+  long expandedPerPath = 0;
+};
+
+template <typename Plan>
+Row timePlanner(const std::vector<ScenarioProblem>& problems, Plan&& plan) {
+  GridPath path;
+  Row row;
+  long expanded = 0;
+  zonesim::Stopwatch clock;
+  for (const auto& p : problems) expanded += plan(p.start, p.goal, path);
+  row.usPerPath = clock.elapsedSeconds() * 1e6 / double(problems.size());
+  // Overheads in a second, untimed pass so that the timing covers planning only.
+  for (const auto& p : problems) {
+    plan(p.start, p.goal, path);
+    double o = p.optimal > 0 ? path.length / p.optimal - 1.0 : 0.0;
+    row.meanOverhead += o;
+    row.maxOverhead = std::max(row.maxOverhead, o);
+  }
+  row.meanOverhead /= double(problems.size());
+  row.expandedPerPath = expanded / long(problems.size());
+  return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string dir = std::string(ZONESIM_SOURCE_DIR) + "/tests/data/movingai";
+  int stride = 1;
+  std::vector<int> clusterSizes{8, 16, 32};
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--stride" && i + 1 < argc) {
+      stride = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--clusters" && i + 1 < argc) {
+      clusterSizes.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string item; std::getline(list, item, ',');)
+        clusterSizes.push_back(std::atoi(item.c_str()));
+    } else {
+      dir = a;
+    }
+  }
+
+  std::printf("%-16s %-8s %9s %10s %9s %9s %8s %7s %8s %9s %9s\n", "map", "planner", "problems",
+              "us_per_path", "expanded", "mean_ovh", "max_ovh", "speedup", "nodes", "build_ms",
+              "repair_us");
+  for (const char* name : {"random512-10-0", "8room_000", "maze512-1-0"}) {
+    try {
+      GridMap map = loadMovingAiMap(dir + "/" + name + ".map");
+      auto all = loadScenario(dir + "/" + name + ".map.scen");
+      std::vector<ScenarioProblem> problems;
+      for (std::size_t i = 0; i < all.size(); i += std::size_t(stride)) problems.push_back(all[i]);
+
+      GridSearch astar(map);
+      Row a = timePlanner(problems, [&](Cell s, Cell g, GridPath& out) {
+        astar.findPath(s, g, out);
+        return astar.lastStats().expanded;
+      });
+      std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8s %9s %9s\n", name, "astar",
+                  problems.size(), a.usPerPath, a.expandedPerPath, a.meanOverhead, a.maxOverhead,
+                  1.0, "-", "-", "-");
+
+      for (int c : clusterSizes) {
+        zonesim::Stopwatch build;
+        HpaPlanner hpa(map, HpaConfig{c, 6});
+        double buildMs = build.elapsedSeconds() * 1e3;
+        Row h = timePlanner(problems, [&](Cell s, Cell g, GridPath& out) {
+          hpa.findPath(s, g, out);
+          return hpa.stats().expanded;
+        });
+        // Repair cost: close and reopen one passable cell on a cluster border, 20 times.
+        GridMap& editable = map;
+        Cell door{c - 1, 0};
+        for (int y = 0; y < map.height() && !map.passable(door.x, door.y); ++y) door.y = y;
+        zonesim::Stopwatch repair;
+        for (int i = 0; i < 20; ++i) {
+          editable.setPassable(door.x, door.y, i % 2 == 1);
+          hpa.cellChanged(door);
+        }
+        double repairUs = repair.elapsedSeconds() * 1e6 / 20.0;
+        std::string label = "hpa" + std::to_string(c);
+        std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8d %9.1f %9.1f\n", name,
+                    label.c_str(), problems.size(), h.usPerPath, h.expandedPerPath, h.meanOverhead,
+                    h.maxOverhead, a.usPerPath / h.usPerPath, hpa.stats().nodes, buildMs, repairUs);
+      }
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "ai_bench: %s\n", e.what());
+      return 2;
+    }
+  }
+  return 0;
+}
