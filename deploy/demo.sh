@@ -13,7 +13,9 @@ BIN="$BUILD_DIR/bin"
 mkdir -p "$RUN_DIR"
 rm -f "$RUN_DIR/gateway.port"  # a port left by an earlier run in the same folder would mislead us
 export CYCLONEDDS_URI="file://$ZONESIM_ROOT/deploy/cyclonedds.xml"
-DOMAIN="${ZONESIM_DDS_DOMAIN:-$(( (RANDOM % 200) + 20 ))}"
+# A domain whose ports (7400 + 250 d + [0, 250)) lie below the ephemeral port range, so no
+# player or gateway socket can draw one of them and receive Cyclone's discovery packets.
+DOMAIN="${ZONESIM_DDS_DOMAIN:-$(( (RANDOM % 90) + 1 ))}"
 
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }

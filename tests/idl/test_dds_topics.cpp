@@ -11,6 +11,7 @@
 #include "idl/dds_entity.h"
 #include "idl/dds_qos.h"
 #include "idl/topics.h"
+#include "support/dds_test_domain.h"
 #include "zonesim.h"
 
 namespace zonesim::dds {
@@ -18,11 +19,8 @@ namespace {
 
 class DdsTopics : public ::testing::Test {
  protected:
-  void SetUp() override {
-    setenv("CYCLONEDDS_URI", "file://" ZONESIM_SOURCE_DIR "/deploy/cyclonedds.xml", 1);
-    // A domain of our own: parallel tests and other runs never see our samples.
-    domain_ = 100 + int(getpid() % 120);
-  }
+  // A domain of our own: parallel tests and other runs never see our samples.
+  void SetUp() override { domain_ = zonesim::testing::privateDdsDomain(); }
   int domain_ = 0;
 };
 
@@ -84,7 +82,7 @@ TEST_F(DdsTopics, ABatchReachesOnlyTheReaderOfItsCellPartition) {
 }
 
 TEST_F(DdsTopics, ALateKeyframeReaderGetsTheLatestKeyframe) {
-  Entity participant = makeParticipant(domain_ + 1);
+  Entity participant = makeParticipant(domain_);
   Topics topics = makeTopics(participant.get());
   Qos q = cellKeyframeQos();
   PartitionWriter writer = makePartitionWriter(participant.get(), topics.cell_keyframes.get(),

@@ -5,12 +5,14 @@ own process group and killed on exit, so parallel ctest runs never see each othe
 leave processes behind.
 """
 import atexit
+import fcntl
 import json
 import os
 import random
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -32,9 +34,37 @@ def base_env(domain=None):
     return env
 
 
+_domain_locks = []
+
+
+def _ephemeral_ports():
+    try:
+        lo, hi = Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()
+        return int(lo), int(hi)
+    except (OSError, ValueError):
+        return 32768, 60999
+
+
 def free_dds_domain():
-    """A domain id for this run only (Cyclone accepts 0..232; each uses its own ports)."""
-    return random.Random(os.getpid() ^ time.time_ns()).randint(10, 230)
+    """A DDS domain for this run only, by the rule of tests/support/dds_test_domain.h: Cyclone's
+    domain d uses UDP ports 7400 + 250 d + [0, 250) and announces itself to all of them, so only
+    domains clear of the ephemeral port range are used (else a gateway or player socket could draw
+    one and count Cyclone's packets as drops), and a lock file held for the life of this process
+    keeps parallel tests (C++ and Python alike) on different domains."""
+    lo, hi = _ephemeral_ports()
+    clear = [d for d in range(1, 233) if 7400 + 250 * d + 249 < lo or 7400 + 250 * d > hi] or list(range(1, 233))
+    start = random.Random(os.getpid() ^ time.time_ns()).randrange(len(clear))
+    for i in range(len(clear)):
+        d = clear[(start + i) % len(clear)]
+        f = open(Path(tempfile.gettempdir()) / f"zonesim_test_dds_domain_{d}.lock", "a+")
+        try:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            f.close()
+            continue
+        _domain_locks.append(f)  # held until this process exits
+        return d
+    return clear[start]
 
 
 def mpirun(np, *args):
