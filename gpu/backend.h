@@ -42,7 +42,10 @@ Backend chooseBackend(GpuMode mode, std::size_t particles, bool opencl_available
 /// True when an OpenCL GPU or CPU device can be opened (checked once per process).
 bool openClAvailable();
 
-/// chooseBackend(parseGpuMode(mode), particles, openClAvailable()), as zone_node calls it.
+/// chooseBackend(parseGpuMode(mode), particles, openClAvailable()), as zone_node calls it. It
+/// keeps the fixed kAutoGpuThreshold rather than a probed one: every rank must make the same
+/// choice, and a probe timed on each rank would not (gpu/offload_probe.h explains the probed
+/// path and how ranks agree on it).
 Backend selectBackend(std::string_view mode, std::size_t particles);
 
 }  // namespace zonesim::gpu

@@ -58,6 +58,8 @@ std::size_t autoThreshold(Workload workload) {
 Backend selectBackend(std::string_view mode, Workload workload, std::size_t n) {
   GpuMode parsed = parseGpuMode(mode);
   if (parsed != GpuMode::Auto) return chooseBackend(parsed, workload, n, false, {});
+  // crossover() never returns less than the smallest probe size, so no probe is needed here.
+  if (n < kProbeSizes[0]) return Backend::Cpu;
   bool available = openClAvailable();
   OffloadThresholds t;
   t.particles = t.boids = t.crowd = available ? autoThreshold(workload) : kNeverOffload;

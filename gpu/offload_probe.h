@@ -30,8 +30,11 @@ OffloadThresholds calibrateThresholds(std::shared_ptr<ClRuntime> runtime,
 /// defaultThresholds()'s when there is no device or the probe fails.
 std::size_t autoThreshold(Workload workload);
 
-/// The --gpu decision for n items of workload, as zone_node makes it: parseGpuMode(mode), then
-/// chooseBackend with autoThreshold(workload). On and off never probe.
+/// The --gpu decision for n items of workload in a single process: parseGpuMode(mode), then
+/// chooseBackend with autoThreshold(workload). On and off never probe, nor does auto below the
+/// smallest probe size (the crossover is never below it). Probes are timed per process, so
+/// ranks that must agree should probe on one rank (calibrateThresholds), broadcast the
+/// OffloadThresholds and call chooseBackend with them.
 Backend selectBackend(std::string_view mode, Workload workload, std::size_t n);
 
 }  // namespace zonesim::gpu

@@ -89,6 +89,20 @@ TEST(OffloadProbe, SelectBackendKeepsOnAndOffWithoutProbing) {
   EXPECT_EQ(selectBackend("off", Workload::Boids, 100'000'000), Backend::Cpu);
   EXPECT_EQ(selectBackend("on", Workload::Crowd, 0), Backend::OpenCl);
   EXPECT_EQ(selectBackend("auto", Workload::Crowd, 0), Backend::Cpu);
+  EXPECT_EQ(selectBackend("auto", Workload::Boids, kProbeSizes[0] - 1), Backend::Cpu);
+}
+
+TEST(OffloadProbe, AutoFollowsTheProbedThreshold) {
+  std::size_t t = autoThreshold(Workload::Particles);
+  if (!openClAvailable()) {
+    EXPECT_EQ(t, defaultThresholds().particles);
+    EXPECT_EQ(selectBackend("auto", Workload::Particles, 100'000'000), Backend::Cpu);
+    return;
+  }
+  EXPECT_GE(t, kProbeSizes[0]) << "a crossover is never below the smallest probe";
+  if (t == kNeverOffload) return;
+  EXPECT_EQ(selectBackend("auto", Workload::Particles, t), Backend::OpenCl);
+  EXPECT_EQ(selectBackend("auto", Workload::Particles, t - 1), Backend::Cpu);
 }
 
 }  // namespace
