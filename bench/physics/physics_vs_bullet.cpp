@@ -3,6 +3,8 @@
 // Bullet: split impulse on), sleeping off, and prints ms per step and the stability figures.
 //
 //   physics_vs_bullet pyramid [steps]   physics_vs_bullet spheres [steps]
+//   physics_vs_bullet sleeping [steps]: zonesim only, the pyramid after it settles, with
+//   sleeping on and off (the cost of a scene at rest against awake).
 
 #include <btBulletDynamicsCommon.h>
 
@@ -46,8 +48,10 @@ double timeMs(F&& f) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timing) {
+std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timing,
+                          bool sleeping = false, int settle = 0, std::size_t* asleep = nullptr) {
   zp::WorldSettings settings;
+  settings.sleep.enabled = sleeping;
   settings.solver.velocity_iterations = 10;
   settings.solver.position_iterations = 2;
   zp::World world(settings);
@@ -63,9 +67,11 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
     d.angular_damping = scene.damping;
     world.addBody(d);
   }
+  for (int s = 0; s < settle; ++s) world.step(kDt);
   std::vector<double> ms;
   for (int s = 0; s < steps; ++s) ms.push_back(timeMs([&] { world.step(kDt); }));
   timing = summarise(ms);
+  if (asleep) *asleep = world.sleepingCount();
   return world.bodies().position;
 }
 
@@ -174,6 +180,19 @@ void reportSpheres(const char* engine, const zp::bench::Scene& scene, const std:
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "pyramid";
   const int steps = argc > 2 ? std::atoi(argv[2]) : 500;
+  if (which == "sleeping") {
+    const zp::bench::Scene scene = zp::bench::pyramidScene();
+    for (bool on : {false, true}) {
+      Timing t;
+      std::size_t asleep = 0;
+      runOurs(scene, steps, t, on, 300, &asleep);
+      std::printf(
+          "pyramid after 300 settling steps, sleeping %s: %.3f ms/step median, %.3f "
+          "mean over %d steps, %zu bodies asleep\n",
+          on ? "on " : "off", t.median_ms, t.mean_ms, steps, asleep);
+    }
+    return 0;
+  }
   const bool pyramid = which == "pyramid";
   const zp::bench::Scene scene = pyramid ? zp::bench::pyramidScene() : zp::bench::spheresScene();
   std::printf("%s: %zu bodies, %d steps of 1/60 s, 10 velocity iterations\n", which.c_str(),

@@ -16,7 +16,9 @@ World::World(const WorldSettings& settings)
     : settings_(settings), broadphase_(settings.broadphase) {}
 
 BodyIndex World::addBody(const BodyDesc& desc) {
-  return bodies_.add(desc);
+  const BodyIndex i = bodies_.add(desc);
+  islands_.resize(bodies_.size());
+  return i;
 }
 
 void World::step(double dt) {
@@ -30,12 +32,14 @@ void World::substep(double dt) {
   // Checked before the solve too: a NaN velocity in a contact would reach its partner.
   quarantineNonFinite();
   findContacts(dt);
+  wakeTouched();
   warmStartFromPrevious();
   solver_.prepare(bodies_, contacts_, settings_.solver, dt);
   solver_.solveVelocities(bodies_, contacts_);
   solver_.solvePositions(bodies_);
   integratePositions(dt);
   quarantineNonFinite();
+  if (settings_.sleep.enabled) islands_.update(bodies_, contacts_, settings_.sleep, dt);
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     bodies_.force[i].setZero();
     bodies_.torque[i].setZero();
@@ -56,6 +60,12 @@ void World::integrateForces(double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
     if (type == BodyType::Static) continue;
+    if (islands_.asleep(i)) {
+      // Sleeping bodies hold still: gravity is balanced by contacts that are not solved.
+      v_force_[i].setZero();
+      x_force_[i] = x_start_[i];
+      continue;
+    }
     if (type == BodyType::Kinematic) {
       v_force_[i] = v_start_[i];
       x_force_[i] = x_start_[i] + dt * v_start_[i];
@@ -89,7 +99,8 @@ void World::findContacts(double dt) {
     double grow = 0.5 * settings_.contact_margin;
     if (settings_.speculative) grow += bodies_.linear_velocity[i].norm() * dt;
     proxy_boxes_.push_back(box.expanded(grow));
-    proxy_moving_.push_back(bodies_.type[i] != BodyType::Static);
+    // Asleep counts as not moving: pairs of sleeping and static bodies are never found.
+    proxy_moving_.push_back(bodies_.type[i] != BodyType::Static && !islands_.asleep(i));
     proxy_body_.push_back(static_cast<BodyIndex>(i));
   }
   broadphase_.findPairs(proxy_boxes_, proxy_moving_, pairs_);
@@ -104,7 +115,7 @@ void World::findContacts(double dt) {
   for (BodyIndex plane : planes_) {
     for (std::size_t i = 0; i < n; ++i) {
       const auto b = static_cast<BodyIndex>(i);
-      if (b == plane || bodies_.type[b] == BodyType::Static) continue;
+      if (b == plane || bodies_.type[b] == BodyType::Static || islands_.asleep(b)) continue;
       const double speed = bodies_.linear_velocity[b].norm();
       addContact(std::min(plane, b), std::max(plane, b),
                  settings_.contact_margin + (settings_.speculative ? speed * dt : 0.0));
@@ -131,6 +142,15 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   contact.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
   contact.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
   contacts_.push_back(contact);
+}
+
+void World::wakeTouched() {
+  // A sleeping body in a contact was touched by an awake one: its island wakes. It joins the
+  // solve at once; contacts with its still-sleeping neighbours start next step.
+  for (const BodyContact& c : contacts_) {
+    if (islands_.asleep(c.a)) islands_.wake(c.a);
+    if (islands_.asleep(c.b)) islands_.wake(c.b);
+  }
 }
 
 void World::warmStartFromPrevious() {
@@ -169,7 +189,7 @@ void World::integratePositions(double dt) {
   const std::size_t n = bodies_.size();
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
-    if (type == BodyType::Static) continue;
+    if (type == BodyType::Static || islands_.asleep(i)) continue;
     // The integrator's displacement, corrected by what the contact solve changed in velocity,
     // plus the split-impulse pseudo-velocity (which then vanishes).
     const Vec3 correction = bodies_.linear_velocity[i] - v_force_[i];

@@ -12,6 +12,7 @@
 #include "zone_node/physics/contact_solver.h"
 #include "zone_node/physics/forces.h"
 #include "zone_node/physics/integrator.h"
+#include "zone_node/physics/islands.h"
 
 namespace zonesim::physics {
 
@@ -25,6 +26,8 @@ struct WorldSettings {
   /// Grow each body's contact search by its travel this step: speculative contacts stop fast
   /// bodies at thin walls without continuous collision detection.
   bool speculative = true;
+  /// Islands at rest fall asleep (off by default, as in the benchmark scenes).
+  SleepSettings sleep;
 };
 
 /// A set of bodies stepped together.
@@ -38,10 +41,22 @@ class World {
   /// Advances by dt, split into settings().substeps equal substeps.
   void step(double dt);
 
-  /// Adds a force through the centre of mass for the next step.
-  void applyForce(BodyIndex i, const Vec3& force) { bodies_.force[i] += force; }
-  /// Adds a torque for the next step.
-  void applyTorque(BodyIndex i, const Vec3& torque) { bodies_.torque[i] += torque; }
+  /// Adds a force through the centre of mass for the next step (wakes the body).
+  void applyForce(BodyIndex i, const Vec3& force) {
+    islands_.wake(i);
+    bodies_.force[i] += force;
+  }
+  /// Adds a torque for the next step (wakes the body).
+  void applyTorque(BodyIndex i, const Vec3& torque) {
+    islands_.wake(i);
+    bodies_.torque[i] += torque;
+  }
+  /// Wakes body i and the island it sleeps in; call after setting a velocity by hand.
+  void wake(BodyIndex i) { islands_.wake(i); }
+  /// True when body i sleeps.
+  bool asleep(BodyIndex i) const { return islands_.asleep(i); }
+  /// Number of sleeping bodies.
+  std::size_t sleepingCount() const { return islands_.sleepingCount(); }
 
   /// Body state (read and write between steps).
   BodyStorage& bodies() { return bodies_; }
@@ -61,6 +76,7 @@ class World {
   void integrateForces(double dt);
   void findContacts(double dt);
   void addContact(BodyIndex a, BodyIndex b, double margin);
+  void wakeTouched();
   void warmStartFromPrevious();
   void integratePositions(double dt);
   void quarantineNonFinite();
@@ -71,6 +87,7 @@ class World {
   LinearIntegrator integrator_;
   Broadphase broadphase_;
   ContactSolver solver_;
+  Islands islands_;
 
   // Per-step buffers, kept to avoid allocating in the step.
   std::vector<Vec3> x_start_, v_start_, x_force_, v_force_;
