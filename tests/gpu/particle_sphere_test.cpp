@@ -61,6 +61,24 @@ TEST_P(SphereBounce, NoParticleEndsInsideASphere) {
   }
 }
 
+// A particle emitted inside a sphere is pushed out along the radius to the surface, and its
+// inward velocity is reflected, within one step.
+TEST_P(SphereBounce, ParticleStartingInsideIsPushedOut) {
+  ZS_REQUIRE_BACKEND(GetParam());
+  ParticleSystem system = test::makeSystem(GetParam());
+  Pcg32 rng(2, 2);
+  // 0.5 m right of the centre, moving inward (-x) at 1 m/s.
+  ASSERT_EQ(system.emit(EmitSpec{{0.5, 2, 0}, {-1, 0, 0}, 0.0, 1.0, 10.0}, 1, rng), 1u);
+  const Sphere rock{{0, 2, 0}, 1.0};
+  system.step(0.01, {0, 0, 0}, 0.0, 1.0, {&rock, 1});
+  std::vector<Vec3d> x, v;
+  system.readPositions(x);
+  system.readVelocities(v);
+  EXPECT_NEAR(x[0].x, 1.0, 1e-6);
+  EXPECT_NEAR(x[0].y, 2.0, 1e-6);
+  EXPECT_NEAR(v[0].x, 1.0, 1e-6);
+}
+
 TEST_P(SphereBounce, RejectsANonPositiveRadius) {
   ZS_REQUIRE_BACKEND(GetParam());
   ParticleSystem system = test::makeSystem(GetParam());
