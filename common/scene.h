@@ -21,7 +21,9 @@ struct SceneBox {
 
 /// How the ground plane is split among zone ranks.
 struct ZoneLayout {
-  enum class Kind { Grid };
+  /// Grid: even columns x rows. Rcb: the same shape, with column and row boundaries placed by
+  /// recursive coordinate bisection so each zone starts with an equal share of the entities.
+  enum class Kind { Grid, Rcb };
   Kind kind = Kind::Grid;
   int columns = 1;  ///< zones along x
   int rows = 1;     ///< zones along z

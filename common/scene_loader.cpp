@@ -147,11 +147,14 @@ void readPopulations(const SceneMap& root, Scene& scene) {
 
 void readZones(const SceneMap& root, Scene& scene) {
   SceneMap zones = root.required("zones").map({"layout", "columns", "rows"});
+  scene.zones.kind = ZoneLayout::Kind::Grid;
   if (std::optional<SceneNode> layout = zones.optional("layout")) {
     std::string name = layout->text();
-    if (name != "grid") layout->fail("unknown layout '" + name + "' (allowed: grid)");
+    if (name == "rcb")
+      scene.zones.kind = ZoneLayout::Kind::Rcb;
+    else if (name != "grid")
+      layout->fail("unknown layout '" + name + "' (allowed: grid, rcb)");
   }
-  scene.zones.kind = ZoneLayout::Kind::Grid;
   scene.zones.columns = zones.required("columns").integer(Limit::between(1, kMaxZonesPerAxis));
   scene.zones.rows = zones.required("rows").integer(Limit::between(1, kMaxZonesPerAxis));
 }

@@ -133,6 +133,14 @@ int main(int argc, char** argv) {
   app.add_option("--check-every", o.zone.check_every, "ticks between conservation checks");
   app.add_option("--checkpoint-dir", o.zone.checkpoint_dir, "write checkpoints into this folder");
   app.add_option("--checkpoint-every", o.zone.checkpoint_every, "ticks between checkpoints");
+  app.add_option("--balance-every", o.zone.balance.every,
+                 "ticks between load-balance checks (0: boundaries stay fixed)");
+  app.add_option("--balance-threshold", o.zone.balance.threshold,
+                 "max/mean tick cost that starts moving boundaries")
+      ->check(CLI::Range(1.0, 100.0));
+  app.add_option("--balance-step", o.zone.balance.step,
+                 "fraction of the way boundaries move per check")
+      ->check(CLI::Range(0.01, 1.0));
   app.add_option(
       "--restart", o.restart,
       "continue from a checkpoint (a checkpoint folder, or a --checkpoint-dir: its LATEST)");

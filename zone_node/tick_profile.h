@@ -27,6 +27,8 @@ struct TickCounters {
   std::uint64_t inputs_unroutable = 0;
   std::uint64_t avatars_spawned = 0;
   std::uint64_t entities_destroyed = 0;
+  std::uint64_t rebalances = 0;
+  std::uint64_t imbalance_permille = 0;  ///< max/mean cost at the last balance check, x1000
   std::uint64_t migration_bytes = 0;
   std::uint64_t bodies_awake = 0;
   std::uint64_t particles_alive = 0;
@@ -55,6 +57,8 @@ inline constexpr CounterField kCounterFields[] = {
     {"inputs_unroutable", &TickCounters::inputs_unroutable, false},
     {"avatars_spawned", &TickCounters::avatars_spawned, false},
     {"entities_destroyed", &TickCounters::entities_destroyed, false},
+    {"rebalances", &TickCounters::rebalances, false},
+    {"imbalance_permille", &TickCounters::imbalance_permille, true},
     {"migration_bytes", &TickCounters::migration_bytes, false},
     {"bodies_awake", &TickCounters::bodies_awake, true},
     {"particles_alive", &TickCounters::particles_alive, true},

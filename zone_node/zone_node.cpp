@@ -30,7 +30,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
                                    }())),
       grid_(scene.world, scene.interest_cell_size),
       ids_(0),
-      migrator_(comm, 0, 1) {
+      migrator_(comm, 0, 1),
+      balancer_(comm, options.balance) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   ids_ = EntityIdAllocator(std::uint32_t(rank_));
@@ -101,6 +102,9 @@ void ZoneNode::tick() {
     publish();
   }
   ++tick_;
+  // The rank's own work; migrate and checks wait on other ranks and would hide the imbalance.
+  balancer_.record(profile_[Phase::Input] + profile_[Phase::Ai] + profile_[Phase::Physics] +
+                   profile_[Phase::Gpu] + profile_[Phase::Publish]);
   {
     ScopedTimer t(profile_[Phase::Checks]);
     checks();
@@ -245,6 +249,9 @@ void ZoneNode::checks() {
         writeCheckpoint(comm_, store_, tick_, ids_.issued(), options_.checkpoint_dir);
   if (options_.check_every > 0 && tick_ % std::uint64_t(options_.check_every) == 0)
     checkConservationNow();
+  // Moved boundaries take effect in the next migrate phase: leavers go to their new owners.
+  if (balancer_.check(tick_, layout_)) ++counters_.rebalances;
+  counters_.imbalance_permille = std::uint64_t(balancer_.imbalance() * 1000.0);
 }
 
 void ZoneNode::checkConservationNow() {

@@ -14,6 +14,7 @@
 #include "common/entity_id.h"
 #include "common/interest_grid.h"
 #include "common/scene.h"
+#include "zone_node/cluster/load_balancer.h"
 #include "zone_node/cluster/migration.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/tick_profile.h"
@@ -32,6 +33,7 @@ struct ZoneOptions {
   std::string gpu = "auto";
   std::string checkpoint_dir;  ///< empty: no checkpoints
   int checkpoint_every = 0;    ///< ticks between checkpoints
+  BalanceSettings balance;     ///< moving zone boundaries (every = 0: fixed)
 };
 
 struct CheckpointImage;
@@ -92,6 +94,7 @@ class ZoneNode {
   EntityIdAllocator ids_;
   IdSetDigest ledger_;  // created here minus destroyed here
   Migrator migrator_;
+  LoadBalancer balancer_;
   std::unique_ptr<ZoneLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;

@@ -142,7 +142,7 @@ const InlineCase kInlineCases[] = {
     {"unknown_layout",
      "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.05}\nseed: 1\n"
      "zones: {layout: hex, columns: 1, rows: 1}\n",
-     "4: zones.layout: unknown layout 'hex' (allowed: grid)"},
+     "4: zones.layout: unknown layout 'hex' (allowed: grid, rcb)"},
     {"negative_seed",
      "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.05}\nseed: -1\nzones: {columns: "
      "1, rows: 1}\n",
