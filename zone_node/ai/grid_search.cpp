@@ -17,15 +17,20 @@ bool before(const E& a, const E& b) {
   return a.idx < b.idx;
 }
 
-std::int64_t fixedKey(double v) {
-  return std::llround(v * 16777216.0);
+constexpr std::int64_t kStraight = std::int64_t(1) << 40;
+constexpr std::int64_t kDiagonal = 1554944255988;  // sqrt(2) * 2^40, rounded
+
+std::int64_t octileFixed(int dx, int dy) {
+  dx = dx < 0 ? -dx : dx;
+  dy = dy < 0 ? -dy : dy;
+  int lo = dx < dy ? dx : dy, hi = dx < dy ? dy : dx;
+  return std::int64_t(hi - lo) * kStraight + std::int64_t(lo) * kDiagonal;
 }
 
 }  // namespace
 
 GridSearch::GridSearch(const GridMap& map)
-    : map_(map),
-      nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0.0, -1, 0, -1}) {}
+    : map_(map), nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0, -1, 0, -1}) {}
 
 void GridSearch::beginSearch() {
   // Two stamps per search (open and closed); on wrap-around every record is reset once.
@@ -88,11 +93,11 @@ bool GridSearch::run(int start, int goal, const CellRect& bounds) {
   const int w = map_.width();
   const Cell goalCell = goal >= 0 ? map_.cellAt(goal) : Cell{};
   auto heuristic = [&](int x, int y) {
-    return goal >= 0 ? octileDistance(x - goalCell.x, y - goalCell.y) : 0.0;
+    return goal >= 0 ? octileFixed(x - goalCell.x, y - goalCell.y) : std::int64_t(0);
   };
   Cell s = map_.cellAt(start);
-  nodes_[start] = Node{0.0, -1, open, -1};
-  heapPush(HeapEntry{fixedKey(heuristic(s.x, s.y)), 0, start});
+  nodes_[start] = Node{0, -1, open, -1};
+  heapPush(HeapEntry{heuristic(s.x, s.y), 0, start});
 
   while (!heap_.empty()) {
     HeapEntry top = heapPop();
@@ -106,25 +111,25 @@ bool GridSearch::run(int start, int goal, const CellRect& bounds) {
     static constexpr int kDx[4] = {1, -1, 0, 0};
     static constexpr int kDy[4] = {0, 0, 1, -1};
     bool free[4];
-    auto relax = [&](int nx, int ny, double cost) {
+    auto relax = [&](int nx, int ny, std::int64_t cost) {
       int ni = ny * w + nx;
       Node& n = nodes_[ni];
-      double g = cur.g + cost;
+      std::int64_t g = cur.g + cost;
       if (n.stamp == closed) return;
       if (n.stamp == open) {
         if (n.g <= g) return;
         n.g = g;
         n.parent = top.idx;
-        heapDecrease(HeapEntry{fixedKey(g + heuristic(nx, ny)), fixedKey(g), ni});
+        heapDecrease(HeapEntry{g + heuristic(nx, ny), g, ni});
         return;
       }
       n = Node{g, top.idx, open, -1};
-      heapPush(HeapEntry{fixedKey(g + heuristic(nx, ny)), fixedKey(g), ni});
+      heapPush(HeapEntry{g + heuristic(nx, ny), g, ni});
     };
     for (int d = 0; d < 4; ++d) {
       int nx = x + kDx[d], ny = y + kDy[d];
       free[d] = bounds.contains(nx, ny) && map_.passableAt(ny * w + nx);
-      if (free[d]) relax(nx, ny, 1.0);
+      if (free[d]) relax(nx, ny, kStraight);
     }
     // A diagonal needs both cardinal cells beside it free (no corner cutting); those lie
     // inside `bounds` whenever both ends do, so the bounds check above covers them.
@@ -132,7 +137,7 @@ bool GridSearch::run(int start, int goal, const CellRect& bounds) {
       for (int iy = 2; iy < 4; ++iy) {
         if (!free[ix] || !free[iy]) continue;
         int nx = x + kDx[ix], ny = y + kDy[iy];
-        if (map_.passableAt(ny * w + nx)) relax(nx, ny, kDiagonalCost);
+        if (map_.passableAt(ny * w + nx)) relax(nx, ny, kDiagonal);
       }
     }
   }
@@ -164,7 +169,7 @@ void GridSearch::explore(Cell start, const CellRect& bounds) {
 double GridSearch::distanceTo(Cell c) const {
   if (!map_.inside(c.x, c.y)) return -1.0;
   const Node& n = nodes_[map_.index(c.x, c.y)];
-  return n.stamp == generation_ + 1 ? n.g : -1.0;
+  return n.stamp == generation_ + 1 ? double(n.g) / double(kStraight) : -1.0;
 }
 
 void GridSearch::pathTo(Cell c, GridPath& out) const {
@@ -175,9 +180,9 @@ void GridSearch::pathTo(Cell c, GridPath& out) const {
 
 void GridSearch::tracePath(int goal, GridPath& out) const {
   out.clear();
-  out.length = nodes_[goal].g;
   for (int i = goal; i >= 0; i = nodes_[i].parent) out.cells.push_back(map_.cellAt(i));
   std::reverse(out.cells.begin(), out.cells.end());
+  out.length = pathLength(out.cells);
 }
 
 }  // namespace zonesim::ai

@@ -43,16 +43,18 @@ class GridSearch {
 
  private:
   struct Node {
-    double g;
+    std::int64_t g;  // fixed point, see HeapEntry
     std::int32_t parent;
     // stamp == generation_: open, stamp == generation_ + 1: closed, anything else: untouched.
     std::uint32_t stamp;
     std::int32_t heapPos;  // position in heap_ while open
   };
-  // f and g as fixed-point keys (2^-24 units): sums of 1 and sqrt(2) reached in different
-  // orders differ in the last bits, and those bits must not break f ties (which would defeat
-  // the prefer-deeper-g tie-break and multiply expansions on open ground). Distinct octile
-  // costs on maps of this size differ by far more than one unit, so ordering stays exact.
+  // Costs are integers in 2^-40 units (a cardinal step is 2^40, a diagonal sqrt(2) * 2^40
+  // rounded). Doubles reached through different orders of 1 and sqrt(2) steps differ in their
+  // last bits, and those bits broke f ties arbitrarily (defeating the prefer-deeper-g
+  // tie-break); integer sums tie exactly, compare fast, and the octile heuristic in the same
+  // units stays consistent. Distinct costs on maps this size differ by far more than the
+  // rounding, so the order is that of the exact costs; lengths are reported from the cells.
   struct HeapEntry {
     std::int64_t f;
     std::int64_t g;
