@@ -85,14 +85,28 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
   }
 }
 
+namespace {
+
+/// Applies impulse lambda along d through a row's angular parts.
+inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, double mb,
+                     const Vec3& d, const auto& row, double lambda) {
+  bodies.linear_velocity[a] -= (ma * lambda) * d;
+  bodies.angular_velocity[a] -= lambda * row.wa;
+  bodies.linear_velocity[b] += (mb * lambda) * d;
+  bodies.angular_velocity[b] += lambda * row.wb;
+}
+
+}  // namespace
+
 void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts) {
-  auto& v = bodies.linear_velocity;
-  auto& w = bodies.angular_velocity;
+  warmStart(bodies);
+  for (int it = 0; it < settings_.velocity_iterations; ++it) iterate(bodies);
+  storeImpulses(contacts);
+}
+
+void ContactSolver::warmStart(BodyStorage& bodies) {
   auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
-    v[k.a] -= (k.ma * lambda) * d;
-    w[k.a] -= lambda * row.wa;
-    v[k.b] += (k.mb * lambda) * d;
-    w[k.b] += lambda * row.wb;
+    applyRow(bodies, k.a, k.b, k.ma, k.mb, d, row, lambda);
   };
   for (const Constraint& k : constraints_) {
     for (int i = 0; i < k.count; ++i) {
@@ -103,33 +117,42 @@ void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> 
       apply(k, k.t[1], fp.row[1], fp.jt[1]);
     }
   }
-  for (int it = 0; it < settings_.velocity_iterations; ++it) {
-    // All normals first, then all friction with the limits those normals set (as Bullet's
-    // sequential impulse solver does): the weight path down a stack converges faster when no
-    // friction solve disturbs it in between.
-    for (const Constraint& k : constraints_) {
-      for (int i = 0; i < k.count; ++i) {
-        NormalPoint& p = normal_[k.first + i];
-        const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
-        const double old = p.jn;
-        p.jn = std::max(0.0, old - p.row.mass * (vn - p.target));
-        apply(k, k.n, p.row, p.jn - old);
-      }
+}
+
+void ContactSolver::iterate(BodyStorage& bodies) {
+  auto& v = bodies.linear_velocity;
+  auto& w = bodies.angular_velocity;
+  auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
+    applyRow(bodies, k.a, k.b, k.ma, k.mb, d, row, lambda);
+  };
+  // All normals first, then all friction with the limits those normals set (as Bullet's
+  // sequential impulse solver does): the weight path down a stack converges faster when no
+  // friction solve disturbs it in between.
+  for (const Constraint& k : constraints_) {
+    for (int i = 0; i < k.count; ++i) {
+      NormalPoint& p = normal_[k.first + i];
+      const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
+      const double old = p.jn;
+      p.jn = std::max(0.0, old - p.row.mass * (vn - p.target));
+      apply(k, k.n, p.row, p.jn - old);
     }
-    for (const Constraint& k : constraints_) {
-      for (int i = 0; i < k.count; ++i) {
-        FrictionPoint& p = friction_[k.first + i];
-        const double limit = k.friction * normal_[k.first + i].jn;
-        for (int t = 0; t < 2; ++t) {
-          const Row& row = p.row[t];
-          const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
-          const double old = p.jt[t];
-          p.jt[t] = std::clamp(old - row.mass * vt, -limit, limit);
-          apply(k, k.t[t], row, p.jt[t] - old);
-        }
+  }
+  for (const Constraint& k : constraints_) {
+    for (int i = 0; i < k.count; ++i) {
+      FrictionPoint& p = friction_[k.first + i];
+      const double limit = k.friction * normal_[k.first + i].jn;
+      for (int t = 0; t < 2; ++t) {
+        const Row& row = p.row[t];
+        const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
+        const double old = p.jt[t];
+        p.jt[t] = std::clamp(old - row.mass * vt, -limit, limit);
+        apply(k, k.t[t], row, p.jt[t] - old);
       }
     }
   }
+}
+
+void ContactSolver::storeImpulses(std::span<BodyContact> contacts) const {
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     const Constraint& k = constraints_[c];
     for (int i = 0; i < k.count; ++i) {

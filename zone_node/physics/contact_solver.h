@@ -45,8 +45,16 @@ class ContactSolver {
   /// Builds the constraints (effective masses, restitution and speculative targets).
   void prepare(const BodyStorage& bodies, std::span<const BodyContact> contacts,
                const SolverSettings& settings, double dt);
-  /// Applies last step's impulses, runs the velocity iterations, writes impulses back.
+  /// Applies last step's impulses.
+  void warmStart(BodyStorage& bodies);
+  /// One velocity iteration over all contacts (normals, then friction).
+  void iterate(BodyStorage& bodies);
+  /// Writes the accumulated impulses back for next step's warm start.
+  void storeImpulses(std::span<BodyContact> contacts) const;
+  /// Warm start, settings().velocity_iterations iterations, then storeImpulses.
   void solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts);
+  /// The settings given to the last prepare.
+  const SolverSettings& settings() const { return settings_; }
   /// Runs the split-impulse iterations; the pseudo-velocities come back per body.
   void solvePositions(const BodyStorage& bodies);
   /// Pseudo linear velocity of body i from the last solvePositions.

@@ -35,7 +35,15 @@ void World::substep(double dt) {
   wakeTouched();
   warmStartFromPrevious();
   solver_.prepare(bodies_, contacts_, settings_.solver, dt);
-  solver_.solveVelocities(bodies_, contacts_);
+  // Contacts and joints share the Gauss-Seidel iterations, so each sees the other's impulses.
+  joints_.prepare(bodies_, dt, settings_.joint_beta);
+  solver_.warmStart(bodies_);
+  joints_.warmStart(bodies_);
+  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) {
+    solver_.iterate(bodies_);
+    joints_.iterate(bodies_);
+  }
+  solver_.storeImpulses(contacts_);
   solver_.solvePositions(bodies_);
   integratePositions(dt);
   quarantineNonFinite();

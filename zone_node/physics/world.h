@@ -10,6 +10,7 @@
 #include "zone_node/physics/body_storage.h"
 #include "zone_node/physics/broadphase.h"
 #include "zone_node/physics/contact_solver.h"
+#include "zone_node/physics/distance_joints.h"
 #include "zone_node/physics/forces.h"
 #include "zone_node/physics/integrator.h"
 #include "zone_node/physics/islands.h"
@@ -23,6 +24,8 @@ struct WorldSettings {
   SolverSettings solver;
   int substeps = 1;
   double contact_margin = 0.02;  ///< m: contacts are kept this far before touching.
+  /// Baumgarte fraction of a joint's length error removed per step.
+  double joint_beta = 0.2;
   /// Grow each body's contact search by its travel this step: speculative contacts stop fast
   /// bodies at thin walls without continuous collision detection.
   bool speculative = true;
@@ -51,6 +54,10 @@ class World {
     islands_.wake(i);
     bodies_.torque[i] += torque;
   }
+  /// Adds a distance joint (solved with the contacts) and returns its index.
+  std::uint32_t addDistanceJoint(const DistanceJoint& joint) { return joints_.add(joint); }
+  /// The distance joints with their last impulses.
+  std::span<const DistanceJoint> distanceJoints() const { return joints_.joints(); }
   /// Wakes body i and the island it sleeps in; call after setting a velocity by hand.
   void wake(BodyIndex i) { islands_.wake(i); }
   /// True when body i sleeps.
@@ -88,6 +95,7 @@ class World {
   Broadphase broadphase_;
   ContactSolver solver_;
   Islands islands_;
+  DistanceJoints joints_;
 
   // Per-step buffers, kept to avoid allocating in the step.
   std::vector<Vec3> x_start_, v_start_, x_force_, v_force_;
