@@ -1,8 +1,6 @@
 // client_stub: N simulated players against one gateway. Exits cleanly on SIGINT/SIGTERM or
 // after --duration, writing the summary JSON; exits non-zero with a message on any error.
 
-#include <signal.h>
-
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -12,25 +10,7 @@
 #include "common/cli.h"
 #include "common/log.h"
 #include "common/scene.h"
-
-namespace {
-
-std::atomic<bool> g_stop{false};
-
-void onSignal(int) {
-  g_stop.store(true);
-}
-
-void installSignalHandlers() {
-  struct sigaction sa {};
-  sa.sa_handler = onSignal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: poll() returns EINTR and the loop sees the flag at once
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
-
-}  // namespace
+#include "common/stop_signal.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"zonesim client_stub: simulated players for a gateway"};
@@ -50,7 +30,7 @@ int main(int argc, char** argv) {
   app.add_option("--summary", summary_path, "write the summary JSON here");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
-  installSignalHandlers();
+  zonesim::installStopSignals();
 
   try {
     zonesim::applyCommonOptions(common, "clients");
@@ -68,7 +48,7 @@ int main(int argc, char** argv) {
       cfg.metrics_path = metrics_dir + "/clients.jsonl";
     }
     zonesim::clients::ClientFleet fleet(cfg);
-    fleet.run(g_stop);
+    fleet.run(zonesim::stopRequested());
     std::string summary = fleet.summaryJson();
     if (!summary_path.empty()) {
       std::ofstream f(summary_path);

@@ -2,8 +2,6 @@
 // "gateway listening on 127.0.0.1:PORT" once ready; exits cleanly on SIGINT/SIGTERM or after
 // --duration, printing a JSON summary line; exits non-zero with a message on any error.
 
-#include <signal.h>
-
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -12,24 +10,10 @@
 #include "common/cli.h"
 #include "common/log.h"
 #include "common/scene.h"
+#include "common/stop_signal.h"
 #include "gateway/gateway.h"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-void onSignal(int) {
-  g_stop.store(true);
-}
-
-void installSignalHandlers() {
-  struct sigaction sa {};
-  sa.sa_handler = onSignal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: poll() returns EINTR and the loop sees the flag at once
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
 
 // Written to a temporary name and renamed, so a script polling for the file never reads it half
 // written.
@@ -73,7 +57,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-sessions", cfg.max_sessions, "refuse Hellos beyond this many sessions");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
-  installSignalHandlers();
+  zonesim::installStopSignals();
 
   try {
     zonesim::applyCommonOptions(common, "gateway");
@@ -88,7 +72,7 @@ int main(int argc, char** argv) {
     if (!port_file.empty()) writeFile(port_file, std::to_string(gateway.port()));
     std::printf("gateway listening on 127.0.0.1:%u\n", unsigned(gateway.port()));
     std::fflush(stdout);
-    gateway.run(g_stop, duration);
+    gateway.run(zonesim::stopRequested(), duration);
     std::string summary = gateway.summaryJson();
     std::printf("gateway summary %s\n", summary.c_str());
     std::fflush(stdout);

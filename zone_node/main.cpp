@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -15,17 +14,13 @@
 #include "common/cli.h"
 #include "common/metrics.h"
 #include "common/scene.h"
+#include "common/stop_signal.h"
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/state_dump.h"
 #include "zone_node/zone_node.h"
 #include "zone_node/zone_report.h"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-void onSignal(int) {
-  g_stop = true;
-}
 
 struct Options {
   std::string scene;
@@ -41,7 +36,8 @@ struct Options {
 
 /// Sleeps until an absolute CLOCK_MONOTONIC time (fixed-rate ticks without drift).
 void sleepUntil(const timespec& t) {
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR && !g_stop) {
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR &&
+         !zonesim::stopRequested()) {
   }
 }
 
@@ -54,7 +50,7 @@ timespec addSeconds(timespec t, double s) {
 
 /// All ranks stop together: any rank that saw a signal stops everyone.
 bool anyRankStopping(MPI_Comm comm) {
-  int mine = g_stop ? 1 : 0, any = 0;
+  int mine = zonesim::stopRequested() ? 1 : 0, any = 0;
   MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
   return any != 0;
 }
@@ -114,6 +110,7 @@ int run(const Options& o, MPI_Comm comm) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  zonesim::installStopSignals();
   Options o;
   CLI::App app{"zonesim zone node: one MPI rank per zone"};
   app.add_option("--scene", o.scene, "scene file (YAML)")->required();
@@ -152,8 +149,6 @@ int main(int argc, char** argv) {
   zonesim::applyCommonOptions(o.common, "zone");
 
   MPI_Init(&argc, &argv);
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
   int rc = 1;
   try {
     rc = run(o, MPI_COMM_WORLD);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "common/rng.h"
 
@@ -16,6 +17,15 @@ Vec3 uniformIn(Pcg32& rng, const SceneBox& box, double y) {
 /// Each entity's generator: stream from its id, so draws never depend on which rank runs it.
 Pcg32 entityRng(const Scene& scene, EntityId id) {
   return Pcg32(scene.seed, id.value);
+}
+
+/// The next scene entity of a kind: its id (the global index) and its own random stream.
+std::pair<EntityRecordData, Pcg32> nextSceneEntity(const Scene& scene, EntityKind kind,
+                                                   std::uint64_t& counter) {
+  EntityRecordData r;
+  r.id = EntityId::make(kSceneCreator, ++counter);
+  r.kind = kind;
+  return {r, entityRng(scene, r.id)};
 }
 
 }  // namespace
@@ -39,10 +49,7 @@ void forEachInitialEntity(const Scene& scene,
   std::uint64_t counter = 0;
   for (const NpcPopulation& p : scene.npcs) {
     for (int i = 0; i < p.count; ++i) {
-      EntityRecordData r;
-      r.id = EntityId::make(kSceneCreator, ++counter);
-      r.kind = EntityKind::Npc;
-      Pcg32 rng = entityRng(scene, r.id);
+      auto [r, rng] = nextSceneEntity(scene, EntityKind::Npc, counter);
       r.pos = uniformIn(rng, p.region, scene.world.min.y);
       r.npc.max_speed = rng.uniform(p.min_speed, p.max_speed);
       r.npc.accel = p.acceleration;
@@ -55,10 +62,7 @@ void forEachInitialEntity(const Scene& scene,
   }
   for (const RigidBodyPopulation& p : scene.rigid_bodies) {
     for (int i = 0; i < p.count; ++i) {
-      EntityRecordData r;
-      r.id = EntityId::make(kSceneCreator, ++counter);
-      r.kind = EntityKind::RigidBody;
-      Pcg32 rng = entityRng(scene, r.id);
+      auto [r, rng] = nextSceneEntity(scene, EntityKind::RigidBody, counter);
       r.pos =
           uniformIn(rng, p.region,
                     scene.world.min.y + p.radius + rng.uniform(p.drop_height, p.max_drop_height));
@@ -72,10 +76,7 @@ void forEachInitialEntity(const Scene& scene,
   }
   for (const EmitterPopulation& p : scene.emitters) {
     for (int i = 0; i < p.count; ++i) {
-      EntityRecordData r;
-      r.id = EntityId::make(kSceneCreator, ++counter);
-      r.kind = EntityKind::Emitter;
-      Pcg32 rng = entityRng(scene, r.id);
+      auto [r, rng] = nextSceneEntity(scene, EntityKind::Emitter, counter);
       r.pos = uniformIn(rng, p.region, scene.world.min.y);
       r.emitter.rate = p.rate;
       r.emitter.lifetime = p.lifetime;
