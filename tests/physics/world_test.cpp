@@ -263,6 +263,35 @@ TEST(World, BroadphaseChoiceDoesNotChangeTheResult) {
   }
 }
 
+// Large worlds: everything is double precision, so a scene 100 km from the origin behaves as
+// it does at the origin (relative positions agree to well under a micrometre).
+TEST(World, SceneFarFromTheOriginMatchesTheSceneAtTheOrigin) {
+  auto settle = [](const Vec3& offset) {
+    World world;
+    BodyDesc floor;
+    floor.type = BodyType::Static;
+    floor.shape = Shape::box(Vec3(10, 1, 10));
+    floor.position = offset + Vec3(0, -1, 0);
+    world.addBody(floor);
+    for (int k = 0; k < 4; ++k) {
+      BodyDesc box;
+      box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
+      box.position = offset + Vec3(0.1 * k, 0.6 + 1.05 * k, 0);
+      box.orientation = about(Vec3::UnitY(), 10.0 * k);
+      world.addBody(box);
+    }
+    for (int s = 0; s < 120; ++s) world.step(1.0 / 60.0);
+    std::vector<Vec3> relative;
+    for (std::size_t i = 1; i < world.bodies().size(); ++i) {
+      relative.push_back(world.bodies().position[i] - offset);
+    }
+    return relative;
+  };
+  const auto near = settle(Vec3::Zero());
+  const auto far = settle(Vec3(1e5, 0, -1e5));
+  for (std::size_t i = 0; i < near.size(); ++i) EXPECT_LT((near[i] - far[i]).norm(), 1e-6);
+}
+
 TEST(World, ThinWallStopsABodyAt200MetresPerSecond) {
   World world;
   world.forces().gravity.setZero();
