@@ -2,7 +2,8 @@
 // A* over every N-th scenario problem, then HPA* on the same problems for each cluster size,
 // and prints one table row per (map, planner): µs per path, mean and max length overhead
 // against the listed optimum, speed-up over A*, the abstraction's size and build time, and the
-// time to repair it after one cell changes (a door).
+// time to repair it after one cell changes (a door). Rows `hpaNsK` smooth windows of K
+// abstract steps.
 
 #include <cstdio>
 #include <cstdlib>
@@ -86,27 +87,31 @@ int main(int argc, char** argv) {
                   1.0, "-", "-", "-");
 
       for (int c : clusterSizes) {
-        zonesim::Stopwatch build;
-        HpaPlanner hpa(map, HpaConfig{c, 6});
-        double buildMs = build.elapsedSeconds() * 1e3;
-        Row h = timePlanner(problems, [&](Cell s, Cell g, GridPath& out) {
-          hpa.findPath(s, g, out);
-          return hpa.stats().expanded;
-        });
-        // Repair cost: close and reopen one passable cell on a cluster border, 20 times.
-        GridMap& editable = map;
-        Cell door{c - 1, 0};
-        for (int y = 0; y < map.height() && !map.passable(door.x, door.y); ++y) door.y = y;
-        zonesim::Stopwatch repair;
-        for (int i = 0; i < 20; ++i) {
-          editable.setPassable(door.x, door.y, i % 2 == 1);
-          hpa.cellChanged(door);
+        for (int span : {0, 3}) {
+          zonesim::Stopwatch build;
+          HpaPlanner hpa(map, HpaConfig{c, 6, span});
+          double buildMs = build.elapsedSeconds() * 1e3;
+          Row h = timePlanner(problems, [&](Cell s, Cell g, GridPath& out) {
+            hpa.findPath(s, g, out);
+            return hpa.stats().expanded;
+          });
+          // Repair cost: close and reopen one passable cell on a cluster border, 20 times.
+          GridMap& editable = map;
+          Cell door{c - 1, 0};
+          for (int y = 0; y < map.height() && !map.passable(door.x, door.y); ++y) door.y = y;
+          zonesim::Stopwatch repair;
+          for (int i = 0; i < 20; ++i) {
+            editable.setPassable(door.x, door.y, i % 2 == 1);
+            hpa.cellChanged(door);
+          }
+          double repairUs = repair.elapsedSeconds() * 1e6 / 20.0;
+          std::string label =
+              "hpa" + std::to_string(c) + (span > 0 ? "s" + std::to_string(span) : "");
+          std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8d %9.1f %9.1f\n", name,
+                      label.c_str(), problems.size(), h.usPerPath, h.expandedPerPath,
+                      h.meanOverhead, h.maxOverhead, a.usPerPath / h.usPerPath, hpa.stats().nodes,
+                      buildMs, repairUs);
         }
-        double repairUs = repair.elapsedSeconds() * 1e6 / 20.0;
-        std::string label = "hpa" + std::to_string(c);
-        std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8d %9.1f %9.1f\n", name,
-                    label.c_str(), problems.size(), h.usPerPath, h.expandedPerPath, h.meanOverhead,
-                    h.maxOverhead, a.usPerPath / h.usPerPath, hpa.stats().nodes, buildMs, repairUs);
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "ai_bench: %s\n", e.what());

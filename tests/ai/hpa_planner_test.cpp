@@ -34,6 +34,28 @@ TEST(HpaPlanner, ScenariosAreCompleteWithBoundedOverhead) {
   }
 }
 
+TEST(HpaPlanner, SmoothingNeverLengthensAndCutsTheOverhead) {
+  GridMap m = loadMovingAiMap(test::movingAiPath("random512-10-0.map"));
+  auto problems = loadScenario(test::movingAiPath("random512-10-0.map.scen"));
+  HpaPlanner raw(m, HpaConfig{16, 6, 0});
+  HpaPlanner smooth(m, HpaConfig{16, 6, 3});
+  GridPath a, b;
+  double rawTotal = 0, smoothTotal = 0;
+  for (std::size_t i = 0; i < problems.size(); i += 9) {
+    const auto& p = problems[i];
+    ASSERT_TRUE(raw.findPath(p.start, p.goal, a));
+    ASSERT_TRUE(smooth.findPath(p.start, p.goal, b));
+    ASSERT_TRUE(isValidPath(m, b.cells)) << "line " << p.line;
+    EXPECT_EQ(b.cells.front(), p.start);
+    EXPECT_EQ(b.cells.back(), p.goal);
+    EXPECT_LE(b.length, a.length + 1e-9) << "line " << p.line;
+    EXPECT_GE(b.length, p.optimal * (1 - 1e-3) - 1e-3) << "line " << p.line;
+    rawTotal += a.length / p.optimal - 1;
+    smoothTotal += b.length / p.optimal - 1;
+  }
+  EXPECT_LT(smoothTotal, rawTotal);
+}
+
 TEST(HpaPlanner, FindsAPathExactlyWhenOneExists) {
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     GridMap m = test::randomMap(70, 53, 0.1 + 0.02 * double(seed), seed);

@@ -296,11 +296,13 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
     return map_.cellAt(nodeCell_[std::size_t(node)]);
   };
   out.cells.push_back(start);
+  waypoints_.assign(1, 0);
   for (std::size_t i = 1; i < abstractPath_.size(); ++i) {
     Cell a = cellOfNode(abstractPath_[i - 1]), b = cellOfNode(abstractPath_[i]);
     int ka = clusterOf(a.x, a.y);
     if (ka != clusterOf(b.x, b.y)) {
       out.cells.push_back(b);  // an inter-cluster step across a border
+      waypoints_.push_back(std::int32_t(out.cells.size()) - 1);
       continue;
     }
     if (a == b) continue;
@@ -311,9 +313,37 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
       return false;
     }
     out.cells.insert(out.cells.end(), piece_.cells.begin() + 1, piece_.cells.end());
+    waypoints_.push_back(std::int32_t(out.cells.size()) - 1);
   }
+  if (config_.smoothSpan > 0) smooth(out);
   out.length = pathLength(out.cells);
   return true;
+}
+
+void HpaPlanner::smooth(GridPath& out) {
+  smoothed_.clear();
+  smoothed_.push_back(out.cells.front());
+  const std::size_t last = waypoints_.size() - 1;
+  for (std::size_t k = 0; k < last; k += std::size_t(config_.smoothSpan)) {
+    const std::size_t a = std::size_t(waypoints_[k]);
+    const std::size_t b =
+        std::size_t(waypoints_[std::min(k + std::size_t(config_.smoothSpan), last)]);
+    // The window's box holds the current sub-path, so the bounded optimum is never longer.
+    CellRect box{out.cells[a].x, out.cells[a].y, out.cells[a].x + 1, out.cells[a].y + 1};
+    for (std::size_t i = a + 1; i <= b; ++i) {
+      box.x0 = std::min(box.x0, out.cells[i].x);
+      box.y0 = std::min(box.y0, out.cells[i].y);
+      box.x1 = std::max(box.x1, out.cells[i].x + 1);
+      box.y1 = std::max(box.y1, out.cells[i].y + 1);
+    }
+    if (search_.findPath(out.cells[a], out.cells[b], box, piece_)) {
+      smoothed_.insert(smoothed_.end(), piece_.cells.begin() + 1, piece_.cells.end());
+    } else {
+      smoothed_.insert(smoothed_.end(), out.cells.begin() + std::ptrdiff_t(a) + 1,
+                       out.cells.begin() + std::ptrdiff_t(b) + 1);
+    }
+  }
+  out.cells.swap(smoothed_);
 }
 
 }  // namespace zonesim::ai

@@ -4,6 +4,8 @@
 // edges whose costs are optimal paths inside the cluster. A query links start and goal to their
 // clusters' nodes, searches the small abstract graph, then refines each abstract edge with a
 // search bounded to one cluster. Paths are near-optimal; the overhead is measured, not assumed.
+// Optional smoothing re-plans windows of a few abstract steps with A* bounded to the window's
+// bounding box, which can only shorten the path and keeps it on the 8-connected grid.
 
 #include <cstdint>
 #include <vector>
@@ -18,6 +20,7 @@ namespace zonesim::ai {
 struct HpaConfig {
   int clusterSize = 16;  ///< cluster side in cells
   int wideEntrance = 6;  ///< entrances at least this wide get a transition at each end
+  int smoothSpan = 0;    ///< re-optimise windows of this many abstract steps (0: raw HPA*)
 };
 
 /// Size of the abstraction, for reports.
@@ -75,7 +78,7 @@ class HpaPlanner {
   void computeIntraEdges(int cluster);
   void assembleGraph();
   bool searchAbstract(int startNode, int goalNode, Cell goal);
-  bool refine(int from, int to, GridPath& piece);
+  void smooth(GridPath& out);
 
   const GridMap& map_;
   HpaConfig config_;
@@ -101,6 +104,8 @@ class HpaPlanner {
   std::vector<std::int32_t> scratchCells_;
   GridPath piece_;
   GridPath direct_;
+  std::vector<std::int32_t> waypoints_;  // positions in the refined path of abstract nodes
+  std::vector<Cell> smoothed_;
   std::uint32_t generation_ = 0;
   int expanded_ = 0;
 };
