@@ -74,6 +74,44 @@ TEST_P(PathServiceTest, BudgetSpreadsRequestsOverTicks) {
   }
 }
 
+TEST_P(PathServiceTest, ExpansionBudgetStopsATickButAlwaysPlansOne) {
+  GridMap m = test::randomMap(96, 96, 0.15, 8);
+  Pcg32 rng(8, 2);
+  std::vector<std::pair<Cell, Cell>> queries;
+  for (int i = 0; i < 12; ++i) {
+    queries.push_back({test::randomFreeCell(m, rng), test::randomFreeCell(m, rng)});
+  }
+  std::uint64_t total = 0;
+  auto ticksToServe = [&](int expansionsPerTick) {
+    PathServiceConfig config;
+    config.planner = GetParam();
+    config.pathsPerTick = 100;
+    config.expansionsPerTick = expansionsPerTick;
+    config.cacheCapacity = 0;
+    PathService service(m, config);
+    for (auto [s, g] : queries) service.request(s, g);
+    int ticks = 0;
+    std::uint64_t before = 0;
+    while (service.queued() > 0) {
+      service.tick();
+      ++ticks;
+      std::uint64_t planned = service.stats().planned - before;
+      before = service.stats().planned;
+      EXPECT_GE(planned, 1u) << "every tick makes progress";
+    }
+    EXPECT_EQ(service.stats().planned, queries.size());
+    EXPECT_GT(service.stats().expanded, 0u);
+    total = service.stats().expanded;
+    return ticks;
+  };
+  EXPECT_EQ(ticksToServe(0), 1);
+  EXPECT_EQ(ticksToServe(1), 12) << "a tiny budget still plans one request per tick";
+  // A quarter of the whole work per tick: a few ticks, not one, not one per request.
+  int middle = ticksToServe(int(total / 4));
+  EXPECT_GT(middle, 1);
+  EXPECT_LT(middle, 12);
+}
+
 TEST_P(PathServiceTest, RepeatedQueriesComeFromTheCacheAndCostNoBudget) {
   GridMap m = twoDoors();
   PathServiceConfig config;

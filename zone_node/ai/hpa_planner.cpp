@@ -190,7 +190,8 @@ void HpaPlanner::cellChanged(Cell c) {
 }
 
 HpaStats HpaPlanner::stats() const {
-  return HpaStats{clustersX_ * clustersY_, int(nodeCell_.size()), int(edges_.size()), expanded_};
+  return HpaStats{clustersX_ * clustersY_, int(nodeCell_.size()), int(edges_.size()), expanded_,
+                  gridExpanded_};
 }
 
 bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
@@ -240,6 +241,7 @@ bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
 bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
   out.clear();
   expanded_ = 0;
+  gridExpanded_ = 0;
   if (!map_.passable(start.x, start.y) || !map_.passable(goal.x, goal.y)) return false;
   if (map_.version() != builtVersion_) rebuild();
   if (start == goal) {
@@ -260,6 +262,7 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
   // Link the goal, then the start, to the abstract nodes of their clusters.
   clusterNodeCells(goalCluster, scratchCells_);
   search_.explore(goal, clusterRect(goalCluster));
+  gridExpanded_ += search_.lastStats().expanded;
   for (std::int32_t cell : scratchCells_) {
     double d = search_.distanceTo(map_.cellAt(cell));
     if (d < 0) continue;
@@ -269,6 +272,7 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
   }
   clusterNodeCells(startCluster, scratchCells_);
   search_.explore(start, clusterRect(startCluster));
+  gridExpanded_ += search_.lastStats().expanded;
   startEdges_.clear();
   for (std::int32_t cell : scratchCells_) {
     double d = search_.distanceTo(map_.cellAt(cell));
@@ -279,6 +283,7 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
   // only one (a cluster with no entrances).
   bool haveDirect = startCluster == goalCluster &&
                     search_.findPath(start, goal, clusterRect(startCluster), direct_);
+  if (startCluster == goalCluster) gridExpanded_ += search_.lastStats().expanded;
   bool haveAbstract = searchAbstract(startNode, goalNode, goal);
   if (haveDirect && (!haveAbstract || direct_.length <= records_[std::size_t(goalNode)].g)) {
     out.cells = direct_.cells;
@@ -307,6 +312,7 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
     }
     if (a == b) continue;
     bool ok = search_.findPath(a, b, clusterRect(ka), piece_);
+    gridExpanded_ += search_.lastStats().expanded;
     assert(ok && "an abstract edge must refine inside its cluster");
     if (!ok) {
       out.clear();
@@ -336,7 +342,9 @@ void HpaPlanner::smooth(GridPath& out) {
       box.x1 = std::max(box.x1, out.cells[i].x + 1);
       box.y1 = std::max(box.y1, out.cells[i].y + 1);
     }
-    if (search_.findPath(out.cells[a], out.cells[b], box, piece_)) {
+    bool found = search_.findPath(out.cells[a], out.cells[b], box, piece_);
+    gridExpanded_ += search_.lastStats().expanded;
+    if (found) {
       smoothed_.insert(smoothed_.end(), piece_.cells.begin() + 1, piece_.cells.end());
     } else {
       smoothed_.insert(smoothed_.end(), out.cells.begin() + std::ptrdiff_t(a) + 1,

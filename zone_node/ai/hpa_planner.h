@@ -25,10 +25,11 @@ struct HpaConfig {
 
 /// Size of the abstraction, for reports.
 struct HpaStats {
-  int clusters = 0;  ///< number of clusters
-  int nodes = 0;     ///< abstract nodes (transition cells)
-  int edges = 0;     ///< directed abstract edges
-  int expanded = 0;  ///< abstract nodes expanded by the last query
+  int clusters = 0;      ///< number of clusters
+  int nodes = 0;         ///< abstract nodes (transition cells)
+  int edges = 0;         ///< directed abstract edges
+  int expanded = 0;      ///< abstract nodes expanded by the last query
+  int gridExpanded = 0;  ///< grid cells expanded by the last query (linking, refining, smoothing)
 };
 
 /// Hierarchical planner over a map that may change; repairs only the clusters a change touches.
@@ -108,6 +109,7 @@ class HpaPlanner {
   std::vector<Cell> smoothed_;
   std::uint32_t generation_ = 0;
   int expanded_ = 0;
+  int gridExpanded_ = 0;
 };
 
 }  // namespace zonesim::ai

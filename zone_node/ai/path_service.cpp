@@ -47,13 +47,24 @@ const PathService::Request* PathService::find(PathRequestId id) const {
   return r.generation == id.generation && r.status != PathStatus::Unknown ? &r : nullptr;
 }
 
-bool PathService::plan(Cell start, Cell goal, GridPath& out) {
+bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
   ++stats_.planned;
-  return astar_ ? astar_->findPath(start, goal, out) : hpa_->findPath(start, goal, out);
+  bool found;
+  if (astar_) {
+    found = astar_->findPath(start, goal, out);
+    expanded = astar_->lastStats().expanded;
+  } else {
+    found = hpa_->findPath(start, goal, out);
+    expanded = hpa_->stats().expanded + hpa_->stats().gridExpanded;
+  }
+  stats_.expanded += std::uint64_t(expanded);
+  return found;
 }
 
 void PathService::tick() {
   int budget = config_.pathsPerTick;
+  long expansions = 0;
+  bool plannedAny = false;
   while (!queue_.empty()) {
     PathRequestId id = queue_.front();
     const Request* found = find(id);
@@ -70,9 +81,16 @@ void PathService::tick() {
       continue;
     }
     if (budget == 0) break;
+    if (plannedAny && config_.expansionsPerTick > 0 && expansions >= config_.expansionsPerTick) {
+      break;
+    }
     --budget;
+    plannedAny = true;
     queue_.pop_front();
-    if (plan(r.start, r.goal, r.path)) {
+    int expanded = 0;
+    bool ok = plan(r.start, r.goal, r.path, expanded);
+    expansions += expanded;
+    if (ok) {
       r.status = PathStatus::Ready;
       cache_.insert(r.start, r.goal, r.path);
     } else {

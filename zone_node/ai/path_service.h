@@ -1,8 +1,10 @@
 #pragma once
 // Path requests for many agents under a per-tick budget: requests queue in arrival order, each
-// tick() plans at most `pathsPerTick` of them (cache hits are free), so a burst of requests is
-// spread over several ticks instead of blowing one. Map changes go through setCell(), which
-// repairs the planner, invalidates cached paths and re-queues every request whose path it cut.
+// tick() plans at most `pathsPerTick` of them and stops once `expansionsPerTick` nodes were
+// expanded (cache hits are free; at least one plan per tick so the queue always moves), so a
+// burst of requests is spread over several ticks instead of blowing one. Map changes go through
+// setCell(), which repairs the planner, invalidates cached paths and re-queues every request whose
+// path it cut.
 
 #include <cstdint>
 #include <deque>
@@ -24,6 +26,7 @@ struct PathServiceConfig {
   PlannerKind planner = PlannerKind::Hpa;  ///< A* (optimal) or HPA* (faster on large maps)
   HpaConfig hpa;                           ///< abstraction settings when planner is Hpa
   int pathsPerTick = 8;                    ///< planner calls allowed per tick
+  int expansionsPerTick = 0;               ///< node expansions allowed per tick (0: no limit)
   std::size_t cacheCapacity = 1024;        ///< cached paths (0: no cache)
 };
 
@@ -41,6 +44,7 @@ struct PathServiceStats {
   std::uint64_t planned = 0;    ///< planner calls
   std::uint64_t cacheHits = 0;  ///< requests served from the cache
   std::uint64_t replans = 0;    ///< requests re-queued because the map cut their path
+  std::uint64_t expanded = 0;   ///< nodes expanded by all planner calls
 };
 
 /// Budgeted, cached path finding over one map that the service owns changes to.
@@ -76,7 +80,7 @@ class PathService {
   };
 
   const Request* find(PathRequestId id) const;
-  bool plan(Cell start, Cell goal, GridPath& out);
+  bool plan(Cell start, Cell goal, GridPath& out, int& expanded);
 
   GridMap& map_;
   PathServiceConfig config_;
