@@ -42,13 +42,37 @@ struct NpcPopulation {
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).
 struct RigidBodyPopulation {
+  enum class Shape { Sphere, Box, Capsule };
   int count = 0;
-  double radius = 0.5;
+  Shape shape = Shape::Sphere;
+  SceneVec3 size{1, 1, 1};  ///< box: full edge lengths (m)
+  double length = 1.0;      ///< capsule: length of the inner segment, along local y (m)
+  double friction = 0.5;
+  double radius = 0.5;  ///< sphere and capsule radius (m)
   double mass = 1.0;
   double restitution = 0.5;
   double drop_height = 10.0;      ///< start gap between ground and body (lowest of the range)
   double max_drop_height = 10.0;  ///< start heights are drawn uniformly in [drop_height, this]
   SceneBox region;                ///< where they start on x-z (defaults to the world)
+};
+
+/// The rigid-body engine's approximations (zone_node/physics).
+struct PhysicsSettings {
+  enum class Integrator {
+    ExplicitEuler,
+    SemiImplicitEuler,
+    PositionVerlet,
+    VelocityVerlet,
+    Rk2,
+    Rk4
+  };
+  enum class Broadphase { BruteForce, SweepAndPrune, UniformGrid, AabbTree };
+  Integrator integrator = Integrator::SemiImplicitEuler;
+  Broadphase broadphase = Broadphase::SweepAndPrune;
+  int substeps = 1;
+  int velocity_iterations = 10;
+  int position_iterations = 2;
+  bool sleep = true;  ///< resting islands sleep and cost (almost) nothing
 };
 
 /// Particle emitters: each spawns `rate` particles per second with the given lifetime.
@@ -91,11 +115,15 @@ struct Scene {
   int keyframe_every = 90;         ///< ticks between per-cell keyframes
   double halo_width = 10;
   DeadReckoning dead_reckoning;
+  PhysicsSettings physics;
   std::vector<NpcPopulation> npcs;
   std::vector<RigidBodyPopulation> rigid_bodies;
   std::vector<EmitterPopulation> emitters;
   ClientProfile clients;
 };
+
+/// Radius of the sphere around a body's centre that holds its whole shape.
+double boundingRadius(const RigidBodyPopulation& p);
 
 /// A scene file problem; what() is "file:line: field: what is wrong".
 class SceneError : public std::runtime_error {

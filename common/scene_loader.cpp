@@ -83,20 +83,45 @@ void readNpcs(const SceneNode& node, Scene& scene) {
   scene.npcs.push_back(p);
 }
 
+}  // namespace
+
+double boundingRadius(const RigidBodyPopulation& p) {
+  switch (p.shape) {
+    case RigidBodyPopulation::Shape::Box:
+      return 0.5 * std::sqrt(p.size.x * p.size.x + p.size.y * p.size.y + p.size.z * p.size.z);
+    case RigidBodyPopulation::Shape::Capsule:
+      return p.radius + 0.5 * p.length;
+    case RigidBodyPopulation::Shape::Sphere:
+      break;
+  }
+  return p.radius;
+}
+
+namespace {
+
 void readRigidBodies(const SceneNode& node, Scene& scene) {
-  SceneMap m =
-      node.map({"kind", "count", "radius", "mass", "restitution", "drop_height", "region"});
+  SceneMap m = node.map({"kind", "count", "shape", "radius", "size", "length", "mass", "friction",
+                         "restitution", "drop_height", "region"});
   RigidBodyPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
+  p.shape = RigidBodyPopulation::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
   m.read("radius", p.radius, Limit::above(0));
+  if (auto size = m.optional("size")) {
+    if (p.shape != RigidBodyPopulation::Shape::Box) m.failAt("size", "only boxes have a size");
+    p.size = size->vec3();
+    if (p.size.x <= 0 || p.size.y <= 0 || p.size.z <= 0) m.failAt("size", "every edge must be > 0");
+  }
+  m.read("length", p.length, Limit::above(0));
+  m.read("friction", p.friction, Limit::atLeast(0));
   m.read("mass", p.mass, Limit::above(0));
   m.read("restitution", p.restitution, Limit::between(0, 1));
   m.read("drop_height", p.drop_height, p.max_drop_height, Limit::atLeast(0));
   p.region = readRegion(m, scene.world);
-  // drop_height is the gap under the body, so its top starts 2 radii higher.
+  // drop_height is the gap under the body's bounding sphere, so its top starts 2 radii higher.
   double room = scene.world.max.y - scene.world.min.y;
-  if (p.max_drop_height + 2 * p.radius > room) {
-    m.failAt("drop_height", "bodies of radius " + formatNumber(p.radius) + " dropped from " +
+  double bounding = boundingRadius(p);
+  if (p.max_drop_height + 2 * bounding > room) {
+    m.failAt("drop_height", "bodies of radius " + formatNumber(bounding) + " dropped from " +
                                 formatNumber(p.max_drop_height) + " m stick out of the world (" +
                                 formatNumber(room) + " m high)");
   }
@@ -193,6 +218,23 @@ void readTick(const SceneMap& root, Scene& scene) {
   tick.read("rate_hz", scene.tick_rate, Limit::above(0));
 }
 
+void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
+  SceneMap m = root.section("physics", {"integrator", "broadphase", "substeps",
+                                        "velocity_iterations", "position_iterations", "sleep"});
+  ps.integrator = PhysicsSettings::Integrator(
+      m.choice("integrator",
+               {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
+                "rk2_midpoint", "rk4"},
+               int(ps.integrator)));
+  ps.broadphase = PhysicsSettings::Broadphase(
+      m.choice("broadphase", {"brute_force", "sweep_and_prune", "uniform_grid", "aabb_tree"},
+               int(ps.broadphase)));
+  m.read("substeps", ps.substeps, Limit::between(1, 64));
+  m.read("velocity_iterations", ps.velocity_iterations, Limit::between(1, 1000));
+  m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
+  m.read("sleep", ps.sleep);
+}
+
 void readDeadReckoning(const SceneMap& root, DeadReckoning& dr) {
   SceneMap m = root.section("dead_reckoning", {"position_threshold", "heartbeat_s"});
   m.read("position_threshold", dr.position_threshold, Limit::atLeast(0));
@@ -210,7 +252,7 @@ void readClients(const SceneMap& root, ClientProfile& clients) {
 
 Scene readScene(const SceneNode& document, const std::string& file) {
   SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
-                                "dead_reckoning", "populations", "clients"});
+                                "dead_reckoning", "physics", "populations", "clients"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -224,6 +266,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readInterest(root, scene);
   readHalo(root, scene);
   readDeadReckoning(root, scene.dead_reckoning);
+  readPhysics(root, scene.physics);
   readPopulations(root, scene);
   readClients(root, scene.clients);
   return scene;

@@ -231,4 +231,30 @@ void SceneMap::read(std::string_view key, double& min_out, double& max_out, Limi
   if (auto value = optional(key)) std::tie(min_out, max_out) = value->range(limit);
 }
 
+void SceneMap::read(std::string_view key, bool& out) const {
+  auto value = optional(key);
+  if (!value) return;
+  std::string t = value->text();
+  if (t == "true")
+    out = true;
+  else if (t == "false")
+    out = false;
+  else
+    value->fail("expected true or false, got '" + t + "'");
+}
+
+int SceneMap::choice(std::string_view key, std::initializer_list<std::string_view> names,
+                     int fallback) const {
+  auto value = optional(key);
+  if (!value) return fallback;
+  std::string t = value->text();
+  std::string allowed;
+  int i = 0;
+  for (std::string_view n : names) {
+    if (t == n) return i;
+    allowed += (i++ ? ", " : "") + std::string(n);
+  }
+  value->fail("unknown value '" + t + "' (allowed: " + allowed + ")");
+}
+
 }  // namespace zonesim

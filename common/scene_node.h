@@ -117,6 +117,12 @@ class SceneMap {
   void read(std::string_view key, int& out, Limit limit = {}) const;
   /// As above for [min, max] ranges.
   void read(std::string_view key, double& min_out, double& max_out, Limit limit = {}) const;
+  /// As above for true/false.
+  void read(std::string_view key, bool& out) const;
+  /// The index in `names` of the key's value, or `fallback` if the key is absent; any other
+  /// value fails naming the allowed ones.
+  int choice(std::string_view key, std::initializer_list<std::string_view> names,
+             int fallback) const;
   /// Throws SceneError about a key: at its value if present, else at this mapping.
   [[noreturn]] void failAt(std::string_view key, const std::string& what) const {
     node_.failChild(key, what);

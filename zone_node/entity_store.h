@@ -33,13 +33,18 @@ struct AvatarData {
   double max_speed = 5.0;
 };
 
-/// A sphere under gravity bouncing on the ground.
+/// A rigid body simulated by zone_node/physics.
 struct BodyData {
-  double radius = 0.5;
+  enum Shape : std::uint8_t { Sphere = 0, Box = 1, Capsule = 2 };
+  double radius = 0.5;  ///< sphere and capsule
   double mass = 1.0;
   double restitution = 0.5;
   Vec3 angular_velocity = Vec3::Zero();
   bool sleeping = false;
+  std::uint8_t shape = Sphere;
+  Vec3 half_extents = Vec3::Constant(0.5);  ///< box
+  double half_height = 0.5;                 ///< capsule: half the inner segment, local y
+  double friction = 0.5;
 };
 
 /// A particle emitter; its particles are zone-local effects (see systems/emitters.h).

@@ -63,12 +63,16 @@ void forEachInitialEntity(const Scene& scene,
   for (const RigidBodyPopulation& p : scene.rigid_bodies) {
     for (int i = 0; i < p.count; ++i) {
       auto [r, rng] = nextSceneEntity(scene, EntityKind::RigidBody, counter);
-      r.pos =
-          uniformIn(rng, p.region,
-                    scene.world.min.y + p.radius + rng.uniform(p.drop_height, p.max_drop_height));
+      double lift = boundingRadius(p) + rng.uniform(p.drop_height, p.max_drop_height);
+      r.pos = uniformIn(rng, p.region, scene.world.min.y + lift);
       r.vel = Vec3(rng.uniform(-2, 2), 0, rng.uniform(-2, 2));
+      r.body.angular_velocity = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      r.body.shape = std::uint8_t(p.shape);
       r.body.radius = p.radius;
+      r.body.half_extents = Vec3(p.size.x, p.size.y, p.size.z) * 0.5;
+      r.body.half_height = 0.5 * p.length;
       r.body.mass = p.mass;
+      r.body.friction = p.friction;
       r.body.restitution = p.restitution;
       r.rng_state = rng.state();
       keep(r);

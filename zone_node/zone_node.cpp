@@ -10,8 +10,8 @@
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
 #include "zone_node/systems/emitters.h"
-#include "zone_node/systems/ground_bodies.h"
 #include "zone_node/systems/npc_movement.h"
+#include "zone_node/systems/rigid_bodies.h"
 
 namespace zonesim::zone {
 
@@ -193,8 +193,9 @@ void ZoneNode::ai() {
 }
 
 void ZoneNode::physics() {
-  if (store_.count(EntityKind::RigidBody) == 0) return;
-  counters_.bodies_awake = stepGroundBodies(scene_.world, store_, scene_.dt);
+  if (store_.count(EntityKind::RigidBody) == 0 && !bodies_) return;
+  if (!bodies_) bodies_ = std::make_unique<RigidBodySystem>(scene_);
+  counters_.bodies_awake = bodies_->step(store_, scene_.dt);
 }
 
 void ZoneNode::gpu() {

@@ -25,6 +25,7 @@ namespace zonesim::zone {
 class ZoneLink;
 class CellPublisher;
 class EmitterSystem;
+class RigidBodySystem;
 
 struct ZoneOptions {
   int dds_domain = 0;
@@ -98,6 +99,7 @@ class ZoneNode {
   std::unique_ptr<ZoneLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;
+  std::unique_ptr<RigidBodySystem> bodies_;  // created when the first body shows up
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

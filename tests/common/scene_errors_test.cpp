@@ -83,9 +83,17 @@ const InlineCase kInlineCases[] = {
     {"zero_keyframe", withBase("interest:\n  keyframe_every: 0\n"),
      "6: interest.keyframe_every: must be >= 1, got 0"},
     {"duplicate_key", withBase("seed: 2\n"), "5: seed: duplicate key (first given on line 3)"},
+    {"unknown_integrator", withBase("physics:\n  integrator: rk5\n"),
+     "6: physics.integrator: unknown value 'rk5' (allowed: explicit_euler, semi_implicit_euler, "
+     "position_verlet, velocity_verlet, rk2_midpoint, rk4)"},
+    {"sleep_not_bool", withBase("physics:\n  sleep: maybe\n"),
+     "6: physics.sleep: expected true or false, got 'maybe'"},
+    {"size_on_sphere",
+     withBase("populations:\n  - kind: rigid_body\n    count: 1\n    size: [1, 1, 1]\n"),
+     "8: populations[0].size: only boxes have a size"},
     {"unknown_top_level", withBase("colour: red\n"),
      "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
-     "dead_reckoning, populations, clients)"},
+     "dead_reckoning, physics, populations, clients)"},
     {"empty_value", withBase("clients:\n  players:\n  speed: 3\n"),
      "6: clients.players: expected a whole number, got nothing"},
     {"fractional_count", withBase("clients: {players: 2.5}\n"),

@@ -39,9 +39,10 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
                                      r.avatar.move_x, r.avatar.move_z, r.avatar.max_speed);
       break;
     case EntityKind::RigidBody: {
-      fb::Vec3d w = toFb(r.body.angular_velocity);
+      fb::Vec3d w = toFb(r.body.angular_velocity), h = toFb(r.body.half_extents);
       body = fb::CreateBodyState(b, r.body.radius, r.body.mass, r.body.restitution, &w,
-                                 r.body.sleeping);
+                                 r.body.sleeping, r.body.shape, &h, r.body.half_height,
+                                 r.body.friction);
       break;
     }
     case EntityKind::Emitter:
@@ -74,8 +75,10 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
     r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(), a->move_z(), a->max_speed()};
   }
   if (const fb::BodyState* s = e.body()) {
-    r.body = {s->radius(), s->mass(), s->restitution(), fromFb(s->angular_velocity()),
-              s->sleeping()};
+    if (s->shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
+    r.body = {s->radius(),   s->mass(),  s->restitution(),          fromFb(s->angular_velocity()),
+              s->sleeping(), s->shape(), fromFb(s->half_extents()), s->half_height(),
+              s->friction()};
   }
   if (const fb::EmitterState* m = e.emitter()) {
     r.emitter = {m->rate(), m->lifetime(),    m->speed(),        m->spawn_accumulator(),
