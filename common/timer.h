@@ -1,6 +1,8 @@
 #pragma once
 // Monotonic timing: a stopwatch, and a per-tick profile of named phases.
 
+#include <time.h>
+
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -13,6 +15,14 @@ inline std::int64_t nowNs() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
+}
+
+/// CPU time this thread has used, in nanoseconds: unlike wall time it does not grow while the
+/// thread waits or is descheduled (oversubscribed ranks), so it measures work done.
+inline std::int64_t threadCpuNs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return std::int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
 }
 
 /// Microseconds since the Unix epoch (wall clock, for timestamps shared between processes).

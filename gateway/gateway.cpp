@@ -27,7 +27,9 @@ HandlerConfig handlerConfig(const GatewayConfig& c) {
 
 std::int64_t graceNs(const GatewayConfig& c) {
   if (c.handoff_grace_s > 0) return seconds(c.handoff_grace_s);
-  return std::max(seconds(2.0 / c.scene.tick_rate), seconds(0.05));
+  // Long enough for a new cell writer of the receiving zone to be discovered even on a loaded
+  // machine; a removal waits this long, a handoff never shows as despawn + spawn.
+  return std::max(seconds(2.0 / c.scene.tick_rate), seconds(0.25));
 }
 
 int expectedZones(const GatewayConfig& c) {

@@ -31,6 +31,7 @@ struct AvatarData {
   std::uint32_t last_input_seq = 0;
   float move_x = 0, move_z = 0;
   double max_speed = 5.0;
+  bool announced = false;  ///< its owner told the gateways (creation announced)
 };
 
 /// A rigid body simulated by zone_node/physics.

@@ -28,6 +28,7 @@ struct TickCounters {
   std::uint64_t avatars_spawned = 0;
   std::uint64_t entities_destroyed = 0;
   std::uint64_t rebalances = 0;
+  std::uint64_t dds_write_failures = 0;
   std::uint64_t imbalance_permille = 0;  ///< max/mean cost at the last balance check, x1000
   std::uint64_t migration_bytes = 0;
   std::uint64_t bodies_awake = 0;
@@ -58,6 +59,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"avatars_spawned", &TickCounters::avatars_spawned, false},
     {"entities_destroyed", &TickCounters::entities_destroyed, false},
     {"rebalances", &TickCounters::rebalances, false},
+    {"dds_write_failures", &TickCounters::dds_write_failures, false},
     {"imbalance_permille", &TickCounters::imbalance_permille, true},
     {"migration_bytes", &TickCounters::migration_bytes, false},
     {"bodies_awake", &TickCounters::bodies_awake, true},

@@ -46,6 +46,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   };
   if (restart) {
     tick_ = restart->tick;
+    inherited_counters_ = restart->id_counters;
     auto counter = restart->id_counters.find(std::uint32_t(rank_));
     if (counter != restart->id_counters.end())
       ids_ = EntityIdAllocator(std::uint32_t(rank_), counter->second);
@@ -58,6 +59,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
     publisher_ =
         std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_, rank_,
                                         scene_.dead_reckoning, scene_.keyframe_every);
+    coverZone();
     // After a restart the gateways must learn where the restored avatars live now.
     for (std::size_t i = 0; i < store_.size(); ++i)
       if (store_.kind[i] == EntityKind::Avatar)
@@ -77,38 +79,26 @@ void ZoneNode::tick() {
   profile_ = {};
   counters_ = {};
   leavers_.clear();
-  {
-    ScopedTimer t(profile_[Phase::Input]);
-    input();
-  }
-  {
-    ScopedTimer t(profile_[Phase::Ai]);
-    ai();
-  }
-  {
-    ScopedTimer t(profile_[Phase::Physics]);
-    physics();
-  }
-  {
-    ScopedTimer t(profile_[Phase::Gpu]);
-    gpu();
-  }
-  {
-    ScopedTimer t(profile_[Phase::Migrate]);
-    migrate();
-  }
-  {
-    ScopedTimer t(profile_[Phase::Publish]);
-    publish();
-  }
+  std::int64_t cpu0 = threadCpuNs();
+  timed(Phase::Input, &ZoneNode::input);
+  timed(Phase::Ai, &ZoneNode::ai);
+  timed(Phase::Physics, &ZoneNode::physics);
+  timed(Phase::Gpu, &ZoneNode::gpu);
+  std::int64_t cpu1 = threadCpuNs();
+  timed(Phase::Migrate, &ZoneNode::migrate);
+  std::int64_t cpu2 = threadCpuNs();
+  timed(Phase::Publish, &ZoneNode::publish);
+  std::int64_t cpu3 = threadCpuNs();
   ++tick_;
-  // The rank's own work; migrate and checks wait on other ranks and would hide the imbalance.
-  balancer_.record(profile_[Phase::Input] + profile_[Phase::Ai] + profile_[Phase::Physics] +
-                   profile_[Phase::Gpu] + profile_[Phase::Publish]);
-  {
-    ScopedTimer t(profile_[Phase::Checks]);
-    checks();
-  }
+  // The rank's own work, in CPU time: migrate and checks wait on other ranks, and wall time
+  // also grows while a rank is descheduled; either would hide or fake an imbalance.
+  balancer_.record(double((cpu1 - cpu0) + (cpu3 - cpu2)) * 1e-9);
+  timed(Phase::Checks, &ZoneNode::checks);
+}
+
+void ZoneNode::timed(Phase phase, void (ZoneNode::*run)()) {
+  ScopedTimer t(profile_[phase]);
+  (this->*run)();
 }
 
 void ZoneNode::input() {
@@ -122,8 +112,10 @@ void ZoneNode::input() {
 }
 
 void ZoneNode::spawnAvatar(std::uint64_t player_id, double x, double z) {
-  // Every zone reads every request, so all agree on which players exist; repeats are ignored.
+  // Every zone reads every request, so all agree on which players exist; repeats are ignored,
+  // and so is a request whose player already left (the despawn overtook it).
   bool seen = !known_players_.insert(player_id).second;
+  if (despawned_players_.count(player_id)) return;
   std::optional<std::size_t> mine = store_.avatarOf(player_id);
   if (seen) {
     if (mine && link_) {
@@ -132,9 +124,12 @@ void ZoneNode::spawnAvatar(std::uint64_t player_id, double x, double z) {
     }
     return;
   }
+  // The creator is chosen without the layout: zones read the request in different ticks, and
+  // boundaries may move in between. Migration then takes the avatar to its owner, which
+  // announces it (see migrate()).
+  if (player_id % std::uint64_t(size_) != std::uint64_t(rank_)) return;
   x = std::clamp(x, scene_.world.min.x, scene_.world.max.x - 1e-6);
   z = std::clamp(z, scene_.world.min.z, scene_.world.max.z - 1e-6);
-  if (layout_.ownerOf(x, z) != rank_) return;
   EntityRecordData r;
   r.id = ids_.next();
   r.kind = EntityKind::Avatar;
@@ -144,7 +139,7 @@ void ZoneNode::spawnAvatar(std::uint64_t player_id, double x, double z) {
   store_.add(r);
   ledger_.add(r.id);
   ++counters_.avatars_spawned;
-  if (link_) link_->announce({player_id, r.id.value, -1, rank_, tick_, 0});
+  unannounced_.push_back(r.id);
   ZS_DEBUG("spawned avatar %s for player %llu", toString(r.id).c_str(),
            (unsigned long long)player_id);
 }
@@ -159,7 +154,7 @@ void ZoneNode::despawnAvatar(std::uint64_t player_id) {
 
 void ZoneNode::destroyAt(std::size_t index) {
   leavers_.push_back({store_.id[index], store_.kind[index], -1, store_.dr[index].cell,
-                      store_.avatar[index].player_id});
+                      store_.avatar[index].player_id, false});
   ledger_.remove(store_.id[index]);
   store_.removeAt(index);
   ++counters_.entities_destroyed;
@@ -208,7 +203,7 @@ void ZoneNode::migrate() {
   counters_.migrated_in = last_migration_.arrived.size();
   counters_.migration_bytes = last_migration_.bytes_sent;
   for (const Departure& d : last_migration_.departed) {
-    if (d.kind != EntityKind::Avatar) continue;
+    if (!d.announced_avatar) continue;
     departed_players_[d.player_id] = d.to_rank;
     ++counters_.handoffs_out;
   }
@@ -221,6 +216,10 @@ void ZoneNode::migrate() {
       gone_players.push_back(store_.id[a.index]);
       continue;
     }
+    if (!av.announced) {
+      unannounced_.push_back(store_.id[a.index]);  // a new avatar on its way from its creator
+      continue;
+    }
     ++counters_.handoffs_in;
     if (link_)
       link_->announce(
@@ -228,8 +227,23 @@ void ZoneNode::migrate() {
   }
   // Removed after the loop: removal moves entities and would invalidate the arrival indices.
   for (EntityId id : gone_players) destroyAt(*store_.indexOf(id));
+  // New avatars that ended this exchange here are this zone's to announce as created.
+  for (EntityId id : unannounced_) {
+    std::optional<std::size_t> i = store_.indexOf(id);
+    if (!i) continue;  // migrated on: the owner announces it
+    AvatarData& av = store_.avatar[*i];
+    av.announced = true;
+    if (link_) link_->announce({av.player_id, id.value, -1, rank_, tick_, av.last_input_seq});
+  }
+  unannounced_.clear();
   forwarded_in_ = std::move(last_migration_.inputs);
   leavers_.insert(leavers_.end(), last_migration_.departed.begin(), last_migration_.departed.end());
+}
+
+void ZoneNode::coverZone() {
+  if (!publisher_) return;
+  ZoneRect r = layout_.rect(rank_);
+  publisher_->cover(r.min_x, r.min_z, r.max_x, r.max_z);
 }
 
 void ZoneNode::publish() {
@@ -241,17 +255,22 @@ void ZoneNode::publish() {
   counters_.published_cells = s.cells_written;
   counters_.published_keyframes = s.keyframes;
   counters_.subscribed_cells = s.subscribed_cells;
+  counters_.dds_write_failures = s.write_failures + link_->writeFailures() - link_failures_seen_;
+  link_failures_seen_ = link_->writeFailures();
 }
 
 void ZoneNode::checks() {
   if (options_.checkpoint_every > 0 && !options_.checkpoint_dir.empty() &&
       tick_ % std::uint64_t(options_.checkpoint_every) == 0)
-    last_checkpoint_ =
-        writeCheckpoint(comm_, store_, tick_, ids_.issued(), options_.checkpoint_dir);
+    last_checkpoint_ = writeCheckpoint(comm_, store_, tick_, ids_.issued(), inherited_counters_,
+                                       options_.checkpoint_dir);
   if (options_.check_every > 0 && tick_ % std::uint64_t(options_.check_every) == 0)
     checkConservationNow();
   // Moved boundaries take effect in the next migrate phase: leavers go to their new owners.
-  if (balancer_.check(tick_, layout_)) ++counters_.rebalances;
+  if (balancer_.check(tick_, layout_)) {
+    ++counters_.rebalances;
+    coverZone();
+  }
   counters_.imbalance_permille = std::uint64_t(balancer_.imbalance() * 1000.0);
 }
 

@@ -5,6 +5,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -71,6 +72,8 @@ class ZoneNode {
   const std::string& lastCheckpoint() const { return last_checkpoint_; }
 
  private:
+  /// Runs one phase, timing it into the profile.
+  void timed(Phase phase, void (ZoneNode::*run)());
   void input();
   void ai();
   void physics();
@@ -79,6 +82,8 @@ class ZoneNode {
   void publish();
   void checks();
   void checkConservationNow();
+  /// Readies the cell writers of this zone's rectangle (at start and when boundaries move).
+  void coverZone();
 
   void spawnAvatar(std::uint64_t player_id, double x, double z);
   void applyInput(std::uint64_t player_id, std::uint32_t seq, float move_x, float move_z);
@@ -103,11 +108,14 @@ class ZoneNode {
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;
+  std::uint64_t link_failures_seen_ = 0;
+  std::map<std::uint32_t, std::uint64_t> inherited_counters_;  // id counters a restart read
   TickProfile profile_;
   TickCounters counters_;
   ConservationTally conservation_;
   MigrationResult last_migration_;
-  std::vector<Departure> leavers_;  // migrated away or destroyed this tick: publish says so
+  std::vector<EntityId> unannounced_;  // avatars created or received here, not yet announced
+  std::vector<Departure> leavers_;     // migrated away or destroyed this tick: publish says so
   std::vector<std::vector<ForwardedInput>> forward_;         // per destination rank
   std::vector<ForwardedInput> forwarded_in_;                 // to apply next input phase
   std::unordered_map<std::uint64_t, int> departed_players_;  // player -> rank its avatar went to

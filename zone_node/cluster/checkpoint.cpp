@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -82,7 +83,9 @@ std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size) {
 }
 
 std::string writeCheckpoint(MPI_Comm comm, const EntityStore& store, std::uint64_t tick,
-                            std::uint64_t ids_issued, const std::string& dir) {
+                            std::uint64_t ids_issued,
+                            const std::map<std::uint32_t, std::uint64_t>& inherited,
+                            const std::string& dir) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -121,13 +124,17 @@ std::string writeCheckpoint(MPI_Comm comm, const EntityStore& store, std::uint64
     m["tick"] = tick;
     m["ranks"] = size;
     IdSetDigest total;
+    std::map<std::uint32_t, std::uint64_t> counters = inherited;
     for (int r = 0; r < size; ++r) {
       const std::uint64_t* x = &rows[std::size_t(r) * 6];
       all_ok &= x[0];
       m["files"].push_back({{"name", rankFile(r)}, {"bytes", x[1]}, {"fnv1a64", hex(x[2])}});
-      m["id_counters"][std::to_string(r)] = x[5];
+      std::uint64_t& c = counters[std::uint32_t(r)];
+      c = std::max(c, x[5]);
       total.merge({x[3], x[4]});
     }
+    for (const auto& [creator, issued] : counters)
+      m["id_counters"][std::to_string(creator)] = issued;
     m["entities"] = total.count;
     m["id_hash"] = hex(total.hash);
     if (all_ok) {

@@ -34,9 +34,13 @@ struct CheckpointImage {
 };
 
 /// Collective. Writes DIR/ckpt_<tick>/ (one file per rank, then MANIFEST.json) and DIR/LATEST.
-/// ids_issued is this rank's id counter. Returns the checkpoint folder. Throws on I/O errors.
+/// ids_issued is this rank's id counter; inherited are the counters a restart read (creators
+/// beyond today's rank count keep theirs, so no id is ever issued twice). Returns the
+/// checkpoint folder. Throws on I/O errors.
 std::string writeCheckpoint(MPI_Comm comm, const EntityStore& store, std::uint64_t tick,
-                            std::uint64_t ids_issued, const std::string& dir);
+                            std::uint64_t ids_issued,
+                            const std::map<std::uint32_t, std::uint64_t>& inherited,
+                            const std::string& dir);
 
 /// Reads and verifies a checkpoint: `path` is a checkpoint folder, or a DIR with LATEST in it.
 /// Throws CheckpointError naming what is missing or inconsistent.

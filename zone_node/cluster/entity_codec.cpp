@@ -1,5 +1,7 @@
 #include "zone_node/cluster/entity_codec.h"
 
+#include <algorithm>
+
 #include "entity_record_generated.h"
 
 namespace zonesim::zone {
@@ -35,8 +37,9 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
       break;
     }
     case EntityKind::Avatar:
-      avatar = fb::CreateAvatarState(b, r.avatar.player_id, r.avatar.last_input_seq,
-                                     r.avatar.move_x, r.avatar.move_z, r.avatar.max_speed);
+      avatar =
+          fb::CreateAvatarState(b, r.avatar.player_id, r.avatar.last_input_seq, r.avatar.move_x,
+                                r.avatar.move_z, r.avatar.max_speed, r.avatar.announced);
       break;
     case EntityKind::RigidBody: {
       fb::Vec3d w = toFb(r.body.angular_velocity), h = toFb(r.body.half_extents);
@@ -72,7 +75,8 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
              n->arrive_distance()};
   }
   if (const fb::AvatarState* a = e.avatar()) {
-    r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(), a->move_z(), a->max_speed()};
+    r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(),
+                a->move_z(),    a->max_speed(),      a->announced()};
   }
   if (const fb::BodyState* s = e.body()) {
     if (s->shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
@@ -107,7 +111,12 @@ std::vector<std::uint8_t> encodeMigration(const MigrationPayload& p) {
 }
 
 MigrationPayload decodeMigration(std::span<const std::uint8_t> bytes) {
-  flatbuffers::Verifier verifier(bytes.data(), bytes.size());
+  // Every record is two tables; the default cap (a million tables) would refuse batches of more
+  // than ~500k entities (a big checkpoint or rebalance), so the cap follows the buffer's size.
+  flatbuffers::Verifier verifier(
+      bytes.data(), bytes.size(), /*max_depth=*/64,
+      /*max_tables=*/
+      std::max<flatbuffers::uoffset_t>(1000000, flatbuffers::uoffset_t(bytes.size() / 4)));
   if (!fb::VerifyMigrationBatchBuffer(verifier))
     throw CodecError("migration batch failed verification");
   const fb::MigrationBatch* m = fb::GetMigrationBatch(bytes.data());

@@ -30,8 +30,9 @@ MigrationResult Migrator::exchange(EntityStore& store, const ZoneLayout& layout,
     if (owner == rank_) continue;
     outgoing[owner].entities.push_back(store.record(i));
     leavers.push_back(i);
-    result.departed.push_back(
-        {store.id[i], store.kind[i], owner, store.dr[i].cell, store.avatar[i].player_id});
+    result.departed.push_back({store.id[i], store.kind[i], owner, store.dr[i].cell,
+                               store.avatar[i].player_id,
+                               store.kind[i] == EntityKind::Avatar && store.avatar[i].announced});
   }
   // Descending order: the entity swapped into a hole has a higher index and was already kept.
   for (auto it = leavers.rbegin(); it != leavers.rend(); ++it) store.removeAt(*it);

@@ -21,6 +21,7 @@ struct Departure {
   int to_rank;              ///< -1: destroyed rather than migrated
   int last_cell;            ///< interest cell it was last published in here (-1: never)
   std::uint64_t player_id;  ///< for avatars
+  bool announced_avatar;    ///< an avatar the gateways know: its move is a handoff
 };
 
 /// An entity that arrived during the exchange.

@@ -27,12 +27,17 @@ struct PublishStats {
   std::uint64_t keyframes = 0;
   std::uint64_t suppressed = 0;  ///< dead-reckoning checks that needed no update
   std::uint64_t subscribed_cells = 0;
+  std::uint64_t write_failures = 0;  ///< writes that timed out (a reader not keeping up)
 };
 
 class CellPublisher {
  public:
   CellPublisher(dds_entity_t participant, const dds::Topics& topics, const InterestGrid& grid,
                 int zone, const DeadReckoning& dr, int keyframe_every);
+
+  /// Creates the writers of every cell the rectangle touches, so that they are matched before
+  /// an entity first enters one (a handoff into a fresh cell must not wait for discovery).
+  void cover(double min_x, double min_z, double max_x, double max_z);
 
   /// Publishes this tick's changes; leavers are the entities migrated away (to_rank >= 0) or
   /// destroyed (to_rank < 0) this tick.
@@ -43,7 +48,8 @@ class CellPublisher {
   struct Channel {
     dds::PartitionWriter updates;
     dds::PartitionWriter keyframes;
-    std::uint32_t matched = 0;  // readers matched on either writer at the last check
+    std::uint32_t matched = 0;       // readers matched on either writer at the last check
+    std::uint32_t matched_ever = 0;  // readers ever matched: a rise means a new reader
     bool subscribed = false;
     bool keyframe_due = false;
     bool all_readers_new = false;  // had no reader last tick: the keyframe is all they know

@@ -66,7 +66,9 @@ void ZoneLink::announce(const OwnershipMsg& m) {
   s.to_zone = m.to_zone;
   s.tick = m.tick;
   s.last_input_seq = m.last_input_seq;
-  dds::check(dds_write(ownership_.writer.get(), &s), "dds_write ownership");
+  // A gateway that stopped reading fills a KEEP_ALL writer and the write times out: the zone
+  // goes on (inputs still reach the avatar through forwarding) and counts it.
+  if (dds_write(ownership_.writer.get(), &s) < 0) ++write_failures_;
 }
 
 }  // namespace zonesim::zone

@@ -49,6 +49,8 @@ class ZoneLink {
   /// Players whose avatars are to be removed (the player left), since the last call.
   std::vector<std::uint64_t> takeDespawnRequests();
   void announce(const OwnershipMsg& m);
+  /// Announcements whose write timed out.
+  std::uint64_t writeFailures() const { return write_failures_; }
 
  private:
   dds::Entity participant_;
@@ -57,6 +59,7 @@ class ZoneLink {
   dds::PartitionReader spawns_;
   dds::PartitionReader despawns_;
   dds::PartitionWriter ownership_;
+  std::uint64_t write_failures_ = 0;
 };
 
 }  // namespace zonesim::zone
