@@ -155,8 +155,15 @@ void Gateway::applyOwnership(const zonesim_dds_OwnershipEvent& e) {
     return;
   }
   if (s->avatar_id != 0 && s->avatar_id != e.avatar_id) return;
+  // Events of successive owners come from different writers in any order: an older one must
+  // not route inputs back to a zone the avatar already left (an avatar moves once per tick).
+  if (s->avatar_id != 0 && e.tick < s->owner_tick) {
+    ++counters_.ownership_stale;
+    return;
+  }
   s->avatar_id = e.avatar_id;
   s->zone = e.to_zone;
+  s->owner_tick = e.tick;
   if (!s->welcomed) {
     s->welcomed = true;
     s->last_input_seq = std::max(s->last_input_seq, e.last_input_seq);

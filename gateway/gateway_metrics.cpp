@@ -24,7 +24,8 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("sessions_closed", c.sessions_closed)
       .add("sessions_expired", c.sessions_expired)
       .add("dds_samples", c.dds_samples)
-      .add("ownership_foreign", c.ownership_foreign);
+      .add("ownership_foreign", c.ownership_foreign)
+      .add("ownership_stale", c.ownership_stale);
 }
 
 void addGauges(JsonLine& j, const GatewayGauges& g) {

@@ -20,7 +20,7 @@ struct GatewayCounters {
   std::uint64_t inputs_forwarded = 0, input_write_failures = 0;
   std::uint64_t spawn_requests = 0, welcomes = 0, handoffs = 0;
   std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;
-  std::uint64_t dds_samples = 0, ownership_foreign = 0;
+  std::uint64_t dds_samples = 0, ownership_foreign = 0, ownership_stale = 0;
 };
 
 /// Wall time of gateway ticks (everything but receiving datagrams), in milliseconds.

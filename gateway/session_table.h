@@ -30,6 +30,7 @@ struct Session {
   Endpoint address;
   std::uint64_t avatar_id = 0;       ///< 0 until the owning zone announced the avatar
   int zone = -1;                     ///< owning zone rank, -1 until announced
+  std::uint64_t owner_tick = 0;      ///< zone tick of the ownership event applied last
   bool welcomed = false;             ///< Welcome sent: inputs are accepted from now on
   std::uint32_t last_input_seq = 0;  ///< last seq forwarded to the zone
   double spawn_x = 0, spawn_z = 0;   ///< where the avatar was requested (interest until it shows)
