@@ -63,10 +63,18 @@ TEST(DemoScene, ValuesComeThrough) {
   EXPECT_DOUBLE_EQ(s.npcs[0].waypoint_radius, 60);
   EXPECT_DOUBLE_EQ(s.npcs[0].region.max.x, 400);
 
-  ASSERT_EQ(s.rigid_bodies.size(), 1u);
+  ASSERT_EQ(s.rigid_bodies.size(), 3u);
   EXPECT_EQ(s.rigid_bodies[0].count, 40);
+  EXPECT_EQ(s.rigid_bodies[0].shape, RigidBodyPopulation::Shape::Sphere);
   EXPECT_DOUBLE_EQ(s.rigid_bodies[0].drop_height, 10);
   EXPECT_DOUBLE_EQ(s.rigid_bodies[0].max_drop_height, 20);
+  EXPECT_EQ(s.rigid_bodies[1].shape, RigidBodyPopulation::Shape::Box);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[1].size.y, 0.5);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[1].friction, 0.6);
+  EXPECT_EQ(s.rigid_bodies[2].shape, RigidBodyPopulation::Shape::Capsule);
+  EXPECT_DOUBLE_EQ(s.rigid_bodies[2].length, 1.2);
+  EXPECT_EQ(s.physics.integrator, PhysicsSettings::Integrator::SemiImplicitEuler);
+  EXPECT_TRUE(s.physics.sleep);
 
   ASSERT_EQ(s.emitters.size(), 1u);
   EXPECT_EQ(s.emitters[0].count, 4);
