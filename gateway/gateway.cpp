@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <random>
 #include <system_error>
 
 #include "common/log.h"
@@ -23,6 +24,13 @@ std::int64_t seconds(double s) {
 
 HandlerConfig handlerConfig(const GatewayConfig& c) {
   return {c.scene.world, float(c.scene.tick_rate), c.spawn_seed};
+}
+
+/// A random non-zero 16-bit number per gateway process: player ids of a restarted gateway (and
+/// of gateways left at the same --gateway-id) differ from the ones the zones already saw.
+std::uint16_t randomIncarnation() {
+  std::random_device rd;
+  return std::uint16_t(1 + rd() % 0xFFFF);
 }
 
 std::int64_t graceNs(const GatewayConfig& c) {
@@ -48,7 +56,7 @@ Gateway::Gateway(GatewayConfig config)
       tick_ns_(std::max<std::int64_t>(1, seconds(1.0 / config_.scene.tick_rate))),
       start_ns_(nowNs()),
       socket_(config_.port),
-      sessions_(config_.gateway_id, config_.max_sessions),
+      sessions_(config_.gateway_id, config_.max_sessions, randomIncarnation()),
       handler_(sessions_, handlerConfig(config_)),
       cache_(graceNs(config_)),
       clock_(config_.scene.tick_rate * config_.scene.dt),

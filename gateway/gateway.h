@@ -28,7 +28,7 @@ namespace zonesim::gateway {
 struct GatewayConfig {
   Scene scene;
   std::uint16_t port = 0;        ///< 0 = ephemeral
-  std::uint32_t gateway_id = 1;  ///< top 32 bits of the player ids issued here
+  std::uint32_t gateway_id = 1;  ///< 1..65535, bits 32-47 of the player ids issued here
   int dds_domain = 0;
   std::uint64_t spawn_seed = 1;   ///< seeds avatar spawn positions
   int expected_zones = 0;         ///< readers awaited before spawning; 0 = the scene's grid

@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 65535));
   app.add_option("--port-file", port_file, "write the bound port to this file");
   app.add_option("--dds-domain", cfg.dds_domain, "DDS domain id")->check(CLI::Range(0, 230));
-  app.add_option("--gateway-id", cfg.gateway_id, "gateway id (top 32 bits of player ids)")
-      ->check(CLI::Range(1u, 0xffffffffu));
+  app.add_option("--gateway-id", cfg.gateway_id,
+                 "gateway id, unique per gateway of a cluster (bits 32-47 of player ids)")
+      ->check(CLI::Range(1u, 0xffffu));
   app.add_option("--metrics", metrics_dir, "write DIR/gateway.jsonl and DIR/gateway_summary.json");
   app.add_option("--duration", duration, "exit after this many seconds (0 = until signalled)")
       ->check(CLI::NonNegativeNumber);

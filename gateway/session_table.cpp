@@ -17,8 +17,12 @@ std::optional<SlotHandle> lookup(const Map& m, const Key& k) {
 }
 }  // namespace
 
-SessionTable::SessionTable(std::uint32_t gateway_id, std::size_t max_sessions)
-    : gateway_id_(gateway_id), max_sessions_(max_sessions), token_rng_(seededFromOs()) {}
+SessionTable::SessionTable(std::uint32_t gateway_id, std::size_t max_sessions,
+                           std::uint16_t incarnation)
+    : gateway_id_(gateway_id & 0xFFFF),
+      incarnation_(incarnation),
+      max_sessions_(max_sessions),
+      token_rng_(seededFromOs()) {}
 
 std::uint64_t SessionTable::freshToken() {
   for (;;) {
@@ -33,7 +37,8 @@ std::optional<SlotHandle> SessionTable::create(const Endpoint& address, std::uin
   if (pool_.size() >= max_sessions_) return std::nullopt;
   Session s;
   s.token = freshToken();
-  s.player_id = (std::uint64_t{gateway_id_} << 32) | ++player_counter_;
+  s.player_id =
+      (std::uint64_t{incarnation_} << 48) | (std::uint64_t{gateway_id_} << 32) | ++player_counter_;
   s.client_nonce = client_nonce;
   s.address = address;
   s.created_ns = s.last_heard_ns = now_ns;

@@ -42,8 +42,10 @@ struct Session {
 /// All sessions of one gateway.
 class SessionTable {
  public:
-  /// gateway_id goes into the top 32 bits of every player id issued here.
-  SessionTable(std::uint32_t gateway_id, std::size_t max_sessions);
+  /// Player ids issued here are incarnation (16 bits) | gateway_id (16 bits) | counter (32
+  /// bits): two gateways with different ids, or one gateway before and after a restart (a new
+  /// random incarnation), never issue the same id.
+  SessionTable(std::uint32_t gateway_id, std::size_t max_sessions, std::uint16_t incarnation = 0);
 
   /// A new pending session for a Hello; nullopt when max_sessions are open.
   std::optional<SlotHandle> create(const Endpoint& address, std::uint64_t client_nonce,
@@ -79,6 +81,7 @@ class SessionTable {
   std::uint64_t freshToken();
 
   std::uint32_t gateway_id_;
+  std::uint16_t incarnation_;
   std::size_t max_sessions_;
   std::uint32_t player_counter_ = 0;
   // Tokens must not be guessable: seeded from the OS entropy source, not from the scene seed.

@@ -18,6 +18,16 @@ TEST(SessionTable, PlayerIdsCarryTheGatewayId) {
   EXPECT_EQ(t.get(*h2)->player_id, (std::uint64_t{3} << 32) | 2);
 }
 
+TEST(SessionTable, ARestartedGatewayIssuesIdsTheZonesHaveNotSeen) {
+  // Same --gateway-id, two processes (two incarnations): the first players differ.
+  SessionTable before(3, 16, 0x1234), after(3, 16, 0x4321);
+  auto a = before.create(kA, 1, 0), b = after.create(kA, 1, 0);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(before.get(*a)->player_id,
+            (std::uint64_t{0x1234} << 48) | (std::uint64_t{3} << 32) | 1);
+  EXPECT_NE(before.get(*a)->player_id, after.get(*b)->player_id);
+}
+
 TEST(SessionTable, TokensAreNonZeroAndDistinct) {
   SessionTable t(1, 1000);
   std::set<std::uint64_t> tokens;

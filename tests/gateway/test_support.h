@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "common/interest_grid.h"
-#include "support/dds_test_domain.h"
 #include "common/scene.h"
 #include "idl/dds_entity.h"
 #include "idl/dds_qos.h"
 #include "idl/topics.h"
+#include "support/dds_test_domain.h"
 #include "zonesim.h"
 
 namespace zonesim::testing {
@@ -36,13 +36,11 @@ inline Scene smallScene() {
   return s;
 }
 
-
 /// A gateway id unlikely to be shared with a test in another process that drew the same domain;
 /// the zone emulator answers only its players.
 inline std::uint32_t privateGatewayId() {
   auto t = std::chrono::steady_clock::now().time_since_epoch().count();
-  return 1 +
-         std::uint32_t((std::uint64_t(getpid()) * 2654435761u + std::uint64_t(t)) % 0xfffffff0u);
+  return 1 + std::uint32_t((std::uint64_t(getpid()) * 2654435761u + std::uint64_t(t)) % 0xfffeu);
 }
 
 /// An entity state for DDS samples.
@@ -77,7 +75,8 @@ class ZoneEmulator {
   /// Takes pending spawn requests of our gateway's players.
   std::vector<zonesim_dds_SpawnRequest> takeSpawnRequests() {
     auto all = take<zonesim_dds_SpawnRequest>(spawn_reader_.reader.get());
-    std::erase_if(all, [&](const auto& r) { return (r.player_id >> 32) != gateway_id_; });
+    std::erase_if(all,
+                  [&](const auto& r) { return ((r.player_id >> 32) & 0xFFFF) != gateway_id_; });
     return all;
   }
 
