@@ -130,13 +130,7 @@ void ClBoids::step(double dt) {
 }
 
 void ClBoids::read4(cl_mem buffer, std::vector<Vec3d>& out) {
-  out.resize(count_);
-  if (count_ == 0) return;
-  host_.resize(count_);
-  checkCl(clEnqueueReadBuffer(runtime_->queue(), buffer, CL_TRUE, 0, count_ * sizeof(cl_float4),
-                              host_.data(), 0, nullptr, nullptr),
-          "clEnqueueReadBuffer");
-  for (std::size_t i = 0; i < count_; ++i) out[i] = {host_[i].s[0], host_[i].s[1], host_[i].s[2]};
+  runtime_->readFloat4s(buffer, count_, host_, out);
 }
 
 void ClBoids::readPositions(std::vector<Vec3d>& out) {

@@ -187,6 +187,18 @@ void ClRuntime::finish() const {
   checkCl(clFinish(queue_.get()), "clFinish");
 }
 
+void ClRuntime::readFloat4s(cl_mem buffer, std::size_t count, std::vector<cl_float4>& staging,
+                            std::vector<Vec3d>& out) const {
+  out.resize(count);
+  if (count == 0) return;
+  staging.resize(count);
+  checkCl(clEnqueueReadBuffer(queue(), buffer, CL_TRUE, 0, count * sizeof(cl_float4),
+                              staging.data(), 0, nullptr, nullptr),
+          "clEnqueueReadBuffer");
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = {staging[i].s[0], staging[i].s[1], staging[i].s[2]};
+}
+
 std::size_t ClRuntime::countDevices(DeviceType type) {
   std::vector<cl_platform_id> platforms;
   try {

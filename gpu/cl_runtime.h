@@ -6,9 +6,11 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gpu/cl_handles.h"
 #include "gpu/cl_program.h"
+#include "gpu/particle_types.h"
 
 namespace zonesim::gpu {
 
@@ -42,6 +44,9 @@ class ClRuntime {
   ClBuffer createBuffer(std::size_t bytes, cl_mem_flags flags = CL_MEM_READ_WRITE) const;
   /// Blocks until everything queued so far has run.
   void finish() const;
+  /// Reads count float4 vectors (x, y, z used) from buffer into out, through staging; blocks.
+  void readFloat4s(cl_mem buffer, std::size_t count, std::vector<cl_float4>& staging,
+                   std::vector<Vec3d>& out) const;
 
   /// The context, for calls this class does not wrap.
   cl_context context() const { return context_.get(); }

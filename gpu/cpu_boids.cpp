@@ -6,19 +6,7 @@
 #include "gpu/boid_grid.h"
 
 namespace zonesim::gpu {
-namespace {
-
-Vec3d operator+(Vec3d a, Vec3d b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec3d operator-(Vec3d a, Vec3d b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3d operator*(Vec3d a, double s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 CpuBoids::CpuBoids(const GridSpec& grid, const FlockBounds& bounds, const BoidParams& params)
     : grid_(grid), bounds_(bounds), params_(params) {}

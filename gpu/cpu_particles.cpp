@@ -6,19 +6,6 @@
 namespace zonesim::gpu {
 namespace {
 
-Vec3d operator+(Vec3d a, Vec3d b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec3d operator-(Vec3d a, Vec3d b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3d operator*(Vec3d a, double s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-double dot(Vec3d a, Vec3d b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
 // Mirrors collide_spheres in gpu/kernels/particles.cl; the why is there.
 void collideSpheres(Vec3d x0, Vec3d& x1, Vec3d& v, double dt, double restitution,
                     std::span<const Sphere> spheres) {

@@ -12,6 +12,20 @@ struct Vec3d {
   double z = 0;
 };
 
+/// Vector arithmetic for the double-precision CPU references.
+constexpr Vec3d operator+(Vec3d a, Vec3d b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3d operator-(Vec3d a, Vec3d b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+constexpr Vec3d operator*(Vec3d a, double s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+constexpr double dot(Vec3d a, Vec3d b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
 /// One spray of particles: directions uniform over a cone around direction, all at one speed.
 struct EmitSpec {
   Vec3d origin;                  ///< Where particles start; y must be >= 0 (above the ground).
