@@ -15,6 +15,7 @@ PACKAGES=(
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   python3 python3-matplotlib
   libbullet-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()
