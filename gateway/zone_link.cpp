@@ -3,32 +3,9 @@
 #include <algorithm>
 
 #include "common/log.h"
+#include "idl/dds_take.h"
 
 namespace zonesim::gateway {
-
-namespace {
-
-constexpr std::uint32_t kTakeBatch = 64;
-
-// Takes all samples from reader in batches of loans, calling f on each valid one.
-template <typename T, typename F>
-std::size_t takeAll(dds_entity_t reader, F&& f) {
-  std::size_t total = 0;
-  void* samples[kTakeBatch];
-  dds_sample_info_t infos[kTakeBatch];
-  for (;;) {
-    std::fill(std::begin(samples), std::end(samples), nullptr);
-    int n = dds_take(reader, samples, infos, kTakeBatch, kTakeBatch);
-    if (n < 0) throw dds::DdsError("dds_take", n);
-    for (int i = 0; i < n; ++i)
-      if (infos[i].valid_data) f(*static_cast<const T*>(samples[i]));
-    if (n > 0) dds_return_loan(reader, samples, n);
-    total += std::size_t(n);
-    if (std::uint32_t(n) < kTakeBatch) return total;
-  }
-}
-
-}  // namespace
 
 ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
     : expected_zones_(std::max(1, expected_zones)),
@@ -124,7 +101,7 @@ void ZoneLink::unsubscribeCell(int cell) {
 
 std::vector<zonesim_dds_OwnershipEvent> ZoneLink::takeOwnership() {
   std::vector<zonesim_dds_OwnershipEvent> out;
-  takeAll<zonesim_dds_OwnershipEvent>(
+  dds::takeAll<zonesim_dds_OwnershipEvent>(
       ownership_reader_.reader.get(),
       [&](const zonesim_dds_OwnershipEvent& e) { out.push_back(e); });
   return out;
@@ -134,18 +111,18 @@ std::size_t ZoneLink::takeCells(WorldCache& cache, ZoneClock& clock, std::int64_
   std::size_t n = 0;
   for (auto& [cell, r] : cells_) {
     // Keyframes first: a batch of the same tick then applies on top of a complete picture.
-    n += takeAll<zonesim_dds_CellKeyframe>(r.keyframes.reader.get(),
-                                           [&](const zonesim_dds_CellKeyframe& k) {
-                                             if (k.cell != cell) return;  // misaddressed
-                                             clock.observe(k.tick, k.sim_time, now_ns);
-                                             cache.applyKeyframe(k, now_ns);
-                                           });
-    n += takeAll<zonesim_dds_CellUpdateBatch>(r.updates.reader.get(),
-                                              [&](const zonesim_dds_CellUpdateBatch& b) {
-                                                if (b.cell != cell) return;  // misaddressed
-                                                clock.observe(b.tick, b.sim_time, now_ns);
-                                                cache.applyBatch(b, now_ns);
-                                              });
+    n += dds::takeAll<zonesim_dds_CellKeyframe>(r.keyframes.reader.get(),
+                                                [&](const zonesim_dds_CellKeyframe& k) {
+                                                  if (k.cell != cell) return;  // misaddressed
+                                                  clock.observe(k.tick, k.sim_time, now_ns);
+                                                  cache.applyKeyframe(k, now_ns);
+                                                });
+    n += dds::takeAll<zonesim_dds_CellUpdateBatch>(r.updates.reader.get(),
+                                                   [&](const zonesim_dds_CellUpdateBatch& b) {
+                                                     if (b.cell != cell) return;  // misaddressed
+                                                     clock.observe(b.tick, b.sim_time, now_ns);
+                                                     cache.applyBatch(b, now_ns);
+                                                   });
   }
   return n;
 }

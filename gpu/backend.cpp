@@ -18,7 +18,7 @@ GpuMode parseGpuMode(std::string_view text) {
   throw std::invalid_argument("--gpu must be on, off or auto, not '" + std::string(text) + "'");
 }
 
-Backend chooseBackend(GpuMode mode, std::size_t particles, bool opencl_available) {
+Backend chooseBackend(GpuMode mode, bool offload_pays) {
   switch (mode) {
     case GpuMode::Off:
       return Backend::Cpu;
@@ -27,7 +27,11 @@ Backend chooseBackend(GpuMode mode, std::size_t particles, bool opencl_available
     case GpuMode::Auto:
       break;
   }
-  return opencl_available && particles >= kAutoGpuThreshold ? Backend::OpenCl : Backend::Cpu;
+  return offload_pays ? Backend::OpenCl : Backend::Cpu;
+}
+
+Backend chooseBackend(GpuMode mode, std::size_t particles, bool opencl_available) {
+  return chooseBackend(mode, opencl_available && particles >= kAutoGpuThreshold);
 }
 
 bool openClAvailable() {

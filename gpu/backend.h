@@ -39,6 +39,10 @@ inline constexpr std::size_t kAutoGpuThreshold = 8'000;
 /// particles and only when an OpenCL device exists.
 Backend chooseBackend(GpuMode mode, std::size_t particles, bool opencl_available);
 
+/// The decision behind every chooseBackend: off is the CPU, on is OpenCL, auto is OpenCL only
+/// when offloading pays (a device exists and the batch is past its threshold).
+Backend chooseBackend(GpuMode mode, bool offload_pays);
+
 /// True when an OpenCL GPU or CPU device can be opened (checked once per process).
 bool openClAvailable();
 

@@ -55,15 +55,7 @@ std::size_t crossover(std::span<const ProbeSample> samples) {
 
 Backend chooseBackend(GpuMode mode, Workload workload, std::size_t n, bool opencl_available,
                       const OffloadThresholds& thresholds) {
-  switch (mode) {
-    case GpuMode::Off:
-      return Backend::Cpu;
-    case GpuMode::On:
-      return Backend::OpenCl;
-    case GpuMode::Auto:
-      break;
-  }
-  return opencl_available && n >= thresholds.of(workload) ? Backend::OpenCl : Backend::Cpu;
+  return chooseBackend(mode, opencl_available && n >= thresholds.of(workload));
 }
 
 }  // namespace zonesim::gpu

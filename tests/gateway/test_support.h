@@ -17,6 +17,7 @@
 #include "common/scene.h"
 #include "idl/dds_entity.h"
 #include "idl/dds_qos.h"
+#include "idl/dds_take.h"
 #include "idl/topics.h"
 #include "support/dds_test_domain.h"
 #include "zonesim.h"
@@ -125,16 +126,8 @@ class ZoneEmulator {
   template <typename T>
   static std::vector<T> take(dds_entity_t reader) {
     std::vector<T> out;
-    void* samples[16];
-    dds_sample_info_t infos[16];
-    for (;;) {
-      std::fill(std::begin(samples), std::end(samples), nullptr);
-      int n = dds_take(reader, samples, infos, 16, 16);
-      for (int i = 0; i < n; ++i)
-        if (infos[i].valid_data) out.push_back(*static_cast<T*>(samples[i]));
-      if (n > 0) dds_return_loan(reader, samples, n);
-      if (n < 16) return out;
-    }
+    dds::takeAll<T>(reader, [&](const T& sample) { out.push_back(sample); });
+    return out;
   }
 
   std::uint32_t gateway_id_;

@@ -1,27 +1,10 @@
 #include "zone_node/net/zone_link.h"
 
 #include "idl/dds_qos.h"
+#include "idl/dds_take.h"
 #include "zonesim.h"
 
 namespace zonesim::zone {
-
-namespace {
-/// Takes every available sample from a reader (loaned buffers) and hands valid ones to f.
-template <typename Sample, typename F>
-void takeAll(dds_entity_t reader, F&& f) {
-  constexpr int kBatch = 64;
-  void* samples[kBatch];
-  dds_sample_info_t infos[kBatch];
-  for (;;) {
-    samples[0] = nullptr;
-    int n = dds::check(dds_take(reader, samples, infos, kBatch, kBatch), "dds_take");
-    for (int i = 0; i < n; ++i)
-      if (infos[i].valid_data) f(*static_cast<const Sample*>(samples[i]));
-    if (n > 0) dds_return_loan(reader, samples, n);
-    if (n < kBatch) break;
-  }
-}
-}  // namespace
 
 ZoneLink::ZoneLink(int domain, int rank)
     : participant_(dds::makeParticipant(domain)), topics_(dds::makeTopics(participant_.get())) {
@@ -36,23 +19,25 @@ ZoneLink::ZoneLink(int domain, int rank)
 
 std::vector<PlayerInputMsg> ZoneLink::takeInputs() {
   std::vector<PlayerInputMsg> out;
-  takeAll<zonesim_dds_PlayerInput>(inputs_.reader.get(), [&](const zonesim_dds_PlayerInput& s) {
-    out.push_back({s.player_id, s.avatar_id, s.seq, s.move_x, s.move_z});
-  });
+  dds::takeAll<zonesim_dds_PlayerInput>(
+      inputs_.reader.get(), [&](const zonesim_dds_PlayerInput& s) {
+        out.push_back({s.player_id, s.avatar_id, s.seq, s.move_x, s.move_z});
+      });
   return out;
 }
 
 std::vector<SpawnRequestMsg> ZoneLink::takeSpawnRequests() {
   std::vector<SpawnRequestMsg> out;
-  takeAll<zonesim_dds_SpawnRequest>(spawns_.reader.get(), [&](const zonesim_dds_SpawnRequest& s) {
-    out.push_back({s.player_id, double(s.position.x), double(s.position.z)});
-  });
+  dds::takeAll<zonesim_dds_SpawnRequest>(
+      spawns_.reader.get(), [&](const zonesim_dds_SpawnRequest& s) {
+        out.push_back({s.player_id, double(s.position.x), double(s.position.z)});
+      });
   return out;
 }
 
 std::vector<std::uint64_t> ZoneLink::takeDespawnRequests() {
   std::vector<std::uint64_t> out;
-  takeAll<zonesim_dds_DespawnRequest>(
+  dds::takeAll<zonesim_dds_DespawnRequest>(
       despawns_.reader.get(),
       [&](const zonesim_dds_DespawnRequest& s) { out.push_back(s.player_id); });
   return out;
