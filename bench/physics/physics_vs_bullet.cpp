@@ -49,8 +49,10 @@ double timeMs(F&& f) {
 }
 
 std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timing,
-                          bool sleeping = false, int settle = 0, std::size_t* asleep = nullptr) {
+                          zp::SolverKind kind = zp::SolverKind::SoftStep, bool sleeping = false,
+                          int settle = 0, std::size_t* asleep = nullptr) {
   zp::WorldSettings settings;
+  settings.solver.kind = kind;
   settings.sleep.enabled = sleeping;
   settings.solver.velocity_iterations = 10;
   settings.solver.position_iterations = 2;
@@ -185,7 +187,7 @@ int main(int argc, char** argv) {
     for (bool on : {false, true}) {
       Timing t;
       std::size_t asleep = 0;
-      runOurs(scene, steps, t, on, 300, &asleep);
+      runOurs(scene, steps, t, zp::SolverKind::SoftStep, on, 300, &asleep);
       std::printf(
           "pyramid after 300 settling steps, sleeping %s: %.3f ms/step median, %.3f "
           "mean over %d steps, %zu bodies asleep\n",
@@ -197,14 +199,25 @@ int main(int argc, char** argv) {
   const zp::bench::Scene scene = pyramid ? zp::bench::pyramidScene() : zp::bench::spheresScene();
   std::printf("%s: %zu bodies, %d steps of 1/60 s, 10 velocity iterations\n", which.c_str(),
               scene.bodies.size(), steps);
-  Timing ours_t, bullet_t;
-  const auto ours = runOurs(scene, steps, ours_t);
+  // Our solvers (argument 3: "soft", "pgs" or "both"), then Bullet, in the same run.
+  const std::string solvers = argc > 3 ? argv[3] : "both";
+  std::vector<std::pair<const char*, zp::SolverKind>> kinds;
+  if (solvers != "pgs") kinds.emplace_back("zs-soft", zp::SolverKind::SoftStep);
+  if (solvers != "soft") kinds.emplace_back("zs-pgs", zp::SolverKind::GaussSeidel);
+  for (const auto& [name, kind] : kinds) {
+    Timing t;
+    const auto ours = runOurs(scene, steps, t, kind);
+    if (pyramid) {
+      reportPyramid(name, scene, ours, t);
+    } else {
+      reportSpheres(name, scene, ours, t);
+    }
+  }
+  Timing bullet_t;
   const auto bullet = runBullet(scene, steps, bullet_t);
   if (pyramid) {
-    reportPyramid("zonesim", scene, ours, ours_t);
     reportPyramid("bullet", scene, bullet, bullet_t);
   } else {
-    reportSpheres("zonesim", scene, ours, ours_t);
     reportSpheres("bullet", scene, bullet, bullet_t);
   }
   return 0;

@@ -42,6 +42,7 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
     k.t[0] = orthogonal(k.n);
     k.t[1] = k.n.cross(k.t[0]);
     k.friction = bc.friction;
+    k.restitution = bc.restitution;
     k.first = next;
     k.count = bc.manifold.count;
     next += static_cast<std::uint32_t>(k.count);
@@ -81,6 +82,8 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
       fp.jt[0] = warm ? bc.impulse[i][1] : 0.0;
       fp.jt[1] = warm ? bc.impulse[i][2] : 0.0;
       np.jp = 0.0;
+      np.vn0 = vn;
+      np.max_jn = 0.0;
     }
   }
 }

@@ -18,14 +18,42 @@
 
 namespace zonesim::physics {
 
+/// How contacts are resolved (WorldSettings::solver.kind). See docs/physics.md.
+enum class SolverKind {
+  /// Box2D v3 soft step: the velocity iterations become sub-steps of the solve (TGS), each a
+  /// soft (spring-damper) biased pass and a rigid relax pass, with separations updated from
+  /// the bodies' motion inside the step. Holds tall stacks and mass ratios at one world step.
+  SoftStep,
+  /// Projected Gauss-Seidel sequential impulses with split-impulse position correction.
+  GaussSeidel,
+};
+
+/// A soft constraint's spring as bias rate and scales for one sub-step (Box2D v3 form).
+struct Softness {
+  double bias_rate = 0.0;      ///< 1/s applied to the (negative) separation.
+  double mass_scale = 1.0;     ///< Scales the effective mass.
+  double impulse_scale = 0.0;  ///< Fraction of the accumulated impulse relaxed each pass.
+};
+
+/// Softness of a spring of `hertz` and `damping_ratio` integrated implicitly over h.
+Softness makeSoftness(double hertz, double damping_ratio, double h);
+
 /// Iteration counts and tolerances of the contact solver.
 struct SolverSettings {
+  SolverKind kind = SolverKind::GaussSeidel;
   int velocity_iterations = 10;
   int position_iterations = 2;
   double split_beta = 0.2;             ///< Fraction of the overlap removed per step.
   double slop = 0.005;                 ///< Overlap (m) left alone so contacts persist.
   double restitution_threshold = 0.5;  ///< m/s: slower impacts do not bounce.
   bool warm_starting = true;
+  /// Soft step: contact spring frequency, capped at a quarter of the sub-step rate (the
+  /// default asks for the cap: 75 Hz at 1/60 s and 10 iterations).
+  double contact_hertz = 1000.0;
+  /// Soft step: contact spring damping ratio (heavily overdamped: no bounce from the spring).
+  double contact_damping_ratio = 10.0;
+  /// Soft step: the fastest the spring may push overlapping bodies apart (m/s).
+  double max_push_velocity = 3.0;
 };
 
 /// A manifold between two bodies, with the impulses solved for each point (for warm starts).
@@ -59,6 +87,13 @@ class ContactSolver {
   void solvePositions(const BodyStorage& bodies);
   /// Pseudo linear velocity of body i from the last solvePositions.
   const Vec3& pseudoLinear(std::size_t i) const { return ps_v_[i]; }
+  /// Soft step: one pass over every contact with the separations moved by each body's
+  /// displacement dp and small rotation dtheta since prepare. use_bias: soft spring pass
+  /// (pushes overlap out), else rigid relax pass (removes the push velocity).
+  void solveSoft(BodyStorage& bodies, std::span<const Vec3> dp, std::span<const Vec3> dtheta,
+                 const Softness& soft, bool use_bias, double inv_h);
+  /// Soft step: applies the restitution targets once after the sub-steps.
+  void applyRestitution(BodyStorage& bodies);
   /// Pseudo angular velocity of body i from the last solvePositions.
   const Vec3& pseudoAngular(std::size_t i) const { return ps_w_[i]; }
 
@@ -78,6 +113,8 @@ class ContactSolver {
     double target;  // Normal velocity the solve aims for (bounce or allowed approach).
     double depth;
     double jn, jp;
+    double vn0;     // Relative normal velocity at prepare (restitution in the soft step).
+    double max_jn;  // Largest normal impulse of the soft step (restitution only if touched).
   };
   struct FrictionPoint {
     Row row[2];
@@ -88,6 +125,7 @@ class ContactSolver {
     double ma, mb;  // Inverse masses.
     Vec3 n, t[2];
     double friction;
+    double restitution;
     std::uint32_t first;  // Index of the first point in the point arrays.
     int count;
   };

@@ -86,6 +86,7 @@ class World {
   void wakeTouched();
   void warmStartFromPrevious();
   void integratePositions(double dt);
+  void solveSoftStep(double dt);
   void quarantineNonFinite();
 
   WorldSettings settings_;
@@ -99,6 +100,8 @@ class World {
 
   // Per-step buffers, kept to avoid allocating in the step.
   std::vector<Vec3> x_start_, v_start_, x_force_, v_force_;
+  std::vector<Vec3> soft_dp_, soft_dtheta_, soft_dv_;
+  std::vector<std::uint8_t> soft_touched_;
   std::vector<Aabb> proxy_boxes_;
   std::vector<std::uint8_t> proxy_moving_;
   std::vector<BodyIndex> proxy_body_, planes_;

@@ -1,0 +1,123 @@
+// The contact solvers selectable in SolverSettings::kind, each on the scene it is for, with
+// the bounds measured at the default step (one step of 1/60 s, 10 velocity and 2
+// position iterations) unless a test says otherwise.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "zone_node/physics/world.h"
+
+namespace zonesim::physics {
+namespace {
+
+/// A column of unit cubes on a static floor box; densities from bottom to top.
+struct Column {
+  World world;
+  std::vector<Vec3> start;
+
+  Column(const WorldSettings& settings, const std::vector<double>& densities) : world(settings) {
+    BodyDesc floor;
+    floor.type = BodyType::Static;
+    floor.shape = Shape::box(Vec3(50, 1, 50));
+    floor.position = Vec3(0, -1, 0);
+    world.addBody(floor);
+    for (std::size_t k = 0; k < densities.size(); ++k) {
+      BodyDesc box;
+      box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
+      box.position = Vec3(0, 0.5 + static_cast<double>(k), 0);
+      box.friction = 0.5;
+      box.density = densities[k];
+      world.addBody(box);
+      start.push_back(box.position);
+    }
+  }
+  void run(double seconds) {
+    const int steps = static_cast<int>(std::lround(seconds * 60.0));
+    for (int s = 0; s < steps; ++s) world.step(1.0 / 60.0);
+  }
+  /// Largest horizontal and vertical displacement of any box from its start.
+  void drift(double& horizontal, double& vertical) const {
+    horizontal = vertical = 0.0;
+    for (std::size_t k = 0; k < start.size(); ++k) {
+      const Vec3 d = world.bodies().position[k + 1] - start[k];
+      horizontal = std::max(horizontal, std::hypot(d.x(), d.z()));
+      vertical = std::max(vertical, std::abs(d.y()));
+    }
+  }
+};
+
+WorldSettings withSolver(SolverKind kind, int velocity_iterations = 10) {
+  WorldSettings settings;
+  settings.solver.kind = kind;
+  settings.solver.velocity_iterations = velocity_iterations;
+  settings.solver.position_iterations = 2;
+  return settings;
+}
+
+// Plain PGS lets this column fall within 10 s at these settings (docs/physics.md). The soft
+// step keeps it upright: no sideways walk, and the only drift is the contact springs' static
+// sag, g / omega^2 per supported box (75 Hz here: 1.8 cm at the top of 20), which is over
+// the 1 cm: the next test shows the iterations that meet it.
+TEST(SoftStep, TwentyBoxStackStandsSixtySecondsAtOneStepAndTenIterations) {
+  Column column(withSolver(SolverKind::SoftStep), std::vector<double>(20, 1000.0));
+  column.run(60.0);
+  double horizontal = 0.0, vertical = 0.0;
+  column.drift(horizontal, vertical);
+  std::printf("soft step, 20 boxes, 60 s: horizontal drift %.3e m, sag %.3e m\n", horizontal,
+              vertical);
+  EXPECT_LT(horizontal, 5e-3);  // Measured 1.1 mm.
+  EXPECT_LT(vertical, 0.025);
+}
+
+// Seven sub-steps (14 velocity iterations) make the springs stiff enough (105 Hz) for the
+// issue's bound: every box within 1 cm of where it started after 60 s.
+TEST(SoftStep, TwentyBoxStackDriftsLessThanOneCentimetreWithFourteenIterations) {
+  Column column(withSolver(SolverKind::SoftStep, 14), std::vector<double>(20, 1000.0));
+  column.run(60.0);
+  double horizontal = 0.0, vertical = 0.0;
+  column.drift(horizontal, vertical);
+  std::printf("soft step (14 it), 20 boxes, 60 s: horizontal drift %.3e m, sag %.3e m\n",
+              horizontal, vertical);
+  EXPECT_LT(std::hypot(horizontal, vertical), 0.01);
+}
+
+// A cube 100 times as dense on a light one, Gauss-Seidel at one step per 1/60 s for 30 s.
+TEST(GaussSeidel, HundredToOneMassRatioStackHoldsAtOneStep) {
+  Column column(withSolver(SolverKind::GaussSeidel), {1000.0, 100000.0});
+  column.run(30.0);
+  double horizontal = 0.0, vertical = 0.0;
+  column.drift(horizontal, vertical);
+  std::printf("PGS 100:1, 30 s: horizontal drift %.3e m, sag %.3e m\n", horizontal, vertical);
+  EXPECT_LT(std::hypot(horizontal, vertical), 0.02);
+}
+
+// Restitution through the soft step: the bounce is applied once after the sub-steps.
+TEST(SoftStep, RestitutionGivesTheExpectedReboundHeight) {
+  const double h = 2.0, e = 0.6, r = 0.5, dt = 1.0 / 1000.0;
+  World world(withSolver(SolverKind::SoftStep));
+  BodyDesc ground;
+  ground.type = BodyType::Static;
+  ground.shape = Shape::plane();
+  ground.restitution = e;
+  world.addBody(ground);
+  BodyDesc ball;
+  ball.shape = Shape::sphere(r);
+  ball.position = Vec3(0, r + h, 0);
+  ball.restitution = e;
+  const BodyIndex i = world.addBody(ball);
+  bool bounced = false;
+  double apex = 0.0;
+  for (int step = 0; step < 2500; ++step) {
+    world.step(dt);
+    bounced = bounced || world.bodies().linear_velocity[i].y() > 0.0;
+    if (bounced) apex = std::max(apex, world.bodies().position[i].y() - r);
+  }
+  std::printf("soft step rebound apex %.5f m, expected %.5f m\n", apex, e * e * h);
+  EXPECT_NEAR(apex / (e * e * h), 1.0, 0.02);
+}
+
+}  // namespace
+}  // namespace zonesim::physics
