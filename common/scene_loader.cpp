@@ -235,10 +235,43 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("sleep", ps.sleep);
 }
 
+void readDeadReckoningModel(const SceneMap& models, std::string_view kind,
+                            DeadReckoningModel& model) {
+  SceneMap m = models.section(kind, {"order", "orientation"});
+  model.order =
+      DeadReckoningModel::Order(m.choice("order", {"static", "first", "second"}, int(model.order)));
+  model.rotating = m.choice("orientation", {"fixed", "rotating"}, model.rotating ? 1 : 0) == 1;
+}
+
+void readQuantisation(const SceneMap& dr_map, StateQuantisation& q) {
+  SceneMap m = dr_map.section(
+      "quantisation", {"position_resolution", "max_speed", "velocity_resolution",
+                       "max_acceleration", "acceleration_resolution", "max_angular_velocity",
+                       "angular_velocity_resolution", "rotation_bits"});
+  // Bounded so every field fits in well under 32 bits.
+  m.read("position_resolution", q.position_resolution, Limit::between(1e-4, 1));
+  m.read("max_speed", q.max_speed, Limit::between(1, 1e4));
+  m.read("velocity_resolution", q.velocity_resolution, Limit::between(1e-4, 1));
+  m.read("max_acceleration", q.max_acceleration, Limit::between(1, 1e4));
+  m.read("acceleration_resolution", q.acceleration_resolution, Limit::between(1e-4, 1));
+  m.read("max_angular_velocity", q.max_angular_velocity, Limit::between(1, 1e3));
+  m.read("angular_velocity_resolution", q.angular_velocity_resolution, Limit::between(1e-4, 1));
+  m.read("rotation_bits", q.rotation_bits, Limit::between(4, 16));
+}
+
 void readDeadReckoning(const SceneMap& root, DeadReckoning& dr) {
-  SceneMap m = root.section("dead_reckoning", {"position_threshold", "heartbeat_s"});
+  SceneMap m = root.section(
+      "dead_reckoning",
+      {"position_threshold", "heartbeat_s", "orientation_threshold_deg", "models", "quantisation"});
   m.read("position_threshold", dr.position_threshold, Limit::atLeast(0));
   m.read("heartbeat_s", dr.heartbeat_seconds, Limit::above(0));
+  m.read("orientation_threshold_deg", dr.orientation_threshold_deg, Limit::between(0, 180));
+  SceneMap models = m.section("models", {"npc", "avatar", "rigid_body", "particle_emitter"});
+  readDeadReckoningModel(models, "npc", dr.npc);
+  readDeadReckoningModel(models, "avatar", dr.avatar);
+  readDeadReckoningModel(models, "rigid_body", dr.rigid_body);
+  readDeadReckoningModel(models, "particle_emitter", dr.emitter);
+  readQuantisation(m, dr.quantisation);
 }
 
 void readClients(const SceneMap& root, ClientProfile& clients) {

@@ -10,6 +10,7 @@
 
 #include "common/entity_id.h"
 #include "common/math.h"
+#include "idl/dr_model.h"
 
 namespace zonesim::zone {
 
@@ -61,10 +62,12 @@ struct EmitterData {
 
 /// What the publish phase last told subscribers about the entity (sender-side dead reckoning).
 struct DeadReckoningState {
-  int cell = -1;  ///< interest cell it was last published in; -1 = never published here
-  Vec3 pos = Vec3::Zero();
-  Vec3 vel = Vec3::Zero();
-  double time = 0;
+  int cell = -1;    ///< interest cell it was last published in; -1 = never published here
+  dr::State sent;   ///< the quantised state receivers hold
+  double time = 0;  ///< sim time `sent` was sampled
+  Vec3 last_vel = Vec3::Zero();      ///< previous tick's velocity (acceleration estimate)
+  Quat last_rot = Quat::Identity();  ///< previous tick's orientation (angular velocity estimate)
+  bool has_last = false;
 };
 
 /// One entity with all its components, for creation and migration.

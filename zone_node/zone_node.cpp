@@ -56,9 +56,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   }
   if (options_.dds) {
     link_ = std::make_unique<ZoneLink>(options_.dds_domain, rank_);
-    publisher_ =
-        std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_, rank_,
-                                        scene_.dead_reckoning, scene_.keyframe_every);
+    publisher_ = std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_,
+                                                 rank_, scene_);
     coverZone();
     // After a restart the gateways must learn where the restored avatars live now.
     for (std::size_t i = 0; i < store_.size(); ++i)

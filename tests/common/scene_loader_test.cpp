@@ -186,6 +186,32 @@ TEST(SceneDefaults, ExplicitValuesOverrideThem) {
   EXPECT_DOUBLE_EQ(s.clients.retarget_seconds, 2);
 }
 
+TEST(SceneDefaults, DeadReckoningModelsAndQuantisation) {
+  Scene plain = parseScene(kMinimal, "x");
+  EXPECT_EQ(plain.dead_reckoning.npc.order, DeadReckoningModel::Order::First);
+  EXPECT_EQ(plain.dead_reckoning.rigid_body.order, DeadReckoningModel::Order::Second);
+  EXPECT_TRUE(plain.dead_reckoning.rigid_body.rotating);
+  EXPECT_EQ(plain.dead_reckoning.emitter.order, DeadReckoningModel::Order::Static);
+  EXPECT_DOUBLE_EQ(plain.dead_reckoning.orientation_threshold_deg, 3);
+  Scene s = parseScene(
+      std::string(kMinimal) +
+          "dead_reckoning:\n"
+          "  orientation_threshold_deg: 5\n"
+          "  models: {npc: {order: second, orientation: rotating}, avatar: {order: static}}\n"
+          "  quantisation: {position_resolution: 0.01, rotation_bits: 12}\n",
+      "x");
+  EXPECT_EQ(s.dead_reckoning.npc.order, DeadReckoningModel::Order::Second);
+  EXPECT_TRUE(s.dead_reckoning.npc.rotating);
+  EXPECT_EQ(s.dead_reckoning.avatar.order, DeadReckoningModel::Order::Static);
+  EXPECT_FALSE(s.dead_reckoning.avatar.rotating);
+  EXPECT_DOUBLE_EQ(s.dead_reckoning.orientation_threshold_deg, 5);
+  EXPECT_DOUBLE_EQ(s.dead_reckoning.quantisation.position_resolution, 0.01);
+  EXPECT_EQ(s.dead_reckoning.quantisation.rotation_bits, 12);
+  EXPECT_THROW(
+      parseScene(std::string(kMinimal) + "dead_reckoning: {models: {npc: {order: third}}}\n", "x"),
+      SceneError);
+}
+
 TEST(SceneFormatDoc, CompleteExampleLoads) {
   std::ifstream in(sourcePath("docs/scene-format.md"));
   std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,41 +1,158 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "common/interest_grid.h"
 #include "zone_node/net/dead_reckoning.h"
 
 namespace zonesim::zone {
 namespace {
 
-TEST(DeadReckoning, UpdatesOnlyWhenThePredictionDriftsOrTheHeartbeatExpires) {
+constexpr double kPi = 3.14159265358979323846;
+
+Scene worldScene() {
+  Scene s;
+  s.world = {{0, 0, 0}, {400, 50, 400}};
+  s.interest_cell_size = 50;
+  return s;
+}
+
+EntityRecordData entity(EntityKind kind) {
+  EntityRecordData r;
+  r.id = EntityId::make(1, 7);
+  r.kind = kind;
+  return r;
+}
+
+TEST(DeadReckoning, ModelsComeFromTheSceneByEntityType) {
+  DeadReckoning cfg;
+  cfg.avatar = {DeadReckoningModel::Order::Second, true};
+  EXPECT_EQ(modelFor(cfg, EntityKind::Npc).order, dr::Order::First);
+  EXPECT_EQ(modelFor(cfg, EntityKind::Avatar).order, dr::Order::Second);
+  EXPECT_EQ(modelFor(cfg, EntityKind::Avatar).spin, dr::Spin::Rotating);
+  EXPECT_EQ(modelFor(cfg, EntityKind::RigidBody).order, dr::Order::Second);
+  EXPECT_EQ(modelFor(cfg, EntityKind::Emitter).order, dr::Order::Static);
+  EXPECT_NEAR(thresholdsOf(cfg).orientation_rad, 3 * kPi / 180, 1e-15);
+}
+
+TEST(DeadReckoning, EstimatesAccelerationAndSpinFromTheLastTick) {
+  EntityStore store;
+  store.add(entity(EntityKind::Npc));
+  const double dt = 1.0 / 30;
+  // Constant acceleration (0, -9.81, 1) and constant spin 0.6 rad/s about world y.
+  store.vel[0] = Vec3(2, 0, 0);
+  store.rot[0] = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX()));
+  dr::State first = trueState(store, 0, dt);
+  EXPECT_EQ(first.acc.y, 0);  // no history yet
+  rememberTick(store, 0);
+  store.vel[0] += Vec3(0, -9.81, 1) * dt;
+  store.rot[0] = Quat(Eigen::AngleAxisd(0.6 * dt, Vec3::UnitY())) * store.rot[0];
+  dr::State s = trueState(store, 0, dt);
+  EXPECT_NEAR(s.acc.x, 0, 1e-9);
+  EXPECT_NEAR(s.acc.y, -9.81, 1e-9);
+  EXPECT_NEAR(s.acc.z, 1, 1e-9);
+  EXPECT_NEAR(s.angvel.x, 0, 1e-9);
+  EXPECT_NEAR(s.angvel.y, 0.6, 1e-9);
+  EXPECT_NEAR(s.angvel.z, 0, 1e-9);
+}
+
+// Runs the sender on an analytic trajectory; returns updates sent and checks that after every
+// tick's decision the receivers' prediction is within the threshold (plus quantisation).
+template <typename Truth>
+int runSender(DeadReckoning cfg, EntityKind kind, Truth truth, double seconds,
+              double& worst_after) {
+  Scene scene = worldScene();
+  scene.dead_reckoning = cfg;
+  InterestGrid grid(scene.world, scene.interest_cell_size);
+  DeadReckoner reckoner(cfg, dr::codecParams(scene));
+  EntityStore store;
+  store.add(entity(kind));
+  const double dt = 1.0 / 30;
+  int updates = 0;
+  worst_after = 0;
+  for (int tick = 0; tick * dt <= seconds; ++tick) {
+    double t = tick * dt;
+    truth(t, store.pos[0], store.vel[0], store.rot[0]);
+    dr::State now = trueState(store, 0, tick > 0 ? dt : 0);
+    rememberTick(store, 0);
+    int cell = grid.cellOf(store.pos[0].x(), store.pos[0].z());
+    DeadReckoningState& d = store.dr[0];
+    if (tick == 0 || reckoner.due(d, store.id[0], kind, now, t) != dr::Due::None) {
+      int largest;
+      DeadReckoner::markSent(d, reckoner.quantised(now, kind, cell, &largest), t);
+      ++updates;
+    }
+    dr::Model m = modelFor(cfg, kind);
+    worst_after = std::max(worst_after,
+                           dr::distance(dr::predictPosition(d.sent, m.order, t - d.time), now.pos));
+  }
+  return updates;
+}
+
+TEST(DeadReckoning, SenderKeepsReceiversWithinTheThresholdAndBeatsTheHeart) {
   DeadReckoning cfg;
   cfg.position_threshold = 0.5;
   cfg.heartbeat_seconds = 5;
-  DeadReckoningState s;
-  markSent(s, Vec3(0, 0, 0), Vec3(1, 0, 0), 10.0);
-  const EntityId id = EntityId::make(3, 99);
-  // Moving exactly as predicted: no update until the heartbeat (between 3.75 and 5 s).
-  EXPECT_FALSE(needsUpdate(s, id, Vec3(2, 0, 0), 12.0, cfg));
-  EXPECT_FALSE(needsUpdate(s, id, Vec3(3.7, 0, 0), 13.7, cfg));
-  EXPECT_TRUE(needsUpdate(s, id, Vec3(5, 0, 0), 15.0, cfg));
-  // Turned: 0.4 m off is tolerated, 0.6 m is not.
-  EXPECT_FALSE(needsUpdate(s, id, Vec3(2, 0, 0.4), 12.0, cfg));
-  EXPECT_TRUE(needsUpdate(s, id, Vec3(2, 0, 0.6), 12.0, cfg));
-  EXPECT_EQ(predictFirstOrder(s, 11.5), Vec3(1.5, 0, 0));
+  // Straight walk at 1.5 m/s: only heartbeats (every 3.75..5 s) after the first send.
+  double worst;
+  auto line = [](double t, Vec3& p, Vec3& v, Quat& q) {
+    p = Vec3(10 + 1.5 * t, 0, 20);
+    v = Vec3(1.5, 0, 0);
+    q = Quat::Identity();
+  };
+  int n = runSender(cfg, EntityKind::Npc, line, 60, worst);
+  EXPECT_GE(n, 1 + 60 / 5);
+  EXPECT_LE(n, 1 + int(60 / 3.75) + 1);
+  EXPECT_LT(worst, 0.01);  // only quantisation
+  // Circle of radius 20 m at 2 m/s: turning all the time.
+  auto circle = [](double t, Vec3& p, Vec3& v, Quat& q) {
+    double w = 0.1;
+    p = Vec3(200 + 20 * std::cos(w * t), 0, 200 + 20 * std::sin(w * t));
+    v = Vec3(-2 * std::sin(w * t), 0, 2 * std::cos(w * t));
+    q = Quat(Eigen::AngleAxisd(-w * t, Vec3::UnitY()));
+  };
+  cfg.orientation_threshold_deg = 180;  // position only here
+  int first = runSender(cfg, EntityKind::Npc, circle, 60, worst);
+  EXPECT_LE(worst, 0.5 + 0.01);
+  // First order error after s seconds on the circle is about v^2 s^2 / (2 r) = 0.1 s^2: the
+  // threshold is reached every ~2.2 s, a heartbeat never.
+  EXPECT_NEAR(first, 60 / std::sqrt(0.5 / 0.1), 6);
+  // Second order follows the turn much longer before 0.5 m is reached.
+  cfg.npc.order = DeadReckoningModel::Order::Second;
+  int second = runSender(cfg, EntityKind::Npc, circle, 60, worst);
+  EXPECT_LE(worst, 0.5 + 0.01);
+  EXPECT_LT(second * 2, first);
+  // The facing turns at 0.1 rad/s: a 3 degree threshold on a fixed orientation fires every
+  // ~0.52 s; a rotating model carries the turn.
+  cfg.orientation_threshold_deg = 3;
+  int fixed = runSender(cfg, EntityKind::Npc, circle, 60, worst);
+  EXPECT_NEAR(fixed, 60 / (3 * kPi / 180 / 0.1), 10);
+  cfg.npc.rotating = true;
+  int rotating = runSender(cfg, EntityKind::Npc, circle, 60, worst);
+  EXPECT_LT(rotating * 4, fixed);
 }
 
-TEST(DeadReckoning, HeartbeatsOfEntitiesSentTogetherSpreadOverAQuarterPeriod) {
+TEST(DeadReckoning, StaticModelSendsOnlyOnMoveOrHeartbeat) {
   DeadReckoning cfg;
-  cfg.heartbeat_seconds = 4;
-  double lo = 1e9, hi = 0;
-  int first_quarter = 0;
-  for (std::uint64_t c = 1; c <= 10000; ++c) {
-    double p = heartbeatPeriod(EntityId::make(0xFFFF, c), cfg);
-    lo = std::min(lo, p);
-    hi = std::max(hi, p);
-    first_quarter += p < 3.25;
-  }
-  EXPECT_GE(lo, 3.0);
-  EXPECT_LT(hi, 4.0);
-  EXPECT_NEAR(first_quarter / 10000.0, 0.25, 0.03);  // uniform over [3, 4)
+  cfg.emitter.order = DeadReckoningModel::Order::Static;
+  double worst;
+  auto still = [](double, Vec3& p, Vec3& v, Quat& q) {
+    p = Vec3(100, 2, 100);
+    v = Vec3::Zero();
+    q = Quat::Identity();
+  };
+  int n = runSender(cfg, EntityKind::Emitter, still, 30, worst);
+  EXPECT_GE(n, 1 + 30 / 5);
+  EXPECT_LE(n, 1 + int(30 / 3.75) + 1);
+  // Moving 1 m/s under a static model: an update every 0.5 m, i.e. every half second.
+  auto moving = [](double t, Vec3& p, Vec3& v, Quat& q) {
+    p = Vec3(100 + t, 2, 100);
+    v = Vec3(1, 0, 0);
+    q = Quat::Identity();
+  };
+  n = runSender(cfg, EntityKind::Emitter, moving, 30, worst);
+  EXPECT_NEAR(n, 60, 3);
+  EXPECT_LE(worst, 0.5 + 0.01);
 }
 
 }  // namespace

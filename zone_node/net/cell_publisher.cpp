@@ -1,19 +1,31 @@
 #include "zone_node/net/cell_publisher.h"
 
 #include "idl/dds_qos.h"
+#include "idl/dr_sample.h"
 #include "zone_node/net/dead_reckoning.h"
 
 namespace zonesim::zone {
 
 namespace {
 
-zonesim_dds_EntityUpdate toSample(const EntityStore& s, std::size_t i) {
+using dds_Vec3f = zonesim_dds_Vec3f;
+
+dds_Vec3f toVec3f(const dr::V3& v) {
+  return {float(v.x), float(v.y), float(v.z)};
+}
+
+/// The wire sample of a quantised state: what every receiver decodes.
+zonesim_dds_EntityUpdate toSample(EntityId id, EntityKind kind, const dr::Model& m,
+                                  const dr::State& s, int rot_largest) {
   zonesim_dds_EntityUpdate u{};
-  u.id = s.id[i].value;
-  u.kind = std::uint8_t(s.kind[i]);
-  u.pos = {float(s.pos[i].x()), float(s.pos[i].y()), float(s.pos[i].z())};
-  u.vel = {float(s.vel[i].x()), float(s.vel[i].y()), float(s.vel[i].z())};
-  u.rot = {float(s.rot[i].x()), float(s.rot[i].y()), float(s.rot[i].z()), float(s.rot[i].w())};
+  u.id = id.value;
+  u.kind = std::uint8_t(kind);
+  u.pos = toVec3f(s.pos);
+  u.vel = toVec3f(s.vel);
+  u.rot = {float(s.rot.x), float(s.rot.y), float(s.rot.z), float(s.rot.w)};
+  u.acc = toVec3f(s.acc);
+  u.angvel = toVec3f(s.angvel);
+  u.model = dds::packModel(m, rot_largest);
   return u;
 }
 
@@ -39,15 +51,14 @@ Matched matchedReaders(dds_entity_t writer) {
 }  // namespace
 
 CellPublisher::CellPublisher(dds_entity_t participant, const dds::Topics& topics,
-                             const InterestGrid& grid, int zone, const DeadReckoning& dr,
-                             int keyframe_every)
+                             const InterestGrid& grid, int zone, const Scene& scene)
     : participant_(participant),
       update_topic_(topics.cell_updates.get()),
       keyframe_topic_(topics.cell_keyframes.get()),
       grid_(grid),
       zone_(zone),
-      dr_(dr),
-      keyframe_every_(keyframe_every) {}
+      reckoner_(scene.dead_reckoning, dr::codecParams(scene)),
+      keyframe_every_(scene.keyframe_every) {}
 
 CellPublisher::Channel& CellPublisher::channel(int cell) {
   auto it = channels_.find(cell);
@@ -89,36 +100,61 @@ PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departur
     channel(grid_.cellOf(store.pos[i].x(), store.pos[i].z()));
   refreshSubscriptions(tick, stats);
 
+  double dt = last_sim_time_ >= 0 ? sim_time - last_sim_time_ : 0;
+  last_sim_time_ = sim_time;
   for (std::size_t i = 0; i < store.size(); ++i) {
     int cell = grid_.cellOf(store.pos[i].x(), store.pos[i].z());
     DeadReckoningState& dr = store.dr[i];
+    EntityId id = store.id[i];
+    EntityKind kind = store.kind[i];
+    dr::State truth = trueState(store, i, dt);
+    rememberTick(store, i);
     Channel& ch = channels_.find(cell)->second;
     int previous = dr.cell;
     dr.cell = cell;
     if (previous != cell && previous >= 0) {
       Channel& old = channels_.find(previous)->second;
-      if (old.subscribed) old.leaves.push_back({store.id[i].value, zonesim_dds_LEAVE_MOVED_CELL});
+      if (old.subscribed) old.leaves.push_back({id.value, zonesim_dds_LEAVE_MOVED_CELL});
     }
     if (!ch.subscribed) continue;  // not encoded; a keyframe resynchronises on subscription
+    dr::Model model = modelFor(reckoner_.config(), kind);
+    auto sendNow = [&](std::vector<zonesim_dds_EntityUpdate>& out) {
+      int largest = -1;
+      dr::State q = reckoner_.quantised(truth, kind, cell, &largest);
+      out.push_back(toSample(id, kind, model, q, largest));
+      DeadReckoner::markSent(dr, q, sim_time);
+    };
     if (ch.keyframe_due) {
-      ch.keyframe.push_back(toSample(store, i));
       // Readers that start with this keyframe know exactly this state. Readers already
       // following the cell keep to the dead-reckoning stream: for them a periodic keyframe is
       // no reason to resend anything.
       if (ch.all_readers_new) {
-        markSent(dr, store.pos[i], store.vel[i], sim_time);
+        sendNow(ch.keyframe);
         continue;
       }
+      int largest = -1;
+      dr::State q = reckoner_.quantised(truth, kind, cell, &largest);
+      ch.keyframe.push_back(toSample(id, kind, model, q, largest));
     }
     if (previous != cell) {
-      ch.enters.push_back(toSample(store, i));
-      markSent(dr, store.pos[i], store.vel[i], sim_time);
-    } else if (needsUpdate(dr, store.id[i], store.pos[i], sim_time, dr_)) {
-      ch.updates_out.push_back(toSample(store, i));
-      markSent(dr, store.pos[i], store.vel[i], sim_time);
-    } else {
-      ++stats.suppressed;
+      sendNow(ch.enters);
+      continue;
     }
+    switch (reckoner_.due(dr, id, kind, truth, sim_time)) {
+      case dr::Due::None:
+        ++stats.suppressed;
+        continue;
+      case dr::Due::Position:
+        ++stats.position_updates;
+        break;
+      case dr::Due::Orientation:
+        ++stats.orientation_updates;
+        break;
+      case dr::Due::Heartbeat:
+        ++stats.heartbeats;
+        break;
+    }
+    sendNow(ch.updates_out);
   }
   for (const Departure& d : leavers) {
     if (d.last_cell < 0) continue;

@@ -14,6 +14,7 @@
 #include "idl/topics.h"
 #include "zone_node/cluster/migration.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/net/dead_reckoning.h"
 #include "zonesim.h"
 
 namespace zonesim::zone {
@@ -25,15 +26,19 @@ struct PublishStats {
   std::uint64_t updates = 0;
   std::uint64_t leaves = 0;
   std::uint64_t keyframes = 0;
-  std::uint64_t suppressed = 0;  ///< dead-reckoning checks that needed no update
+  std::uint64_t suppressed = 0;           ///< dead-reckoning checks that needed no update
+  std::uint64_t position_updates = 0;     ///< updates sent for the position threshold
+  std::uint64_t orientation_updates = 0;  ///< updates sent for the orientation threshold
+  std::uint64_t heartbeats = 0;           ///< updates sent for the heartbeat
   std::uint64_t subscribed_cells = 0;
   std::uint64_t write_failures = 0;  ///< writes that timed out (a reader not keeping up)
 };
 
 class CellPublisher {
  public:
+  /// Dead-reckoning models, thresholds, quantisation and keyframe period come from the scene.
   CellPublisher(dds_entity_t participant, const dds::Topics& topics, const InterestGrid& grid,
-                int zone, const DeadReckoning& dr, int keyframe_every);
+                int zone, const Scene& scene);
 
   /// Creates the writers of every cell the rectangle touches, so that they are matched before
   /// an entity first enters one (a handoff into a fresh cell must not wait for discovery).
@@ -65,8 +70,9 @@ class CellPublisher {
   dds_entity_t update_topic_, keyframe_topic_;
   const InterestGrid& grid_;
   int zone_;
-  DeadReckoning dr_;
+  DeadReckoner reckoner_;
   int keyframe_every_;
+  double last_sim_time_ = -1;        // previous publish: the step of the acceleration estimates
   std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
 };
 

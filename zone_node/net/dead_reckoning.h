@@ -1,40 +1,55 @@
 #pragma once
-// Sender-side first-order dead reckoning: the zone runs the receivers' model (position +
-// velocity * elapsed) and sends an update only when the prediction is off by more than the
-// threshold or the heartbeat has expired.
+// Sender-side dead reckoning: the zone runs the receivers' model (idl/dr_model.h, the order and
+// orientation mode chosen per entity type in the scene) on the quantised state it last sent, and
+// sends an update only when the prediction is off by more than the position or orientation
+// threshold or the entity's heartbeat has expired.
 
-#include "common/entity_id.h"
 #include "common/math.h"
 #include "common/scene.h"
+#include "idl/dr_model.h"
+#include "idl/state_codec.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {
 
-/// What a receiver extrapolates at time t from the last state it was sent.
-inline Vec3 predictFirstOrder(const DeadReckoningState& s, double t) {
-  return s.pos + s.vel * (t - s.time);
-}
+/// The scene's model for an entity kind.
+dr::Model modelFor(const DeadReckoning& cfg, EntityKind kind);
+/// The scene's thresholds in the model's units.
+dr::Thresholds thresholdsOf(const DeadReckoning& cfg);
 
-/// This entity's heartbeat period: between 75% and 100% of the setting, fixed per id. Entities
-/// first sent together (a keyframe, a scene start) would otherwise all beat in the same tick.
-inline double heartbeatPeriod(EntityId id, const DeadReckoning& cfg) {
-  double u = double(mix64(id.value) >> 11) * 0x1.0p-53;
-  return cfg.heartbeat_seconds * (0.75 + 0.25 * u);
-}
+/// The entity's true state now. Acceleration (and, except for rigid bodies, whose solver knows
+/// it, angular velocity) is estimated from the previous tick's velocity and orientation kept in
+/// store.dr[i]; dt <= 0 means no previous tick, and the estimates are zero.
+dr::State trueState(const EntityStore& store, std::size_t i, double dt);
+/// Keeps this tick's velocity and orientation for the next tick's estimates.
+void rememberTick(EntityStore& store, std::size_t i);
 
-/// True when the receivers' prediction has drifted past the threshold or is too old.
-inline bool needsUpdate(const DeadReckoningState& s, EntityId id, const Vec3& pos, double t,
-                        const DeadReckoning& cfg) {
-  if (t - s.time >= heartbeatPeriod(id, cfg)) return true;
-  return (predictFirstOrder(s, t) - pos).squaredNorm() >
-         cfg.position_threshold * cfg.position_threshold;
-}
+/// Decides and records what receivers are told about one entity.
+class DeadReckoner {
+ public:
+  DeadReckoner(const DeadReckoning& cfg, const dr::CodecParams& codec)
+      : cfg_(cfg), thresholds_(thresholdsOf(cfg)), codec_(codec) {}
 
-/// Records that (pos, vel) was sent at time t.
-inline void markSent(DeadReckoningState& s, const Vec3& pos, const Vec3& vel, double t) {
-  s.pos = pos;
-  s.vel = vel;
-  s.time = t;
-}
+  /// Why an update is due now (None if receivers' prediction is still good).
+  dr::Due due(const DeadReckoningState& sent, EntityId id, EntityKind kind, const dr::State& truth,
+              double now) const;
+  /// The state receivers will decode for truth sent relative to `cell` now; *largest gets
+  /// the smallest-three index used (carried along so re-encoding picks the same).
+  dr::State quantised(const dr::State& truth, EntityKind kind, int cell, int* largest) const {
+    return codec_.roundTrip(truth, modelFor(cfg_, kind), cell, largest);
+  }
+  /// Records that `sent` (already quantised) went out at time now.
+  static void markSent(DeadReckoningState& s, const dr::State& sent, double now) {
+    s.sent = sent;
+    s.time = now;
+  }
+  const dr::StateCodec& codec() const { return codec_; }
+  const DeadReckoning& config() const { return cfg_; }
+
+ private:
+  DeadReckoning cfg_;
+  dr::Thresholds thresholds_;
+  dr::StateCodec codec_;
+};
 
 }  // namespace zonesim::zone
