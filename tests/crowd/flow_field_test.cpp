@@ -1,0 +1,126 @@
+// Flow fields: the integration field equals the A* optimum from every cell, following the
+// direction field walks an optimal path, and agents released on a map with walls and random
+// obstacles all reach their destinations without ever standing in a blocked cell.
+
+#include <gtest/gtest.h>
+
+#include "common/rng.h"
+#include "crowd_test_util.h"
+#include "zone_node/ai/grid_path.h"
+#include "zone_node/ai/grid_search.h"
+#include "zone_node/crowd/flow_crowd.h"
+
+namespace zonesim::crowd {
+namespace {
+
+// 48x48: two long walls with gaps at opposite ends (a zig-zag) and 8% random blocks.
+ai::GridMap obstacleMap() {
+  ai::GridMap map(48, 48);
+  for (int x = 0; x < 40; ++x) map.setPassable(x, 16, false);
+  for (int x = 8; x < 48; ++x) map.setPassable(x, 32, false);
+  Pcg32 rng(77, 1);
+  for (int i = 0; i < 48 * 48 * 8 / 100; ++i) {
+    int x = int(rng.next() % 48), y = int(rng.next() % 48);
+    if (y != 2 && y != 45) map.setPassable(x, y, false);  // keep the goal rows open
+  }
+  map.setPassable(2, 2, true);
+  map.setPassable(45, 45, true);
+  return map;
+}
+
+TEST(FlowField, DistancesEqualAStarAndDirectionsFollowOptimalPaths) {
+  ai::GridMap map = obstacleMap();
+  FlowField field(map, ai::Cell{2, 2});
+  ai::GridSearch search(map);
+  ai::GridPath path;
+  int checked = 0;
+  for (int y = 0; y < 48; y += 3)
+    for (int x = 0; x < 48; x += 3) {
+      ai::Cell c{x, y};
+      bool found = map.passable(x, y) && search.findPath(c, field.goal(), path);
+      if (!found) {
+        EXPECT_LT(field.distance(c), 0.0);
+        continue;
+      }
+      EXPECT_NEAR(field.distance(c), path.length, 1e-4 * (1 + path.length));
+      // Walk the direction field: a valid path of the same length.
+      std::vector<ai::Cell> walk{c};
+      ai::Cell at = c, next;
+      while (field.next(at, next) && walk.size() < 10000) walk.push_back(at = next);
+      ASSERT_EQ(walk.back(), field.goal());
+      EXPECT_TRUE(ai::isValidPath(map, walk));
+      EXPECT_NEAR(ai::pathLength(walk), path.length, 1e-9 * (1 + path.length));
+      ++checked;
+    }
+  EXPECT_GT(checked, 150);
+}
+
+TEST(FlowCrowd, AllAgentsReachTheirDestination) {
+  ai::GridMap map = obstacleMap();
+  MapFrame frame{Vec2{-24.0, -24.0}, 1.0};
+  FlowCrowd crowd(map, frame, FlowCrowdSettings{});
+  int a = crowd.addDestination(ai::Cell{2, 2});
+  int b = crowd.addDestination(ai::Cell{45, 45});
+  test::AgentArrays agents;
+  std::vector<std::uint16_t> dest;
+  std::vector<std::uint8_t> arrived;
+  Pcg32 rng(5, 5);
+  double longest = 0;
+  while (agents.ids.size() < 400) {
+    Vec2 p{rng.uniform(-24, 24), rng.uniform(-24, 24)};
+    ai::Cell c = frame.cellOf(p);
+    int d = agents.ids.size() % 2 ? a : b;
+    if (!map.passable(c.x, c.y) || crowd.field(d).distance(c) < 0) continue;
+    longest = std::max(longest, crowd.field(d).distance(c));
+    agents.add(agents.ids.size() + 1, p, Vec2{});
+    dest.push_back(std::uint16_t(d));
+    arrived.push_back(0);
+  }
+  const double dt = 1.0 / 20;
+  // Generous bound: the longest path at a quarter of the top speed.
+  const int maxSteps = int(longest / (0.25 * crowd.settings().maxSpeed) / dt);
+  int reached = 0, steps = 0, blockedVisits = 0;
+  while (!agents.ids.empty() && steps < maxSteps) {
+    crowd.step(agents.span(), dest, arrived, {}, dt);
+    ++steps;
+    // Arrived agents leave the scene (as at an exit), compacting the arrays.
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < agents.ids.size(); ++i) {
+      if (!walkable(map, frame, agents.pos[i])) ++blockedVisits;
+      if (arrived[i]) {
+        ++reached;
+        continue;
+      }
+      agents.ids[w] = agents.ids[i];
+      agents.pos[w] = agents.pos[i];
+      agents.vel[w] = agents.vel[i];
+      dest[w] = dest[i];
+      arrived[w] = 0;
+      ++w;
+    }
+    agents.ids.resize(w);
+    agents.pos.resize(w);
+    agents.vel.resize(w);
+    dest.resize(w);
+    arrived.resize(w);
+  }
+  std::printf("%d agents arrived in %.1f s (bound %.1f s)\n", reached, steps * dt, maxSteps * dt);
+  EXPECT_EQ(reached, 400);
+  EXPECT_TRUE(agents.ids.empty());
+  EXPECT_EQ(blockedVisits, 0);
+}
+
+TEST(FlowCrowd, FieldsAreRebuiltWhenADoorCloses) {
+  ai::GridMap map(20, 5);
+  for (int y = 0; y < 5; ++y) map.setPassable(10, y, y == 2);  // a wall with one door
+  FlowCrowd crowd(map, MapFrame{}, FlowCrowdSettings{});
+  int d = crowd.addDestination(ai::Cell{18, 2});
+  EXPECT_NEAR(crowd.field(d).distance(ai::Cell{1, 2}), 17.0, 1e-6);
+  EXPECT_EQ(crowd.refreshFields(), 0);
+  map.setPassable(10, 2, false);
+  EXPECT_EQ(crowd.refreshFields(), 1);
+  EXPECT_LT(crowd.field(d).distance(ai::Cell{1, 2}), 0.0);
+}
+
+}  // namespace
+}  // namespace zonesim::crowd

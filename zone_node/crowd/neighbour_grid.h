@@ -1,0 +1,89 @@
+#pragma once
+// Uniform-grid neighbour search: a counting sort of owned agents and ghosts into square cells
+// of a fixed side, on global cell coordinates (floor(x / side)), with each cell's entries
+// sorted by id. A query visits the cells overlapping its box row by row, then each cell's
+// entries by id: an order fixed by positions and ids alone, so sums over neighbours are
+// bitwise the same whatever order the caller stored its agents in and whichever rank owns
+// them (given that the ghosts cover the query radius). Entries are copied into cell order, so
+// a query reads contiguous memory; owned agents are visited in cell order by the steps, which
+// keeps the neighbours of consecutive agents in cache.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "zone_node/crowd/agents.h"
+
+namespace zonesim::crowd {
+
+/// One agent as stored by the grid, in cell order.
+struct GridEntry {
+  Vec2 pos;           ///< position
+  Vec2 vel;           ///< velocity
+  std::uint64_t id;   ///< the agent's id
+  std::int32_t src;   ///< index in the owned span, or -1 - index in the ghost span
+  std::int32_t cell;  ///< dense cell index (row-major over the occupied box)
+};
+
+/// Cells over owned agents and ghosts; rebuilt every step, allocation-free once warm.
+class NeighbourGrid {
+ public:
+  /// Sorts `agents` and `ghosts` into cells of side `cellSize` (> 0). Owned agents with a
+  /// non-zero `skip` flag (an empty span skips none) are left out: nobody sees them.
+  void build(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
+             std::span<const Vec2> vel, const GhostSpan& ghosts, double cellSize,
+             std::span<const std::uint8_t> skip = {});
+  /// Convenience: build from an AgentSpan.
+  void build(const AgentSpan& agents, const GhostSpan& ghosts, double cellSize) {
+    build(agents.ids, agents.pos, agents.vel, ghosts, cellSize);
+  }
+
+  /// All entries in cell order (owned and ghosts).
+  std::span<const GridEntry> entries() const { return entries_; }
+
+  /// Calls f(const GridEntry&) for every entry of a cell that overlaps the disc of `radius`
+  /// around `p` (each row of cells is clipped to the disc's chord), cells row by row, entries
+  /// by id (the canonical order). Entries outside the disc are visited too: the caller
+  /// filters by distance.
+  template <class F>
+  void forEachNear(Vec2 p, double radius, F&& f) const {
+    if (entries_.empty()) return;
+    long long cy0 = cellCoord(p.y - radius) - minY_, cy1 = cellCoord(p.y + radius) - minY_;
+    if (cy0 < 0) cy0 = 0;
+    if (cy1 >= height_) cy1 = height_ - 1;
+    const double r2 = radius * radius;
+    for (long long cy = cy0; cy <= cy1; ++cy) {
+      // Vertical gap from p to this row of cells, and the half chord of the disc there.
+      double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
+      double gap = p.y < rowLo ? rowLo - p.y : (p.y > rowHi ? p.y - rowHi : 0.0);
+      double half = std::sqrt(std::max(0.0, r2 - gap * gap));
+      long long cx0 = cellCoord(p.x - half) - minX_, cx1 = cellCoord(p.x + half) - minX_;
+      if (cx0 < 0) cx0 = 0;
+      if (cx1 >= width_) cx1 = width_ - 1;
+      if (cx0 > cx1) continue;
+      const std::int32_t* row = starts_.data() + cy * width_;
+      std::int32_t begin = row[cx0], end = row[cx1 + 1];
+      // Cells of one row are contiguous in entries_, so a row is one linear scan.
+      for (std::int32_t k = begin; k < end; ++k) f(entries_[k]);
+    }
+  }
+
+  /// Side of the cells.
+  double cellSize() const { return cellSize_; }
+
+ private:
+  long long cellCoord(double v) const { return static_cast<long long>(std::floor(v * invCell_)); }
+  void add(std::uint64_t id, Vec2 p, Vec2 v, std::int32_t src);
+
+  double cellSize_ = 1.0;
+  double invCell_ = 1.0;
+  long long minX_ = 0, minY_ = 0;
+  long long width_ = 0, height_ = 0;
+  std::vector<std::int32_t> starts_;  // width_*height_ + 1 prefix sums
+  std::vector<GridEntry> staged_;     // input order, with the cell computed
+  std::vector<GridEntry> entries_;    // cell order
+};
+
+}  // namespace zonesim::crowd
