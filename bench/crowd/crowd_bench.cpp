@@ -1,0 +1,244 @@
+// crowd_bench [--agents 1000,10000,100000] [--steps N] [--only flock|flow|lod]
+//              [--lod-seconds S]
+// Prints markdown tables: ms per step and agent updates per second for flocking and flow
+// fields on one core, flow field build time, and (--only lod) AI time and outcome drift with
+// and without level of detail.
+
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/rng.h"
+#include "zone_node/ai/grid_map.h"
+#include "zone_node/crowd/flock.h"
+#include "zone_node/crowd/flow_crowd.h"
+#include "zone_node/crowd/lod.h"
+
+using namespace zonesim;
+using namespace zonesim::crowd;
+
+namespace {
+
+// Thread CPU time, not wall time: the benchmark machine is shared, and time spent
+// descheduled is not the algorithm's (caches shared with other work still show).
+struct Clock {
+  using time_point = double;
+  static double now() {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+  }
+};
+double msSince(double t0) {
+  return Clock::now() - t0;
+}
+
+struct Agents {
+  std::vector<std::uint64_t> ids;
+  std::vector<Vec2> pos, vel;
+  AgentSpan span() { return AgentSpan{ids, pos, vel}; }
+};
+
+void benchFlock(const std::vector<int>& counts, int steps) {
+  std::printf("\nFlocking (density 0.5 agents/m^2, neighbour radius 3 m, %d steps of 1/30 s)\n\n",
+              steps);
+  std::printf("| agents | ms/step | agent updates/s | neighbours/agent |\n|---|---|---|---|\n");
+  for (int n : counts) {
+    double side = std::sqrt(n / 0.5);
+    Agents a;
+    Pcg32 rng(1, 1);
+    for (int i = 0; i < n; ++i) {
+      a.ids.push_back(std::uint64_t(i) * 2654435761ULL);  // ids unrelated to position
+      a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
+      a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
+    }
+    Flock flock{FlockSettings{}};
+    for (int k = 0; k < 5; ++k) flock.step(a.span(), {}, 1.0 / 30);  // warm the grid buffers
+    auto t0 = Clock::now();
+    for (int k = 0; k < steps; ++k) flock.step(a.span(), {}, 1.0 / 30);
+    double ms = msSince(t0) / steps;
+    // Mean neighbours within the radius, from the last grid (not timed).
+    long long pairs = 0;
+    const double r2 = 9.0;
+    for (const GridEntry& e : flock.grid().entries())
+      flock.grid().forEachNear(e.pos, 3.0, [&](const GridEntry& o) {
+        if (o.id != e.id && lengthSq(o.pos - e.pos) < r2) ++pairs;
+      });
+    std::printf("| %d | %.3f | %.3g | %.1f |\n", n, ms, n / (ms * 1e-3), double(pairs) / n);
+  }
+}
+
+ai::GridMap benchMap() {
+  return ai::loadMovingAiMap(std::string(ZONESIM_SOURCE_DIR) +
+                             "/tests/data/movingai/random512-10-0.map");
+}
+
+// Destinations: four cells near the corners of the map, all mutually reachable.
+std::vector<ai::Cell> cornerGoals(const ai::GridMap& map) {
+  std::vector<ai::Cell> goals;
+  for (ai::Cell c : {ai::Cell{20, 20}, ai::Cell{490, 20}, ai::Cell{20, 490}, ai::Cell{490, 490}}) {
+    while (!map.passable(c.x, c.y)) ++c.x;
+    goals.push_back(c);
+  }
+  return goals;
+}
+
+// n agents on random cells from which their destination (i mod 4) is reachable.
+void placeFlowAgents(const FlowCrowd& crowd, const ai::GridMap& map, int n, Agents& a,
+                     std::vector<std::uint16_t>& dest) {
+  Pcg32 rng(2, 2);
+  while (int(a.ids.size()) < n) {
+    Vec2 p{rng.uniform(0, map.width()), rng.uniform(0, map.height())};
+    int d = int(a.ids.size() % crowd.destinationCount());
+    if (crowd.field(d).distance(crowd.frame().cellOf(p)) < 0) continue;
+    a.ids.push_back(std::uint64_t(a.ids.size()) * 2654435761ULL);
+    a.pos.push_back(p);
+    a.vel.push_back(Vec2{});
+    dest.push_back(std::uint16_t(d));
+  }
+}
+
+void benchFlow(const std::vector<int>& counts, int steps) {
+  ai::GridMap map = benchMap();
+  FlowCrowd crowd(map, MapFrame{}, FlowCrowdSettings{});
+  auto t0 = Clock::now();
+  for (ai::Cell g : cornerGoals(map)) crowd.addDestination(g);
+  double buildMs = msSince(t0) / crowd.destinationCount();
+  std::printf(
+      "\nFlow fields on random512-10-0 (512x512, 1 m cells), 4 destinations: build %.1f "
+      "ms per field (Dijkstra + directions), %.2f MiB per field\n\n",
+      buildMs, crowd.field(0).bytes() / 1048576.0);
+  std::printf("| agents | ms/step | agent updates/s |\n|---|---|---|\n");
+  for (int n : counts) {
+    Agents a;
+    std::vector<std::uint16_t> dest;
+    placeFlowAgents(crowd, map, n, a, dest);
+    std::vector<std::uint8_t> arrived(a.ids.size(), 0);
+    for (int k = 0; k < 5; ++k) crowd.step(a.span(), dest, arrived, {}, 1.0 / 30);
+    auto t1 = Clock::now();
+    for (int k = 0; k < steps; ++k) crowd.step(a.span(), dest, arrived, {}, 1.0 / 30);
+    double ms = msSince(t1) / steps;
+    std::printf("| %d | %.3f | %.3g |\n", n, ms, n / (ms * 1e-3));
+  }
+}
+
+struct LodRun {
+  double msPerTick = 0;
+  std::size_t updates = 0;
+  std::vector<int> arrival;  // tick of arrival per agent, -1 when not arrived
+  std::vector<Vec2> endPos;
+};
+
+LodRun runLod(const ai::GridMap& map, int n, int ticks, const LodSettings* lodSettings) {
+  FlowCrowd crowd(map, MapFrame{}, FlowCrowdSettings{});
+  for (ai::Cell g : cornerGoals(map)) crowd.addDestination(g);
+  Agents a;
+  std::vector<std::uint16_t> dest;
+  placeFlowAgents(crowd, map, n, a, dest);
+  std::vector<std::uint8_t> arrived(a.ids.size(), 0);
+  std::vector<std::int64_t> last(a.ids.size(), -1);
+  const std::vector<Vec2> players{{150, 150}, {360, 300}};
+  LodRun r;
+  r.arrival.assign(a.ids.size(), -1);
+  std::optional<LevelOfDetail> lod;
+  if (lodSettings) lod.emplace(*lodSettings);
+  const double dt = 1.0 / 20;
+  double cpu = 0;
+  for (int t = 0; t < ticks; ++t) {
+    double t0 = Clock::now();
+    StepPlan plan;
+    if (lod) {
+      plan = lod->plan(a.ids, a.pos, players, t, dt, last);
+      r.updates += lod->updated();
+    } else {
+      r.updates += a.ids.size();
+    }
+    crowd.step(a.span(), dest, arrived, {}, dt, plan);
+    cpu += msSince(t0);
+    for (std::size_t i = 0; i < a.ids.size(); ++i)
+      if (arrived[i] && r.arrival[i] < 0) r.arrival[i] = t;
+  }
+  r.msPerTick = cpu / ticks;
+  r.endPos = a.pos;
+  return r;
+}
+
+void benchLod(const std::vector<int>& counts, double seconds) {
+  ai::GridMap map = benchMap();
+  const int ticks = int(seconds * 20);
+  LodSettings s;
+  std::printf(
+      "\nLOD: flow crowd on random512-10-0, 4 destinations, 2 players at (150,150) and "
+      "(360,300), %d ticks of 1/20 s; LOD near %.0f m every tick, mid to %.0f m every %d "
+      "ticks, far every %d ticks without steering\n\n",
+      ticks, s.nearRadius, s.farRadius, s.midEvery, s.farEvery);
+  std::printf(
+      "| agents | full ms/tick | LOD ms/tick | speed-up | updates ratio | arrived full/LOD "
+      "| arrival |dt| mean s | max s | end pos error mean m | max m |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int n : counts) {
+    LodRun full = runLod(map, n, ticks, nullptr);
+    LodRun cheap = runLod(map, n, ticks, &s);
+    int arrivedFull = 0, arrivedLod = 0, both = 0;
+    double sumDt = 0, maxDt = 0, sumErr = 0, maxErr = 0;
+    for (std::size_t i = 0; i < full.arrival.size(); ++i) {
+      arrivedFull += full.arrival[i] >= 0;
+      arrivedLod += cheap.arrival[i] >= 0;
+      if (full.arrival[i] >= 0 && cheap.arrival[i] >= 0) {
+        double d = std::abs(full.arrival[i] - cheap.arrival[i]) / 20.0;
+        sumDt += d;
+        maxDt = std::max(maxDt, d);
+        ++both;
+      }
+      double e = length(full.endPos[i] - cheap.endPos[i]);
+      sumErr += e;
+      maxErr = std::max(maxErr, e);
+    }
+    std::printf("| %d | %.3f | %.3f | %.2f | %.2f | %d/%d | %.3f | %.2f | %.3f | %.2f |\n", n,
+                full.msPerTick, cheap.msPerTick, full.msPerTick / cheap.msPerTick,
+                double(full.updates) / double(cheap.updates), arrivedFull, arrivedLod,
+                both ? sumDt / both : 0.0, maxDt, sumErr / n, maxErr);
+  }
+}
+
+std::vector<int> parseList(const char* s) {
+  std::vector<int> out;
+  std::string str(s);
+  std::size_t at = 0;
+  while (at < str.size()) {
+    std::size_t comma = str.find(',', at);
+    out.push_back(std::stoi(str.substr(at, comma - at)));
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> counts{1000, 10000, 100000};
+  int steps = 30;
+  double lodSeconds = 200;
+  std::string only;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--agents") && i + 1 < argc)
+      counts = parseList(argv[++i]);
+    else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc)
+      steps = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+      only = argv[++i];
+    else {
+      std::fprintf(stderr,
+                   "usage: crowd_bench [--agents LIST] [--steps N] [--only flock|flow|lod]\n");
+      return 2;
+    }
+  }
+  if (only.empty() || only == "flock") benchFlock(counts, steps);
+  if (only.empty() || only == "flow") benchFlow(counts, steps);
+  if (only == "lod") benchLod(counts, lodSeconds);
+  return 0;
+}
