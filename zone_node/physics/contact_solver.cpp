@@ -29,6 +29,7 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
   std::size_t points = 0;
   for (const BodyContact& bc : contacts) points += bc.manifold.count;
   normal_.resize(points);
+  row_count_.clear();
   friction_.resize(points);
   std::uint32_t next = 0;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
@@ -122,7 +123,7 @@ void ContactSolver::warmStart(BodyStorage& bodies) {
   }
 }
 
-void ContactSolver::iterate(BodyStorage& bodies) {
+void ContactSolver::iterate(BodyStorage& bodies, double omega) {
   auto& v = bodies.linear_velocity;
   auto& w = bodies.angular_velocity;
   auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
@@ -136,7 +137,7 @@ void ContactSolver::iterate(BodyStorage& bodies) {
       NormalPoint& p = normal_[k.first + i];
       const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
       const double old = p.jn;
-      p.jn = std::max(0.0, old - p.row.mass * (vn - p.target));
+      p.jn = std::max(0.0, old - omega * p.row.mass * (vn - p.target));
       apply(k, k.n, p.row, p.jn - old);
     }
   }
@@ -148,7 +149,7 @@ void ContactSolver::iterate(BodyStorage& bodies) {
         const Row& row = p.row[t];
         const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
         const double old = p.jt[t];
-        p.jt[t] = std::clamp(old - row.mass * vt, -limit, limit);
+        p.jt[t] = std::clamp(old - omega * row.mass * vt, -limit, limit);
         apply(k, k.t[t], row, p.jt[t] - old);
       }
     }

@@ -26,6 +26,16 @@ enum class SolverKind {
   SoftStep,
   /// Projected Gauss-Seidel sequential impulses with split-impulse position correction.
   GaussSeidel,
+  /// Gauss-Seidel with successive over-relaxation: each impulse update is scaled by sor_omega.
+  Sor,
+  /// Projected Jacobi: every row is updated from the same velocities, then all are applied,
+  /// each scaled by 1 / (rows on the busier body) so that neighbours do not overshoot.
+  Jacobi,
+  /// Penalty: explicit spring-damper forces on the overlap, no iterations (soft by nature).
+  Penalty,
+  /// Projection (position based): overlaps are removed from the step's displacements by
+  /// velocity_iterations Gauss-Seidel position passes, and velocities are the displacement / dt.
+  Projection,
 };
 
 /// A soft constraint's spring as bias rate and scales for one sub-step (Box2D v3 form).
@@ -47,6 +57,11 @@ struct SolverSettings {
   double slop = 0.005;                 ///< Overlap (m) left alone so contacts persist.
   double restitution_threshold = 0.5;  ///< m/s: slower impacts do not bounce.
   bool warm_starting = true;
+  double sor_omega = 1.3;  ///< SOR: over-relaxation factor (1 is plain Gauss-Seidel).
+  /// Penalty: spring frequency as a fraction of the step rate; omega dt = 2 pi * 0.08 = 0.5
+  /// keeps the explicit spring and its damper stable.
+  double penalty_rate_fraction = 0.08;
+  double penalty_damping_ratio = 0.7;  ///< Penalty: damping ratio of the contact spring.
   /// Soft step: contact spring frequency, capped at a quarter of the sub-step rate (the
   /// default asks for the cap: 75 Hz at 1/60 s and 10 iterations).
   double contact_hertz = 1000.0;
@@ -75,8 +90,17 @@ class ContactSolver {
                const SolverSettings& settings, double dt);
   /// Applies last step's impulses.
   void warmStart(BodyStorage& bodies);
-  /// One velocity iteration over all contacts (normals, then friction).
-  void iterate(BodyStorage& bodies);
+  /// One velocity iteration over all contacts (normals, then friction); omega scales each
+  /// impulse update (successive over-relaxation; 1 is Gauss-Seidel).
+  void iterate(BodyStorage& bodies, double omega = 1.0);
+  /// One projected Jacobi iteration (all rows from the same velocities, averaged per body).
+  void iterateJacobi(BodyStorage& bodies);
+  /// Penalty response: one explicit spring-damper impulse per point over dt, and Coulomb
+  /// friction capped by it.
+  void applyPenalty(BodyStorage& bodies);
+  /// Projection: one Gauss-Seidel pass removing overlap (and, up to the Coulomb bound, sliding
+  /// at the contact) from the displacements dp and small rotations dtheta of this step.
+  void projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta);
   /// Writes the accumulated impulses back for next step's warm start.
   void storeImpulses(std::span<BodyContact> contacts) const;
   /// Warm start, settings().velocity_iterations iterations, then storeImpulses.
@@ -85,6 +109,11 @@ class ContactSolver {
   const SolverSettings& settings() const { return settings_; }
   /// Runs the split-impulse iterations; the pseudo-velocities come back per body.
   void solvePositions(const BodyStorage& bodies);
+  /// Zero pseudo-velocities for n bodies (responses without split impulses).
+  void clearPositionCorrection(std::size_t n) {
+    ps_v_.assign(n, Vec3::Zero());
+    ps_w_.assign(n, Vec3::Zero());
+  }
   /// Pseudo linear velocity of body i from the last solvePositions.
   const Vec3& pseudoLinear(std::size_t i) const { return ps_v_[i]; }
   /// Soft step: one pass over every contact with the separations moved by each body's
@@ -134,6 +163,8 @@ class ContactSolver {
   std::vector<NormalPoint> normal_;
   std::vector<FrictionPoint> friction_;
   std::vector<Vec3> ps_v_, ps_w_;
+  std::vector<Vec3> jac_v_, jac_w_;       // Jacobi: velocities the iteration reads.
+  std::vector<std::uint16_t> row_count_;  // Jacobi: contact points touching each body.
   SolverSettings settings_;
   double dt_ = 0.0;
 };

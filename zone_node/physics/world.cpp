@@ -37,18 +37,15 @@ void World::substep(double dt) {
   solver_.prepare(bodies_, contacts_, settings_.solver, dt);
   // Contacts and joints share the Gauss-Seidel iterations, so each sees the other's impulses.
   joints_.prepare(bodies_, dt, settings_.joint_beta);
-  if (settings_.solver.kind == SolverKind::SoftStep) {
-    solveSoftStep(dt);
-  } else {
-    solver_.warmStart(bodies_);
-    joints_.warmStart(bodies_);
-    for (int it = 0; it < settings_.solver.velocity_iterations; ++it) {
-      solver_.iterate(bodies_);
-      joints_.iterate(bodies_);
-    }
-    solver_.storeImpulses(contacts_);
-    solver_.solvePositions(bodies_);
-    integratePositions(dt);
+  switch (settings_.solver.kind) {
+    case SolverKind::SoftStep:
+      solveSoftStep(dt);
+      break;
+    case SolverKind::Projection:
+      solveProjection(dt);
+      break;
+    default:
+      solveIterative(dt);
   }
   quarantineNonFinite();
   if (settings_.sleep.enabled) islands_.update(bodies_, contacts_, settings_.sleep, dt);
@@ -209,6 +206,67 @@ void World::integratePositions(double dt) {
     if (type == BodyType::Particle) continue;
     const Vec3 w = bodies_.angular_velocity[i] + solver_.pseudoAngular(i);
     bodies_.orientation[i] = integrateOrientation(bodies_.orientation[i], w, dt);
+  }
+}
+
+void World::solveIterative(double dt) {
+  const SolverKind kind = settings_.solver.kind;
+  if (kind == SolverKind::Penalty) {
+    // Forces, not constraints: one spring-damper evaluation, no warm start, no projection.
+    solver_.applyPenalty(bodies_);
+    joints_.warmStart(bodies_);
+    for (int it = 0; it < settings_.solver.velocity_iterations; ++it) joints_.iterate(bodies_);
+    solver_.storeImpulses(contacts_);
+    solver_.clearPositionCorrection(bodies_.size());
+    integratePositions(dt);
+    return;
+  }
+  const double omega = kind == SolverKind::Sor ? settings_.solver.sor_omega : 1.0;
+  solver_.warmStart(bodies_);
+  joints_.warmStart(bodies_);
+  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) {
+    if (kind == SolverKind::Jacobi) {
+      solver_.iterateJacobi(bodies_);
+    } else {
+      solver_.iterate(bodies_, omega);
+    }
+    joints_.iterate(bodies_);
+  }
+  solver_.storeImpulses(contacts_);
+  solver_.solvePositions(bodies_);
+  integratePositions(dt);
+}
+
+void World::solveProjection(double dt) {
+  // Position based: the free step's displacement is corrected by projection passes, and the
+  // velocity becomes what the corrected displacement implies (inelastic by construction).
+  // Joints keep their velocity rows, solved before the projection.
+  joints_.warmStart(bodies_);
+  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) joints_.iterate(bodies_);
+  SolverSettings cold = settings_.solver;
+  cold.warm_starting = false;  // Projections do not carry over between steps.
+  solver_.prepare(bodies_, contacts_, cold, dt);
+  const std::size_t n = bodies_.size();
+  soft_dp_.resize(n);
+  soft_dtheta_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Joint impulses changed the velocity after the integrator ran: add that change.
+    soft_dp_[i] = x_force_[i] - x_start_[i] + dt * (bodies_.linear_velocity[i] - v_force_[i]);
+    soft_dtheta_[i] = dt * bodies_.angular_velocity[i];
+  }
+  soft_dv_.assign(soft_dp_.begin(), soft_dp_.end());
+  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) {
+    solver_.projectPositions(soft_dp_, soft_dtheta_);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyType type = bodies_.type[i];
+    if (type == BodyType::Static || islands_.asleep(i)) continue;
+    bodies_.linear_velocity[i] += (soft_dp_[i] - soft_dv_[i]) / dt;
+    bodies_.position[i] = x_start_[i] + soft_dp_[i];
+    if (type == BodyType::Particle) continue;
+    bodies_.angular_velocity[i] = soft_dtheta_[i] / dt;
+    bodies_.orientation[i] =
+        integrateOrientation(bodies_.orientation[i], bodies_.angular_velocity[i], dt);
   }
 }
 

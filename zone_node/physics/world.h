@@ -87,6 +87,8 @@ class World {
   void warmStartFromPrevious();
   void integratePositions(double dt);
   void solveSoftStep(double dt);
+  void solveIterative(double dt);
+  void solveProjection(double dt);
   void quarantineNonFinite();
 
   WorldSettings settings_;
