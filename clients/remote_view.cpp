@@ -1,37 +1,86 @@
 #include "clients/remote_view.h"
 
-#include <cmath>
+#include <algorithm>
 
 namespace zonesim::clients {
 
-Point3 RemoteView::extrapolate(const Remote& r, std::int64_t now_ns) {
-  double dt = double(now_ns - r.received_ns) * 1e-9;
-  if (dt < 0) dt = 0;
-  const proto::Vec3f &p = r.state.pos(), &v = r.state.vel();
-  return {p.x() + v.x() * dt, p.y() + v.y() * dt, p.z() + v.z() * dt};
+namespace {
+Point3 point(const dr::V3& v) {
+  return {v.x, v.y, v.z};
+}
+}  // namespace
+
+dr::V3 RemoteView::model(const dr::WireEntity& e, double now) const {
+  double dt = std::max(0.0, (now - double(e.tick)) * r_.sim_dt);
+  return dr::predictPosition(e.state, e.model.order, dt);
 }
 
-void RemoteView::spawn(const proto::EntityState& s, std::int64_t now_ns) {
-  entities_.insert_or_assign(s.id(), Remote{s, now_ns});
+dr::V3 RemoteView::modelVelocity(const dr::WireEntity& e, double now) const {
+  double dt = std::max(0.0, (now - double(e.tick)) * r_.sim_dt);
+  return dr::predictVelocity(e.state, e.model.order, dt);
 }
 
-std::optional<double> RemoteView::update(const proto::EntityState& s, std::int64_t now_ns) {
-  auto it = entities_.find(s.id());
+dr::V3 RemoteView::shownPosition(const Remote& r, double now) const {
+  dr::V3 target = model(r.latest, now);
+  double since = (now - r.blend_start) * r_.sim_dt;
+  if (!r.blending || since >= r_.blend_s || since < 0) return target;
+  // Projective velocity blending: project from where the entity was shown with a velocity
+  // blended from the old towards the new one, then blend that projection into the new model.
+  double lambda = since / r_.blend_s;
+  dr::V3 v1 = r.latest.state.vel;
+  dr::V3 vb{r.from_vel.x + (v1.x - r.from_vel.x) * lambda,
+            r.from_vel.y + (v1.y - r.from_vel.y) * lambda,
+            r.from_vel.z + (v1.z - r.from_vel.z) * lambda};
+  dr::V3 a = r.latest.model.order == dr::Order::Second ? r.latest.state.acc : dr::V3{};
+  double h = 0.5 * since * since;
+  dr::V3 projected{r.from_pos.x + vb.x * since + a.x * h, r.from_pos.y + vb.y * since + a.y * h,
+                   r.from_pos.z + vb.z * since + a.z * h};
+  return {projected.x + (target.x - projected.x) * lambda,
+          projected.y + (target.y - projected.y) * lambda,
+          projected.z + (target.z - projected.z) * lambda};
+}
+
+void RemoteView::spawn(const dr::WireEntity& e, double /*now*/) {
+  entities_.insert_or_assign(e.id, Remote{e, {}, {}, 0, false});
+}
+
+std::optional<double> RemoteView::update(const dr::WireEntity& e, double now) {
+  auto it = entities_.find(e.id);
   if (it == entities_.end()) return std::nullopt;
-  Point3 before = extrapolate(it->second, now_ns);
-  it->second = Remote{s, now_ns};
-  double dx = before.x - s.pos().x(), dy = before.y - s.pos().y(), dz = before.z - s.pos().z();
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  Remote& r = it->second;
+  // A resent or reordered older state must not replace a newer one.
+  if (e.tick < r.latest.tick) return std::nullopt;
+  dr::V3 before = shownPosition(r, now);
+  dr::V3 before_vel = modelVelocity(r.latest, now);
+  r.latest = e;
+  if (r_.blend) {
+    r.from_pos = before;
+    r.from_vel = before_vel;
+    r.blend_start = now;
+    r.blending = true;
+  }
+  return dr::distance(before, model(e, now));
 }
 
 bool RemoteView::despawn(std::uint64_t id) {
   return entities_.erase(id) > 0;
 }
 
-std::optional<Point3> RemoteView::predicted(std::uint64_t id, std::int64_t now_ns) const {
+std::optional<Point3> RemoteView::shown(std::uint64_t id, double now) const {
   auto it = entities_.find(id);
   if (it == entities_.end()) return std::nullopt;
-  return extrapolate(it->second, now_ns);
+  return point(shownPosition(it->second, now));
+}
+
+std::optional<Point3> RemoteView::predicted(std::uint64_t id, double now) const {
+  auto it = entities_.find(id);
+  if (it == entities_.end()) return std::nullopt;
+  return point(model(it->second.latest, now));
+}
+
+const dr::WireEntity* RemoteView::find(std::uint64_t id) const {
+  auto it = entities_.find(id);
+  return it == entities_.end() ? nullptr : &it->second.latest;
 }
 
 }  // namespace zonesim::clients

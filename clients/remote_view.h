@@ -1,13 +1,15 @@
 #pragma once
 // What one simulated player knows of the world: the entities the gateway spawned for it, each
-// with its last received state and when it arrived. What the player "sees" is that state moved
-// forward by first-order dead reckoning (position + velocity * time since receipt).
+// with the dead-reckoning state it was last sent (the same model the zone runs, idl/dr_model.h),
+// and what the player is shown: that model extrapolated to the estimated server time, with
+// corrections either snapped or converged by projective velocity blending.
 
 #include <cstdint>
 #include <optional>
 #include <unordered_map>
 
-#include "client_protocol_generated.h"
+#include "idl/dr_model.h"
+#include "idl/state_codec.h"
 
 namespace zonesim::clients {
 
@@ -16,25 +18,51 @@ struct Point3 {
   double x = 0, y = 0, z = 0;
 };
 
+/// How corrections reach the screen.
+struct Reconstruction {
+  bool blend = true;         ///< projective velocity blending; false: snap to the new model
+  double blend_s = 0.25;     ///< convergence time of a blend, seconds
+  double sim_dt = 1.0 / 30;  ///< simulated seconds per server tick
+};
+
 class RemoteView {
  public:
-  /// Adds (or replaces) an entity from a Spawn.
-  void spawn(const proto::EntityState& s, std::int64_t now_ns);
-  /// Applies a StateBatch entry; returns the distance between where the entity was predicted to
-  /// be and where the update puts it (the correction the player sees), or nullopt if unknown.
-  std::optional<double> update(const proto::EntityState& s, std::int64_t now_ns);
+  explicit RemoteView(Reconstruction r = {}) : r_(r) {}
+  void configure(const Reconstruction& r) { r_ = r; }
+
+  /// Adds (or replaces) an entity from a Spawn; now is the estimated server tick (fractional).
+  void spawn(const dr::WireEntity& e, double now);
+  /// Applies an update; returns the distance between where the entity was shown and where the
+  /// new model puts it now (the correction), or nullopt if unknown or older than what is held.
+  std::optional<double> update(const dr::WireEntity& e, double now);
   /// Removes an entity; false if it was not known.
   bool despawn(std::uint64_t id);
-  /// Dead-reckoned position of an entity at now_ns.
-  std::optional<Point3> predicted(std::uint64_t id, std::int64_t now_ns) const;
+  /// Where the entity is shown at server tick `now` (model, blended or snapped).
+  std::optional<Point3> shown(std::uint64_t id, double now) const;
+  /// Where the latest model alone puts it (no blending).
+  std::optional<Point3> predicted(std::uint64_t id, double now) const;
+  /// The latest state held (nullptr if unknown).
+  const dr::WireEntity* find(std::uint64_t id) const;
   std::size_t size() const { return entities_.size(); }
+  /// Visits (id, entity) in unspecified order.
+  template <typename F>
+  void forEach(F&& f) const {
+    for (const auto& [id, r] : entities_) f(id, r.latest);
+  }
 
  private:
   struct Remote {
-    proto::EntityState state;
-    std::int64_t received_ns;
+    dr::WireEntity latest;
+    // Blend: from the shown position and velocity at blend_start to the new model.
+    dr::V3 from_pos, from_vel;
+    double blend_start = 0;
+    bool blending = false;
   };
-  static Point3 extrapolate(const Remote& r, std::int64_t now_ns);
+  dr::V3 model(const dr::WireEntity& e, double now) const;
+  dr::V3 modelVelocity(const dr::WireEntity& e, double now) const;
+  dr::V3 shownPosition(const Remote& r, double now) const;
+
+  Reconstruction r_;
   std::unordered_map<std::uint64_t, Remote> entities_;
 };
 

@@ -64,10 +64,33 @@ std::int64_t SimPlayer::act(std::int64_t now_ns) {
   return std::min(next_input_ns_, next_ping_ns_);
 }
 
+double SimPlayer::serverTick(std::int64_t now_ns) const {
+  if (clock_tick_ < 0) return 0;
+  return clock_tick_ + double(now_ns - clock_ns_) * 1e-9 * tick_rate_;
+}
+
+std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(
+    std::uint64_t server_tick, std::uint16_t count, const flatbuffers::Vector<std::uint8_t>* bytes,
+    std::int64_t now_ns) {
+  auto got = codec_->unpack(std::span(bytes->data(), bytes->size()), count, server_tick);
+  if (!got) {
+    counters_.drops.add(gateway::DropReason::OutOfRange);
+    return got;
+  }
+  // Follow the server clock: jump forward to a newer tick; fall back only when the estimate
+  // ran more than a second ahead (the gateway stalled or the rate was off).
+  double est = serverTick(now_ns);
+  if (clock_tick_ < 0 || double(server_tick) > est || est - double(server_tick) > tick_rate_) {
+    clock_tick_ = double(server_tick);
+    clock_ns_ = now_ns;
+  }
+  return got;
+}
+
 void SimPlayer::sendInput(std::int64_t now_ns) {
   Move m;
   // Until the avatar's own state arrives the player does not know where it is: stand still.
-  if (auto self = view_.predicted(avatar_id_, now_ns))
+  if (auto self = view_.predicted(avatar_id_, serverTick(now_ns)))
     m = wander_.step(self->x, self->z, double(now_ns - start_ns_) * 1e-9);
   send(gateway::encodeInput(token_, ++seq_, m.x, m.z));
   ++counters_.inputs;
@@ -131,6 +154,9 @@ void SimPlayer::onWelcome(const proto::Datagram& d, std::int64_t now_ns) {
   player_id_ = w->player_id();
   avatar_id_ = w->avatar_id();
   zone_ = w->zone();
+  codec_.emplace(gateway::fromProto(*w->codec()));
+  tick_rate_ = w->tick_rate();
+  view_.configure({config_.blend, config_.blend_s, double(w->sim_dt())});
   welcome_ns_ = now_ns;
   next_input_ns_ = now_ns;
   next_ping_ns_ = now_ns;
@@ -138,16 +164,24 @@ void SimPlayer::onWelcome(const proto::Datagram& d, std::int64_t now_ns) {
 
 void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
   switch (d.msg_type()) {
-    case proto::Message::Spawn:
-      for (const proto::EntityState* s : *d.msg_as_Spawn()->entities()) view_.spawn(*s, now_ns);
-      counters_.spawns += d.msg_as_Spawn()->entities()->size();
+    case proto::Message::Spawn: {
+      const proto::Spawn* m = d.msg_as_Spawn();
+      auto got = unpack(m->server_tick(), m->count(), m->packed(), now_ns);
+      if (!got) return;
+      for (const dr::WireEntity& e : *got) view_.spawn(e, serverTick(now_ns));
+      counters_.spawns += got->size();
       return;
-    case proto::Message::StateBatch:
-      for (const proto::EntityState* s : *d.msg_as_StateBatch()->updates()) {
-        if (auto err = view_.update(*s, now_ns)) counters_.dr_error_m.add(*err);
+    }
+    case proto::Message::StateBatch: {
+      const proto::StateBatch* m = d.msg_as_StateBatch();
+      auto got = unpack(m->server_tick(), m->count(), m->packed(), now_ns);
+      if (!got) return;
+      for (const dr::WireEntity& e : *got) {
+        if (auto err = view_.update(e, serverTick(now_ns))) counters_.dr_error_m.add(*err);
         ++counters_.updates;
       }
       return;
+    }
     case proto::Message::Despawn:
       for (std::uint64_t id : *d.msg_as_Despawn()->ids()) counters_.despawns += view_.despawn(id);
       return;

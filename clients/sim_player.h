@@ -5,6 +5,7 @@
 // the client does not trust the gateway either.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "gateway/udp_socket.h"
 #include "gateway/wire_encode.h"
 #include "gateway/wire_verify.h"
+#include "idl/state_codec.h"
 
 namespace zonesim::clients {
 
@@ -30,6 +32,8 @@ struct PlayerConfig {
   double hello_retry_s = 0.5;
   double ping_every_s = 1.0;
   std::uint64_t seed = 1;
+  bool blend = true;      ///< projective velocity blending of corrections; false: snap
+  double blend_s = 0.25;  ///< blend time, seconds
 };
 
 /// What one player counted.
@@ -66,6 +70,12 @@ class SimPlayer {
   const PlayerCounters& counters() const { return counters_; }
   const Wander& wander() const { return wander_; }
 
+  /// The estimated server tick at now_ns (fractional): the newest tick heard of, advanced by
+  /// the wall time since at the announced tick rate.
+  double serverTick(std::int64_t now_ns) const;
+  /// The codec announced in the Welcome (nullptr before).
+  const dr::StateCodec* codec() const { return codec_ ? &*codec_ : nullptr; }
+
   /// Handles one datagram from `from` (public so tests can feed crafted bytes).
   void handle(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns);
 
@@ -74,6 +84,10 @@ class SimPlayer {
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
   void onMessage(const proto::Datagram& d, std::int64_t now_ns);
+  /// Unpacks states; nullopt (counted as out of range) if the stream is bad.
+  std::optional<std::vector<dr::WireEntity>> unpack(std::uint64_t server_tick, std::uint16_t count,
+                                                    const flatbuffers::Vector<std::uint8_t>* bytes,
+                                                    std::int64_t now_ns);
 
   PlayerConfig config_;
   gateway::UdpSocket socket_;
@@ -86,6 +100,10 @@ class SimPlayer {
   std::int64_t input_period_ns_;
   Wander wander_;
   RemoteView view_;
+  std::optional<dr::StateCodec> codec_;
+  double tick_rate_ = 30;
+  double clock_tick_ = -1;  // newest server tick heard of, and when
+  std::int64_t clock_ns_ = 0;
   PlayerCounters counters_;
   std::vector<std::uint8_t> rx_buffer_;
 };

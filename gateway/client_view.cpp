@@ -48,8 +48,8 @@ std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const Interest
         out.push_back({id, e.version});
         return;
       }
-      proto::EntityState now = extrapolatedState(e, at.sim_now);
-      double dx = now.pos().x() - at.x, dz = now.pos().z() - at.z;
+      dr::V3 now = predictedPosition(e, at.sim_now);
+      double dx = now.x - at.x, dz = now.z - at.z;
       double d2 = dx * dx + dz * dz;
       if (d2 <= nimbus2 || (d2 <= keep2 && known.knows(id))) out.push_back({id, e.version});
     });

@@ -25,6 +25,8 @@ Bytes DatagramHandler::welcomeFor(const Session& s) const {
   const SceneBox& b = config_.world;
   w.world_min = proto::Vec3f(float(b.min.x), float(b.min.y), float(b.min.z));
   w.world_max = proto::Vec3f(float(b.max.x), float(b.max.y), float(b.max.z));
+  w.codec = config_.codec;
+  w.sim_dt = config_.sim_dt;
   return encodeWelcome(w);
 }
 

@@ -52,6 +52,8 @@ struct HandlerConfig {
   SceneBox world;
   float tick_rate = 30;
   std::uint64_t spawn_seed = 1;  ///< seeds spawn positions (reproducible runs)
+  dr::CodecParams codec;         ///< how states are packed (sent in the Welcome)
+  float sim_dt = 1.0f / 30;      ///< simulated seconds per zone tick
 };
 
 class DatagramHandler {

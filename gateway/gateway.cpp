@@ -23,7 +23,8 @@ std::int64_t seconds(double s) {
 }
 
 HandlerConfig handlerConfig(const GatewayConfig& c) {
-  return {c.scene.world, float(c.scene.tick_rate), c.spawn_seed};
+  return {c.scene.world, float(c.scene.tick_rate), c.spawn_seed, dr::codecParams(c.scene),
+          float(c.scene.dt)};
 }
 
 /// A random non-zero 16-bit number per gateway process: player ids of a restarted gateway (and
@@ -62,7 +63,8 @@ Gateway::Gateway(GatewayConfig config)
       clock_(config_.scene.tick_rate * config_.scene.dt),
       interest_(grid_, interestRadius(config_), grid_.cellSize() * 0.5),
       link_(config_.dds_domain, expectedZones(config_)),
-      rx_buffer_(kMaxDatagramBytes + 1) {
+      rx_buffer_(kMaxDatagramBytes + 1),
+      codec_(dr::codecParams(config_.scene)) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
 }
 
@@ -219,9 +221,9 @@ void Gateway::avatarPosition(const Session& s, double sim_now, double& x, double
     z = s.spawn_z;
     return;
   }
-  proto::EntityState now = extrapolatedState(*e, sim_now);
-  x = now.pos().x();
-  z = now.pos().z();
+  dr::V3 now = predictedPosition(*e, sim_now);
+  x = now.x;
+  z = now.z;
 }
 
 void Gateway::updateInterest(std::int64_t now_ns) {
@@ -263,17 +265,25 @@ void Gateway::sendViews(std::int64_t now_ns) {
   });
 }
 
-void Gateway::sendView(Session& s, const ViewDiff& diff, double sim_now) {
-  std::uint64_t tick = clock_.tick();
+void Gateway::sendView(Session& s, const ViewDiff& diff, double /*sim_now*/) {
+  // States go out as the zones sampled them, with their tick: the client runs the same model
+  // from the same state, so nothing is extrapolated here.
   auto states = [&](const std::vector<std::uint64_t>& ids) {
-    std::vector<proto::EntityState> out;
+    std::vector<dr::WireEntity> out;
     out.reserve(ids.size());
-    for (std::uint64_t id : ids) out.push_back(extrapolatedState(*cache_.find(id), sim_now));
+    for (std::uint64_t id : ids) out.push_back(wireEntity(*cache_.find(id)));
     return out;
   };
+  std::uint64_t tick = clock_.tick();
+  auto newest = [&](const std::vector<dr::WireEntity>& v) {
+    std::uint64_t t = tick;
+    for (const dr::WireEntity& e : v) t = std::max(t, e.tick);
+    return t;
+  };
+  std::vector<dr::WireEntity> spawns = states(diff.spawns), updates = states(diff.updates);
   for (const Bytes& b : encodeDespawnChunks(s.token, tick, diff.despawns)) sendTo(s, b);
-  for (const Bytes& b : encodeSpawnChunks(s.token, tick, states(diff.spawns))) sendTo(s, b);
-  for (const Bytes& b : encodeStateChunks(s.token, tick, states(diff.updates))) sendTo(s, b);
+  for (const Bytes& b : encodeSpawnChunks(s.token, newest(spawns), codec_, spawns)) sendTo(s, b);
+  for (const Bytes& b : encodeStateChunks(s.token, newest(updates), codec_, updates)) sendTo(s, b);
   s.traffic.despawns_sent += diff.despawns.size();
   s.traffic.spawns_sent += diff.spawns.size();
   s.traffic.updates_sent += diff.updates.size();

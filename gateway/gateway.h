@@ -90,6 +90,7 @@ class Gateway {
   std::vector<PlayerRecord> finished_players_;
   Outbox outbox_;
   std::vector<std::uint8_t> rx_buffer_;
+  dr::StateCodec codec_;  // packs states for clients exactly as the zones quantised them
   std::int64_t next_metrics_ns_ = 0;
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
 };

@@ -54,10 +54,37 @@ Bytes encodeBye(std::uint64_t token) {
   return finish(fbb, token, proto::Message::Bye, proto::CreateBye(fbb));
 }
 
+proto::CodecParams toProto(const dr::CodecParams& c) {
+  return proto::CodecParams(proto::Vec3f(c.world_min[0], c.world_min[1], c.world_min[2]),
+                            proto::Vec3f(c.world_max[0], c.world_max[1], c.world_max[2]),
+                            c.cell_size, c.position_resolution, c.max_speed, c.velocity_resolution,
+                            c.max_acceleration, c.acceleration_resolution, c.max_angular_velocity,
+                            c.angular_velocity_resolution, c.rotation_bits);
+}
+
+dr::CodecParams fromProto(const proto::CodecParams& c) {
+  dr::CodecParams p;
+  p.world_min[0] = c.world_min().x(), p.world_min[1] = c.world_min().y();
+  p.world_min[2] = c.world_min().z();
+  p.world_max[0] = c.world_max().x(), p.world_max[1] = c.world_max().y();
+  p.world_max[2] = c.world_max().z();
+  p.cell_size = c.cell_size();
+  p.position_resolution = c.position_resolution();
+  p.max_speed = c.max_speed();
+  p.velocity_resolution = c.velocity_resolution();
+  p.max_acceleration = c.max_acceleration();
+  p.acceleration_resolution = c.acceleration_resolution();
+  p.max_angular_velocity = c.max_angular_velocity();
+  p.angular_velocity_resolution = c.angular_velocity_resolution();
+  p.rotation_bits = c.rotation_bits();
+  return p;
+}
+
 Bytes encodeWelcome(const WelcomeInfo& w) {
-  flatbuffers::FlatBufferBuilder fbb(192);
+  flatbuffers::FlatBufferBuilder fbb(256);
+  proto::CodecParams codec = toProto(w.codec);
   auto msg = proto::CreateWelcome(fbb, w.client_nonce, w.token, w.player_id, w.avatar_id, w.zone,
-                                  w.tick_rate, &w.world_min, &w.world_max);
+                                  w.tick_rate, &w.world_min, &w.world_max, &codec, w.sim_dt);
   return finish(fbb, w.token, proto::Message::Welcome, msg);
 }
 
@@ -74,20 +101,36 @@ Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h) {
   return finish(fbb, token, proto::Message::Handoff, msg);
 }
 
+namespace {
+template <typename Create>
+std::vector<Bytes> packed(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
+                          std::span<const dr::WireEntity> states, proto::Message type,
+                          Create create) {
+  std::vector<Bytes> out;
+  flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
+  for (const dr::PackedChunk& c : codec.pack(states, tick, kPackedBytesPerDatagram)) {
+    fbb.Clear();
+    auto v = fbb.CreateVector(c.bytes.data(), c.bytes.size());
+    out.push_back(finish(fbb, token, type, create(fbb, std::uint16_t(c.count), v)));
+  }
+  return out;
+}
+}  // namespace
+
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
-                                     std::span<const proto::EntityState> states) {
-  return chunked(states, kStatesPerDatagram, [&](auto& fbb, auto run) {
-    auto v = fbb.CreateVectorOfStructs(run.data(), run.size());
-    return finish(fbb, token, proto::Message::StateBatch, proto::CreateStateBatch(fbb, tick, v));
-  });
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states) {
+  return packed(
+      token, tick, codec, states, proto::Message::StateBatch,
+      [&](auto& fbb, std::uint16_t n, auto v) { return proto::CreateStateBatch(fbb, tick, n, v); });
 }
 
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
-                                     std::span<const proto::EntityState> states) {
-  return chunked(states, kStatesPerDatagram, [&](auto& fbb, auto run) {
-    auto v = fbb.CreateVectorOfStructs(run.data(), run.size());
-    return finish(fbb, token, proto::Message::Spawn, proto::CreateSpawn(fbb, tick, v));
-  });
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states) {
+  return packed(
+      token, tick, codec, states, proto::Message::Spawn,
+      [&](auto& fbb, std::uint16_t n, auto v) { return proto::CreateSpawn(fbb, tick, n, v); });
 }
 
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,

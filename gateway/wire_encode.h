@@ -9,18 +9,17 @@
 
 #include "client_protocol_generated.h"
 #include "gateway/wire_verify.h"
+#include "idl/state_codec.h"
 
 namespace zonesim::gateway {
 
 /// One encoded datagram.
 using Bytes = std::vector<std::uint8_t>;
 
-static_assert(sizeof(proto::EntityState) == 56, "EntityState layout changed: recheck chunking");
 /// Room left for the Datagram and message tables, vtables and vector headers (measured < 100).
 inline constexpr std::size_t kChunkOverheadBytes = 128;
-/// Entity states per StateBatch or Spawn datagram.
-inline constexpr std::size_t kStatesPerDatagram =
-    (kMaxDatagramBytes - kChunkOverheadBytes) / sizeof(proto::EntityState);
+/// Packed state bytes per StateBatch or Spawn datagram.
+inline constexpr std::size_t kPackedBytesPerDatagram = kMaxDatagramBytes - kChunkOverheadBytes;
 /// Ids per Despawn datagram.
 inline constexpr std::size_t kIdsPerDatagram =
     (kMaxDatagramBytes - kChunkOverheadBytes) / sizeof(std::uint64_t);
@@ -34,7 +33,13 @@ struct WelcomeInfo {
   int zone = 0;
   float tick_rate = 30;
   proto::Vec3f world_min, world_max;
+  dr::CodecParams codec;
+  float sim_dt = 1.0f / 30;
 };
+
+/// The wire form of codec parameters, and back.
+proto::CodecParams toProto(const dr::CodecParams& c);
+dr::CodecParams fromProto(const proto::CodecParams& c);
 
 /// Handoff notice fields.
 struct HandoffInfo {
@@ -54,12 +59,14 @@ Bytes encodeWelcome(const WelcomeInfo& w);
 Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
 
-/// StateBatch datagrams carrying all states, kStatesPerDatagram per datagram, in order.
+/// StateBatch datagrams carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
-                                     std::span<const proto::EntityState> states);
-/// Spawn datagrams carrying all states, kStatesPerDatagram per datagram, in order.
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states);
+/// Spawn datagrams carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
-                                     std::span<const proto::EntityState> states);
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states);
 /// Despawn datagrams carrying all ids, kIdsPerDatagram per datagram, in order.
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
                                        std::span<const std::uint64_t> ids);

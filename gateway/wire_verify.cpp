@@ -23,11 +23,14 @@ bool position(const proto::Vec3f& p) {
   return coordinate(p.x()) && coordinate(p.y()) && coordinate(p.z());
 }
 
-bool validStates(const flatbuffers::Vector<const proto::EntityState*>* v) {
-  if (v == nullptr) return false;
-  for (const proto::EntityState* s : *v)
-    if (!validEntityState(*s)) return false;
-  return true;
+/// Packed states: present, and not claiming more records than the bytes can hold (20 bits is
+/// the smallest record). The values are range-checked as they are unpacked.
+bool validPacked(std::uint16_t count, const flatbuffers::Vector<std::uint8_t>* packed) {
+  return packed != nullptr && count > 0 && std::size_t(count) * 20 <= packed->size() * 8;
+}
+
+bool step(float v, float lo, float hi) {
+  return finite(v) && v >= lo && v <= hi;
 }
 
 bool checkToGateway(const proto::Datagram& d) {
@@ -50,6 +53,8 @@ bool checkToGateway(const proto::Datagram& d) {
 bool checkWelcome(const proto::Welcome& w) {
   const proto::Vec3f *lo = w.world_min(), *hi = w.world_max();
   if (lo == nullptr || hi == nullptr || !position(*lo) || !position(*hi)) return false;
+  if (w.codec() == nullptr || !validCodec(*w.codec())) return false;
+  if (!step(w.sim_dt(), 1e-4f, 1.0f)) return false;
   return w.token() != 0 && w.zone() >= 0 && finite(w.tick_rate()) && w.tick_rate() > 0 &&
          w.tick_rate() <= 1000 && lo->x() <= hi->x() && lo->y() <= hi->y() && lo->z() <= hi->z();
 }
@@ -59,9 +64,9 @@ bool checkToClient(const proto::Datagram& d) {
     case proto::Message::Welcome:
       return checkWelcome(*d.msg_as_Welcome());
     case proto::Message::StateBatch:
-      return validStates(d.msg_as_StateBatch()->updates());
+      return validPacked(d.msg_as_StateBatch()->count(), d.msg_as_StateBatch()->packed());
     case proto::Message::Spawn:
-      return validStates(d.msg_as_Spawn()->entities());
+      return validPacked(d.msg_as_Spawn()->count(), d.msg_as_Spawn()->packed());
     case proto::Message::Despawn:
       return d.msg_as_Despawn()->ids() != nullptr;
     case proto::Message::Handoff: {
@@ -132,11 +137,23 @@ std::uint64_t DropCounters::total() const {
   return t;
 }
 
-bool validEntityState(const proto::EntityState& s) {
-  const proto::Quatf& q = s.rot();
-  return s.id() != 0 && s.kind() <= kMaxEntityKind && position(s.pos()) && speed(s.vel().x()) &&
-         speed(s.vel().y()) && speed(s.vel().z()) && finite(q.x()) && finite(q.y()) &&
-         finite(q.z()) && finite(q.w());
+bool validCodec(const proto::CodecParams& c) {
+  const proto::Vec3f &lo = c.world_min(), &hi = c.world_max();
+  if (!position(lo) || !position(hi) || !(lo.x() < hi.x() && lo.y() < hi.y() && lo.z() < hi.z()))
+    return false;
+  // The same limits as the scene keys, so every field stays well under 32 bits; at most 2^20
+  // interest cells.
+  if (!step(c.cell_size(), 1e-3f, kMaxCoordinate)) return false;
+  double columns = std::ceil((double(hi.x()) - lo.x()) / c.cell_size());
+  double rows = std::ceil((double(hi.z()) - lo.z()) / c.cell_size());
+  return columns * rows <= double(1 << 20) && step(c.position_resolution(), 1e-4f, 1) &&
+         step(c.max_speed(), 1, 1e4f) && step(c.velocity_resolution(), 1e-4f, 1) &&
+         step(c.max_acceleration(), 1, 1e4f) && step(c.acceleration_resolution(), 1e-4f, 1) &&
+         step(c.max_angular_velocity(), 1, 1e3f) &&
+         step(c.angular_velocity_resolution(), 1e-4f, 1) && c.rotation_bits() >= 4 &&
+         c.rotation_bits() <= 16 &&
+         (double(hi.y()) - lo.y()) / c.position_resolution() < double(1u << 30) &&
+         c.cell_size() / c.position_resolution() < float(1u << 30);
 }
 
 Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction) {

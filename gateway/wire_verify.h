@@ -73,7 +73,7 @@ struct Verified {
 /// Runs all checks in order; the returned pointer aliases bytes. bytes must be 4-byte aligned.
 Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction);
 
-/// True if every field of an entity state is finite and in range.
-bool validEntityState(const proto::EntityState& s);
+/// True if codec parameters describe a grid and steps a client can work with.
+bool validCodec(const proto::CodecParams& c);
 
 }  // namespace zonesim::gateway

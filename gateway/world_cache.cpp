@@ -1,9 +1,11 @@
 #include "gateway/world_cache.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "gateway/wire_verify.h"
+#include "idl/dr_sample.h"
 
 namespace zonesim::gateway {
 
@@ -13,17 +15,28 @@ constexpr std::int64_t kTombstoneNs = 5'000'000'000;
 // A sender heartbeats every few seconds; extrapolating further than this is guessing.
 constexpr double kMaxExtrapolationSeconds = 10.0;
 
-proto::EntityState toWire(const zonesim_dds_EntityUpdate& e, float dt) {
-  return proto::EntityState(
-      e.id, e.kind,
-      proto::Vec3f(e.pos.x + e.vel.x * dt, e.pos.y + e.vel.y * dt, e.pos.z + e.vel.z * dt),
-      proto::Vec3f(e.vel.x, e.vel.y, e.vel.z), proto::Quatf(e.rot.x, e.rot.y, e.rot.z, e.rot.w));
+bool finite3(const zonesim_dds_Vec3f& v, float limit) {
+  for (float c : {v.x, v.y, v.z})
+    if (!std::isfinite(c) || std::fabs(c) > limit) return false;
+  return true;
 }
 }  // namespace
 
-proto::EntityState extrapolatedState(const CachedEntity& e, double at) {
+bool validSample(const zonesim_dds_EntityUpdate& e) {
+  const zonesim_dds_Quatf& q = e.rot;
+  return e.id != 0 && e.kind <= kMaxEntityKind && finite3(e.pos, kMaxCoordinate) &&
+         finite3(e.vel, kMaxSpeed) && finite3(e.acc, kMaxSpeed) && finite3(e.angvel, kMaxSpeed) &&
+         std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+}
+
+dr::V3 predictedPosition(const CachedEntity& e, double at) {
   double dt = std::clamp(at - e.sim_time, 0.0, kMaxExtrapolationSeconds);
-  return toWire(e.state, float(dt));
+  dr::WireEntity w = dds::toWireEntity(e.state, e.tick, e.cell);
+  return dr::predictPosition(w.state, w.model.order, dt);
+}
+
+dr::WireEntity wireEntity(const CachedEntity& e) {
+  return dds::toWireEntity(e.state, e.tick, e.cell);
 }
 
 WorldCache::WorldCache(std::int64_t grace_ns) : grace_ns_(grace_ns) {}
@@ -41,9 +54,9 @@ void WorldCache::index(std::uint64_t id, int old_cell, int new_cell) {
 }
 
 bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e,
-                        bool refresh_only) {
+                        bool refresh_only, std::uint64_t tick) {
   // Zones quarantine non-finite states; if one slips through it must not reach a client.
-  if (!validEntityState(toWire(e, 0))) {
+  if (!validSample(e)) {
     ++stats_.invalid;
     return false;
   }
@@ -62,6 +75,7 @@ bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_E
       refresh_only && !inserted && c.cell == cell && c.zone == zone && c.remove_at_ns == 0;
   c.state = e;
   c.sim_time = sim_time;
+  c.tick = tick;
   c.cell = cell;
   c.zone = zone;
   if (!refresh) c.version = ++version_counter_;
@@ -94,9 +108,9 @@ bool WorldCache::leave(int cell, int zone, double sim_time, std::uint64_t id, st
 
 void WorldCache::applyBatch(const zonesim_dds_CellUpdateBatch& b, std::int64_t now_ns) {
   for (std::uint32_t i = 0; i < b.enters._length; ++i)
-    upsert(b.cell, b.zone, b.sim_time, b.enters._buffer[i]);
+    upsert(b.cell, b.zone, b.sim_time, b.enters._buffer[i], false, b.tick);
   for (std::uint32_t i = 0; i < b.updates._length; ++i)
-    upsert(b.cell, b.zone, b.sim_time, b.updates._buffer[i]);
+    upsert(b.cell, b.zone, b.sim_time, b.updates._buffer[i], false, b.tick);
   for (std::uint32_t i = 0; i < b.leaves._length; ++i)
     leave(b.cell, b.zone, b.sim_time, b.leaves._buffer[i].id, now_ns);
 }
@@ -105,7 +119,7 @@ void WorldCache::applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t n
   std::unordered_set<std::uint64_t> present;
   present.reserve(k.entities._length);
   for (std::uint32_t i = 0; i < k.entities._length; ++i) {
-    upsert(k.cell, k.zone, k.sim_time, k.entities._buffer[i], /*refresh_only=*/true);
+    upsert(k.cell, k.zone, k.sim_time, k.entities._buffer[i], /*refresh_only=*/true, k.tick);
     present.insert(k.entities._buffer[i].id);
   }
   // The keyframe is the full state of (cell, zone): whatever we hold from there that is older

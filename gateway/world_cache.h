@@ -11,7 +11,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "client_protocol_generated.h"
+#include "idl/dr_model.h"
+#include "idl/state_codec.h"
 #include "zonesim.h"
 
 namespace zonesim::gateway {
@@ -20,6 +21,7 @@ namespace zonesim::gateway {
 struct CachedEntity {
   zonesim_dds_EntityUpdate state{};
   double sim_time = 0;
+  std::uint64_t tick = 0;  ///< zone tick the state was sampled at
   int cell = -1;
   int zone = -1;
   std::uint64_t version = 0;      ///< bumps on every accepted sample; clients are sent newer ones
@@ -44,7 +46,7 @@ class WorldCache {
   /// of an entity already held from the same source) updates the state without a new version:
   /// clients already following it keep to the zone's dead-reckoning updates.
   bool upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e,
-              bool refresh_only = false);
+              bool refresh_only = false, std::uint64_t tick = 0);
   /// A leave of id from (cell, zone) at sim_time; false if it does not apply.
   bool leave(int cell, int zone, double sim_time, std::uint64_t id, std::int64_t now_ns);
   /// Removes entities whose grace expired and forgets old tombstones; returns how many removed.
@@ -81,7 +83,11 @@ class WorldCache {
   CacheStats stats_;
 };
 
-/// The wire form of a cached state, moved first-order to sim time `at`.
-proto::EntityState extrapolatedState(const CachedEntity& e, double at);
+/// Where the entity's own dead-reckoning model puts it at sim time `at`.
+dr::V3 predictedPosition(const CachedEntity& e, double at);
+/// The cached state as the codec sends it: exactly the quantised state the zone sent.
+dr::WireEntity wireEntity(const CachedEntity& e);
+/// True if every field of a zone sample is finite and in range.
+bool validSample(const zonesim_dds_EntityUpdate& e);
 
 }  // namespace zonesim::gateway

@@ -10,34 +10,66 @@
 namespace zonesim::clients {
 namespace {
 
-proto::EntityState state(std::uint64_t id, float x, float z, float vx, float vz) {
-  return proto::EntityState(id, 0, proto::Vec3f(x, 0, z), proto::Vec3f(vx, 0, vz),
-                            proto::Quatf(0, 0, 0, 1));
+dr::WireEntity state(std::uint64_t id, std::uint64_t tick, double x, double z, double vx,
+                     double vz) {
+  dr::WireEntity e;
+  e.id = id;
+  e.tick = tick;
+  e.state.pos = {x, 0, z};
+  e.state.vel = {vx, 0, vz};
+  return e;
 }
 
-constexpr std::int64_t kSecond = 1'000'000'000;
+constexpr double kDt = 0.1;  // simulated seconds per server tick in these tests
 
-TEST(RemoteView, ExtrapolatesFirstOrderFromReceipt) {
-  RemoteView v;
-  v.spawn(state(1, 10, 20, 2, -1), kSecond);
-  auto p = v.predicted(1, 3 * kSecond);
+TEST(RemoteView, RunsTheEntitysModelFromItsSampleTick) {
+  RemoteView v({false, 0.25, kDt});
+  v.spawn(state(1, 10, 10, 20, 2, -1), 12);
+  auto p = v.predicted(1, 30);  // 2 s after the sample
   ASSERT_TRUE(p);
   EXPECT_DOUBLE_EQ(p->x, 14);
   EXPECT_DOUBLE_EQ(p->z, 18);
-  EXPECT_FALSE(v.predicted(2, kSecond));
+  EXPECT_FALSE(v.predicted(2, 30));
+  // Second order: x = x0 + v t + a t^2 / 2.
+  dr::WireEntity b = state(3, 0, 0, 0, 1, 0);
+  b.model.order = dr::Order::Second;
+  b.state.acc = {0.5, 0, 0};
+  v.spawn(b, 0);
+  EXPECT_DOUBLE_EQ(v.predicted(3, 20)->x, 1 * 2 + 0.5 * 4 / 2);
 }
 
-TEST(RemoteView, UpdateReportsTheCorrection) {
-  RemoteView v;
-  v.spawn(state(1, 0, 0, 1, 0), 0);
-  auto err = v.update(state(1, 2, 0, 1, 0), kSecond);  // predicted x = 1, told x = 2
+TEST(RemoteView, SnappingShowsTheNewModelAtOnce) {
+  RemoteView v({false, 0.25, kDt});
+  v.spawn(state(1, 0, 0, 0, 1, 0), 0);
+  auto err = v.update(state(1, 10, 2, 0, 1, 0), 10);  // predicted x = 1, told x = 2
   ASSERT_TRUE(err);
   EXPECT_NEAR(*err, 1.0, 1e-9);
-  EXPECT_FALSE(v.update(state(9, 0, 0, 0, 0), kSecond)) << "unknown entities are not invented";
+  EXPECT_NEAR(v.shown(1, 10)->x, 2, 1e-12);
+  EXPECT_FALSE(v.update(state(1, 5, 0, 0, 0, 0), 10)) << "an older state never replaces a newer";
+  EXPECT_FALSE(v.update(state(9, 10, 0, 0, 0, 0), 10)) << "unknown entities are not invented";
   EXPECT_EQ(v.size(), 1u);
   EXPECT_TRUE(v.despawn(1));
   EXPECT_FALSE(v.despawn(1));
   EXPECT_EQ(v.size(), 0u);
+}
+
+TEST(RemoteView, BlendingConvergesContinuouslyToTheNewModel) {
+  RemoteView v({true, 0.5, kDt});
+  v.spawn(state(1, 0, 0, 0, 1, 0), 0);
+  v.update(state(1, 10, 2, 0, 1, 0), 10);  // a 1 m correction at tick 10
+  // At the update the shown position has not jumped; it reaches the new model after 0.5 s
+  // (5 ticks) and follows it from then on.
+  EXPECT_NEAR(v.shown(1, 10)->x, 1, 1e-12);
+  double prev = 1;
+  for (double t = 10.5; t < 15; t += 0.5) {
+    double x = v.shown(1, t)->x;
+    // Same velocities: the 1 m gap closes linearly over 0.5 s on top of the 1 m/s walk, so
+    // every 0.05 s the shown position moves 0.05 + 0.1 m, never a jump.
+    EXPECT_NEAR(x - prev, 0.15, 1e-9);
+    prev = x;
+  }
+  EXPECT_NEAR(v.shown(1, 15)->x, v.predicted(1, 15)->x, 1e-12);
+  EXPECT_NEAR(v.shown(1, 20)->x, 3, 1e-12);
 }
 
 TEST(Wander, WalksTowardTargetsInsideTheWorld) {

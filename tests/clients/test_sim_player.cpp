@@ -77,9 +77,27 @@ class SimPlayerTest : public ::testing::Test {
   std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(2048);
 };
 
-proto::EntityState state(std::uint64_t id, float x) {
-  return proto::EntityState(id, 0, proto::Vec3f(x, 0, 5), proto::Vec3f(1, 0, 0),
-                            proto::Quatf(0, 0, 0, 1));
+// The codec a default Welcome announces.
+const dr::StateCodec& codec() {
+  static const dr::StateCodec c{dr::CodecParams{}};
+  return c;
+}
+
+dr::WireEntity state(std::uint64_t id, float x) {
+  dr::WireEntity e;
+  e.id = id;
+  e.tick = 1;
+  e.state.pos = {x, 0, 5};
+  e.state.vel = {1, 0, 0};
+  return e;
+}
+
+Bytes spawnOf(std::uint64_t token, std::uint64_t tick, std::vector<dr::WireEntity> v) {
+  return gateway::encodeSpawnChunks(token, tick, codec(), v)[0];
+}
+
+Bytes updateOf(std::uint64_t token, std::uint64_t tick, std::vector<dr::WireEntity> v) {
+  return gateway::encodeStateChunks(token, tick, codec(), v)[0];
 }
 
 TEST_F(SimPlayerTest, HandshakeThenInputsAndPings) {
@@ -104,8 +122,8 @@ TEST_F(SimPlayerTest, HandshakeThenInputsAndPings) {
 
 TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
   hello();
-  std::vector<proto::EntityState> one{state(5, 1)};
-  toPlayer(gateway::encodeSpawnChunks(1, 1, one)[0]);  // before any Welcome
+  std::vector<dr::WireEntity> one{state(5, 1)};
+  toPlayer(spawnOf(1, 1, one));  // before any Welcome
   EXPECT_EQ(dropped(DropReason::NotReady), 1u);
   gateway::WelcomeInfo w;
   w.client_nonce = 12345;  // not our nonce
@@ -116,17 +134,27 @@ TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
   EXPECT_FALSE(player_->welcomed());
 
   std::uint64_t token = welcome();
-  toPlayer(gateway::encodeSpawnChunks(token + 1, 1, one)[0]);  // forged token
+  toPlayer(spawnOf(token + 1, 1, one));  // forged token
   EXPECT_EQ(dropped(DropReason::BadToken), 2u);
   gateway::UdpSocket stranger;
-  toPlayer(gateway::encodeSpawnChunks(token, 1, one)[0], stranger);  // not from the gateway
+  toPlayer(spawnOf(token, 1, one), stranger);  // not from the gateway
   EXPECT_EQ(dropped(DropReason::WrongAddress), 1u);
   toPlayer(Bytes{1, 2, 3});
   EXPECT_EQ(dropped(DropReason::Truncated), 1u);
-  std::vector<proto::EntityState> bad{
-      proto::EntityState(6, 0, proto::Vec3f(std::numeric_limits<float>::infinity(), 0, 0),
-                         proto::Vec3f(0, 0, 0), proto::Quatf(0, 0, 0, 1))};
-  toPlayer(gateway::encodeStateChunks(token, 1, bad)[0]);
+  // A record 90 ticks old in a batch of tick 100, the batch tick rewritten to 50 after
+  // packing: the state would predate tick 0, and unpacking refuses it.
+  std::vector<dr::WireEntity> early{state(6, 1)};
+  early[0].tick = 10;
+  Bytes at2 = spawnOf(token, 100, early);
+  gateway::Verified pv = gateway::verifyDatagram(at2, gateway::Direction::ToClient);
+  ASSERT_TRUE(pv.ok());
+  flatbuffers::FlatBufferBuilder fbb;
+  const proto::Spawn* sp = pv.datagram->msg_as_Spawn();
+  auto v = fbb.CreateVector(sp->packed()->data(), sp->packed()->size());
+  proto::FinishDatagramBuffer(
+      fbb, proto::CreateDatagram(fbb, token, proto::Message::Spawn,
+                                 proto::CreateSpawn(fbb, 50, sp->count(), v).Union()));
+  toPlayer(Bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()));
   EXPECT_EQ(dropped(DropReason::OutOfRange), 1u);
   toPlayer(gateway::encodeInput(token, 1, 0, 0));  // a gateway-bound message
   EXPECT_EQ(dropped(DropReason::UnexpectedType), 1u);
@@ -135,12 +163,13 @@ TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
 
 TEST_F(SimPlayerTest, SpawnUpdateDespawnAndHandoffAreCounted) {
   std::uint64_t token = welcome();
-  std::vector<proto::EntityState> two{state(5, 1), state(77, 2)};
-  toPlayer(gateway::encodeSpawnChunks(token, 1, two)[0]);
+  std::vector<dr::WireEntity> two{state(5, 1), state(77, 2)};
+  toPlayer(spawnOf(token, 1, two));
   EXPECT_EQ(player_->view().size(), 2u);
   EXPECT_EQ(player_->counters().spawns, 2u);
-  std::vector<proto::EntityState> upd{state(5, 3)};
-  toPlayer(gateway::encodeStateChunks(token, 2, upd)[0]);
+  std::vector<dr::WireEntity> upd{state(5, 3)};
+  upd[0].tick = 2;
+  toPlayer(updateOf(token, 2, upd));
   EXPECT_EQ(player_->counters().updates, 1u);
   EXPECT_EQ(player_->counters().dr_error_m.seen(), 1u);
   std::vector<std::uint64_t> gone{5};

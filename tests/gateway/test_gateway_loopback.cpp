@@ -90,14 +90,21 @@ class GatewayLoopback : public ::testing::Test {
         EXPECT_EQ(w->player_id(), player_);
         EXPECT_EQ(w->zone(), 0);
         token = w->token();
+        codec_.emplace(fromProto(*w->codec()));
         break;
       }
-      case proto::Message::Spawn:
-        for (const proto::EntityState* s : *d.msg_as_Spawn()->entities()) {
-          spawned_avatar_ |= s->id() == kAvatar;
-          spawned_npc_ |= s->id() == kNpc;
+      case proto::Message::Spawn: {
+        const proto::Spawn* m = d.msg_as_Spawn();
+        ASSERT_TRUE(codec_.has_value());
+        auto got = codec_->unpack(std::span(m->packed()->data(), m->packed()->size()), m->count(),
+                                  m->server_tick());
+        ASSERT_TRUE(got.has_value());
+        for (const dr::WireEntity& s : *got) {
+          spawned_avatar_ |= s.id == kAvatar;
+          spawned_npc_ |= s.id == kNpc;
         }
         break;
+      }
       case proto::Message::StateBatch:
         got_batch_ = true;
         break;
@@ -123,6 +130,7 @@ class GatewayLoopback : public ::testing::Test {
   std::uint32_t seq_ = 0;
   float spawn_x_ = 0, spawn_z_ = 0;
   bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
+  std::optional<dr::StateCodec> codec_;
   std::unique_ptr<Gateway> gateway_;
   std::unique_ptr<testing::ZoneEmulator> zone_;
   std::atomic<bool> stop_{false};

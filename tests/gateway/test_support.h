@@ -53,6 +53,7 @@ inline zonesim_dds_EntityUpdate entity(std::uint64_t id, std::uint8_t kind, floa
   e.pos = {x, 0, z};
   e.vel = {vx, 0, vz};
   e.rot = {0, 0, 0, 1};
+  e.model = 1;  // first order, fixed orientation
   return e;
 }
 

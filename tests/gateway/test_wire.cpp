@@ -17,9 +17,31 @@ DropReason reasonOf(const Bytes& b, Direction d = Direction::ToGateway) {
   return v.reason;
 }
 
-proto::EntityState state(std::uint64_t id, float x) {
-  return proto::EntityState(id, 0, proto::Vec3f(x, 0, -x), proto::Vec3f(1, 0, 2),
-                            proto::Quatf(0, 0, 0, 1));
+const dr::StateCodec& codec() {
+  static const dr::StateCodec c{dr::CodecParams{}};
+  return c;
+}
+
+// An entity at (x, 0, 1000 - x) in the default codec's 1000 m world, first order.
+dr::WireEntity state(std::uint64_t id, float x) {
+  dr::WireEntity e;
+  e.id = id;
+  e.tick = 9;
+  e.state.pos = {x, 0, 1000 - x};
+  e.state.vel = {1, 0, 2};
+  e.cell = codec().columns() * int((1000 - x) / 50 < 19 ? (1000 - x) / 50 : 19) +
+           int(x / 50 < 19 ? x / 50 : 19);
+  e.state = codec().roundTrip(e.state, e.model, e.cell);
+  return e;
+}
+
+Bytes batchOf(std::uint16_t count, std::vector<std::uint8_t> packed) {
+  flatbuffers::FlatBufferBuilder fbb;
+  auto v = fbb.CreateVector(packed);
+  proto::FinishDatagramBuffer(
+      fbb, proto::CreateDatagram(fbb, 3, proto::Message::StateBatch,
+                                 proto::CreateStateBatch(fbb, 1, count, v).Union()));
+  return Bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
 }
 
 TEST(Wire, ValidHelloAndInputPass) {
@@ -83,32 +105,52 @@ TEST(Wire, EmptyUnionIsNoMessage) {
   EXPECT_EQ(reasonOf(b), DropReason::NoMessage);
 }
 
-TEST(Wire, NonFiniteStatesRejectedAtTheClient) {
-  std::vector<proto::EntityState> s{state(1, 1)};
-  s.push_back(proto::EntityState(2, 0, proto::Vec3f(std::nanf(""), 0, 0), proto::Vec3f(0, 0, 0),
-                                 proto::Quatf(0, 0, 0, 1)));
-  auto chunks = encodeStateChunks(3, 1, s);
-  ASSERT_EQ(chunks.size(), 1u);
-  EXPECT_EQ(reasonOf(chunks[0], Direction::ToClient), DropReason::OutOfRange);
+TEST(Wire, PackedCountsTheBytesCannotHoldAreRejectedAtTheClient) {
+  EXPECT_EQ(reasonOf(batchOf(5, {1, 2, 3}), Direction::ToClient), DropReason::OutOfRange);
+  EXPECT_EQ(reasonOf(batchOf(0, {1, 2, 3}), Direction::ToClient), DropReason::OutOfRange);
+  EXPECT_TRUE(verifyDatagram(batchOf(1, {1, 2, 3}), Direction::ToClient).ok());
+}
+
+TEST(Wire, WelcomeWithAnUnusableCodecIsRejected) {
+  WelcomeInfo w;
+  w.token = 3;
+  w.world_max = proto::Vec3f(1, 1, 1);
+  EXPECT_TRUE(verifyDatagram(encodeWelcome(w), Direction::ToClient).ok());
+  w.codec.cell_size = 0;
+  EXPECT_EQ(reasonOf(encodeWelcome(w), Direction::ToClient), DropReason::OutOfRange);
+  w.codec = {};
+  w.codec.rotation_bits = 40;
+  EXPECT_EQ(reasonOf(encodeWelcome(w), Direction::ToClient), DropReason::OutOfRange);
+  w.codec = {};
+  w.codec.position_resolution = std::nanf("");
+  EXPECT_EQ(reasonOf(encodeWelcome(w), Direction::ToClient), DropReason::OutOfRange);
+  w.codec = {};
+  w.sim_dt = 0;
+  EXPECT_EQ(reasonOf(encodeWelcome(w), Direction::ToClient), DropReason::OutOfRange);
 }
 
 TEST(Wire, ChunksStayWithinLimitAndLoseNothing) {
   for (std::size_t n : {0u, 1u, 22u, 23u, 100u, 1000u}) {
-    std::vector<proto::EntityState> states;
-    for (std::size_t i = 0; i < n; ++i) states.push_back(state(i + 1, float(i)));
+    std::vector<dr::WireEntity> states;
+    for (std::size_t i = 0; i < n; ++i) states.push_back(state(i + 1, float(i % 1000)));
     for (bool spawn : {false, true}) {
-      auto chunks = spawn ? encodeSpawnChunks(5, 9, states) : encodeStateChunks(5, 9, states);
-      EXPECT_EQ(chunks.size(), (n + kStatesPerDatagram - 1) / kStatesPerDatagram);
+      auto chunks = spawn ? encodeSpawnChunks(5, 9, codec(), states)
+                          : encodeStateChunks(5, 9, codec(), states);
+      EXPECT_EQ(chunks.empty(), n == 0);
       std::vector<std::uint64_t> seen;
       for (const Bytes& c : chunks) {
         EXPECT_LE(c.size(), kMaxDatagramBytes);
         Verified v = verifyDatagram(c, Direction::ToClient);
         ASSERT_TRUE(v.ok()) << dropReasonName(v.reason);
-        auto* list = spawn ? v.datagram->msg_as_Spawn()->entities()
-                           : v.datagram->msg_as_StateBatch()->updates();
-        for (const proto::EntityState* s : *list) {
-          EXPECT_EQ(s->pos().x(), float(s->id() - 1));
-          seen.push_back(s->id());
+        std::uint16_t count =
+            spawn ? v.datagram->msg_as_Spawn()->count() : v.datagram->msg_as_StateBatch()->count();
+        auto* bytes = spawn ? v.datagram->msg_as_Spawn()->packed()
+                            : v.datagram->msg_as_StateBatch()->packed();
+        auto got = codec().unpack(std::span(bytes->data(), bytes->size()), count, 9);
+        ASSERT_TRUE(got.has_value());
+        for (const dr::WireEntity& s : *got) {
+          EXPECT_EQ(s.state.pos.x, states[s.id - 1].state.pos.x);
+          seen.push_back(s.id);
         }
       }
       ASSERT_EQ(seen.size(), n);
@@ -135,13 +177,14 @@ TEST(Wire, DespawnChunksStayWithinLimitAndLoseNothing) {
 // Corrupted gateway-to-client datagrams: the client-side check never reads out of bounds and
 // whatever passes it holds only finite, in-range states.
 TEST(Wire, CorruptedClientBoundDatagramsNeverPassBadStates) {
-  std::vector<proto::EntityState> states;
+  std::vector<dr::WireEntity> states;
   for (std::uint64_t i = 1; i <= 20; ++i) states.push_back(state(i, float(i)));
   WelcomeInfo w;
   w.token = 3;
   w.world_max = proto::Vec3f(1, 1, 1);
-  std::vector<Bytes> seeds{encodeStateChunks(3, 1, states)[0], encodeSpawnChunks(3, 1, states)[0],
-                           encodeWelcome(w), encodeHandoff(3, {1, 0, 1, 2, 3})};
+  std::vector<Bytes> seeds{encodeStateChunks(3, 9, codec(), states)[0],
+                           encodeSpawnChunks(3, 9, codec(), states)[0], encodeWelcome(w),
+                           encodeHandoff(3, {1, 0, 1, 2, 3})};
   Pcg32 rng(77, 3);
   int passed = 0;
   for (int i = 0; i < 20000; ++i) {
@@ -151,8 +194,14 @@ TEST(Wire, CorruptedClientBoundDatagramsNeverPassBadStates) {
     if (!v.ok()) continue;
     ++passed;
     if (v.datagram->msg_type() != proto::Message::StateBatch) continue;
-    for (const proto::EntityState* s : *v.datagram->msg_as_StateBatch()->updates()) {
-      EXPECT_TRUE(validEntityState(*s));
+    const proto::StateBatch* m = v.datagram->msg_as_StateBatch();
+    auto got = codec().unpack(std::span(m->packed()->data(), m->packed()->size()), m->count(),
+                              m->server_tick());
+    if (!got) continue;  // the client drops it as out of range
+    for (const dr::WireEntity& s : *got) {
+      EXPECT_LT(s.cell, codec().cellCount());
+      EXPECT_TRUE(std::isfinite(s.state.pos.x) && std::isfinite(s.state.vel.z));
+      EXPECT_LE(s.tick, m->server_tick());
     }
   }
   EXPECT_GT(passed, 0) << "some corruptions only touch values that stay in range";

@@ -189,12 +189,17 @@ TEST(WorldCache, DroppedCellForgetsItsEntities) {
   EXPECT_NE(c.find(2), nullptr);
 }
 
-TEST(WorldCache, ExtrapolatesFirstOrder) {
+TEST(WorldCache, PredictsWithTheEntitysOwnModel) {
   WorldCache c(kGrace);
-  c.upsert(kCell, 0, 1.0, entity(1, 0, 10, 20, 2, -1));
-  proto::EntityState s = extrapolatedState(*c.find(1), 1.5);
-  EXPECT_FLOAT_EQ(s.pos().x(), 11);
-  EXPECT_FLOAT_EQ(s.pos().z(), 19.5f);
+  c.upsert(kCell, 0, 1.0, entity(1, 0, 10, 20, 2, -1), false, 30);
+  dr::V3 p = predictedPosition(*c.find(1), 1.5);
+  EXPECT_FLOAT_EQ(float(p.x), 11);
+  EXPECT_FLOAT_EQ(float(p.z), 19.5f);
+  EXPECT_EQ(wireEntity(*c.find(1)).tick, 30u);
+  zonesim_dds_EntityUpdate still = entity(2, 3, 10, 20, 2, -1);
+  still.model = 0;  // static: the velocity is not extrapolated
+  c.upsert(kCell, 0, 1.0, still);
+  EXPECT_FLOAT_EQ(float(predictedPosition(*c.find(2), 1.5).x), 10);
 }
 
 // The client-facing consequence: the handoff produces an update, never a despawn + spawn.
@@ -237,7 +242,7 @@ TEST(WorldCache, PeriodicKeyframeResendsNothingToFollowingClients) {
 
   ClientView late;
   EXPECT_EQ(late.diff(selectVisible(c, grid, at, late)).spawns, (std::vector<std::uint64_t>{7, 8}));
-  EXPECT_FLOAT_EQ(extrapolatedState(*c.find(7), at.sim_now).pos().x(), 51);
+  EXPECT_FLOAT_EQ(float(predictedPosition(*c.find(7), at.sim_now).x), 51);
 
   c.upsert(cell, 0, 2.1, entity(7, 0, 51.2f, 10));
   EXPECT_EQ(following.diff(selectVisible(c, grid, at, following)).updates,
