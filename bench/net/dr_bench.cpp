@@ -1,0 +1,309 @@
+// dr_bench: what a client pays (bits per second) for how well it sees (error of the shown
+// position against the truth), per dead-reckoning order, threshold, reconstruction and
+// interest radius. NPCs walk waypoint paths with the zone's own movement system, avatars wander
+// like client_stub players; the zone's sender decides and quantises the updates, the codec packs
+// each observer's per-tick batch, and a client RemoteView reconstructs. Truth and shown
+// positions are compared at the same server tick, which is what the report tool's join does.
+//
+// Usage: dr_bench [--seconds S] [--csv FILE]
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "clients/remote_view.h"
+#include "clients/wander.h"
+#include "common/interest_grid.h"
+#include "common/rng.h"
+#include "gateway/wire_encode.h"
+#include "zone_node/net/dead_reckoning.h"
+#include "zone_node/population.h"
+#include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/npc_movement.h"
+
+using namespace zonesim;
+
+namespace {
+
+constexpr int kNpcs = 600, kAvatars = 150;
+constexpr double kUdpIpHeaderBytes = 28;
+
+struct Config {
+  std::string name;
+  DeadReckoningModel::Order order = DeadReckoningModel::Order::First;
+  double threshold = 0.25;
+  double heartbeat = 5;
+  double orientation_deg = 3;
+  bool blend = true;
+  double loss = 0;
+  double radius = 100;
+};
+
+struct Result {
+  double bits_per_client_s = 0, wire_bits_per_client_s = 0;
+  double visible_moving = 0;
+  double p50 = 0, p99 = 0, max = 0;
+  double updates_per_entity_s = 0;
+};
+
+Scene benchScene() {
+  Scene s;
+  s.world = {{0, 0, 0}, {1000, 50, 1000}};
+  s.dt = 1.0 / 30;
+  s.tick_rate = 30;
+  s.seed = 11;
+  s.interest_cell_size = 50;
+  NpcPopulation p;
+  p.count = kNpcs;
+  p.min_speed = 1.0;
+  p.max_speed = 2.0;
+  p.acceleration = 2.0;
+  p.waypoint_radius = 40;
+  p.region = s.world;
+  s.npcs.push_back(p);
+  return s;
+}
+
+double percentile(std::vector<double>& v, double q) {
+  if (v.empty()) return 0;
+  std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + long(k), v.end());
+  return v[k];
+}
+
+// Bytes of the Datagram + StateBatch framing around `packed` bytes (measured once).
+std::size_t framingBytes(const dr::StateCodec& codec) {
+  dr::WireEntity e;
+  e.id = 1;
+  std::vector<dr::WireEntity> one{e};
+  auto packed = codec.pack(one, 0, gateway::kPackedBytesPerDatagram);
+  auto dg = gateway::encodeStateChunks(0x1234567890abcdefULL, 1, codec, one);
+  return dg[0].size() - packed[0].bytes.size();
+}
+
+Result run(const Config& c, double seconds) {
+  Scene scene = benchScene();
+  DeadReckoning& drc = scene.dead_reckoning;
+  drc.position_threshold = c.threshold;
+  drc.heartbeat_seconds = c.heartbeat;
+  drc.orientation_threshold_deg = c.orientation_deg;
+  drc.npc.order = drc.avatar.order = c.order;
+  zone::EntityStore store;
+  zone::forEachInitialEntity(scene, [&](const zone::EntityRecordData& r) { store.add(r); });
+  std::vector<clients::Wander> wanders;
+  Pcg32 place(scene.seed, 99);
+  for (int a = 0; a < kAvatars; ++a) {
+    zone::EntityRecordData r;
+    r.id = EntityId::make(1, std::uint64_t(a + 1));
+    r.kind = zone::EntityKind::Avatar;
+    r.pos = Vec3(place.uniform(0, 1000), 0, place.uniform(0, 1000));
+    r.avatar.max_speed = 5.0;
+    store.add(r);
+    wanders.emplace_back(scene.world, 8.0, scene.seed, std::uint64_t(a));
+  }
+  InterestGrid grid(scene.world, scene.interest_cell_size);
+  zone::DeadReckoner reckoner(drc, dr::codecParams(scene));
+  const dr::StateCodec& codec = reckoner.codec();
+  const std::size_t framing = framingBytes(codec);
+  clients::RemoteView view({c.blend, 0.2, scene.dt});
+  Pcg32 loss(5, 6);
+  const int ticks = int(seconds / scene.dt);
+  const int warmup = int(5 / scene.dt);  // let the first full sends pass
+  std::vector<double> errors;
+  errors.reserve(std::size_t(ticks) * store.size() / 2);
+  double bits = 0, wire_bits = 0, visible_moving = 0, updates = 0;
+  std::vector<int> observers;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    if (store.kind[i] == zone::EntityKind::Avatar) observers.push_back(int(i));
+  std::vector<dr::WireEntity> sent, batch;
+  std::vector<std::vector<char>> known(observers.size(), std::vector<char>(store.size(), 0));
+  for (int tick = 0; tick < ticks; ++tick) {
+    double t = tick * scene.dt;
+    for (int a = 0; a < kAvatars; ++a) {
+      std::size_t i = std::size_t(observers[std::size_t(a)]);
+      clients::Move m = wanders[std::size_t(a)].step(store.pos[i].x(), store.pos[i].z(), t);
+      store.avatar[i].move_x = m.x;
+      store.avatar[i].move_z = m.z;
+    }
+    zone::stepNpcs(scene, store, scene.dt);
+    zone::stepAvatars(scene.world, store, scene.dt);
+    // The zone's publish decision, as CellPublisher makes it.
+    sent.clear();
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      dr::State truth = zone::trueState(store, i, tick > 0 ? scene.dt : 0);
+      zone::rememberTick(store, i);
+      int cell = grid.cellOf(store.pos[i].x(), store.pos[i].z());
+      zone::DeadReckoningState& d = store.dr[i];
+      bool first = d.cell < 0;
+      if (!first && reckoner.due(d, store.id[i], store.kind[i], truth, t) == dr::Due::None)
+        continue;
+      d.cell = cell;
+      dr::WireEntity w;
+      w.id = store.id[i].value;
+      w.kind = std::uint8_t(store.kind[i]);
+      w.tick = std::uint64_t(tick);
+      w.cell = cell;
+      w.model = zone::modelFor(drc, store.kind[i]);
+      w.state = reckoner.quantised(truth, store.kind[i], cell, &w.rot_largest);
+      zone::DeadReckoner::markSent(d, w.state, t);
+      sent.push_back(w);
+      // The client; spawns are reliable, updates may be lost.
+      if (first)
+        view.spawn(w, double(tick));
+      else if (!(c.loss > 0 && loss.uniform(0, 1) < c.loss))
+        view.update(w, double(tick));
+    }
+    if (tick < warmup) continue;
+    updates += double(sent.size());
+    std::sort(sent.begin(), sent.end(), [](auto& a, auto& b) { return a.id < b.id; });
+    // Each observer's batch: the updates of entities within its interest radius.
+    double r2 = c.radius * c.radius;
+    for (std::size_t k = 0; k < observers.size(); ++k) {
+      int o = observers[k];
+      double ox = store.pos[std::size_t(o)].x(), oz = store.pos[std::size_t(o)].z();
+      batch.clear();
+      for (const dr::WireEntity& w : sent) {
+        double dx = w.state.pos.x - ox, dz = w.state.pos.z - oz;
+        if (dx * dx + dz * dz <= r2) batch.push_back(w);
+      }
+      std::vector<char>& seen = known[k];
+      for (std::size_t i = 0; i < store.size(); ++i) {
+        double dx = store.pos[i].x() - ox, dz = store.pos[i].z() - oz;
+        bool inside = dx * dx + dz * dz <= r2;
+        if (inside && store.vel[i].norm() > 0.1 && int(i) != o) visible_moving += 1;
+        // An entity entering the interest costs one full record (a Spawn); leaving, an id.
+        if (inside && !seen[i]) {
+          double b = codec.stateBits(zone::modelFor(drc, store.kind[i])) + 24;
+          bits += b;
+          wire_bits += b;
+        } else if (!inside && seen[i]) {
+          bits += 64;
+          wire_bits += 64;
+        }
+        seen[i] = inside;
+      }
+      if (batch.empty()) continue;
+      for (const dr::PackedChunk& ch :
+           codec.pack(batch, std::uint64_t(tick), gateway::kPackedBytesPerDatagram)) {
+        bits += 8.0 * double(ch.bytes.size());
+        wire_bits += 8.0 * (double(ch.bytes.size()) + double(framing) + kUdpIpHeaderBytes);
+      }
+    }
+    // What the client shows against the truth, for every entity, at this server tick.
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      auto shown = view.shown(store.id[i].value, double(tick));
+      if (!shown) continue;
+      double dx = shown->x - store.pos[i].x(), dy = shown->y - store.pos[i].y(),
+             dz = shown->z - store.pos[i].z();
+      errors.push_back(std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+  }
+  double measured_s = (ticks - warmup) * scene.dt;
+  double n_obs = double(observers.size());
+  Result r;
+  r.bits_per_client_s = bits / n_obs / measured_s;
+  r.wire_bits_per_client_s = wire_bits / n_obs / measured_s;
+  r.visible_moving = visible_moving / n_obs / double(ticks - warmup);
+  r.updates_per_entity_s = updates / double(store.size()) / measured_s;
+  r.max = errors.empty() ? 0 : *std::max_element(errors.begin(), errors.end());
+  r.p50 = percentile(errors, 0.5);
+  r.p99 = percentile(errors, 0.99);
+  return r;
+}
+
+const char* orderName(DeadReckoningModel::Order o) {
+  switch (o) {
+    case DeadReckoningModel::Order::Static:
+      return "static";
+    case DeadReckoningModel::Order::First:
+      return "first";
+    case DeadReckoningModel::Order::Second:
+      return "second";
+  }
+  return "?";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 60;
+  std::string csv_path;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
+    if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+  }
+  std::vector<Config> configs;
+  using O = DeadReckoningModel::Order;
+  // The sweep isolates the position threshold (orientation threshold off) and shows the
+  // model's own error (snap); the rows after it change one thing at a time from first order,
+  // 0.25 m, snap.
+  for (O order : {O::Static, O::First, O::Second})
+    for (double th : {0.05, 0.1, 0.25, 0.5, 1.0}) {
+      Config c;
+      c.name = "sweep";
+      c.order = order;
+      c.threshold = th;
+      c.orientation_deg = 180;
+      c.blend = false;
+      configs.push_back(c);
+    }
+  Config base;
+  base.orientation_deg = 180;
+  base.blend = false;
+  Config c = base;
+  c.name = "orient3";
+  c.orientation_deg = 3;
+  configs.push_back(c);
+  c = base;
+  c.name = "blend";
+  c.blend = true;
+  configs.push_back(c);
+  c = base;
+  c.name = "loss10";
+  c.loss = 0.1;
+  configs.push_back(c);
+  c = base;
+  c.name = "hb1s";
+  c.heartbeat = 1;
+  c.loss = 0.1;
+  configs.push_back(c);
+  for (double radius : {25.0, 50.0, 100.0, 150.0, 200.0}) {
+    c = base;
+    c.name = "radius";
+    c.radius = radius;
+    configs.push_back(c);
+  }
+  FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
+  if (csv)
+    std::fprintf(csv,
+                 "set,order,threshold_m,blend,loss,radius_m,payload_bps,wire_bps,visible_moving,"
+                 "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s\n");
+  std::printf(
+      "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
+      "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
+      kNpcs, kAvatars, seconds - 5);
+  std::printf("%-7s %-6s %6s %5s %5s %6s | %10s %10s %8s %9s | %8s %8s %8s | %7s\n", "set", "order",
+              "thr_m", "blend", "loss", "rad_m", "payload/s", "wire b/s", "visible", "b/s/vis",
+              "p50_m", "p99_m", "max_m", "upd/e/s");
+  for (const Config& c : configs) {
+    Result r = run(c, seconds);
+    double per_visible = r.visible_moving > 0 ? r.bits_per_client_s / r.visible_moving : 0;
+    std::printf(
+        "%-7s %-6s %6.2f %5d %5.2f %6.0f | %10.0f %10.0f %8.1f %9.1f | %8.4f %8.4f %8.3f | "
+        "%7.3f\n",
+        c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
+        r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible, r.p50, r.p99,
+        r.max, r.updates_per_entity_s);
+    std::fflush(stdout);
+    if (csv)
+      std::fprintf(csv, "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f\n",
+                   c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
+                   r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible,
+                   r.p50, r.p99, r.max, r.updates_per_entity_s);
+  }
+  if (csv) std::fclose(csv);
+  return 0;
+}
