@@ -38,6 +38,8 @@ struct NpcPopulation {
   double waypoint_radius = 30;   ///< next waypoint drawn within this distance
   double arrive_distance = 1.0;  ///< waypoint counts as reached inside this distance
   SceneBox region;               ///< where they start (defaults to the world)
+  double separation_radius = 0;  ///< keep this far from other walkers (0: no avoidance)
+  double separation_weight = 1;  ///< push at contact, in top speeds
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).

@@ -71,8 +71,8 @@ SceneBox readRegion(const SceneMap& population, const SceneBox& world) {
 }
 
 void readNpcs(const SceneNode& node, Scene& scene) {
-  SceneMap m = node.map(
-      {"kind", "count", "speed", "acceleration", "waypoint_radius", "arrive_distance", "region"});
+  SceneMap m = node.map({"kind", "count", "speed", "acceleration", "waypoint_radius",
+                         "arrive_distance", "region", "separation"});
   NpcPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
@@ -80,6 +80,14 @@ void readNpcs(const SceneNode& node, Scene& scene) {
   m.read("waypoint_radius", p.waypoint_radius, Limit::above(0));
   m.read("arrive_distance", p.arrive_distance, Limit::above(0));
   p.region = readRegion(m, scene.world);
+  SceneMap sep = m.section("separation", {"radius", "weight"});
+  sep.read("radius", p.separation_radius, Limit::atLeast(0));
+  sep.read("weight", p.separation_weight, Limit::atLeast(0));
+  // Walkers across a border are seen through the halo; it must reach as far as they look.
+  if (p.separation_radius > scene.halo_width) {
+    sep.failAt("radius", formatNumber(p.separation_radius) + " m is wider than halo.width (" +
+                             formatNumber(scene.halo_width) + " m)");
+  }
   scene.npcs.push_back(p);
 }
 

@@ -24,6 +24,8 @@ struct NpcData {
   double accel = 2.0;
   double waypoint_radius = 30.0;
   double arrive_distance = 1.0;
+  double separation_radius = 0;  ///< keeps this far from other walkers (0: walks through them)
+  double separation_weight = 1;  ///< strength of the push, in top speeds at contact
 };
 
 /// A player's avatar, driven by inputs applied exactly once by sequence number.

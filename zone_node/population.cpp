@@ -55,6 +55,8 @@ void forEachInitialEntity(const Scene& scene,
       r.npc.accel = p.acceleration;
       r.npc.waypoint_radius = p.waypoint_radius;
       r.npc.arrive_distance = p.arrive_distance;
+      r.npc.separation_radius = p.separation_radius;
+      r.npc.separation_weight = p.separation_weight;
       r.rng_state = rng.state();
       r.npc.waypoint = nextWaypoint(scene, r.pos, p.waypoint_radius, r.rng_state, r.id);
       keep(r);

@@ -8,10 +8,10 @@
 
 namespace zonesim::zone {
 
-enum class Phase { Input, Ai, Physics, Gpu, Migrate, Publish, Checks, Count };
+enum class Phase { Input, Ai, Physics, Gpu, Migrate, Halo, Publish, Checks, Count };
 constexpr std::size_t kPhaseCount = std::size_t(Phase::Count);
 constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
-    "input", "ai", "physics", "gpu", "migrate", "publish", "checks"};
+    "input", "ai", "physics", "gpu", "migrate", "halo", "publish", "checks"};
 
 using TickProfile = PhaseProfile<Phase, kPhaseCount>;
 
@@ -39,6 +39,10 @@ struct TickCounters {
   std::uint64_t published_cells = 0;
   std::uint64_t published_keyframes = 0;
   std::uint64_t subscribed_cells = 0;
+  std::uint64_t ghosts = 0;         ///< neighbours' entities held as ghosts after the refresh
+  std::uint64_t ghosts_sent = 0;    ///< entity copies sent to neighbours
+  std::uint64_t halo_bytes = 0;     ///< bytes of those copies
+  std::uint64_t halo_rebuilds = 0;  ///< 1 when the ghost send lists were rebuilt
 };
 
 /// Every counter with its name: totals, metrics lines and summaries iterate this one list.
@@ -69,6 +73,10 @@ inline constexpr CounterField kCounterFields[] = {
     {"published_leaves", &TickCounters::published_leaves, false},
     {"published_cells", &TickCounters::published_cells, false},
     {"published_keyframes", &TickCounters::published_keyframes, false},
-    {"subscribed_cells", &TickCounters::subscribed_cells, true}};
+    {"subscribed_cells", &TickCounters::subscribed_cells, true},
+    {"ghosts", &TickCounters::ghosts, true},
+    {"ghosts_sent", &TickCounters::ghosts_sent, false},
+    {"halo_bytes", &TickCounters::halo_bytes, false},
+    {"halo_rebuilds", &TickCounters::halo_rebuilds, false}};
 
 }  // namespace zonesim::zone

@@ -31,11 +31,17 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       grid_(scene.world, scene.interest_cell_size),
       ids_(0),
       migrator_(comm, 0, 1),
-      balancer_(comm, options.balance) {
+      balancer_(comm, options.balance),
+      halo_(comm, 0, 1, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   ids_ = EntityIdAllocator(std::uint32_t(rank_));
   migrator_ = Migrator(comm_, rank_, size_);
+  halo_ =
+      HaloExchange(comm_, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width));
+  for (const NpcPopulation& p : scene.npcs)
+    walker_reach_ = std::max(walker_reach_, p.separation_radius);
+  halo_needed_ = walker_reach_ > 0;
   forward_.resize(std::size_t(size_));
 
   auto keepIfMine = [&](const EntityRecordData& r) {
@@ -66,6 +72,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
                          store_.avatar[i].last_input_seq});
   }
   emitters_ = std::make_unique<EmitterSystem>(scene_, options_.gpu);
+  // The first tick's systems already read ghosts.
+  halo();
 }
 
 ZoneNode::~ZoneNode() = default;
@@ -85,6 +93,7 @@ void ZoneNode::tick() {
   timed(Phase::Gpu, &ZoneNode::gpu);
   std::int64_t cpu1 = threadCpuNs();
   timed(Phase::Migrate, &ZoneNode::migrate);
+  timed(Phase::Halo, &ZoneNode::halo);
   std::int64_t cpu2 = threadCpuNs();
   timed(Phase::Publish, &ZoneNode::publish);
   std::int64_t cpu3 = threadCpuNs();
@@ -182,7 +191,8 @@ void ZoneNode::applyInput(std::uint64_t player_id, std::uint32_t seq, float move
 }
 
 void ZoneNode::ai() {
-  stepNpcs(scene_, store_, scene_.dt);
+  if (walker_reach_ > 0) near_.build(store_, &halo_.ghosts(), walker_reach_);
+  stepNpcs(scene_, store_, near_, scene_.dt);
   stepAvatars(scene_.world, store_, scene_.dt);
 }
 
@@ -239,6 +249,15 @@ void ZoneNode::migrate() {
   leavers_.insert(leavers_.end(), last_migration_.departed.begin(), last_migration_.departed.end());
 }
 
+void ZoneNode::halo() {
+  if (!halo_needed_) return;
+  HaloStats h = halo_.refresh(store_, layout_, layout_version_);
+  counters_.ghosts = h.ghosts;
+  counters_.ghosts_sent = h.sent;
+  counters_.halo_bytes = h.bytes_sent;
+  counters_.halo_rebuilds = h.rebuilt ? 1 : 0;
+}
+
 void ZoneNode::coverZone() {
   if (!publisher_) return;
   ZoneRect r = layout_.rect(rank_);
@@ -268,6 +287,7 @@ void ZoneNode::checks() {
   // Moved boundaries take effect in the next migrate phase: leavers go to their new owners.
   if (balancer_.check(tick_, layout_)) {
     ++counters_.rebalances;
+    ++layout_version_;
     coverZone();
   }
   counters_.imbalance_permille = std::uint64_t(balancer_.imbalance() * 1000.0);

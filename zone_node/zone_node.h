@@ -15,9 +15,11 @@
 #include "common/entity_id.h"
 #include "common/interest_grid.h"
 #include "common/scene.h"
+#include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/load_balancer.h"
 #include "zone_node/cluster/migration.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/neighbourhood.h"
 #include "zone_node/tick_profile.h"
 #include "zone_node/zone_layout.h"
 
@@ -65,6 +67,8 @@ class ZoneNode {
   const EntityStore& store() const { return store_; }
   const TickProfile& profile() const { return profile_; }
   const TickCounters& counters() const { return counters_; }
+  /// Read-only copies of the neighbours' entities within the halo (refreshed every tick).
+  const GhostStore& ghosts() const { return halo_.ghosts(); }
   const ConservationTally& conservation() const { return conservation_; }
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
   std::string particleBackend() const;
@@ -79,6 +83,7 @@ class ZoneNode {
   void physics();
   void gpu();
   void migrate();
+  void halo();
   void publish();
   void checks();
   void checkConservationNow();
@@ -101,6 +106,11 @@ class ZoneNode {
   IdSetDigest ledger_;  // created here minus destroyed here
   Migrator migrator_;
   LoadBalancer balancer_;
+  HaloExchange halo_;
+  bool halo_needed_ = false;  // some system reads ghosts (decided from the scene: all agree)
+  double walker_reach_ = 0;   // widest radius at which walkers see each other
+  Neighbourhood near_;        // walkers and their ghosts, rebuilt each AI phase
+  std::uint64_t layout_version_ = 0;  // bumped whenever zone boundaries move
   std::unique_ptr<ZoneLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;

@@ -115,7 +115,11 @@ const InlineCase kInlineCases[] = {
      "6: populations[0].count: required field is missing"},
     {"key_of_other_kind", withBase("populations:\n  - kind: npc\n    count: 1\n    rate: 5\n"),
      "8: populations[0].rate: unknown key (allowed: kind, count, speed, acceleration, "
-     "waypoint_radius, arrive_distance, region)"},
+     "waypoint_radius, arrive_distance, region, separation)"},
+    {"separation_beyond_halo",
+     withBase("halo:\n  width: 2\npopulations:\n  - kind: npc\n    count: 1\n    separation:\n"
+              "      radius: 3\n"),
+     "11: populations[0].separation.radius: 3 m is wider than halo.width (2 m)"},
     {"speed_scalar", withBase("populations:\n  - {kind: npc, count: 1, speed: 2}\n"),
      "6: populations[0].speed: expected a list [min, max], got '2'"},
     {"speed_element",

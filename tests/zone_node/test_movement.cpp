@@ -3,6 +3,7 @@
 #include "test_helpers.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
 
@@ -17,7 +18,7 @@ TEST(NpcMovement, NpcsWanderWithinTheWorldAtTheirOwnSpeedAndReachWaypoints) {
   for (const NpcData& n : store.npc) first_waypoint.push_back(n.waypoint);
   double max_speed_seen = 0;
   for (int t = 0; t < 30 * 60; ++t) {
-    stepNpcs(s, store, s.dt);
+    stepNpcs(s, store, Neighbourhood{}, s.dt);
     for (std::size_t i = 0; i < store.size(); ++i) {
       ASSERT_GE(store.pos[i].x(), s.world.min.x - 1e-9);
       ASSERT_LE(store.pos[i].x(), s.world.max.x + 1e-9);
@@ -32,6 +33,40 @@ TEST(NpcMovement, NpcsWanderWithinTheWorldAtTheirOwnSpeedAndReachWaypoints) {
   for (std::size_t i = 0; i < store.size(); ++i)
     moved_on += store.npc[i].waypoint != first_waypoint[i];
   EXPECT_GT(moved_on, store.size() * 9 / 10) << "most NPCs reached their first waypoint in 60 s";
+}
+
+/// Pairs of NPCs closer than `d` after walking a crowded square for 20 s.
+std::size_t closePairsAfterWalking(double separation_radius, double d) {
+  Scene s = testing::npcScene(400);
+  s.npcs[0].region = {{80, 0, 80}, {120, 0, 120}};
+  s.npcs[0].waypoint_radius = 15;
+  s.npcs[0].separation_radius = separation_radius;
+  s.npcs[0].separation_weight = 1.5;
+  s.npcs[0].min_speed = 1.0;  // walkers that can turn within the separation radius
+  s.npcs[0].max_speed = 1.5;
+  s.npcs[0].acceleration = 4.0;
+  EntityStore store;
+  forEachInitialEntity(s, [&](const EntityRecordData& r) { store.add(r); });
+  Neighbourhood near;
+  for (int t = 0; t < 30 * 20; ++t) {
+    near.build(store, nullptr, std::max(separation_radius, 1.0));
+    stepNpcs(s, store, near, s.dt);
+  }
+  std::size_t close = 0;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::size_t j = i + 1; j < store.size(); ++j) {
+      Vec3 dp = store.pos[i] - store.pos[j];
+      close += dp.x() * dp.x() + dp.z() * dp.z() < d * d;
+    }
+  return close;
+}
+
+TEST(NpcMovement, SeparationKeepsWalkersApart) {
+  std::size_t without = closePairsAfterWalking(0, 1.0);
+  std::size_t with = closePairsAfterWalking(2.0, 1.0);
+  EXPECT_GT(without, 20u) << "the square is crowded enough to matter";
+  EXPECT_LT(with * 10, without) << with << " close pairs with separation, " << without
+                                << " without";
 }
 
 TEST(AvatarMovement, AnAvatarWalksInTheInputDirectionAtItsSpeed) {

@@ -33,7 +33,8 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
     case EntityKind::Npc: {
       fb::Vec3d wp = toFb(r.npc.waypoint);
       npc = fb::CreateNpcState(b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius,
-                               r.npc.arrive_distance);
+                               r.npc.arrive_distance, r.npc.separation_radius,
+                               r.npc.separation_weight);
       break;
     }
     case EntityKind::Avatar:
@@ -71,8 +72,9 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
   r.rot = fromFb(e.rot());
   r.rng_state = e.rng_state();
   if (const fb::NpcState* n = e.npc()) {
-    r.npc = {fromFb(n->waypoint()), n->max_speed(), n->accel(), n->waypoint_radius(),
-             n->arrive_distance()};
+    r.npc = {fromFb(n->waypoint()), n->max_speed(),       n->accel(),
+             n->waypoint_radius(),  n->arrive_distance(), n->separation_radius(),
+             n->separation_weight()};
   }
   if (const fb::AvatarState* a = e.avatar()) {
     r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(),

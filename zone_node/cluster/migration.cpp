@@ -1,24 +1,9 @@
 #include "zone_node/cluster/migration.h"
 
-#include <stdexcept>
-#include <string>
-
 namespace zonesim::zone {
 
-namespace {
-void mpiCheck(int rc, const char* what) {
-  if (rc != MPI_SUCCESS) throw std::runtime_error(std::string(what) + " failed");
-}
-}  // namespace
-
 Migrator::Migrator(MPI_Comm comm, int rank, int size)
-    : comm_(comm),
-      rank_(rank),
-      size_(size),
-      send_counts_(size),
-      recv_counts_(size),
-      send_displs_(size),
-      recv_displs_(size) {}
+    : rank_(rank), size_(size), bytes_(comm, size) {}
 
 MigrationResult Migrator::exchange(EntityStore& store, const ZoneLayout& layout, std::uint64_t tick,
                                    std::vector<std::vector<ForwardedInput>>& forward) {
@@ -37,38 +22,22 @@ MigrationResult Migrator::exchange(EntityStore& store, const ZoneLayout& layout,
   // Descending order: the entity swapped into a hole has a higher index and was already kept.
   for (auto it = leavers.rbegin(); it != leavers.rend(); ++it) store.removeAt(*it);
 
-  send_buf_.clear();
+  bytes_.begin();
   for (int r = 0; r < size_; ++r) {
-    send_displs_[r] = int(send_buf_.size());
-    send_counts_[r] = 0;
     if (r < int(forward.size())) outgoing[r].inputs.swap(forward[r]);
     if (outgoing[r].entities.empty() && outgoing[r].inputs.empty()) continue;
     outgoing[r].tick = tick;
     outgoing[r].from_rank = rank_;
-    std::vector<std::uint8_t> bytes = encodeMigration(outgoing[r]);
-    send_buf_.insert(send_buf_.end(), bytes.begin(), bytes.end());
-    send_counts_[r] = int(bytes.size());
+    bytes_.outgoing(r) = encodeMigration(outgoing[r]);
   }
   for (auto& f : forward) f.clear();
-  result.bytes_sent = send_buf_.size();
-
-  mpiCheck(MPI_Alltoall(send_counts_.data(), 1, MPI_INT, recv_counts_.data(), 1, MPI_INT, comm_),
-           "MPI_Alltoall");
-  int total = 0;
-  for (int r = 0; r < size_; ++r) {
-    recv_displs_[r] = total;
-    total += recv_counts_[r];
-  }
-  recv_buf_.resize(std::size_t(total));
-  mpiCheck(
-      MPI_Alltoallv(send_buf_.data(), send_counts_.data(), send_displs_.data(), MPI_BYTE,
-                    recv_buf_.data(), recv_counts_.data(), recv_displs_.data(), MPI_BYTE, comm_),
-      "MPI_Alltoallv");
+  bytes_.exchange();
+  result.bytes_sent = bytes_.bytesSent();
 
   for (int r = 0; r < size_; ++r) {
-    if (recv_counts_[r] == 0) continue;
-    MigrationPayload in = decodeMigration(std::span<const std::uint8_t>(
-        recv_buf_.data() + recv_displs_[r], std::size_t(recv_counts_[r])));
+    std::span<const std::uint8_t> bytes = bytes_.received(r);
+    if (bytes.empty()) continue;
+    MigrationPayload in = decodeMigration(bytes);
     for (const EntityRecordData& e : in.entities) result.arrived.push_back({store.add(e), r});
     result.inputs.insert(result.inputs.end(), in.inputs.begin(), in.inputs.end());
   }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "zone_node/cluster/byte_exchange.h"
 #include "zone_node/cluster/entity_codec.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/zone_layout.h"
@@ -46,11 +47,8 @@ class Migrator {
                            std::vector<std::vector<ForwardedInput>>& forward);
 
  private:
-  MPI_Comm comm_;
   int rank_, size_;
-  // Reused across ticks so the exchange does not allocate once warmed up.
-  std::vector<int> send_counts_, recv_counts_, send_displs_, recv_displs_;
-  std::vector<std::uint8_t> send_buf_, recv_buf_;
+  ByteExchange bytes_;
 };
 
 }  // namespace zonesim::zone

@@ -1,0 +1,38 @@
+#pragma once
+// One personalised all-to-all of byte buffers: sizes first (MPI_Alltoall), then the payloads
+// (MPI_Alltoallv). Migration and the halo both move their data this way; the buffers are kept
+// across ticks so a warmed-up exchange does not allocate.
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace zonesim::zone {
+
+class ByteExchange {
+ public:
+  ByteExchange(MPI_Comm comm, int size);
+
+  /// Clears the outgoing buffers; call before packing a new round.
+  void begin();
+  /// The outgoing bytes for rank r (append to it).
+  std::vector<std::uint8_t>& outgoing(int r) { return out_[std::size_t(r)]; }
+  /// Sends every outgoing buffer to its rank and receives theirs (collective).
+  void exchange();
+  /// What rank r sent us in the last exchange.
+  std::span<const std::uint8_t> received(int r) const;
+  /// Bytes this rank sent in the last exchange.
+  std::uint64_t bytesSent() const { return bytes_sent_; }
+
+ private:
+  MPI_Comm comm_;
+  int size_;
+  std::vector<std::vector<std::uint8_t>> out_;
+  std::vector<int> send_counts_, recv_counts_, send_displs_, recv_displs_;
+  std::vector<std::uint8_t> send_buf_, recv_buf_;
+  std::uint64_t bytes_sent_ = 0;
+};
+
+}  // namespace zonesim::zone

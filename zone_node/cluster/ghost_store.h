@@ -1,0 +1,37 @@
+#pragma once
+// Read-only copies of other ranks' entities near this zone (LAMMPS' ghost atoms). Systems read
+// them as neighbours; only the owner ever writes an entity's state. Refreshed every tick by the
+// halo exchange; the arrays are rebuilt whole, so indices mean nothing across ticks.
+
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "common/entity_id.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::zone {
+
+class GhostStore {
+ public:
+  std::size_t size() const { return id.size(); }
+  void clear();
+  /// Appends a ghost owned by rank `owner`.
+  void add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, const Quat& q, const BodyData& b,
+           int owner);
+  std::optional<std::size_t> indexOf(EntityId e) const;
+
+  std::vector<EntityId> id;
+  std::vector<EntityKind> kind;
+  std::vector<Vec3> pos;
+  std::vector<Vec3> vel;
+  std::vector<Quat> rot;
+  std::vector<BodyData> body;  ///< shape and material, for rigid-body ghosts
+  std::vector<int> owner;
+
+ private:
+  std::unordered_map<std::uint64_t, std::size_t> index_of_;
+};
+
+}  // namespace zonesim::zone
