@@ -22,6 +22,7 @@
 #include "zone_node/net/dead_reckoning.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 
 using namespace zonesim;
@@ -128,7 +129,7 @@ Result run(const Config& c, double seconds) {
       store.avatar[i].move_x = m.x;
       store.avatar[i].move_z = m.z;
     }
-    zone::stepNpcs(scene, store, scene.dt);
+    zone::stepNpcs(scene, store, zone::Neighbourhood{}, scene.dt);  // no separation here
     zone::stepAvatars(scene.world, store, scene.dt);
     // The zone's publish decision, as CellPublisher makes it.
     sent.clear();
