@@ -1,4 +1,5 @@
-// Runs one of issue 3's benchmark scenes on zonesim_physics and on Bullet (float), single
+// Runs one of issue 3's benchmark scenes on zonesim_physics and on Bullet (float; the
+// physics_vs_bullet_double build links Bullet's double-precision libraries), single
 // thread, dt 1/60, 10 velocity iterations (ours: plus 2 split-impulse position iterations;
 // Bullet: split impulse on), sleeping off, and prints ms per step and the stability figures.
 //
@@ -25,6 +26,12 @@ namespace zp = zonesim::physics;
 using zonesim::Vec3;
 
 namespace {
+
+#ifdef BT_USE_DOUBLE_PRECISION
+constexpr const char* kBullet = "bullet64";  // Bullet's double-precision build.
+#else
+constexpr const char* kBullet = "bullet";
+#endif
 
 constexpr double kDt = 1.0 / 60.0;
 constexpr double kDensity = 1000.0;
@@ -216,9 +223,9 @@ int main(int argc, char** argv) {
   Timing bullet_t;
   const auto bullet = runBullet(scene, steps, bullet_t);
   if (pyramid) {
-    reportPyramid("bullet", scene, bullet, bullet_t);
+    reportPyramid(kBullet, scene, bullet, bullet_t);
   } else {
-    reportSpheres("bullet", scene, bullet, bullet_t);
+    reportSpheres(kBullet, scene, bullet, bullet_t);
   }
   return 0;
 }

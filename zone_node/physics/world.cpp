@@ -37,6 +37,7 @@ void World::substep(double dt) {
   solver_.prepare(bodies_, contacts_, settings_.solver, dt);
   // Contacts and joints share the Gauss-Seidel iterations, so each sees the other's impulses.
   joints_.prepare(bodies_, dt, settings_.joint_beta);
+  rigid_joints_.prepare(bodies_, dt, settings_.joint_beta);
   switch (settings_.solver.kind) {
     case SolverKind::SoftStep:
       solveSoftStep(dt);
@@ -209,13 +210,23 @@ void World::integratePositions(double dt) {
   }
 }
 
+void World::warmStartJoints() {
+  joints_.warmStart(bodies_);
+  rigid_joints_.warmStart(bodies_);
+}
+
+void World::iterateJoints() {
+  joints_.iterate(bodies_);
+  rigid_joints_.iterate(bodies_);
+}
+
 void World::solveIterative(double dt) {
   const SolverKind kind = settings_.solver.kind;
   if (kind == SolverKind::Penalty) {
     // Forces, not constraints: one spring-damper evaluation, no warm start, no projection.
     solver_.applyPenalty(bodies_);
-    joints_.warmStart(bodies_);
-    for (int it = 0; it < settings_.solver.velocity_iterations; ++it) joints_.iterate(bodies_);
+    warmStartJoints();
+    for (int it = 0; it < settings_.solver.velocity_iterations; ++it) iterateJoints();
     solver_.storeImpulses(contacts_);
     solver_.clearPositionCorrection(bodies_.size());
     integratePositions(dt);
@@ -223,14 +234,14 @@ void World::solveIterative(double dt) {
   }
   const double omega = kind == SolverKind::Sor ? settings_.solver.sor_omega : 1.0;
   solver_.warmStart(bodies_);
-  joints_.warmStart(bodies_);
+  warmStartJoints();
   for (int it = 0; it < settings_.solver.velocity_iterations; ++it) {
     if (kind == SolverKind::Jacobi) {
       solver_.iterateJacobi(bodies_);
     } else {
       solver_.iterate(bodies_, omega);
     }
-    joints_.iterate(bodies_);
+    iterateJoints();
   }
   solver_.storeImpulses(contacts_);
   solver_.solvePositions(bodies_);
@@ -241,8 +252,8 @@ void World::solveProjection(double dt) {
   // Position based: the free step's displacement is corrected by projection passes, and the
   // velocity becomes what the corrected displacement implies (inelastic by construction).
   // Joints keep their velocity rows, solved before the projection.
-  joints_.warmStart(bodies_);
-  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) joints_.iterate(bodies_);
+  warmStartJoints();
+  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) iterateJoints();
   SolverSettings cold = settings_.solver;
   cold.warm_starting = false;  // Projections do not carry over between steps.
   solver_.prepare(bodies_, contacts_, cold, dt);
@@ -288,18 +299,18 @@ void World::solveSoftStep(double dt) {
   // 20-box column falls at half); the sag of a soft contact is g / omega^2 per supported box.
   const double hertz = std::min(ss.contact_hertz, 0.25 / h);
   const Softness soft = makeSoftness(hertz, ss.contact_damping_ratio, h);
-  joints_.warmStart(bodies_);
+  warmStartJoints();
   for (int sub = 0; sub < n_sub; ++sub) {
     for (std::size_t i = 0; i < n; ++i) bodies_.linear_velocity[i] += soft_dv_[i];
     solver_.warmStart(bodies_);
     solver_.solveSoft(bodies_, soft_dp_, soft_dtheta_, soft, true, 1.0 / h);
-    joints_.iterate(bodies_);
+    iterateJoints();
     for (std::size_t i = 0; i < n; ++i) {
       soft_dp_[i] += h * bodies_.linear_velocity[i];
       soft_dtheta_[i] += h * bodies_.angular_velocity[i];
     }
     solver_.solveSoft(bodies_, soft_dp_, soft_dtheta_, soft, false, 1.0 / h);
-    joints_.iterate(bodies_);
+    iterateJoints();
   }
   solver_.applyRestitution(bodies_);
   solver_.storeImpulses(contacts_);
@@ -311,6 +322,7 @@ void World::solveSoftStep(double dt) {
     soft_touched_[j.a] = 1;
     if (j.b != kNoBody) soft_touched_[j.b] = 1;
   }
+  rigid_joints_.markBodies(soft_touched_);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
     if (type == BodyType::Static || islands_.asleep(i)) continue;

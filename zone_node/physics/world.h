@@ -14,6 +14,7 @@
 #include "zone_node/physics/forces.h"
 #include "zone_node/physics/integrator.h"
 #include "zone_node/physics/islands.h"
+#include "zone_node/physics/rigid_joints.h"
 
 namespace zonesim::physics {
 
@@ -56,6 +57,10 @@ class World {
   }
   /// Adds a distance joint (solved with the contacts) and returns its index.
   std::uint32_t addDistanceJoint(const DistanceJoint& joint) { return joints_.add(joint); }
+  /// Adds a ball-and-socket joint and returns its index among the ball joints.
+  std::uint32_t addBallJoint(const BallJoint& joint) { return rigid_joints_.addBall(joint); }
+  /// Adds a hinge joint and returns its index among the hinges.
+  std::uint32_t addHingeJoint(const HingeJoint& joint) { return rigid_joints_.addHinge(joint); }
   /// The distance joints with their last impulses.
   std::span<const DistanceJoint> distanceJoints() const { return joints_.joints(); }
   /// Wakes body i and the island it sleeps in; call after setting a velocity by hand.
@@ -87,6 +92,8 @@ class World {
   void warmStartFromPrevious();
   void integratePositions(double dt);
   void solveSoftStep(double dt);
+  void warmStartJoints();
+  void iterateJoints();
   void solveIterative(double dt);
   void solveProjection(double dt);
   void quarantineNonFinite();
@@ -99,6 +106,7 @@ class World {
   ContactSolver solver_;
   Islands islands_;
   DistanceJoints joints_;
+  RigidJoints rigid_joints_;
 
   // Per-step buffers, kept to avoid allocating in the step.
   std::vector<Vec3> x_start_, v_start_, x_force_, v_force_;
