@@ -23,7 +23,33 @@ BodyIndex World::addBody(const BodyDesc& desc) {
 
 void World::step(double dt) {
   const int n = std::max(1, settings_.substeps);
-  for (int i = 0; i < n; ++i) substep(dt / n);
+  // A lasting blast wakes what it reaches (sleeping bodies are not integrated).
+  for (const Blast& blast : forces_.blasts) {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      if ((bodies_.position[i] - blast.centre).norm() < blast.radius) {
+        islands_.wake(static_cast<BodyIndex>(i));
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    substep(dt / n);
+    // Blasts act for whole substeps and are counted down; spent ones go.
+    for (Blast& blast : forces_.blasts) blast.remaining -= dt / n;
+    std::erase_if(forces_.blasts, [](const Blast& b) { return b.remaining <= 1e-12; });
+  }
+}
+
+void World::applyExplosionImpulse(const Vec3& centre, double impulse, double radius,
+                                  Falloff falloff) {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.type[i] != BodyType::Dynamic && bodies_.type[i] != BodyType::Particle) continue;
+    const Vec3 d = bodies_.position[i] - centre;
+    const double r = d.norm();
+    if (r == 0.0 || r >= radius) continue;
+    islands_.wake(static_cast<BodyIndex>(i));
+    const double j = impulse * falloffFactor(falloff, r, radius);
+    bodies_.linear_velocity[i] += (bodies_.inv_mass[i] * j / r) * d;
+  }
 }
 
 void World::substep(double dt) {

@@ -55,6 +55,10 @@ class World {
     islands_.wake(i);
     bodies_.torque[i] += torque;
   }
+  /// An instantaneous explosion: every dynamic body whose centre lies within radius gets the
+  /// impulse (N s, times the falloff) away from the centre through its centre of mass, and
+  /// wakes. For a blast that lasts, add a Blast to forces().blasts.
+  void applyExplosionImpulse(const Vec3& centre, double impulse, double radius, Falloff falloff);
   /// Adds a distance joint (solved with the contacts) and returns its index.
   std::uint32_t addDistanceJoint(const DistanceJoint& joint) { return joints_.add(joint); }
   /// Adds a ball-and-socket joint and returns its index among the ball joints.
