@@ -1,0 +1,85 @@
+#pragma once
+// A cloth patch as a mass-spring mesh: particles on a grid joined by structural (neighbours),
+// shear (diagonals) and bend (two apart) springs, integrated by semi-implicit Euler in
+// sub-steps, with pinned particles and tearing: a spring stretched past its strain limit is
+// removed, and the mesh may split into pieces (counted by union-find).
+
+#include <cstdint>
+#include <vector>
+
+#include "common/math.h"
+
+namespace zonesim::physics {
+
+/// Which springs a cloth grid gets, and their constants.
+struct ClothDesc {
+  int columns = 10;                      ///< Particles along the patch's width (x).
+  int rows = 10;                         ///< Particles along its height (down from the origin).
+  double spacing = 0.1;                  ///< m between grid neighbours.
+  Vec3 origin = Vec3::Zero();            ///< Particle (0, 0); rows go along -y, columns +x.
+  double particle_mass = 0.01;           ///< kg.
+  double stiffness = 200.0;              ///< N/m of structural springs.
+  double shear_stiffness = 50.0;         ///< N/m of diagonal springs (0: none).
+  double bend_stiffness = 10.0;          ///< N/m of two-apart springs (0: none).
+  double spring_damping = 0.05;          ///< N s/m along each spring.
+  double tear_strain = 0.0;              ///< Remove a spring beyond (length/rest - 1); 0: never.
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2.
+};
+
+/// Spring families.
+enum class SpringKind : std::uint8_t { Structural, Shear, Bend };
+
+/// One spring between particles a and b.
+struct ClothSpring {
+  std::uint32_t a = 0, b = 0;
+  double rest = 0.0;
+  double stiffness = 0.0;
+  SpringKind kind = SpringKind::Structural;
+};
+
+/// A mass-spring cloth patch.
+class Cloth {
+ public:
+  /// Builds the grid at rest (every spring at its rest length).
+  explicit Cloth(const ClothDesc& desc);
+
+  /// Index of the particle at (column, row).
+  std::uint32_t index(int column, int row) const {
+    return static_cast<std::uint32_t>(row * desc_.columns + column);
+  }
+  /// Fixes a particle in place (infinite mass); it can still be moved by setting its position.
+  void pin(std::uint32_t i) { inv_mass_[i] = 0.0; }
+  /// Advances by dt in `substeps` semi-implicit Euler sub-steps, then tears over-stretched
+  /// springs (checked after every sub-step).
+  void step(double dt, int substeps);
+
+  /// Particle positions.
+  std::vector<Vec3>& positions() { return x_; }
+  /// Particle positions.
+  const std::vector<Vec3>& positions() const { return x_; }
+  /// Particle velocities.
+  const std::vector<Vec3>& velocities() const { return v_; }
+  /// The springs still in the mesh.
+  const std::vector<ClothSpring>& springs() const { return springs_; }
+  /// Springs removed by tearing so far.
+  std::size_t tornCount() const { return torn_; }
+  /// Number of connected pieces (particles joined by any remaining spring).
+  int pieceCount() const;
+  /// Total force the springs exert on the pinned particles (the reaction the pins hold).
+  Vec3 pinForce() const;
+  /// Kinetic energy of the free particles (J).
+  double kineticEnergy() const;
+
+ private:
+  void addSpring(int c0, int r0, int c1, int r1, double stiffness, SpringKind kind);
+  void accumulateForces();
+  void tear();
+
+  ClothDesc desc_;
+  std::vector<Vec3> x_, v_, f_;
+  std::vector<double> inv_mass_;
+  std::vector<ClothSpring> springs_;
+  std::size_t torn_ = 0;
+};
+
+}  // namespace zonesim::physics
