@@ -39,10 +39,11 @@ struct TickCounters {
   std::uint64_t published_cells = 0;
   std::uint64_t published_keyframes = 0;
   std::uint64_t subscribed_cells = 0;
-  std::uint64_t ghosts = 0;         ///< neighbours' entities held as ghosts after the refresh
-  std::uint64_t ghosts_sent = 0;    ///< entity copies sent to neighbours
-  std::uint64_t halo_bytes = 0;     ///< bytes of those copies
-  std::uint64_t halo_rebuilds = 0;  ///< 1 when the ghost send lists were rebuilt
+  std::uint64_t ghosts = 0;             ///< neighbours' entities held as ghosts after the refresh
+  std::uint64_t ghosts_sent = 0;        ///< entity copies sent to neighbours
+  std::uint64_t halo_bytes = 0;         ///< bytes of those copies
+  std::uint64_t halo_rebuilds = 0;      ///< 1 when the ghost send lists were rebuilt
+  std::uint64_t ghost_impulses_in = 0;  ///< pushes neighbours' contacts gave this zone's bodies
 };
 
 /// Every counter with its name: totals, metrics lines and summaries iterate this one list.
@@ -77,6 +78,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"ghosts", &TickCounters::ghosts, true},
     {"ghosts_sent", &TickCounters::ghosts_sent, false},
     {"halo_bytes", &TickCounters::halo_bytes, false},
-    {"halo_rebuilds", &TickCounters::halo_rebuilds, false}};
+    {"halo_rebuilds", &TickCounters::halo_rebuilds, false},
+    {"ghost_impulses_in", &TickCounters::ghost_impulses_in, false}};
 
 }  // namespace zonesim::zone

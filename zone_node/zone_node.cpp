@@ -41,7 +41,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       HaloExchange(comm_, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width));
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
-  halo_needed_ = walker_reach_ > 0;
+  for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
+  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_;
   forward_.resize(std::size_t(size_));
 
   auto keepIfMine = [&](const EntityRecordData& r) {
@@ -197,9 +198,16 @@ void ZoneNode::ai() {
 }
 
 void ZoneNode::physics() {
-  if (store_.count(EntityKind::RigidBody) == 0 && !bodies_) return;
-  if (!bodies_) bodies_ = std::make_unique<RigidBodySystem>(scene_);
-  counters_.bodies_awake = bodies_->step(store_, scene_.dt);
+  if (store_.count(EntityKind::RigidBody) > 0 && !bodies_)
+    bodies_ = std::make_unique<RigidBodySystem>(scene_, rank_);
+  if (bodies_) counters_.bodies_awake = bodies_->step(store_, &halo_.ghosts(), scene_.dt);
+  if (!bodies_in_scene_ || size_ == 1) return;
+  // Contacts across borders: the pushes this zone gave its neighbours' bodies go back to them
+  // (every rank takes part, bodies or not, as the exchange is collective).
+  static const std::vector<GhostImpulse> kNone;
+  std::vector<GhostImpulse> in = halo_.reverse(bodies_ ? bodies_->ghostImpulses() : kNone);
+  counters_.ghost_impulses_in = in.size();
+  if (bodies_) bodies_->applyImpulses(store_, in);
 }
 
 void ZoneNode::gpu() {

@@ -107,9 +107,10 @@ class ZoneNode {
   Migrator migrator_;
   LoadBalancer balancer_;
   HaloExchange halo_;
-  bool halo_needed_ = false;  // some system reads ghosts (decided from the scene: all agree)
-  double walker_reach_ = 0;   // widest radius at which walkers see each other
-  Neighbourhood near_;        // walkers and their ghosts, rebuilt each AI phase
+  bool halo_needed_ = false;      // some system reads ghosts (decided from the scene: all agree)
+  bool bodies_in_scene_ = false;  // rigid bodies may touch across borders
+  double walker_reach_ = 0;       // widest radius at which walkers see each other
+  Neighbourhood near_;            // walkers and their ghosts, rebuilt each AI phase
   std::uint64_t layout_version_ = 0;  // bumped whenever zone boundaries move
   std::unique_ptr<ZoneLink> link_;
   std::unique_ptr<CellPublisher> publisher_;

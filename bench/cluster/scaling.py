@@ -20,7 +20,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 BUILD = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "build"
 TICKS = 600
-PHASES = ["input", "ai", "physics", "gpu", "migrate", "publish", "checks"]
+PHASES = ["input", "ai", "physics", "gpu", "migrate", "halo", "publish", "checks"]
 GRIDS = {1: (1, 1), 2: (2, 1), 4: (2, 2)}
 
 

@@ -111,11 +111,11 @@ TEST(RigidBodies, ADroppedSphereReboundsToRestitutionSquaredTimesItsHeight) {
   EntityRecordData r = body(1, Vec3(10, 0.5 + 10.0, 10), BodyData::Sphere);
   r.body.restitution = 0.6;
   store.add(r);
-  RigidBodySystem bodies(s);
+  RigidBodySystem bodies(s, 0);
   double apex = 0;
   bool bounced = false;
   for (int t = 0; t < 60 * 6; ++t) {
-    bodies.step(store, s.dt);
+    bodies.step(store, nullptr, s.dt);
     if (store.vel[0].y() > 0.1) bounced = true;
     if (bounced) apex = std::max(apex, store.pos[0].y() - 0.5);
     if (bounced && store.vel[0].y() < -0.1) break;
@@ -134,9 +134,9 @@ TEST(RigidBodies, BoxesAndCapsulesComeToRestOnTheGroundInsideTheWallsAndSleep) {
     store.add(box);
     store.add(body(++n, Vec3(2 + 4 * i, 3, 15), BodyData::Capsule));
   }
-  RigidBodySystem bodies(s);
+  RigidBodySystem bodies(s, 0);
   std::size_t awake = store.size();
-  for (int t = 0; t < 60 * 20 && awake > 0; ++t) awake = bodies.step(store, s.dt);
+  for (int t = 0; t < 60 * 20 && awake > 0; ++t) awake = bodies.step(store, nullptr, s.dt);
   EXPECT_EQ(awake, 0u) << "all bodies asleep within 20 s";
   for (std::size_t i = 0; i < store.size(); ++i) {
     const Vec3& p = store.pos[i];
@@ -153,7 +153,7 @@ TEST(RigidBodies, BoxesAndCapsulesComeToRestOnTheGroundInsideTheWallsAndSleep) {
   EXPECT_EQ(bodies.rebuilds(), 1u);
   // Once all sleep, a step costs nothing and changes nothing.
   Vec3 before = store.pos[0];
-  EXPECT_EQ(bodies.step(store, s.dt), 0u);
+  EXPECT_EQ(bodies.step(store, nullptr, s.dt), 0u);
   EXPECT_EQ(store.pos[0], before);
 }
 
@@ -161,14 +161,14 @@ TEST(RigidBodies, TheEngineWorldIsRebuiltOnlyWhenBodiesComeOrGo) {
   Scene s = bodyScene();
   EntityStore store;
   store.add(body(1, Vec3(5, 2, 5), BodyData::Sphere));
-  RigidBodySystem bodies(s);
-  for (int t = 0; t < 10; ++t) bodies.step(store, s.dt);
+  RigidBodySystem bodies(s, 0);
+  for (int t = 0; t < 10; ++t) bodies.step(store, nullptr, s.dt);
   EXPECT_EQ(bodies.rebuilds(), 1u);
   store.add(body(2, Vec3(15, 2, 15), BodyData::Box));  // arrived by migration
-  bodies.step(store, s.dt);
+  bodies.step(store, nullptr, s.dt);
   EXPECT_EQ(bodies.rebuilds(), 2u);
   store.removeAt(*store.indexOf(EntityId::make(0, 1)));  // left
-  bodies.step(store, s.dt);
+  bodies.step(store, nullptr, s.dt);
   EXPECT_EQ(bodies.rebuilds(), 3u);
   EXPECT_GT(store.vel[0].norm(), 0.0);
 }

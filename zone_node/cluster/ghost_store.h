@@ -13,6 +13,15 @@
 
 namespace zonesim::zone {
 
+/// A velocity change this zone's contacts gave another zone's entity: sent back to its owner
+/// (LAMMPS' reverse_comm), which alone writes the entity's state.
+struct GhostImpulse {
+  EntityId id;
+  int owner = -1;
+  Vec3 dv = Vec3::Zero();  ///< linear, m/s
+  Vec3 dw = Vec3::Zero();  ///< angular, rad/s
+};
+
 class GhostStore {
  public:
   std::size_t size() const { return id.size(); }

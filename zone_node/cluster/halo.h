@@ -37,6 +37,9 @@ class HaloExchange {
   /// zone boundaries move.
   HaloStats refresh(const EntityStore& store, const ZoneLayout& layout,
                     std::uint64_t layout_version);
+  /// Sends each impulse to the owner of its entity and returns the ones for this rank's
+  /// entities, in (sender rank, order sent) order (collective; LAMMPS' reverse_comm).
+  std::vector<GhostImpulse> reverse(const std::vector<GhostImpulse>& out);
   const GhostStore& ghosts() const { return ghosts_; }
   double width() const { return width_; }
 

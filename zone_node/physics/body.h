@@ -25,6 +25,10 @@ struct BodyDesc {
   double restitution = 0.0;      ///< A pair uses the larger of the two.
   double linear_damping = 0.0;   ///< 1/s: v *= 1 / (1 + c dt) each step.
   double angular_damping = 0.0;  ///< 1/s: w *= 1 / (1 + c dt) each step.
+  /// A copy of a body that another world simulates (a zone's ghost): it is pushed by this
+  /// world's movable bodies, so the pushes can be handed back to its owner, but touches
+  /// nothing else here (no other foreign body, no static one).
+  bool foreign = false;
 };
 
 }  // namespace zonesim::physics

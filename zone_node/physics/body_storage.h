@@ -30,7 +30,8 @@ struct BodyStorage {
   std::vector<double> restitution;
   std::vector<double> linear_damping;
   std::vector<double> angular_damping;
-  std::vector<Vec3> position_prev;  ///< Position Verlet history.
+  std::vector<Vec3> position_prev;    ///< Position Verlet history.
+  std::vector<std::uint8_t> foreign;  ///< BodyDesc::foreign
 
   /// Appends a body and returns its index.
   BodyIndex add(const BodyDesc& desc);

@@ -166,6 +166,9 @@ void World::findContacts(double dt) {
 void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   // Two immovable bodies exchange no impulses.
   if (bodies_.inv_mass[a] == 0.0 && bodies_.inv_mass[b] == 0.0) return;
+  // A foreign body meets only this world's own movable bodies.
+  if (bodies_.foreign[a] && (bodies_.foreign[b] || bodies_.inv_mass[b] == 0.0)) return;
+  if (bodies_.foreign[b] && bodies_.inv_mass[a] == 0.0) return;
   BodyContact contact;
   contact.a = a;
   contact.b = b;

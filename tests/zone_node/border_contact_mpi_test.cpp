@@ -1,0 +1,117 @@
+// Two bodies owned by two ranks collide across the zone border (run under mpirun -np 2): the
+// lower rank resolves the contact against a ghost and hands the push back to the owner, so
+// momentum is conserved to round-off and the outcome matches one world holding both bodies.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include "zone_node/cluster/halo.h"
+#include "zone_node/cluster/migration.h"
+#include "zone_node/systems/rigid_bodies.h"
+
+namespace zonesim::zone {
+namespace {
+
+Scene borderScene() {
+  Scene s;
+  s.world = {{0, 0, 0}, {100, 50, 100}};
+  s.dt = 1.0 / 60;
+  s.zones.columns = 2;
+  s.zones.rows = 1;
+  s.halo_width = 4;
+  return s;
+}
+
+/// Sphere A (1 kg) heads +x from rank 0's side, B (3 kg) heads -x from rank 1's side, high above
+/// the ground so that nothing but their contact acts sideways.
+EntityRecordData sphere(std::uint32_t creator, double x, double vx, double mass) {
+  EntityRecordData r;
+  r.id = EntityId::make(creator, 1);
+  r.kind = EntityKind::RigidBody;
+  r.pos = Vec3(x, 30, 50.2);
+  r.vel = Vec3(vx, 0, 0);
+  r.body.shape = BodyData::Sphere;
+  r.body.radius = 0.5;
+  r.body.mass = mass;
+  r.body.restitution = 1.0;
+  r.body.friction = 0.0;
+  return r;
+}
+
+struct Totals {
+  Vec3 momentum = Vec3::Zero();
+  double va = 0, vb = 0;
+};
+
+Totals totals(const EntityStore& store, MPI_Comm comm) {
+  double local[5] = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    Vec3 p = store.vel[i] * store.body[i].mass;
+    for (int k = 0; k < 3; ++k) local[k] += p[k];
+    local[store.id[i].creatorRank() == 0 ? 3 : 4] += store.vel[i].x();
+  }
+  double global[5];
+  MPI_Allreduce(local, global, 5, MPI_DOUBLE, MPI_SUM, comm);
+  return {Vec3(global[0], global[1], global[2]), global[3], global[4]};
+}
+
+TEST(BorderContact, MomentumIsConservedAndMatchesOneWorld) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  ASSERT_EQ(size, 2) << "run with mpirun -np 2";
+  const Scene scene = borderScene();
+  const double kA = 1.0, kB = 3.0, kSpeed = 4.0;
+  const int kTicks = 40;
+
+  // The reference: one world holding both bodies (computed on every rank alike).
+  EntityStore one;
+  one.add(sphere(0, 48.0, kSpeed, kA));
+  one.add(sphere(1, 52.0, -kSpeed, kB));
+  RigidBodySystem single(scene, 0);
+  for (int t = 0; t < kTicks; ++t) single.step(one, nullptr, scene.dt);
+
+  // Two zones: each owns one body and sees the other as a ghost.
+  ZoneLayout layout(scene.world, 2, 1);
+  EntityStore store;
+  store.add(rank == 0 ? sphere(0, 48.0, kSpeed, kA) : sphere(1, 52.0, -kSpeed, kB));
+  HaloExchange halo(MPI_COMM_WORLD, rank, size, scene.halo_width, 1.0);
+  Migrator migrator(MPI_COMM_WORLD, rank, size);
+  RigidBodySystem bodies(scene, rank);
+  std::vector<std::vector<ForwardedInput>> forward(2);
+  halo.refresh(store, layout, 0);
+  const Totals before = totals(store, MPI_COMM_WORLD);
+  std::size_t pushes = 0;
+  for (int t = 0; t < kTicks; ++t) {
+    bodies.step(store, &halo.ghosts(), scene.dt);
+    std::vector<GhostImpulse> in = halo.reverse(bodies.ghostImpulses());
+    pushes += in.size();
+    bodies.applyImpulses(store, in);
+    migrator.exchange(store, layout, std::uint64_t(t), forward);
+    halo.refresh(store, layout, 0);
+  }
+  const Totals after = totals(store, MPI_COMM_WORLD);
+  std::size_t all_pushes = 0;
+  MPI_Allreduce(&pushes, &all_pushes, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_GT(all_pushes, 0u) << "rank 1's body was pushed by rank 0's contact";
+
+  // Sideways momentum is untouched by gravity: conserved to round-off across the exchange.
+  EXPECT_NEAR(after.momentum.x(), before.momentum.x(), 1e-12 * (kA + kB) * kSpeed);
+  EXPECT_NEAR(after.momentum.z(), before.momentum.z(), 1e-12 * (kA + kB) * kSpeed);
+  // Vertically only gravity acts: -(mA + mB) g t.
+  EXPECT_NEAR(after.momentum.y() - before.momentum.y(), -(kA + kB) * 9.81 * kTicks * scene.dt,
+              1e-9);
+  // Elastic, 1 kg at +4 against 3 kg at -4: A leaves at -8, B stops (analytic).
+  EXPECT_NEAR(after.va, -8.0, 0.05 * 8.0);
+  EXPECT_NEAR(after.vb, 0.0, 0.05 * 8.0);
+  // And close to one world holding both.
+  EXPECT_NEAR(after.va, one.vel[*one.indexOf(EntityId::make(0, 1))].x(), 0.05 * 8.0);
+  EXPECT_NEAR(after.vb, one.vel[*one.indexOf(EntityId::make(1, 1))].x(), 0.05 * 8.0);
+  if (rank == 0)
+    std::printf("two ranks: vA %.6f vB %.6f; one world: vA %.6f vB %.6f; momentum x %.3e -> %.3e\n",
+                after.va, after.vb, one.vel[*one.indexOf(EntityId::make(0, 1))].x(),
+                one.vel[*one.indexOf(EntityId::make(1, 1))].x(), before.momentum.x(),
+                after.momentum.x());
+}
+
+}  // namespace
+}  // namespace zonesim::zone
