@@ -231,9 +231,12 @@ int main(int argc, char** argv) {
       steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
       only = argv[++i];
+    else if (!std::strcmp(argv[i], "--lod-seconds") && i + 1 < argc)
+      lodSeconds = std::stod(argv[++i]);
     else {
       std::fprintf(stderr,
-                   "usage: crowd_bench [--agents LIST] [--steps N] [--only flock|flow|lod]\n");
+                   "usage: crowd_bench [--agents LIST] [--steps N] [--only flock|flow|lod] "
+                   "[--lod-seconds S]\n");
       return 2;
     }
   }

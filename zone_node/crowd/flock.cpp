@@ -2,44 +2,141 @@
 
 #include <stdexcept>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace zonesim::crowd {
 
-Vec2 Flock::steering(const GridEntry& self, Vec2 goal, bool hasGoal) const {
-  const FlockSettings& s = settings_;
-  const double nr2 = s.neighbourRadius * s.neighbourRadius;
-  const double sr = s.separationRadius, sr2 = sr * sr;
-  Vec2 sep, sumVel, sumRel;
-  // The loop is written without data-dependent branches for the common case (about a third
-  // of the candidates from the cells are out of range, unpredictably): in-range flags multiply
-  // the sums. The agent itself is a candidate at distance zero; it is taken out afterwards.
-  double cnt = 0;
-  grid_.forEachNear(self.pos, s.neighbourRadius, [&](const GridEntry& o) {
-    Vec2 rel = o.pos - self.pos;
+namespace {
+
+// Neighbour sums of one agent: the count and velocity sum of agents within the neighbour
+// radius, the sum of their offsets, and the separation push. Includes the agent itself (at
+// offset zero), which the caller takes out.
+struct NeighbourSums {
+  double count = 0;
+  Vec2 vel, rel, sep;
+  int coincident = 0;  // entries at distance zero (the agent itself and exact overlaps)
+};
+
+// The scalar reference: one candidate at a time.
+void accumulateScalar(const NeighbourGrid& g, std::int32_t begin, std::int32_t end, Vec2 p,
+                      double nr2, double sr, NeighbourSums& s) {
+  const double sr2 = sr * sr;
+  for (std::int32_t k = begin; k < end; ++k) {
+    Vec2 rel{g.xs()[k] - p.x, g.ys()[k] - p.y};
     double d2 = lengthSq(rel);
     double in = static_cast<double>(d2 < nr2);
-    cnt += in;
-    sumVel += o.vel * in;
-    sumRel += rel * in;
+    s.count += in;
+    s.vel += Vec2{g.vxs()[k], g.vys()[k]} * in;
+    s.rel += rel * in;
     if (d2 < sr2) {
       if (d2 > 1e-18) {
         double d = std::sqrt(d2);
         // Unit vector away from the other, scaled by (sr / d - 1): zero at the radius,
         // unbounded as the distance goes to zero.
-        sep += rel * (-(sr / d - 1.0) / d);
-      } else if (o.id != self.id) {
-        // Coincident agents: split them along x by id so the push is deterministic.
-        sep.x += self.id < o.id ? -1e3 : 1e3;
+        s.sep += rel * (-(sr / d - 1.0) / d);
+      } else {
+        ++s.coincident;
       }
     }
+  }
+}
+
+#if defined(__SSE2__)
+// Two candidates per instruction (SSE2 is part of x86-64). Lanes are assigned by position
+// from the start of each row, so the summation order is still fixed by positions and ids.
+// In-range masks replace branches: about a third of the candidates from the cells fall
+// outside the radius, unpredictably.
+struct Lanes {
+  __m128d count = _mm_setzero_pd(), vx = _mm_setzero_pd(), vy = _mm_setzero_pd();
+  __m128d rx = _mm_setzero_pd(), ry = _mm_setzero_pd(), sx = _mm_setzero_pd();
+  __m128d sy = _mm_setzero_pd();
+  int coincident = 0;
+};
+
+inline void accumulatePair(__m128d x, __m128d y, __m128d vx, __m128d vy, __m128d lanes, __m128d px,
+                           __m128d py, __m128d nr2, __m128d sr, Lanes& a) {
+  const __m128d one = _mm_set1_pd(1.0);
+  __m128d dx = _mm_sub_pd(x, px), dy = _mm_sub_pd(y, py);
+  __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+  __m128d in = _mm_and_pd(_mm_cmplt_pd(d2, nr2), lanes);
+  a.count = _mm_add_pd(a.count, _mm_and_pd(in, one));
+  a.vx = _mm_add_pd(a.vx, _mm_and_pd(in, vx));
+  a.vy = _mm_add_pd(a.vy, _mm_and_pd(in, vy));
+  a.rx = _mm_add_pd(a.rx, _mm_and_pd(in, dx));
+  a.ry = _mm_add_pd(a.ry, _mm_and_pd(in, dy));
+  __m128d close = _mm_and_pd(_mm_cmplt_pd(d2, _mm_mul_pd(sr, sr)), lanes);
+  if (_mm_movemask_pd(close)) {
+    __m128d zero = _mm_cmple_pd(d2, _mm_set1_pd(1e-18));
+    a.coincident += __builtin_popcount(unsigned(_mm_movemask_pd(_mm_and_pd(close, zero))));
+    __m128d push = _mm_andnot_pd(zero, close);
+    __m128d d = _mm_sqrt_pd(_mm_or_pd(d2, _mm_and_pd(zero, one)));  // no sqrt(0) / 0
+    __m128d w = _mm_div_pd(_mm_sub_pd(_mm_div_pd(sr, d), one), d);
+    w = _mm_and_pd(push, w);
+    a.sx = _mm_sub_pd(a.sx, _mm_mul_pd(dx, w));
+    a.sy = _mm_sub_pd(a.sy, _mm_mul_pd(dy, w));
+  }
+}
+
+double sumLanes(__m128d v) {
+  alignas(16) double t[2];
+  _mm_store_pd(t, v);
+  return t[0] + t[1];
+}
+#endif
+
+NeighbourSums neighbourSums(const NeighbourGrid& g, Vec2 p, double nr, double sr) {
+  NeighbourSums s;
+  const double nr2 = nr * nr;
+#if defined(__SSE2__)
+  Lanes a;
+  const __m128d px = _mm_set1_pd(p.x), py = _mm_set1_pd(p.y), nr2v = _mm_set1_pd(nr2);
+  const __m128d srv = _mm_set1_pd(sr);
+  const __m128d both = _mm_castsi128_pd(_mm_set1_epi64x(-1));
+  const __m128d low = _mm_castsi128_pd(_mm_set_epi64x(0, -1));
+  g.forEachRowNear(p, nr, [&](std::int32_t begin, std::int32_t end) {
+    std::int32_t k = begin;
+    for (; k + 2 <= end; k += 2)
+      accumulatePair(_mm_loadu_pd(g.xs() + k), _mm_loadu_pd(g.ys() + k), _mm_loadu_pd(g.vxs() + k),
+                     _mm_loadu_pd(g.vys() + k), both, px, py, nr2v, srv, a);
+    if (k < end)
+      accumulatePair(_mm_load_sd(g.xs() + k), _mm_load_sd(g.ys() + k), _mm_load_sd(g.vxs() + k),
+                     _mm_load_sd(g.vys() + k), low, px, py, nr2v, srv, a);
   });
-  // Remove the agent itself (counted once, with its own velocity; its rel is zero).
-  int count = int(cnt) - 1;
-  sumVel = sumVel - self.vel;
-  Vec2 acc = sep * s.separationWeight;
+  s.count = sumLanes(a.count);
+  s.vel = Vec2{sumLanes(a.vx), sumLanes(a.vy)};
+  s.rel = Vec2{sumLanes(a.rx), sumLanes(a.ry)};
+  s.sep = Vec2{sumLanes(a.sx), sumLanes(a.sy)};
+  s.coincident = a.coincident;
+#else
+  g.forEachRowNear(p, nr, [&](std::int32_t begin, std::int32_t end) {
+    accumulateScalar(g, begin, end, p, nr2, sr, s);
+  });
+#endif
+  return s;
+}
+
+}  // namespace
+
+Vec2 Flock::steering(const GridEntry& self, Vec2 goal, bool hasGoal) const {
+  const FlockSettings& s = settings_;
+  NeighbourSums n = neighbourSums(grid_, self.pos, s.neighbourRadius, s.separationRadius);
+  if (n.coincident > 1) {
+    // Exact overlaps besides the agent itself (rare): split them along x by id so that the
+    // push is deterministic.
+    grid_.forEachNear(self.pos, s.neighbourRadius, [&](const GridEntry& o) {
+      if (o.id != self.id && lengthSq(o.pos - self.pos) <= 1e-18)
+        n.sep.x += self.id < o.id ? -1e3 : 1e3;
+    });
+  }
+  // Take out the agent itself: counted once, with its own velocity; its offset is zero.
+  int count = int(n.count) - 1;
+  Vec2 acc = n.sep * s.separationWeight;
   if (count > 0) {
     double inv = 1.0 / count;
-    acc += (sumVel * inv - self.vel) * s.alignmentWeight;
-    acc += sumRel * (inv * s.cohesionWeight);
+    acc += ((n.vel - self.vel) * inv - self.vel) * s.alignmentWeight;
+    acc += n.rel * (inv * s.cohesionWeight);
   }
   if (hasGoal) acc += (goal - self.vel) * s.goalWeight;
   return clampLength(acc, s.maxForce);
@@ -52,7 +149,7 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
       ghosts.vel.size() != ghosts.size() || (!goalVel.empty() && goalVel.size() != n) ||
       (!plan.empty() && (plan.dt.size() != n || plan.steer.size() != n)))
     throw std::invalid_argument("Flock::step: array sizes differ");
-  grid_.build(agents, ghosts, 0.5 * settings_.neighbourRadius);
+  grid_.build(agents, ghosts, settings_.neighbourRadius);
   const bool hasGoal = !goalVel.empty();
   // Owned agents in cell order: consecutive agents share most of their neighbour cells.
   for (const GridEntry& e : grid_.entries()) {

@@ -1,5 +1,6 @@
 #include "zone_node/crowd/flow_crowd.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace zonesim::crowd {
@@ -76,7 +77,8 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
   for (std::uint16_t d : dest)
     if (d >= fields_.size()) throw std::out_of_range("FlowCrowd::step: unknown destination");
   // Arrived agents have left the crowd: they are neither moved nor seen.
-  grid_.build(agents.ids, agents.pos, agents.vel, ghosts, settings_.separationRadius, arrived);
+  grid_.build(agents.ids, agents.pos, agents.vel, ghosts,
+              std::max(settings_.gridCell, settings_.separationRadius), arrived);
   for (const GridEntry& e : grid_.entries()) {
     if (e.src < 0) continue;
     const double h = plan.empty() ? dt : plan.dt[e.src];

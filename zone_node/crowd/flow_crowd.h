@@ -28,6 +28,11 @@ struct FlowCrowdSettings {
   double separationWeight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
   double arriveRadius = 0.75;      ///< an agent this close to its goal's centre has arrived
   double slowRadius = 2.0;         ///< inside this distance of the goal, speed ramps down
+  /// Side of the neighbour grid's cells (at least the separation radius). Larger than the
+  /// radius because the grid's per-step cost grows with the cells of the occupied box, which
+  /// dominates for sparse crowds on big maps; every rank must use the same value (it fixes
+  /// the order of the separation sums).
+  double gridCell = 2.0;
 };
 
 /// Steps agents along shared flow fields on one map.

@@ -71,6 +71,16 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     }
     entries_[j] = e;
   }
+  xs_.resize(n);
+  ys_.resize(n);
+  vxs_.resize(n);
+  vys_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    xs_[k] = entries_[k].pos.x;
+    ys_[k] = entries_[k].pos.y;
+    vxs_[k] = entries_[k].vel.x;
+    vys_[k] = entries_[k].vel.y;
+  }
 }
 
 }  // namespace zonesim::crowd

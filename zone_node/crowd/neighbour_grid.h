@@ -49,13 +49,23 @@ class NeighbourGrid {
   /// filters by distance.
   template <class F>
   void forEachNear(Vec2 p, double radius, F&& f) const {
+    // Cells of one row are contiguous in entries_, so a row is one linear scan.
+    forEachRowNear(p, radius, [&](std::int32_t begin, std::int32_t end) {
+      for (std::int32_t k = begin; k < end; ++k) f(entries_[k]);
+    });
+  }
+
+  /// Calls f(begin, end) for each row of cells that overlaps the disc of `radius` around
+  /// `p`, clipped to the disc's chord, in the same canonical order as forEachNear; the range
+  /// indexes entries() and the coordinate arrays xs() .. vys(), for vectorised loops.
+  template <class F>
+  void forEachRowNear(Vec2 p, double radius, F&& f) const {
     if (entries_.empty()) return;
     long long cy0 = cellCoord(p.y - radius) - minY_, cy1 = cellCoord(p.y + radius) - minY_;
     if (cy0 < 0) cy0 = 0;
     if (cy1 >= height_) cy1 = height_ - 1;
     const double r2 = radius * radius;
     for (long long cy = cy0; cy <= cy1; ++cy) {
-      // Vertical gap from p to this row of cells, and the half chord of the disc there.
       double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
       double gap = p.y < rowLo ? rowLo - p.y : (p.y > rowHi ? p.y - rowHi : 0.0);
       double half = std::sqrt(std::max(0.0, r2 - gap * gap));
@@ -64,26 +74,40 @@ class NeighbourGrid {
       if (cx1 >= width_) cx1 = width_ - 1;
       if (cx0 > cx1) continue;
       const std::int32_t* row = starts_.data() + cy * width_;
-      std::int32_t begin = row[cx0], end = row[cx1 + 1];
-      // Cells of one row are contiguous in entries_, so a row is one linear scan.
-      for (std::int32_t k = begin; k < end; ++k) f(entries_[k]);
+      if (row[cx0] < row[cx1 + 1]) f(row[cx0], row[cx1 + 1]);
     }
   }
+
+  /// x of every entry, in cell order (structure of arrays for vectorised neighbour loops).
+  const double* xs() const { return xs_.data(); }
+  /// y of every entry.
+  const double* ys() const { return ys_.data(); }
+  /// Velocity x of every entry.
+  const double* vxs() const { return vxs_.data(); }
+  /// Velocity y of every entry.
+  const double* vys() const { return vys_.data(); }
 
   /// Side of the cells.
   double cellSize() const { return cellSize_; }
 
  private:
-  long long cellCoord(double v) const { return static_cast<long long>(std::floor(v * invCell_)); }
+  // floor() without the libm call (baseline x86-64 has no rounding instruction to inline);
+  // exact for |v| < 2^63, far beyond any world.
+  long long cellCoord(double v) const {
+    double s = v * invCell_;
+    long long t = static_cast<long long>(s);
+    return t - (s < static_cast<double>(t));
+  }
   void add(std::uint64_t id, Vec2 p, Vec2 v, std::int32_t src);
 
   double cellSize_ = 1.0;
   double invCell_ = 1.0;
   long long minX_ = 0, minY_ = 0;
   long long width_ = 0, height_ = 0;
-  std::vector<std::int32_t> starts_;  // width_*height_ + 1 prefix sums
-  std::vector<GridEntry> staged_;     // input order, with the cell computed
-  std::vector<GridEntry> entries_;    // cell order
+  std::vector<std::int32_t> starts_;         // width_*height_ + 1 prefix sums
+  std::vector<GridEntry> staged_;            // input order, with the cell computed
+  std::vector<GridEntry> entries_;           // cell order
+  std::vector<double> xs_, ys_, vxs_, vys_;  // entries_ as structure of arrays
 };
 
 }  // namespace zonesim::crowd
