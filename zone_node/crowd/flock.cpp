@@ -19,7 +19,8 @@ struct NeighbourSums {
   int coincident = 0;  // entries at distance zero (the agent itself and exact overlaps)
 };
 
-// The scalar reference: one candidate at a time.
+#if !defined(__SSE2__)
+// One candidate at a time (targets without SSE2).
 void accumulateScalar(const NeighbourGrid& g, std::int32_t begin, std::int32_t end, Vec2 p,
                       double nr2, double sr, NeighbourSums& s) {
   const double sr2 = sr * sr;
@@ -43,7 +44,7 @@ void accumulateScalar(const NeighbourGrid& g, std::int32_t begin, std::int32_t e
   }
 }
 
-#if defined(__SSE2__)
+#else
 // Two candidates per instruction (SSE2 is part of x86-64). Lanes are assigned by position
 // from the start of each row, so the summation order is still fixed by positions and ids.
 // In-range masks replace branches: about a third of the candidates from the cells fall
