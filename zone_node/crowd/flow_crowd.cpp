@@ -1,6 +1,7 @@
 #include "zone_node/crowd/flow_crowd.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace zonesim::crowd {
@@ -87,8 +88,11 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
     Vec2 desired = desiredVelocity(e.pos, d);
     Vec2 v;
     if (plan.empty() || plan.steer[e.src]) {
-      Vec2 acc = (desired - e.vel) * settings_.steerRate + separation(e);
-      v = clampLength(e.vel + clampLength(acc, settings_.maxForce) * h, settings_.maxSpeed);
+      // Velocity relaxes toward the desired one by the exact factor 1 - exp(-rate h), not
+      // rate h: LOD steps of several ticks would overshoot (and beyond rate h = 2 diverge).
+      double relax = 1.0 - std::exp(-settings_.steerRate * h);
+      Vec2 dv = (desired - e.vel) * relax + separation(e) * h;
+      v = clampLength(e.vel + clampLength(dv, settings_.maxForce * h), settings_.maxSpeed);
     } else {
       v = desired;  // cheap update: ride the field, no neighbours, no inertia
     }
