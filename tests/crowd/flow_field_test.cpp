@@ -1,8 +1,13 @@
 // Flow fields: the integration field equals the A* optimum from every cell, following the
 // direction field walks an optimal path, and agents released on a map with walls and random
-// obstacles all reach their destinations without ever standing in a blocked cell.
+// obstacles all reach their destinations without ever standing in a blocked cell. Two ranks
+// stepping their halves with each other's agents as ghosts reproduce one rank bitwise.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <tuple>
 
 #include "common/rng.h"
 #include "crowd_test_util.h"
@@ -120,6 +125,81 @@ TEST(FlowCrowd, FieldsAreRebuiltWhenADoorCloses) {
   map.setPassable(10, 2, false);
   EXPECT_EQ(crowd.refreshFields(), 1);
   EXPECT_LT(crowd.field(d).distance(ai::Cell{1, 2}), 0.0);
+}
+
+}  // namespace
+}  // namespace zonesim::crowd
+
+namespace zonesim::crowd {
+namespace {
+
+struct FlowAgents {
+  test::AgentArrays a;
+  std::vector<std::uint16_t> dest;
+  std::vector<std::uint8_t> arrived;
+  void add(const FlowAgents& from, std::size_t i) {
+    a.add(from.a.ids[i], from.a.pos[i], from.a.vel[i]);
+    dest.push_back(from.dest[i]);
+    arrived.push_back(from.arrived[i]);
+  }
+  // Agents still in the crowd, as ghosts for another rank (arrived ones are not seen).
+  test::AgentArrays activeGhosts() const {
+    test::AgentArrays g;
+    for (std::size_t i = 0; i < a.ids.size(); ++i)
+      if (!arrived[i]) g.add(a.ids[i], a.pos[i], a.vel[i]);
+    return g;
+  }
+};
+
+TEST(FlowCrowd, TwoRanksWithGhostsMatchOneRankBitwise) {
+  ai::GridMap map = obstacleMap();
+  MapFrame frame{Vec2{-24.0, -24.0}, 1.0};
+  FlowCrowd one(map, frame, FlowCrowdSettings{}), left(map, frame, FlowCrowdSettings{}),
+      right(map, frame, FlowCrowdSettings{});
+  for (FlowCrowd* c : {&one, &left, &right}) {
+    c->addDestination(ai::Cell{2, 2});
+    c->addDestination(ai::Cell{45, 45});
+  }
+  FlowAgents whole;
+  Pcg32 rng(8, 8);
+  while (whole.a.ids.size() < 600) {
+    Vec2 p{rng.uniform(-24, 24), rng.uniform(-24, 24)};
+    std::uint16_t d = std::uint16_t(rng.next() % 2);
+    if (one.field(d).distance(frame.cellOf(p)) < 0) continue;
+    whole.a.add(rng.next() * 977ULL + whole.a.ids.size(), p, Vec2{});
+    whole.dest.push_back(d);
+    whole.arrived.push_back(0);
+  }
+  FlowAgents split = whole;
+  const double dt = 1.0 / 20;
+  for (int s = 0; s < 300; ++s) {
+    one.step(whole.a.span(), whole.dest, whole.arrived, {}, dt);
+    // Re-split by position every step (agents migrate), the right part stored reversed.
+    FlowAgents l, r;
+    for (std::size_t i = 0; i < split.a.ids.size(); ++i)
+      (split.a.pos[i].x < 0 ? l : r).add(split, i);
+    std::reverse(r.a.ids.begin(), r.a.ids.end());
+    std::reverse(r.a.pos.begin(), r.a.pos.end());
+    std::reverse(r.a.vel.begin(), r.a.vel.end());
+    std::reverse(r.dest.begin(), r.dest.end());
+    std::reverse(r.arrived.begin(), r.arrived.end());
+    test::AgentArrays lGhosts = r.activeGhosts(), rGhosts = l.activeGhosts();
+    left.step(l.a.span(), l.dest, l.arrived, lGhosts.ghosts(), dt);
+    right.step(r.a.span(), r.dest, r.arrived, rGhosts.ghosts(), dt);
+    split = FlowAgents{};
+    for (FlowAgents* part : {&l, &r})
+      for (std::size_t i = 0; i < part->a.ids.size(); ++i) split.add(*part, i);
+  }
+  std::map<std::uint64_t, std::tuple<Vec2, Vec2, int>> a, b;
+  int arrivedCount = 0;
+  for (std::size_t i = 0; i < whole.a.ids.size(); ++i) {
+    a[whole.a.ids[i]] = {whole.a.pos[i], whole.a.vel[i], whole.arrived[i]};
+    arrivedCount += whole.arrived[i];
+  }
+  for (std::size_t i = 0; i < split.a.ids.size(); ++i)
+    b[split.a.ids[i]] = {split.a.pos[i], split.a.vel[i], split.arrived[i]};
+  EXPECT_GT(arrivedCount, 0);  // arrivals happened during the comparison
+  EXPECT_EQ(a, b);
 }
 
 }  // namespace
