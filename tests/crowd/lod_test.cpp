@@ -11,6 +11,7 @@
 
 #include "common/rng.h"
 #include "crowd_test_util.h"
+#include "zone_node/crowd/flock.h"
 #include "zone_node/crowd/flow_crowd.h"
 
 namespace zonesim::crowd {
@@ -118,6 +119,35 @@ TEST(Lod, FlowCrowdWithLodReachesTheSameOutcome) {
   EXPECT_LT(cheap.updates, full.updates);
   // Same outcome: every agent arrives, on average within 5% of its full-detail arrival time.
   EXPECT_LT(sumDiff / sumTime, 0.05);
+}
+
+TEST(Lod, FlockFollowsThePlan) {
+  // Three agents close together: one skipped (dt 0), one cheap (no neighbours, goal only),
+  // one at full detail with a double step.
+  test::AgentArrays a;
+  a.add(1, Vec2{0, 0}, Vec2{0.5, 0});
+  a.add(2, Vec2{0.5, 0}, Vec2{0, 0.5});
+  a.add(3, Vec2{0, 0.5}, Vec2{-0.5, 0});
+  const test::AgentArrays before = a;
+  std::vector<Vec2> goal(3, Vec2{1.0, 0.0});
+  std::vector<double> dt{0.0, 0.1, 0.2};
+  std::vector<std::uint8_t> steer{1, 0, 1};
+  FlockSettings s;
+  Flock flock(s);
+  flock.step(a.span(), {}, 0.05, goal, StepPlan{dt, steer});
+  EXPECT_EQ(a.pos[0], before.pos[0]);
+  EXPECT_EQ(a.vel[0], before.vel[0]);
+  // Cheap update: v += goalWeight (goal - v) h, then x += v h, with no neighbour terms.
+  Vec2 v1 = before.vel[1] + (goal[1] - before.vel[1]) * (s.goalWeight * 0.1);
+  EXPECT_NEAR(a.vel[1].x, v1.x, 1e-15);
+  EXPECT_NEAR(a.vel[1].y, v1.y, 1e-15);
+  EXPECT_NEAR(a.pos[1].x, before.pos[1].x + v1.x * 0.1, 1e-15);
+  EXPECT_NEAR(a.pos[1].y, before.pos[1].y + v1.y * 0.1, 1e-15);
+  // Full detail: the skipped agent still pushes it (separation), so it differs from the
+  // goal-only update.
+  Vec2 v2goal = before.vel[2] + (goal[2] - before.vel[2]) * (s.goalWeight * 0.2);
+  EXPECT_GT(length(a.vel[2] - v2goal), 0.1);
+  EXPECT_NEAR(a.pos[2].x, before.pos[2].x + a.vel[2].x * 0.2, 1e-15);
 }
 
 }  // namespace
