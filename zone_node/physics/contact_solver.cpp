@@ -145,6 +145,9 @@ void ContactSolver::iterate(BodyStorage& bodies, double omega) {
     for (int i = 0; i < k.count; ++i) {
       FrictionPoint& p = friction_[k.first + i];
       const double limit = k.friction * normal_[k.first + i].jn;
+      // A point that carries no load and no friction stays at zero: clamping to [-0, 0] would
+      // give zero again, so skip the two rows (most side points in a pile).
+      if (limit == 0.0 && p.jt[0] == 0.0 && p.jt[1] == 0.0) continue;
       for (int t = 0; t < 2; ++t) {
         const Row& row = p.row[t];
         const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
