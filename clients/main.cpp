@@ -28,6 +28,16 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the players' wander targets");
   app.add_option("--metrics", metrics_dir, "write DIR/clients.jsonl, a line per second");
   app.add_option("--summary", summary_path, "write the summary JSON here");
+  zonesim::gateway::ImpairmentSettings impair;
+  bool snap = false;
+  app.add_option("--inject-loss", impair.loss, "drop this fraction of datagrams (testing)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--inject-delay-ms", impair.delay_ms, "delay outgoing datagrams (testing)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--inject-jitter-ms", impair.jitter_ms,
+                 "plus uniform jitter, which reorders (testing)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--snap", snap, "show corrections at once instead of blending them in");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
@@ -41,6 +51,8 @@ int main(int argc, char** argv) {
     cfg.player.input_hz = scene.clients.input_hz;
     cfg.player.retarget_seconds = scene.clients.retarget_seconds;
     cfg.player.seed = seed;
+    cfg.player.impairment = impair;
+    cfg.player.blend = !snap;
     cfg.players = players > 0 ? players : scene.clients.players;
     cfg.duration_s = duration;
     if (!metrics_dir.empty()) {

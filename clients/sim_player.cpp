@@ -24,7 +24,8 @@ SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64
       next_ping_ns_(INT64_MAX),
       input_period_ns_(std::max<std::int64_t>(1, seconds(1.0 / config.input_hz))),
       wander_(config.world, config.retarget_seconds, config.seed, index),
-      rx_buffer_(gateway::kMaxDatagramBytes + 1) {
+      rx_buffer_(gateway::kMaxDatagramBytes + 1),
+      impairment_(config.impairment, index) {
   if (nonce_ == 0) nonce_ = 1;
 }
 
@@ -34,7 +35,9 @@ double SimPlayer::welcomeSeconds() const {
 }
 
 void SimPlayer::send(const gateway::Bytes& bytes) {
-  if (!socket_.sendTo(config_.gateway, bytes)) {
+  bool ok = impairment_.active() ? impairment_.send(socket_, config_.gateway, bytes, nowNs())
+                                 : socket_.sendTo(config_.gateway, bytes);
+  if (!ok) {
     ++counters_.send_failures;
     return;
   }
@@ -43,6 +46,12 @@ void SimPlayer::send(const gateway::Bytes& bytes) {
 }
 
 std::int64_t SimPlayer::act(std::int64_t now_ns) {
+  if (impairment_.active()) counters_.send_failures += impairment_.flush(socket_, now_ns);
+  std::int64_t held = impairment_.nextDueNs();
+  return std::min(held, actDue(now_ns));
+}
+
+std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
   if (!welcomed()) {
     if (now_ns >= next_hello_ns_) {
       send(gateway::encodeHello(nonce_, "player"));
@@ -106,6 +115,7 @@ void SimPlayer::receive(std::int64_t now_ns) {
     if (!got) return;
     ++counters_.datagrams_in;
     counters_.bytes_in += got->size;
+    if (impairment_.active() && impairment_.dropIncoming()) continue;
     if (got->truncated || got->size > gateway::kMaxDatagramBytes) {
       counters_.drops.add(gateway::DropReason::TooLarge);
       continue;

@@ -13,6 +13,7 @@
 #include "clients/reservoir.h"
 #include "clients/wander.h"
 #include "common/scene.h"
+#include "gateway/impairment.h"
 #include "gateway/udp_socket.h"
 #include "gateway/wire_encode.h"
 #include "gateway/wire_verify.h"
@@ -32,6 +33,7 @@ struct PlayerConfig {
   double hello_retry_s = 0.5;
   double ping_every_s = 1.0;
   std::uint64_t seed = 1;
+  gateway::ImpairmentSettings impairment;  ///< loss / delay / reordering injected here
   bool blend = true;      ///< projective velocity blending of corrections; false: snap
   double blend_s = 0.25;  ///< blend time, seconds
 };
@@ -81,6 +83,7 @@ class SimPlayer {
 
  private:
   void send(const gateway::Bytes& bytes);
+  std::int64_t actDue(std::int64_t now_ns);
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
   void onMessage(const proto::Datagram& d, std::int64_t now_ns);
@@ -100,6 +103,7 @@ class SimPlayer {
   std::int64_t input_period_ns_;
   Wander wander_;
   RemoteView view_;
+  gateway::Impairment impairment_;
   std::optional<dr::StateCodec> codec_;
   double tick_rate_ = 30;
   double clock_tick_ = -1;  // newest server tick heard of, and when

@@ -130,6 +130,18 @@ struct DeadReckoning {
   StateQuantisation quantisation;
 };
 
+/// The seed's aura/nimbus rule: player A receives entity B's updates when A is inside B's aura
+/// (range of influence, per entity type) and B inside A's nimbus (range of interest, per
+/// player: clients.nimbus, grown with the player's speed up to max_nimbus).
+struct AuraNimbus {
+  double npc = 100;             ///< metres
+  double avatar = 150;          ///< metres
+  double rigid_body = 100;      ///< metres
+  double emitter = 200;         ///< metres
+  double nimbus_per_speed = 4;  ///< seconds: the nimbus grows by speed * this
+  double max_nimbus = 150;      ///< metres: cap of the grown nimbus
+};
+
 /// A whole scene; the docs for every key are in docs/scene-format.md.
 struct Scene {
   std::string name;
@@ -148,6 +160,7 @@ struct Scene {
   std::vector<RigidBodyPopulation> rigid_bodies;
   std::vector<EmitterPopulation> emitters;
   ClientProfile clients;
+  AuraNimbus aura_nimbus;  ///< keys in the interest section
 };
 
 /// Radius of the sphere around a body's centre that holds its whole shape.

@@ -193,9 +193,18 @@ void readZones(const SceneMap& root, Scene& scene) {
 }
 
 void readInterest(const SceneMap& root, Scene& scene) {
-  SceneMap interest = root.section("interest", {"cell_size", "keyframe_every"});
+  SceneMap interest = root.section(
+      "interest", {"cell_size", "keyframe_every", "aura", "nimbus_per_speed", "max_nimbus"});
   interest.read("cell_size", scene.interest_cell_size, Limit::above(0));
   interest.read("keyframe_every", scene.keyframe_every, Limit::atLeast(1));
+  AuraNimbus& an = scene.aura_nimbus;
+  SceneMap aura = interest.section("aura", {"npc", "avatar", "rigid_body", "particle_emitter"});
+  aura.read("npc", an.npc, Limit::above(0));
+  aura.read("avatar", an.avatar, Limit::above(0));
+  aura.read("rigid_body", an.rigid_body, Limit::above(0));
+  aura.read("particle_emitter", an.emitter, Limit::above(0));
+  interest.read("nimbus_per_speed", an.nimbus_per_speed, Limit::atLeast(0));
+  interest.read("max_nimbus", an.max_nimbus, Limit::above(0));
   double size = scene.interest_cell_size;
   double cells = std::ceil((scene.world.max.x - scene.world.min.x) / size) *
                  std::ceil((scene.world.max.z - scene.world.min.z) / size);

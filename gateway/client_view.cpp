@@ -1,6 +1,7 @@
 #include "gateway/client_view.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "gateway/world_cache.h"
 
@@ -38,7 +39,7 @@ ViewDiff ClientView::diff(const std::vector<VisibleEntity>& visible) {
 std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,
                                          const ViewPoint& at, const ClientView& known) {
   std::vector<VisibleEntity> out;
-  double nimbus2 = at.nimbus * at.nimbus, keep2 = at.keep * at.keep;
+  double keep_factor = at.nimbus > 0 ? at.keep / at.nimbus : 1.0;
   // Entities are indexed by the cell their zone put them in; one cell of slack covers entities
   // that moved since their last sample without crossing into a cell we do not read.
   double reach = std::max(at.nimbus, at.keep) + grid.cellSize();
@@ -49,9 +50,11 @@ std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const Interest
         return;
       }
       dr::V3 now = predictedPosition(e, at.sim_now);
-      double dx = now.x - at.x, dz = now.z - at.z;
-      double d2 = dx * dx + dz * dz;
-      if (d2 <= nimbus2 || (d2 <= keep2 && known.knows(id))) out.push_back({id, e.version});
+      double d = std::hypot(now.x - at.x, now.z - at.z);
+      double aura = at.aura[std::min<std::size_t>(e.state.kind, at.aura.size() - 1)];
+      bool shown = auraNimbusAllows(d, aura, at.nimbus);
+      bool kept = known.knows(id) && auraNimbusAllows(d, aura * keep_factor, at.keep);
+      if (shown || kept) out.push_back({id, e.version});
     });
   }
   // The avatar may sit in a cell outside the disc (it just teleported or the disc is tiny).

@@ -3,6 +3,8 @@
 // entities new to it (Spawn, full state), gone from it (Despawn), and known ones that got a
 // fresher sample since last sent (StateBatch).
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -42,11 +44,29 @@ class ClientView {
   std::uint64_t epoch_ = 0;
 };
 
+/// Auras by entity kind (0 NPC, 1 avatar, 2 rigid body, 3 emitter), metres.
+using Auras = std::array<double, 4>;
+
+/// The seed's rule: A sees B when A is inside B's aura and B inside A's nimbus, i.e. when
+/// their distance is within both.
+inline bool auraNimbusAllows(double distance, double aura_of_b, double nimbus_of_a) {
+  return distance <= aura_of_b && distance <= nimbus_of_a;
+}
+
+/// A player's nimbus: the base grown by speed * per_speed, capped (a runner or a flyer sees
+/// farther than a walker), never below the base.
+inline double grownNimbus(double base, double speed, double per_speed, double max_nimbus) {
+  return std::max(base, std::min(max_nimbus, base + speed * per_speed));
+}
+
 /// Where a player looks from, and how far.
 struct ViewPoint {
   double x = 0, z = 0;
-  double nimbus = 60;      ///< entities within this planar distance are shown
-  double keep = 66;        ///< entities already shown stay until beyond this (no edge flicker)
+  double nimbus = 60;  ///< entities within this planar distance are shown
+  double keep = 66;    ///< entities already shown stay until beyond this (no edge flicker)
+  /// Per-kind auras; an entity is shown within min(aura, nimbus), kept within
+  /// min(aura, nimbus) * keep / nimbus. Default: no aura limit.
+  Auras aura{1e30, 1e30, 1e30, 1e30};
   std::uint64_t self = 0;  ///< the player's avatar: always visible once known
   double sim_now = 0;      ///< positions are extrapolated to this time before measuring
 };

@@ -1,5 +1,7 @@
 #include "gateway/datagram_handler.h"
 
+#include <algorithm>
+
 #include "common/timer.h"
 
 namespace zonesim::gateway {
@@ -45,6 +47,12 @@ void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint
   SlotHandle h;
   Session* s = authenticate(d, from, h);
   if (s == nullptr) return;
+  // A flooding client costs the gateway no more than its share, and cannot keep its session
+  // alive by flooding: a dropped datagram is not "heard".
+  if (!withinRate(*s, now_ns)) {
+    drops_.add(DropReason::RateLimited);
+    return;
+  }
   s->last_heard_ns = now_ns;
   ++s->traffic.datagrams_in;
   s->traffic.bytes_in += bytes.size();
@@ -68,6 +76,19 @@ void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint
       drops_.add(DropReason::UnexpectedType);
       return;
   }
+}
+
+bool DatagramHandler::withinRate(Session& s, std::int64_t now_ns) const {
+  if (s.rate_tokens < 0) {
+    s.rate_tokens = config_.rate_burst;
+  } else {
+    double refill = double(now_ns - s.rate_ns) * 1e-9 * config_.rate_per_s;
+    s.rate_tokens = std::min(config_.rate_burst, s.rate_tokens + std::max(0.0, refill));
+  }
+  s.rate_ns = now_ns;
+  if (s.rate_tokens < 1) return false;
+  s.rate_tokens -= 1;
+  return true;
 }
 
 Session* DatagramHandler::authenticate(const proto::Datagram& d, const Endpoint& from,

@@ -54,6 +54,8 @@ struct HandlerConfig {
   std::uint64_t spawn_seed = 1;  ///< seeds spawn positions (reproducible runs)
   dr::CodecParams codec;         ///< how states are packed (sent in the Welcome)
   float sim_dt = 1.0f / 30;      ///< simulated seconds per zone tick
+  double rate_per_s = 100;       ///< datagrams per second a session may send (sustained)
+  double rate_burst = 50;        ///< and in a burst
 };
 
 class DatagramHandler {
@@ -75,6 +77,8 @@ class DatagramHandler {
   void onHello(const proto::Datagram& d, const Endpoint& from, std::size_t size,
                std::int64_t now_ns, Outbox& out);
   void onInput(const proto::Input& in, Session& s, Outbox& out);
+  /// Takes one token from the session's bucket; false (drop) when it is empty.
+  bool withinRate(Session& s, std::int64_t now_ns) const;
   /// The session the datagram's token names, if it comes from that session's address.
   Session* authenticate(const proto::Datagram& d, const Endpoint& from, SlotHandle& handle);
 

@@ -64,7 +64,8 @@ Gateway::Gateway(GatewayConfig config)
       interest_(grid_, interestRadius(config_), grid_.cellSize() * 0.5),
       link_(config_.dds_domain, expectedZones(config_)),
       rx_buffer_(kMaxDatagramBytes + 1),
-      codec_(dr::codecParams(config_.scene)) {
+      codec_(dr::codecParams(config_.scene)),
+      impairment_(config_.impairment, 0x9a7e) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
 }
 
@@ -82,7 +83,8 @@ void Gateway::run(const std::atomic<bool>& stop, double duration_s) {
       // After a stall, resume the cadence from now instead of bursting to catch up.
       if (next_tick <= now) next_tick = now + tick_ns_;
     }
-    std::int64_t wait_ns = std::min(next_tick, end_ns) - nowNs();
+    if (impairment_.active()) counters_.send_failures += impairment_.flush(socket_, nowNs());
+    std::int64_t wait_ns = std::min({next_tick, end_ns, impairment_.nextDueNs()}) - nowNs();
     int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
     pollfd p{socket_.fd(), POLLIN, 0};
     int r = ::poll(&p, 1, timeout_ms);
@@ -99,6 +101,7 @@ void Gateway::receiveAll(std::int64_t now_ns) {
     if (!got) break;
     ++counters_.datagrams_in;
     counters_.bytes_in += got->size;
+    if (impairment_.active() && impairment_.dropIncoming()) continue;
     // The buffer holds kMaxDatagramBytes + 1: anything that filled it is over the limit.
     if (got->truncated || got->size > kMaxDatagramBytes) {
       handler_.countTooLarge();
@@ -226,13 +229,30 @@ void Gateway::avatarPosition(const Session& s, double sim_now, double& x, double
   z = now.z;
 }
 
+double Gateway::avatarSpeed(const Session& s) const {
+  const CachedEntity* e = s.avatar_id != 0 ? cache_.find(s.avatar_id) : nullptr;
+  return e == nullptr ? 0.0 : std::hypot(double(e->state.vel.x), double(e->state.vel.z));
+}
+
+double Gateway::nimbusOf(const Session& s) const {
+  const AuraNimbus& an = config_.scene.aura_nimbus;
+  return grownNimbus(config_.scene.clients.nimbus, avatarSpeed(s), an.nimbus_per_speed,
+                     an.max_nimbus);
+}
+
 void Gateway::updateInterest(std::int64_t now_ns) {
   double sim_now = clock_.simNow(now_ns);
+  const AuraNimbus& an = config_.scene.aura_nimbus;
+  double widest_aura = std::max({an.npc, an.avatar, an.rigid_body, an.emitter});
   CellDelta delta;
   sessions_.forEach([&](SlotHandle, Session& s) {
     double x, z;
     avatarPosition(s, sim_now, x, z);
-    interest_.update(s.player_id, x, z, delta);
+    // The cells of everything the player may be shown (keep radius), plus the distance it can
+    // cover in lookahead_s, so that cells are read before anything in them comes into view.
+    double speed = std::max(avatarSpeed(s), config_.scene.clients.speed);
+    double reach = std::min(nimbusOf(s), widest_aura) * 1.1 + speed * config_.lookahead_s;
+    interest_.update(s.player_id, x, z, delta, reach);
   });
   applyCellDelta(delta);
 }
@@ -251,13 +271,14 @@ void Gateway::applyCellDelta(const CellDelta& delta) {
 
 void Gateway::sendViews(std::int64_t now_ns) {
   double sim_now = clock_.simNow(now_ns);
-  const ClientProfile& profile = config_.scene.clients;
   sessions_.forEach([&](SlotHandle, Session& s) {
     if (!s.welcomed) return;
     ViewPoint at;
     avatarPosition(s, sim_now, at.x, at.z);
-    at.nimbus = profile.nimbus;
-    at.keep = profile.nimbus * 1.1;
+    const AuraNimbus& an = config_.scene.aura_nimbus;
+    at.nimbus = nimbusOf(s);
+    at.keep = at.nimbus * 1.1;
+    at.aura = {an.npc, an.avatar, an.rigid_body, an.emitter};
     at.self = s.avatar_id;
     at.sim_now = sim_now;
     ViewDiff diff = s.view.diff(selectVisible(cache_, grid_, at, s.view));
@@ -299,7 +320,9 @@ void Gateway::sendTo(Session& s, const Bytes& bytes) {
 }
 
 void Gateway::sendTo(const Endpoint& to, const Bytes& bytes) {
-  if (!socket_.sendTo(to, bytes)) {
+  bool ok = impairment_.active() ? impairment_.send(socket_, to, bytes, nowNs())
+                                 : socket_.sendTo(to, bytes);
+  if (!ok) {
     ++counters_.send_failures;
     return;
   }

@@ -15,6 +15,7 @@
 #include "common/scene.h"
 #include "gateway/datagram_handler.h"
 #include "gateway/gateway_metrics.h"
+#include "gateway/impairment.h"
 #include "gateway/interest_manager.h"
 #include "gateway/session_table.h"
 #include "gateway/udp_socket.h"
@@ -35,9 +36,10 @@ struct GatewayConfig {
   double session_timeout_s = 10;  ///< a session silent this long is closed
   double pending_timeout_s = 5;   ///< a session still without avatar after this is dropped
   std::size_t max_sessions = 4096;
-  double lookahead_s = 1.0;    ///< interest margin ahead of motion: speed * lookahead
-  double handoff_grace_s = 0;  ///< leave grace; 0 = two zone ticks, at least 50 ms
-  std::string metrics_path;    ///< gateway.jsonl; empty = no metrics
+  double lookahead_s = 1.0;       ///< interest margin ahead of motion: speed * lookahead
+  double handoff_grace_s = 0;     ///< leave grace; 0 = two zone ticks, at least 50 ms
+  std::string metrics_path;       ///< gateway.jsonl; empty = no metrics
+  ImpairmentSettings impairment;  ///< loss / delay / reordering injected on the UDP side
 };
 
 class Gateway {
@@ -73,6 +75,10 @@ class Gateway {
   GatewayGauges gauges(std::int64_t now_ns);
   /// The avatar's position as last heard (extrapolated), or the spawn point before that.
   void avatarPosition(const Session& s, double sim_now, double& x, double& z) const;
+  /// The avatar's planar speed as last heard (0 before it is known).
+  double avatarSpeed(const Session& s) const;
+  /// The player's nimbus now (grown with its speed).
+  double nimbusOf(const Session& s) const;
 
   GatewayConfig config_;
   InterestGrid grid_;
@@ -90,7 +96,8 @@ class Gateway {
   std::vector<PlayerRecord> finished_players_;
   Outbox outbox_;
   std::vector<std::uint8_t> rx_buffer_;
-  dr::StateCodec codec_;  // packs states for clients exactly as the zones quantised them
+  dr::StateCodec codec_;
+  Impairment impairment_;  // packs states for clients exactly as the zones quantised them
   std::int64_t next_metrics_ns_ = 0;
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
 };

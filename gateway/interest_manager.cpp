@@ -21,10 +21,12 @@ void InterestManager::release(int cell, CellDelta& delta) {
   }
 }
 
-void InterestManager::update(std::uint64_t player, double x, double z, CellDelta& delta) {
+void InterestManager::update(std::uint64_t player, double x, double z, CellDelta& delta,
+                             double radius) {
   std::vector<int>& held = held_[player];
-  std::vector<int> wanted = grid_.cellsWithin(x, z, radius_);
-  std::vector<int> keep_zone = grid_.cellsWithin(x, z, radius_ + hysteresis_);
+  double r = radius > 0 ? radius : radius_;
+  std::vector<int> wanted = grid_.cellsWithin(x, z, r);
+  std::vector<int> keep_zone = grid_.cellsWithin(x, z, r + hysteresis_);
   // next = wanted ∪ (held ∩ keep_zone); all lists ascending.
   std::vector<int> kept, next;
   std::set_intersection(held.begin(), held.end(), keep_zone.begin(), keep_zone.end(),

@@ -24,8 +24,9 @@ class InterestManager {
   /// radius + hysteresis, so a player pacing along a cell border does not churn readers.
   InterestManager(const InterestGrid& grid, double radius, double hysteresis);
 
-  /// Moves a player's interest to (x, z); union changes are appended to delta.
-  void update(std::uint64_t player, double x, double z, CellDelta& delta);
+  /// Moves a player's interest to (x, z); union changes are appended to delta. radius > 0
+  /// overrides the default radius for this player (its nimbus grew, it moves fast).
+  void update(std::uint64_t player, double x, double z, CellDelta& delta, double radius = 0);
   /// Drops a player's interest entirely.
   void remove(std::uint64_t player, CellDelta& delta);
   /// Cells one player holds (empty if unknown), ascending.

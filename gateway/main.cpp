@@ -56,6 +56,13 @@ int main(int argc, char** argv) {
   app.add_option("--session-timeout", cfg.session_timeout_s, "close sessions silent this long (s)")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-sessions", cfg.max_sessions, "refuse Hellos beyond this many sessions");
+  app.add_option("--inject-loss", cfg.impairment.loss, "drop this fraction of datagrams (testing)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--inject-delay-ms", cfg.impairment.delay_ms, "delay outgoing datagrams (testing)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--inject-jitter-ms", cfg.impairment.jitter_ms,
+                 "plus uniform jitter, which reorders (testing)")
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();

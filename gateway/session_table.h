@@ -35,7 +35,9 @@ struct Session {
   std::uint32_t last_input_seq = 0;  ///< last seq forwarded to the zone
   double spawn_x = 0, spawn_z = 0;   ///< where the avatar was requested (interest until it shows)
   std::int64_t created_ns = 0, last_heard_ns = 0;
-  ClientView view;  ///< what the client has been sent
+  ClientView view;           ///< what the client has been sent
+  double rate_tokens = -1;   ///< per-client rate limit bucket; < 0: not started (full)
+  std::int64_t rate_ns = 0;  ///< when the bucket was last refilled
   SessionTraffic traffic;
 };
 

@@ -125,6 +125,8 @@ const char* dropReasonName(DropReason reason) {
       return "stale_input";
     case DropReason::SessionLimit:
       return "session_limit";
+    case DropReason::RateLimited:
+      return "rate_limited";
     case DropReason::Count:
       break;
   }

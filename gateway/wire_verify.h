@@ -42,6 +42,7 @@ enum class DropReason : std::uint8_t {
   NotReady,        ///< input for a session that has no avatar yet
   StaleInput,      ///< input seq not newer than the last forwarded one
   SessionLimit,    ///< Hello refused: too many sessions
+  RateLimited,     ///< a session sending faster than its per-client rate limit
   Count
 };
 

@@ -212,6 +212,22 @@ TEST(SceneDefaults, DeadReckoningModelsAndQuantisation) {
       SceneError);
 }
 
+TEST(SceneDefaults, AurasAndNimbusGrowth) {
+  Scene plain = parseScene(kMinimal, "x");
+  EXPECT_DOUBLE_EQ(plain.aura_nimbus.npc, 100);
+  EXPECT_DOUBLE_EQ(plain.aura_nimbus.max_nimbus, 150);
+  Scene s = parseScene(std::string(kMinimal) +
+                           "interest: {aura: {npc: 30, particle_emitter: 400}, "
+                           "nimbus_per_speed: 2, max_nimbus: 90}\n",
+                       "x");
+  EXPECT_DOUBLE_EQ(s.aura_nimbus.npc, 30);
+  EXPECT_DOUBLE_EQ(s.aura_nimbus.emitter, 400);
+  EXPECT_DOUBLE_EQ(s.aura_nimbus.avatar, 150);
+  EXPECT_DOUBLE_EQ(s.aura_nimbus.nimbus_per_speed, 2);
+  EXPECT_DOUBLE_EQ(s.aura_nimbus.max_nimbus, 90);
+  EXPECT_THROW(parseScene(std::string(kMinimal) + "interest: {aura: {npc: 0}}\n", "x"), SceneError);
+}
+
 TEST(SceneFormatDoc, CompleteExampleLoads) {
   std::ifstream in(sourcePath("docs/scene-format.md"));
   std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

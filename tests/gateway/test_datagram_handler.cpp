@@ -160,6 +160,35 @@ TEST_F(HandlerTest, PingGetsPongAndByeEndsTheSession) {
   EXPECT_EQ(dropped(DropReason::BadToken), 1u) << "the token died with the session";
 }
 
+TEST_F(HandlerTest, ASessionSendingTooFastIsRateLimited) {
+  Session& s = welcomedSession();
+  HandlerConfig c = config();
+  // 200 inputs in the same instant: the burst (50) passes, the rest is dropped and counted.
+  std::uint32_t seq = 0;
+  std::size_t forwarded = 0;
+  for (int i = 0; i < 200; ++i) {
+    out_.clear();
+    handler_.handle(encodeInput(s.token, ++seq, 0, 0), kClient, 1'000'000, out_);
+    forwarded += out_.inputs.size();
+  }
+  EXPECT_EQ(forwarded, std::size_t(c.rate_burst));
+  EXPECT_EQ(dropped(DropReason::RateLimited), 200 - forwarded);
+  // Half a second later the bucket holds rate * 0.5 = 50 tokens again (capped at the burst).
+  forwarded = 0;
+  for (int i = 0; i < 60; ++i) {
+    out_.clear();
+    handler_.handle(encodeInput(s.token, ++seq, 0, 0), kClient, 501'000'000, out_);
+    forwarded += out_.inputs.size();
+  }
+  EXPECT_EQ(forwarded, std::size_t(c.rate_burst));
+  // A client within the rate (20 inputs a second) never hits it.
+  std::uint64_t before = dropped(DropReason::RateLimited);
+  for (int i = 0; i < 100; ++i)
+    handler_.handle(encodeInput(s.token, ++seq, 0, 0), kClient, 2'000'000'000 + i * 50'000'000LL,
+                    out_);
+  EXPECT_EQ(dropped(DropReason::RateLimited), before);
+}
+
 TEST_F(HandlerTest, GatewayBoundMessagesOnlyAndSessionLimit) {
   feed(encodePong(1, 2, 3));
   EXPECT_EQ(dropped(DropReason::UnexpectedType), 1u);

@@ -52,6 +52,61 @@ TEST(SelectVisible, NimbusWithHysteresisAndTheAvatarAlways) {
   EXPECT_EQ(seen, (Ids{1, 2, 3}));
 }
 
+TEST(AuraNimbus, BothRangesMustHold) {
+  // A sees B when A is inside B's aura and B inside A's nimbus.
+  EXPECT_TRUE(auraNimbusAllows(50, 80, 60));
+  EXPECT_FALSE(auraNimbusAllows(70, 80, 60)) << "outside A's nimbus";
+  EXPECT_FALSE(auraNimbusAllows(50, 40, 60)) << "A outside B's aura";
+  EXPECT_TRUE(auraNimbusAllows(60, 60, 60));
+  // The nimbus grows with speed, within its cap, never shrinking below the base.
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 0, 4, 150), 60);
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 5, 4, 150), 80);
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 50, 4, 150), 150);
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 50, 4, 30), 60);
+}
+
+TEST(SelectVisible, AurasPerKindAndASpeedGrownNimbus) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 25);
+  auto put = [&](std::uint64_t id, std::uint8_t kind, float x) {
+    c.upsert(grid.cellOf(x, 100), 0, 1.0, entity(id, kind, x, 100));
+  };
+  put(1, 1, 100);  // the avatar
+  put(2, 0, 150);  // NPC at 50 m; NPC aura 60
+  put(3, 0, 170);  // NPC at 70 m: outside the NPC aura whatever the nimbus
+  put(4, 3, 170);  // emitter at 70 m; emitter aura 200
+  put(5, 3, 250);  // emitter at 150 m
+  ViewPoint at;
+  at.x = 100, at.z = 100, at.self = 1, at.sim_now = 1.0;
+  at.aura = {60, 150, 60, 200};
+  auto seen = [&](double nimbus) {
+    at.nimbus = nimbus;
+    at.keep = nimbus * 1.1;
+    Ids ids;
+    for (auto& e : selectVisible(c, grid, at, ClientView())) ids.push_back(e.id);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  // A walker (nimbus 60) sees the near NPC only; running at 10 m/s (nimbus 60 + 10 * 4 =
+  // 100) it also sees the emitter at 70 m, and a flyer's 160 m nimbus reaches the far
+  // emitter; the NPC at 70 m stays beyond its own aura for all of them.
+  EXPECT_EQ(seen(grownNimbus(60, 0, 4, 160)), (Ids{1, 2}));
+  EXPECT_EQ(seen(grownNimbus(60, 10, 4, 160)), (Ids{1, 2, 4}));
+  EXPECT_EQ(seen(grownNimbus(60, 40, 4, 160)), (Ids{1, 2, 4, 5}));
+}
+
+TEST(InterestManager, APlayersOwnRadiusWidensItsCells) {
+  InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 50);
+  InterestManager m(grid, 40, 10);
+  CellDelta d;
+  m.update(1, 200, 200, d);
+  std::size_t walker = m.cellsOf(1).size();
+  m.update(2, 200, 200, d, 140);
+  EXPECT_GT(m.cellsOf(2).size(), walker);
+  // The wider set contains the narrower one: one shared reader per cell.
+  for (int cell : m.cellsOf(1)) EXPECT_EQ(m.refcount(cell), 2);
+}
+
 TEST(InterestManager, SharedCellsAreRefcounted) {
   InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 25);
   InterestManager m(grid, 20, 5);
