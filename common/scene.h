@@ -40,6 +40,12 @@ struct NpcPopulation {
   SceneBox region;               ///< where they start (defaults to the world)
   double separation_radius = 0;  ///< keep this far from other walkers (0: no avoidance)
   double separation_weight = 1;  ///< push at contact, in top speeds
+  /// A gathering: from start_s to end_s of simulated time every NPC of the population heads for
+  /// waypoints within `radius` of `point` (x, z); before and after, it wanders (a crowd that
+  /// converges, then disperses). radius 0: no gathering.
+  struct Gather {
+    double x = 0, z = 0, radius = 0, start_s = 0, end_s = 0;
+  } gather;
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).

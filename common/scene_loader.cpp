@@ -72,7 +72,7 @@ SceneBox readRegion(const SceneMap& population, const SceneBox& world) {
 
 void readNpcs(const SceneNode& node, Scene& scene) {
   SceneMap m = node.map({"kind", "count", "speed", "acceleration", "waypoint_radius",
-                         "arrive_distance", "region", "separation"});
+                         "arrive_distance", "region", "separation", "gather"});
   NpcPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
@@ -83,6 +83,20 @@ void readNpcs(const SceneNode& node, Scene& scene) {
   SceneMap sep = m.section("separation", {"radius", "weight"});
   sep.read("radius", p.separation_radius, Limit::atLeast(0));
   sep.read("weight", p.separation_weight, Limit::atLeast(0));
+  SceneMap gather = m.section("gather", {"point", "radius", "start_s", "end_s"});
+  if (std::optional<SceneNode> point = gather.optional("point")) {
+    SceneVec3 at = point->vec3();  // [x, y, z] like every point in a scene; y is ignored
+    p.gather.x = at.x;
+    p.gather.z = at.z;
+    if (p.gather.x < scene.world.min.x || p.gather.x > scene.world.max.x ||
+        p.gather.z < scene.world.min.z || p.gather.z > scene.world.max.z)
+      point->fail("is outside the world");
+    p.gather.radius = 10;
+    gather.read("radius", p.gather.radius, Limit::above(0));
+    gather.read("start_s", p.gather.start_s, Limit::atLeast(0));
+    p.gather.end_s = p.gather.start_s + 60;
+    gather.read("end_s", p.gather.end_s, Limit::atLeast(p.gather.start_s));
+  }
   // Walkers across a border are seen through the halo; it must reach as far as they look.
   if (p.separation_radius > scene.halo_width) {
     sep.failAt("radius", formatNumber(p.separation_radius) + " m is wider than halo.width (" +

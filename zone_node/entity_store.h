@@ -24,8 +24,12 @@ struct NpcData {
   double accel = 2.0;
   double waypoint_radius = 30.0;
   double arrive_distance = 1.0;
-  double separation_radius = 0;  ///< keeps this far from other walkers (0: walks through them)
-  double separation_weight = 1;  ///< strength of the push, in top speeds at contact
+  double separation_radius = 0;      ///< keeps this far from other walkers (0: walks through them)
+  double separation_weight = 1;      ///< strength of the push, in top speeds at contact
+  Vec3 gather_point = Vec3::Zero();  ///< the population's gathering (NpcPopulation::Gather)
+  double gather_radius = 0;          ///< 0: never gathers
+  double gather_start = 0, gather_end = 0;  ///< simulated seconds
+  bool gathering = false;                   ///< the current waypoint is one of the gathering's
 };
 
 /// A player's avatar, driven by inputs applied exactly once by sequence number.

@@ -57,6 +57,10 @@ void forEachInitialEntity(const Scene& scene,
       r.npc.arrive_distance = p.arrive_distance;
       r.npc.separation_radius = p.separation_radius;
       r.npc.separation_weight = p.separation_weight;
+      r.npc.gather_point = Vec3(p.gather.x, scene.world.min.y, p.gather.z);
+      r.npc.gather_radius = p.gather.radius;
+      r.npc.gather_start = p.gather.start_s;
+      r.npc.gather_end = p.gather.end_s;
       r.rng_state = rng.state();
       r.npc.waypoint = nextWaypoint(scene, r.pos, p.waypoint_radius, r.rng_state, r.id);
       keep(r);

@@ -193,7 +193,7 @@ void ZoneNode::applyInput(std::uint64_t player_id, std::uint32_t seq, float move
 
 void ZoneNode::ai() {
   if (walker_reach_ > 0) near_.build(store_, &halo_.ghosts(), walker_reach_);
-  stepNpcs(scene_, store_, near_, scene_.dt);
+  stepNpcs(scene_, store_, near_, double(tick_) * scene_.dt, scene_.dt);
   stepAvatars(scene_.world, store_, scene_.dt);
 }
 

@@ -129,7 +129,8 @@ Result run(const Config& c, double seconds) {
       store.avatar[i].move_x = m.x;
       store.avatar[i].move_z = m.z;
     }
-    zone::stepNpcs(scene, store, zone::Neighbourhood{}, scene.dt);  // no separation here
+    zone::stepNpcs(scene, store, zone::Neighbourhood{}, tick * scene.dt,
+                   scene.dt);  // no separation
     zone::stepAvatars(scene.world, store, scene.dt);
     // The zone's publish decision, as CellPublisher makes it.
     sent.clear();

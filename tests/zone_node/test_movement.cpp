@@ -18,7 +18,7 @@ TEST(NpcMovement, NpcsWanderWithinTheWorldAtTheirOwnSpeedAndReachWaypoints) {
   for (const NpcData& n : store.npc) first_waypoint.push_back(n.waypoint);
   double max_speed_seen = 0;
   for (int t = 0; t < 30 * 60; ++t) {
-    stepNpcs(s, store, Neighbourhood{}, s.dt);
+    stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
     for (std::size_t i = 0; i < store.size(); ++i) {
       ASSERT_GE(store.pos[i].x(), s.world.min.x - 1e-9);
       ASSERT_LE(store.pos[i].x(), s.world.max.x + 1e-9);
@@ -50,7 +50,7 @@ std::size_t closePairsAfterWalking(double separation_radius, double d) {
   Neighbourhood near;
   for (int t = 0; t < 30 * 20; ++t) {
     near.build(store, nullptr, std::max(separation_radius, 1.0));
-    stepNpcs(s, store, near, s.dt);
+    stepNpcs(s, store, near, t * s.dt, s.dt);
   }
   std::size_t close = 0;
   for (std::size_t i = 0; i < store.size(); ++i)
@@ -67,6 +67,27 @@ TEST(NpcMovement, SeparationKeepsWalkersApart) {
   EXPECT_GT(without, 20u) << "the square is crowded enough to matter";
   EXPECT_LT(with * 10, without) << with << " close pairs with separation, " << without
                                 << " without";
+}
+
+TEST(NpcMovement, AGatheringConvergesThenDisperses) {
+  Scene s = testing::npcScene(200);
+  s.npcs[0].min_speed = 2.0;
+  s.npcs[0].max_speed = 3.0;
+  s.npcs[0].waypoint_radius = 150;
+  s.npcs[0].gather = {100, 100, 10, 0, 80};  // (x, z, radius, start_s, end_s)
+  EntityStore store;
+  forEachInitialEntity(s, [&](const EntityRecordData& r) { store.add(r); });
+  auto fractionWithin = [&](double r) {
+    std::size_t n = 0;
+    for (const Vec3& p : store.pos) n += std::hypot(p.x() - 100, p.z() - 100) < r;
+    return double(n) / double(store.size());
+  };
+  EXPECT_LT(fractionWithin(15), 0.05);
+  int t = 0;
+  for (; t < 30 * 80; ++t) stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
+  EXPECT_GT(fractionWithin(15), 0.95) << "after 80 s of gathering";
+  for (; t < 30 * 110; ++t) stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
+  EXPECT_LT(fractionWithin(15), 0.2) << "30 s after the gathering ended";
 }
 
 TEST(AvatarMovement, AnAvatarWalksInTheInputDirectionAtItsSpeed) {

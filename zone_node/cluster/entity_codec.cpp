@@ -32,9 +32,11 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
   switch (r.kind) {
     case EntityKind::Npc: {
       fb::Vec3d wp = toFb(r.npc.waypoint);
+      fb::Vec3d gp = toFb(r.npc.gather_point);
       npc = fb::CreateNpcState(b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius,
                                r.npc.arrive_distance, r.npc.separation_radius,
-                               r.npc.separation_weight);
+                               r.npc.separation_weight, &gp, r.npc.gather_radius,
+                               r.npc.gather_start, r.npc.gather_end, r.npc.gathering);
       break;
     }
     case EntityKind::Avatar:

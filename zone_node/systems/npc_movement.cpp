@@ -22,14 +22,19 @@ Vec3 separation(const Vec3& p, const std::vector<Neighbour>& near, double radius
   return push;
 }
 
-Vec3 wanderVelocity(const Scene& scene, EntityStore& store, std::size_t i) {
+Vec3 wanderVelocity(const Scene& scene, EntityStore& store, std::size_t i, double time) {
   NpcData& npc = store.npc[i];
   Vec3 to = npc.waypoint - store.pos[i];
   to.y() = 0;
   double dist = to.norm();
-  if (dist < npc.arrive_distance) {
-    npc.waypoint =
-        nextWaypoint(scene, store.pos[i], npc.waypoint_radius, store.rng_state[i], store.id[i]);
+  // A gathering draws waypoints around its point while it lasts; its start and end retarget.
+  bool gather = npc.gather_radius > 0 && time >= npc.gather_start && time < npc.gather_end;
+  if (dist < npc.arrive_distance || gather != npc.gathering) {
+    npc.gathering = gather;
+    npc.waypoint = gather ? nextWaypoint(scene, npc.gather_point, npc.gather_radius,
+                                         store.rng_state[i], store.id[i])
+                          : nextWaypoint(scene, store.pos[i], npc.waypoint_radius,
+                                         store.rng_state[i], store.id[i]);
     to = npc.waypoint - store.pos[i];
     to.y() = 0;
     dist = to.norm();
@@ -42,7 +47,8 @@ Vec3 wanderVelocity(const Scene& scene, EntityStore& store, std::size_t i) {
 
 }  // namespace
 
-void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near, double dt) {
+void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near, double time,
+              double dt) {
   if (store.count(EntityKind::Npc) == 0) return;
   // Pass 1 reads positions only: every NPC decides from the tick's starting state.
   std::vector<std::pair<std::size_t, Vec3>> desired;
@@ -50,7 +56,7 @@ void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near,
   std::vector<Neighbour> found;
   for (std::size_t i = 0; i < store.size(); ++i) {
     if (store.kind[i] != EntityKind::Npc) continue;
-    Vec3 v = wanderVelocity(scene, store, i);
+    Vec3 v = wanderVelocity(scene, store, i, time);
     const NpcData& npc = store.npc[i];
     if (npc.separation_radius > 0) {
       near.query(store.pos[i], npc.separation_radius, store.id[i], found);

@@ -9,9 +9,11 @@ namespace zonesim::zone {
 
 class Neighbourhood;
 
-/// Steps every NPC of the store by dt; a reached waypoint is replaced by a new random one.
+/// Steps every NPC of the store by dt from simulated time `time`; a reached waypoint is
+/// replaced by a new random one.
 /// Separation reads `near` (built over this tick's starting positions); all NPCs steer from
 /// those positions before any of them moves, so the result is the same on any decomposition.
-void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near, double dt);
+void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near, double time,
+              double dt);
 
 }  // namespace zonesim::zone
