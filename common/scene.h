@@ -75,12 +75,16 @@ struct PhysicsSettings {
     Rk4
   };
   enum class Broadphase { BruteForce, SweepAndPrune, UniformGrid, AabbTree };
+  /// Contact response (docs/physics.md compares them); same order as physics::SolverKind.
+  enum class Solver { SoftStep, GaussSeidel, Sor, Jacobi, Penalty, Projection };
   Integrator integrator = Integrator::SemiImplicitEuler;
   Broadphase broadphase = Broadphase::SweepAndPrune;
   int substeps = 1;
   int velocity_iterations = 10;
   int position_iterations = 2;
   bool sleep = true;  ///< resting islands sleep and cost (almost) nothing
+  Solver solver = Solver::GaussSeidel;
+  double sor_omega = 1.3;  ///< over-relaxation factor of the sor solver
 };
 
 /// Particle emitters: each spawns `rate` particles per second with the given lifetime.

@@ -250,8 +250,9 @@ void readTick(const SceneMap& root, Scene& scene) {
 }
 
 void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
-  SceneMap m = root.section("physics", {"integrator", "broadphase", "substeps",
-                                        "velocity_iterations", "position_iterations", "sleep"});
+  SceneMap m =
+      root.section("physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
+                               "position_iterations", "sleep", "solver", "sor_omega"});
   ps.integrator = PhysicsSettings::Integrator(
       m.choice("integrator",
                {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
@@ -264,6 +265,10 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("velocity_iterations", ps.velocity_iterations, Limit::between(1, 1000));
   m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
   m.read("sleep", ps.sleep);
+  ps.solver = PhysicsSettings::Solver(
+      m.choice("solver", {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection"},
+               int(ps.solver)));
+  m.read("sor_omega", ps.sor_omega, Limit::between(0.1, 1.99));
 }
 
 void readDeadReckoningModel(const SceneMap& models, std::string_view kind,

@@ -251,5 +251,31 @@ TEST(LoadScene, DirectoryIsAnError) {
   EXPECT_EQ(sceneError([&] { loadScene(path); }), path + ":0: file: cannot open");
 }
 
+TEST(SceneLoader, ReadsSolverSeparationAndGathering) {
+  Scene s = parseScene(R"(world: {min: [0, 0, 0], max: [100, 10, 100]}
+tick: {dt: 0.02}
+seed: 1
+zones: {columns: 2, rows: 1}
+halo: {width: 4}
+physics: {solver: sor, sor_omega: 1.5}
+populations:
+  - kind: npc
+    count: 3
+    separation: {radius: 2, weight: 0.5}
+    gather: {point: [20, 0, 30], radius: 5, start_s: 1, end_s: 9}
+)",
+                       "inline.yaml");
+  EXPECT_EQ(s.physics.solver, PhysicsSettings::Solver::Sor);
+  EXPECT_DOUBLE_EQ(s.physics.sor_omega, 1.5);
+  ASSERT_EQ(s.npcs.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.npcs[0].separation_radius, 2);
+  EXPECT_DOUBLE_EQ(s.npcs[0].separation_weight, 0.5);
+  EXPECT_DOUBLE_EQ(s.npcs[0].gather.x, 20);
+  EXPECT_DOUBLE_EQ(s.npcs[0].gather.z, 30);
+  EXPECT_DOUBLE_EQ(s.npcs[0].gather.radius, 5);
+  EXPECT_DOUBLE_EQ(s.npcs[0].gather.start_s, 1);
+  EXPECT_DOUBLE_EQ(s.npcs[0].gather.end_s, 9);
+}
+
 }  // namespace
 }  // namespace zonesim

@@ -17,6 +17,8 @@ physics::WorldSettings settingsFor(const PhysicsSettings& p) {
   w.solver.velocity_iterations = p.velocity_iterations;
   w.solver.position_iterations = p.position_iterations;
   w.sleep.enabled = p.sleep;
+  w.solver.kind = physics::SolverKind(int(p.solver));
+  w.solver.sor_omega = p.sor_omega;
   return w;
 }
 
@@ -58,6 +60,8 @@ physics::BodyDesc wall(const Vec3& point, const Vec3& normal) {
 // The engine and its enums mirror the scene's (same order): checked here, where both are seen.
 static_assert(int(physics::Integrator::Rk4) == int(PhysicsSettings::Integrator::Rk4));
 static_assert(int(physics::BroadphaseKind::AabbTree) == int(PhysicsSettings::Broadphase::AabbTree));
+static_assert(int(physics::SolverKind::Projection) == int(PhysicsSettings::Solver::Projection));
+static_assert(int(physics::SolverKind::GaussSeidel) == int(PhysicsSettings::Solver::GaussSeidel));
 
 RigidBodySystem::RigidBodySystem(const Scene& scene, int rank) : scene_(scene), rank_(rank) {}
 
