@@ -141,8 +141,10 @@ int main(int argc, char** argv) {
   app.add_option(
       "--restart", o.restart,
       "continue from a checkpoint (a checkpoint folder, or a --checkpoint-dir: its LATEST)");
-  app.add_option("--gpu", o.zone.gpu, "particle integration on OpenCL: on, off or auto")
-      ->check(CLI::IsMember({"on", "off", "auto"}));
+  app.add_option("--gpu", o.zone.gpu,
+                 "particle integration on OpenCL: on, off, auto (measured default threshold) or "
+                 "probe (auto with thresholds timed on rank 0 at start and broadcast)")
+      ->check(CLI::IsMember({"on", "off", "auto", "probe"}));
   zonesim::addCommonOptions(app, o.common);
   CLI11_PARSE(app, argc, argv);
   o.zone.dds = !no_dds;

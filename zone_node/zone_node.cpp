@@ -5,6 +5,7 @@
 #include "common/log.h"
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/cluster/conservation.h"
+#include "zone_node/cluster/offload_agreement.h"
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/zone_link.h"
 #include "zone_node/population.h"
@@ -72,7 +73,12 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
         link_->announce({store_.avatar[i].player_id, store_.id[i].value, -1, rank_, tick_,
                          store_.avatar[i].last_input_seq});
   }
-  emitters_ = std::make_unique<EmitterSystem>(scene_, options_.gpu);
+  // --gpu probe: auto, with thresholds timed on rank 0 only and shared (collective).
+  bool has_emitters = false;
+  for (const EmitterPopulation& p : scene_.emitters) has_emitters |= p.count > 0;
+  bool probe = options_.gpu == "probe";
+  gpu::OffloadThresholds thresholds = agreedThresholds(comm_, probe && has_emitters);
+  emitters_ = std::make_unique<EmitterSystem>(scene_, probe ? "auto" : options_.gpu, thresholds);
   // The first tick's systems already read ghosts.
   halo();
 }

@@ -14,7 +14,8 @@ constexpr gpu::Vec3d kGravity{0.0, -9.81, 0.0};
 constexpr double kConeHalfAngle = 0.6;
 }  // namespace
 
-EmitterSystem::EmitterSystem(const Scene& scene, const std::string& gpu_mode) {
+EmitterSystem::EmitterSystem(const Scene& scene, const std::string& gpu_mode,
+                             const gpu::OffloadThresholds& thresholds) {
   std::size_t total = 0;
   for (const EmitterPopulation& p : scene.emitters) {
     std::size_t budget = std::size_t(p.count) * std::size_t(p.max_particles);
@@ -23,7 +24,8 @@ EmitterSystem::EmitterSystem(const Scene& scene, const std::string& gpu_mode) {
   }
   if (total == 0) return;
   // One decision for the zone, from the scene's whole particle budget: on for big batches only.
-  opencl_ = gpu::selectBackend(gpu_mode, total) == gpu::Backend::OpenCl;
+  opencl_ = gpu::chooseBackend(gpu::parseGpuMode(gpu_mode), gpu::Workload::Particles, total,
+                               gpu::openClAvailable(), thresholds) == gpu::Backend::OpenCl;
   backend_ = gpu::backendName(opencl_ ? gpu::Backend::OpenCl : gpu::Backend::Cpu);
 }
 

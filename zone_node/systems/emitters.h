@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "common/scene.h"
+#include "gpu/offload.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::gpu {
@@ -22,8 +23,10 @@ namespace zonesim::zone {
 
 class EmitterSystem {
  public:
-  /// gpu_mode is "on", "off" or "auto" (see gpu/backend.h).
-  EmitterSystem(const Scene& scene, const std::string& gpu_mode);
+  /// gpu_mode is "on", "off" or "auto" (see gpu/backend.h); auto offloads from the particle
+  /// threshold, which every rank must share (zone_node/cluster/offload_agreement.h).
+  EmitterSystem(const Scene& scene, const std::string& gpu_mode,
+                const gpu::OffloadThresholds& thresholds);
   ~EmitterSystem();
 
   /// Emits for every emitter in the store and integrates all particles; returns particles alive.

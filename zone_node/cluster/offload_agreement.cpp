@@ -1,0 +1,34 @@
+#include "zone_node/cluster/offload_agreement.h"
+
+#include <cstdint>
+#include <string>
+
+#include "common/log.h"
+#include "gpu/default_runtime.h"
+#include "gpu/gpu_error.h"
+#include "gpu/offload_probe.h"
+
+namespace zonesim::zone {
+
+gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  gpu::OffloadThresholds t = gpu::defaultThresholds();
+  if (rank == 0 && probe && gpu::openClAvailable()) {
+    try {
+      t = gpu::calibrateThresholds(gpu::defaultRuntime());
+      auto from = [](std::size_t n) {
+        return n == gpu::kNeverOffload ? std::string("never") : "from " + std::to_string(n);
+      };
+      ZS_INFO("offload probe on rank 0: particles %s, boids %s, crowd %s",
+              from(t.particles).c_str(), from(t.boids).c_str(), from(t.crowd).c_str());
+    } catch (const gpu::GpuError& e) {
+      ZS_WARN("offload probe failed (%s); using the default thresholds", e.what());
+    }
+  }
+  std::uint64_t wire[3] = {t.particles, t.boids, t.crowd};
+  MPI_Bcast(wire, 3, MPI_UINT64_T, 0, comm);
+  return {std::size_t(wire[0]), std::size_t(wire[1]), std::size_t(wire[2])};
+}
+
+}  // namespace zonesim::zone

@@ -1,0 +1,18 @@
+#pragma once
+// One --gpu auto decision for the whole cluster. The start-up probe (gpu/offload_probe.h) times
+// kernels on the CPU and the device; timings differ from rank to rank, and ranks that chose
+// differently would integrate the same particles in float on one and double on another. So
+// rank 0 alone probes and broadcasts its thresholds; every rank then decides from the same
+// numbers.
+
+#include <mpi.h>
+
+#include "gpu/offload.h"
+
+namespace zonesim::zone {
+
+/// The thresholds every rank uses: probed on rank 0 when `probe` (and a device exists there),
+/// else gpu::defaultThresholds(); collective.
+gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe);
+
+}  // namespace zonesim::zone
