@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # The main job: a local cluster of 4 zone ranks, one gateway and one client_stub with 32 players
 # on scenes/demo.yaml for about 20 s, then the handoff/bandwidth report (printed and report.json).
-# Usage: deploy/demo.sh [RUN_DIR]   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS)
+# Usage: deploy/demo.sh [RUN_DIR]
+#   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS, ZONESIM_DEMO_SCENE)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
 SECONDS_RUN="${ZONESIM_DEMO_SECONDS:-20}"
 PLAYERS="${ZONESIM_DEMO_PLAYERS:-32}"
-SCENE="$ZONESIM_ROOT/scenes/demo.yaml"
+SCENE="${ZONESIM_DEMO_SCENE:-$ZONESIM_ROOT/scenes/demo.yaml}"
 RUN_DIR="$(realpath -m "${1:-$ZONESIM_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}")"
 BIN="$BUILD_DIR/bin"
 mkdir -p "$RUN_DIR"

@@ -25,6 +25,8 @@ struct TickCounters {
   std::uint64_t inputs_duplicate = 0;
   std::uint64_t inputs_forwarded = 0;
   std::uint64_t inputs_unroutable = 0;
+  std::uint64_t inputs_skipped = 0;  ///< sequence numbers that never arrived (gaps given up on)
+  std::uint64_t inputs_held = 0;     ///< arrived ahead of a missing number: held to apply in order
   std::uint64_t avatars_spawned = 0;
   std::uint64_t entities_destroyed = 0;
   std::uint64_t rebalances = 0;
@@ -61,6 +63,8 @@ inline constexpr CounterField kCounterFields[] = {
     {"inputs_duplicate", &TickCounters::inputs_duplicate, false},
     {"inputs_forwarded", &TickCounters::inputs_forwarded, false},
     {"inputs_unroutable", &TickCounters::inputs_unroutable, false},
+    {"inputs_skipped", &TickCounters::inputs_skipped, false},
+    {"inputs_held", &TickCounters::inputs_held, false},
     {"avatars_spawned", &TickCounters::avatars_spawned, false},
     {"entities_destroyed", &TickCounters::entities_destroyed, false},
     {"rebalances", &TickCounters::rebalances, false},

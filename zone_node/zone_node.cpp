@@ -93,6 +93,7 @@ void ZoneNode::tick() {
   profile_ = {};
   counters_ = {};
   leavers_.clear();
+  handoff_latency_ticks_.clear();
   std::int64_t cpu0 = threadCpuNs();
   timed(Phase::Input, &ZoneNode::input);
   timed(Phase::Ai, &ZoneNode::ai);
@@ -119,11 +120,13 @@ void ZoneNode::timed(Phase phase, void (ZoneNode::*run)()) {
 void ZoneNode::input() {
   for (const ForwardedInput& f : forwarded_in_) applyInput(f.player_id, f.seq, f.move_x, f.move_z);
   forwarded_in_.clear();
-  if (!link_) return;
-  for (const SpawnRequestMsg& s : link_->takeSpawnRequests()) spawnAvatar(s.player_id, s.x, s.z);
-  for (std::uint64_t player : link_->takeDespawnRequests()) despawnAvatar(player);
-  for (const PlayerInputMsg& in : link_->takeInputs())
-    applyInput(in.player_id, in.seq, in.move_x, in.move_z);
+  if (link_) {
+    for (const SpawnRequestMsg& s : link_->takeSpawnRequests()) spawnAvatar(s.player_id, s.x, s.z);
+    for (std::uint64_t player : link_->takeDespawnRequests()) despawnAvatar(player);
+    for (const PlayerInputMsg& in : link_->takeInputs())
+      applyInput(in.player_id, in.seq, in.move_x, in.move_z);
+  }
+  releaseHeldInputs();
 }
 
 void ZoneNode::spawnAvatar(std::uint64_t player_id, double x, double z) {
@@ -182,10 +185,22 @@ void ZoneNode::applyInput(std::uint64_t player_id, std::uint32_t seq, float move
       ++counters_.inputs_duplicate;  // already applied (e.g. forwarded copy): exactly once
       return;
     }
+    // Ahead of a missing number (typically the forwarded input the old owner still holds after
+    // a handoff): held until the gap fills or kInputHoldTicks pass, so inputs apply in order.
+    if (a.last_input_seq != 0 && seq > a.last_input_seq + 1) {
+      if (held_inputs_[player_id].try_emplace(seq, HeldInput{move_x, move_z, tick_}).second)
+        ++counters_.inputs_held;
+      return;
+    }
     a.last_input_seq = seq;
     a.move_x = move_x;
     a.move_z = move_z;
     ++counters_.inputs_applied;
+    auto started = handoff_started_.find(player_id);
+    if (started != handoff_started_.end()) {
+      handoff_latency_ticks_.push_back(tick_ - started->second);
+      handoff_started_.erase(started);
+    }
     return;
   }
   auto gone = departed_players_.find(player_id);
@@ -195,6 +210,27 @@ void ZoneNode::applyInput(std::uint64_t player_id, std::uint32_t seq, float move
     return;
   }
   ++counters_.inputs_unroutable;
+}
+
+void ZoneNode::releaseHeldInputs() {
+  for (auto player = held_inputs_.begin(); player != held_inputs_.end();) {
+    std::map<std::uint32_t, HeldInput>& held = player->second;
+    std::optional<std::size_t> i = store_.avatarOf(player->first);
+    while (!held.empty()) {
+      auto [seq, in] = *held.begin();
+      if (i) {
+        AvatarData& a = store_.avatar[*i];
+        if (seq > a.last_input_seq + 1) {
+          if (tick_ - in.since_tick < kInputHoldTicks) break;      // the gap may still fill
+          counters_.inputs_skipped += seq - a.last_input_seq - 1;  // it did not: never arrived
+          a.last_input_seq = seq - 1;
+        }
+      }
+      held.erase(held.begin());
+      applyInput(player->first, seq, in.move_x, in.move_z);  // here, or forwarded if it left
+    }
+    player = held.empty() ? held_inputs_.erase(player) : std::next(player);
+  }
 }
 
 void ZoneNode::ai() {
@@ -244,6 +280,7 @@ void ZoneNode::migrate() {
       continue;
     }
     ++counters_.handoffs_in;
+    handoff_started_[av.player_id] = tick_;
     if (link_)
       link_->announce(
           {av.player_id, store_.id[a.index].value, a.from_rank, rank_, tick_, av.last_input_seq});

@@ -63,6 +63,8 @@ class ZoneNode {
   int rank() const { return rank_; }
   int size() const { return size_; }
   std::uint64_t tickCount() const { return tick_; }
+  /// Wall seconds per tick when running in real time (1 / tick rate).
+  double tickSeconds() const { return 1.0 / scene_.tick_rate; }
   const ZoneLayout& layout() const { return layout_; }
   const EntityStore& store() const { return store_; }
   const TickProfile& profile() const { return profile_; }
@@ -70,6 +72,9 @@ class ZoneNode {
   /// Read-only copies of the neighbours' entities within the halo (refreshed every tick).
   const GhostStore& ghosts() const { return halo_.ghosts(); }
   const ConservationTally& conservation() const { return conservation_; }
+  /// Handoffs completed this tick: ticks from the avatar's arrival at this zone (the tick it
+  /// crossed the border) to the first input applied here.
+  const std::vector<std::uint64_t>& handoffLatencyTicks() const { return handoff_latency_ticks_; }
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
   std::string particleBackend() const;
   /// The last checkpoint folder written ("" if none).
@@ -92,6 +97,8 @@ class ZoneNode {
 
   void spawnAvatar(std::uint64_t player_id, double x, double z);
   void applyInput(std::uint64_t player_id, std::uint32_t seq, float move_x, float move_z);
+  /// Applies held inputs whose turn has come, or whose gap has waited kInputHoldTicks.
+  void releaseHeldInputs();
   void despawnAvatar(std::uint64_t player_id);
   void destroyAt(std::size_t index);
 
@@ -132,6 +139,14 @@ class ZoneNode {
   std::unordered_map<std::uint64_t, int> departed_players_;  // player -> rank its avatar went to
   std::unordered_set<std::uint64_t> known_players_;          // every spawn request seen
   std::unordered_set<std::uint64_t> despawned_players_;      // every despawn request seen
+  struct HeldInput {
+    float move_x, move_z;
+    std::uint64_t since_tick;
+  };
+  static constexpr std::uint64_t kInputHoldTicks = 3;  // a forwarded input lags by one tick
+  std::map<std::uint64_t, std::map<std::uint32_t, HeldInput>> held_inputs_;  // player -> seq
+  std::unordered_map<std::uint64_t, std::uint64_t> handoff_started_;  // player -> arrival tick
+  std::vector<std::uint64_t> handoff_latency_ticks_;                  // completed this tick
 };
 
 }  // namespace zonesim::zone

@@ -10,6 +10,8 @@ void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWr
   tick_ms_.push_back(tick_seconds * 1e3);
   const TickProfile& p = zone.profile();
   for (std::size_t i = 0; i < kPhaseCount; ++i) phase_totals_.seconds[i] += p.seconds[i];
+  for (std::uint64_t t : zone.handoffLatencyTicks())
+    handoff_latency_ms_.push_back(double(t) * zone.tickSeconds() * 1e3);
   const TickCounters& c = zone.counters();
   for (const CounterField& f : kCounterFields)
     totals_.*f.field = f.gauge ? c.*f.field : totals_.*f.field + c.*f.field;
@@ -42,6 +44,15 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.add("conservation_checks", zone.conservation().checks);
   s.add("conservation_failures", zone.conservation().failures);
   s.add("particle_backend", zone.particleBackend());
+  s.add("handoffs_timed", std::uint64_t(handoff_latency_ms_.size()));
+  if (!handoff_latency_ms_.empty()) {
+    s.add("handoff_latency_ms_p50", percentile(handoff_latency_ms_, 50))
+        .add("handoff_latency_ms_p99", percentile(handoff_latency_ms_, 99))
+        .add("handoff_latency_ms_max", percentile(handoff_latency_ms_, 100));
+    std::string all;  // every sample, for distributions over many runs
+    for (double ms : handoff_latency_ms_) all += (all.empty() ? "" : ",") + std::to_string(ms);
+    s.addRaw("handoff_latency_ms", "[" + all + "]");
+  }
   return s.str();
 }
 

@@ -26,6 +26,7 @@ class ZoneReport {
   std::vector<double> tick_ms_;
   TickProfile phase_totals_;
   TickCounters totals_;  // event counters summed; gauges hold their last value
+  std::vector<double> handoff_latency_ms_;
 };
 
 }  // namespace zonesim::zone
