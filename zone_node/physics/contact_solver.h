@@ -62,9 +62,14 @@ struct SolverSettings {
   /// keeps the explicit spring and its damper stable.
   double penalty_rate_fraction = 0.08;
   double penalty_damping_ratio = 0.7;  ///< Penalty: damping ratio of the contact spring.
-  /// Soft step: contact spring frequency, capped at a quarter of the sub-step rate (the
-  /// default asks for the cap: 75 Hz at 1/60 s and 10 iterations).
+  /// Soft step: contact spring frequency, capped at contact_rate_fraction of the sub-step
+  /// rate (the default asks for the cap: 75 Hz at 1/60 s and 10 iterations).
   double contact_hertz = 1000.0;
+  /// Soft step: the cap on body-body contact springs as a fraction of the sub-step rate.
+  /// Stiffer means less sag but a narrower stable margin (docs/physics.md, soft_step_sweep).
+  double contact_rate_fraction = 0.25;
+  /// Soft step: the same cap for contacts with a static or kinematic body.
+  double static_contact_rate_fraction = 0.25;
   /// Soft step: contact spring damping ratio (heavily overdamped: no bounce from the spring).
   double contact_damping_ratio = 10.0;
   /// Soft step: the fastest the spring may push overlapping bodies apart (m/s).
@@ -119,8 +124,9 @@ class ContactSolver {
   /// Soft step: one pass over every contact with the separations moved by each body's
   /// displacement dp and small rotation dtheta since prepare. use_bias: soft spring pass
   /// (pushes overlap out), else rigid relax pass (removes the push velocity).
+  /// soft_static is the spring of contacts with a body of zero inverse mass.
   void solveSoft(BodyStorage& bodies, std::span<const Vec3> dp, std::span<const Vec3> dtheta,
-                 const Softness& soft, bool use_bias, double inv_h);
+                 const Softness& soft, const Softness& soft_static, bool use_bias, double inv_h);
   /// Soft step: applies the restitution targets once after the sub-steps.
   void applyRestitution(BodyStorage& bodies);
   /// Pseudo angular velocity of body i from the last solvePositions.

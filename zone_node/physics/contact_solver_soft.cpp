@@ -36,14 +36,15 @@ inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, d
 }  // namespace
 
 void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
-                              std::span<const Vec3> dtheta, const Softness& soft, bool use_bias,
-                              double inv_h) {
+                              std::span<const Vec3> dtheta, const Softness& soft,
+                              const Softness& soft_static, bool use_bias, double inv_h) {
   auto& v = bodies.linear_velocity;
   auto& w = bodies.angular_velocity;
   const double max_push = settings_.max_push_velocity;
   for (const Constraint& k : constraints_) {
     // Separation moves with the relative displacement of the anchors (small-angle rotation).
     const double moved = k.n.dot(dp[k.b] - dp[k.a]);
+    const Softness& spring = (k.ma == 0.0 || k.mb == 0.0) ? soft_static : soft;
     for (int i = 0; i < k.count; ++i) {
       NormalPoint& p = normal_[k.first + i];
       const double s = -p.depth + moved + p.row.cb.dot(dtheta[k.b]) - p.row.ca.dot(dtheta[k.a]);
@@ -52,9 +53,9 @@ void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
         bias = s * inv_h;  // Speculative: may close the gap within this sub-step.
       } else if (use_bias) {
         // No slop: the soft spring's own static deflection already keeps contacts alive.
-        bias = std::max(soft.bias_rate * s, -max_push);
-        mass_scale = soft.mass_scale;
-        impulse_scale = soft.impulse_scale;
+        bias = std::max(spring.bias_rate * s, -max_push);
+        mass_scale = spring.mass_scale;
+        impulse_scale = spring.impulse_scale;
       }
       const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
       const double old = p.jn;

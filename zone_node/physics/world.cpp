@@ -326,14 +326,16 @@ void World::solveSoftStep(double dt) {
   const SolverSettings& ss = settings_.solver;
   // Stiffer than a quarter of the sub-step rate goes unstable in Gauss-Seidel (measured: a
   // 20-box column falls at half); the sag of a soft contact is g / omega^2 per supported box.
-  const double hertz = std::min(ss.contact_hertz, 0.25 / h);
+  const double hertz = std::min(ss.contact_hertz, ss.contact_rate_fraction / h);
   const Softness soft = makeSoftness(hertz, ss.contact_damping_ratio, h);
+  const double static_hertz = std::min(ss.contact_hertz, ss.static_contact_rate_fraction / h);
+  const Softness soft_static = makeSoftness(static_hertz, ss.contact_damping_ratio, h);
   const int relax_passes = std::max(1, ss.position_iterations);
   warmStartJoints();
   for (int sub = 0; sub < n_sub; ++sub) {
     for (std::size_t i = 0; i < n; ++i) bodies_.linear_velocity[i] += soft_dv_[i];
     solver_.warmStart(bodies_);
-    solver_.solveSoft(bodies_, soft_dp_, soft_dtheta_, soft, true, 1.0 / h);
+    solver_.solveSoft(bodies_, soft_dp_, soft_dtheta_, soft, soft_static, true, 1.0 / h);
     iterateJoints();
     for (std::size_t i = 0; i < n; ++i) {
       soft_dp_[i] += h * bodies_.linear_velocity[i];
@@ -342,7 +344,7 @@ void World::solveSoftStep(double dt) {
     // The position iterations are spent as relax passes: one leaves a light body squeezed
     // under a heavy one rocking (a 100:1 pair walks 0.38 m in 30 s), two hold it (0.9 mm).
     for (int r = 0; r < relax_passes; ++r) {
-      solver_.solveSoft(bodies_, soft_dp_, soft_dtheta_, soft, false, 1.0 / h);
+      solver_.solveSoft(bodies_, soft_dp_, soft_dtheta_, soft, soft_static, false, 1.0 / h);
       iterateJoints();
     }
   }
