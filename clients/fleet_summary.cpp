@@ -1,6 +1,7 @@
 #include "clients/fleet_summary.h"
 
 #include "common/stats.h"
+#include "common/timer.h"
 
 namespace zonesim::clients {
 
@@ -19,6 +20,8 @@ void addSum(PlayerCounters& t, const PlayerCounters& c, bool samples) {
   t.hellos += c.hellos;
   t.inputs += c.inputs;
   t.send_failures += c.send_failures;
+  t.duplicates += c.duplicates;
+  t.stale_lifecycle += c.stale_lifecycle;
   for (std::size_t r = 0; r < std::size_t(gateway::DropReason::Count); ++r)
     t.drops.add(gateway::DropReason(r), c.drops[gateway::DropReason(r)]);
   if (!samples) return;
@@ -45,6 +48,8 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("handoffs", c.handoffs)
       .add("inputs", c.inputs)
       .add("dropped", c.drops.total())
+      .add("duplicates", c.duplicates)
+      .add("stale_lifecycle", c.stale_lifecycle)
       .add("rtt_ms_p50", percentile(c.rtt_ms.samples(), 50))
       .add("rtt_ms_p99", percentile(c.rtt_ms.samples(), 99))
       .add("dr_error_m_p50", percentile(c.dr_error_m.samples(), 50))
@@ -59,7 +64,9 @@ std::string clientJson(const SimPlayer& p, double s) {
       .add("welcomed", p.welcomed() ? 1 : 0)
       .add("welcome_ms", p.welcomed() ? p.welcomeSeconds() * 1e3 : -1.0);
   addTraffic(j, p.counters(), s);
-  j.add("visible_entities", std::uint64_t(p.view().size()));
+  j.add("visible_entities", std::uint64_t(p.view().size()))
+      .add("ghosts", std::uint64_t(p.ghosts(nowNs())))
+      .add("unspawned", std::uint64_t(p.unspawned()));
   return j.str();
 }
 

@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
     cfg.player.seed = seed;
     cfg.player.impairment = impair;
     cfg.player.blend = !snap;
+    cfg.player.stale_after_s = scene.dead_reckoning.heartbeat_seconds + 1.0;
     cfg.players = players > 0 ? players : scene.clients.players;
     cfg.duration_s = duration;
     if (!metrics_dir.empty()) {

@@ -48,8 +48,9 @@ std::optional<double> RemoteView::update(const dr::WireEntity& e, double now) {
   auto it = entities_.find(e.id);
   if (it == entities_.end()) return std::nullopt;
   Remote& r = it->second;
-  // A resent or reordered older state must not replace a newer one.
-  if (e.tick < r.latest.tick) return std::nullopt;
+  // A resent or reordered older state must not replace a newer one, and a repeat of the held
+  // sample (resent because its ack was late) is no news: no correction, no new blend.
+  if (e.tick <= r.latest.tick) return std::nullopt;
   dr::V3 before = shownPosition(r, now);
   dr::V3 before_vel = modelVelocity(r.latest, now);
   r.latest = e;

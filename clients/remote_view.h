@@ -33,7 +33,7 @@ class RemoteView {
   /// Adds (or replaces) an entity from a Spawn; now is the estimated server tick (fractional).
   void spawn(const dr::WireEntity& e, double now);
   /// Applies an update; returns the distance between where the entity was shown and where the
-  /// new model puts it now (the correction), or nullopt if unknown or older than what is held.
+  /// new model puts it now (the correction), or nullopt if unknown or not newer than what is held.
   std::optional<double> update(const dr::WireEntity& e, double now);
   /// Removes an entity; false if it was not known.
   bool despawn(std::uint64_t id);

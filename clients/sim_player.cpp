@@ -67,7 +67,7 @@ std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
     if (next_input_ns_ <= now_ns) next_input_ns_ = now_ns + input_period_ns_;
   }
   if (now_ns >= next_ping_ns_) {
-    send(gateway::encodePing(token_, std::uint64_t(now_ns / 1000)));
+    send(gateway::encodePing(token_, std::uint64_t(now_ns / 1000), acks_.ack(), acks_.bits()));
     next_ping_ns_ = now_ns + seconds(config_.ping_every_s);
   }
   return std::min(next_input_ns_, next_ping_ns_);
@@ -101,7 +101,7 @@ void SimPlayer::sendInput(std::int64_t now_ns) {
   // Until the avatar's own state arrives the player does not know where it is: stand still.
   if (auto self = view_.predicted(avatar_id_, serverTick(now_ns)))
     m = wander_.step(self->x, self->z, double(now_ns - start_ns_) * 1e-9);
-  send(gateway::encodeInput(token_, ++seq_, m.x, m.z));
+  send(gateway::encodeInput(token_, ++seq_, m.x, m.z, acks_.ack(), acks_.bits()));
   ++counters_.inputs;
 }
 
@@ -172,29 +172,88 @@ void SimPlayer::onWelcome(const proto::Datagram& d, std::int64_t now_ns) {
   next_ping_ns_ = now_ns;
 }
 
+bool SimPlayer::fresh(std::uint32_t seq) {
+  if (seq == 0) return true;  // an unnumbered datagram (an older gateway): no acks, no dedup
+  if (acks_.receive(seq)) return true;
+  ++counters_.duplicates;
+  return false;
+}
+
+bool SimPlayer::newerLifecycle(std::uint64_t id, std::uint32_t seq) {
+  auto [it, inserted] = lifecycle_.try_emplace(id, seq);
+  if (inserted) return true;
+  if (seq != 0 && seq < it->second) {
+    ++counters_.stale_lifecycle;
+    return false;
+  }
+  it->second = seq;
+  return true;
+}
+
+std::size_t SimPlayer::ghosts(std::int64_t now_ns) const {
+  double limit = serverTick(now_ns) - config_.stale_after_s * tick_rate_;
+  std::size_t n = 0;
+  view_.forEach([&](std::uint64_t id, const dr::WireEntity& e) {
+    if (id != avatar_id_ && double(e.tick) < limit) ++n;
+  });
+  return n;
+}
+
+std::size_t SimPlayer::unspawned() const {
+  std::size_t n = 0;
+  for (const auto& [id, u] : unknown_) n += u.last_ns - u.first_ns > 1'000'000'000 ? 1 : 0;
+  return n;
+}
+
 void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
   switch (d.msg_type()) {
     case proto::Message::Spawn: {
       const proto::Spawn* m = d.msg_as_Spawn();
+      if (!fresh(m->seq())) return;
       auto got = unpack(m->server_tick(), m->count(), m->packed(), now_ns);
       if (!got) return;
-      for (const dr::WireEntity& e : *got) view_.spawn(e, serverTick(now_ns));
-      counters_.spawns += got->size();
+      for (const dr::WireEntity& e : *got) {
+        if (!newerLifecycle(e.id, m->seq())) continue;
+        unknown_.erase(e.id);
+        // A resent spawn of an entity already shown is its newest state: blend, do not jump.
+        if (view_.find(e.id) != nullptr)
+          view_.update(e, serverTick(now_ns));
+        else
+          view_.spawn(e, serverTick(now_ns));
+        ++counters_.spawns;
+      }
       return;
     }
     case proto::Message::StateBatch: {
       const proto::StateBatch* m = d.msg_as_StateBatch();
+      if (!fresh(m->seq())) return;
       auto got = unpack(m->server_tick(), m->count(), m->packed(), now_ns);
       if (!got) return;
       for (const dr::WireEntity& e : *got) {
-        if (auto err = view_.update(e, serverTick(now_ns))) counters_.dr_error_m.add(*err);
+        if (auto err = view_.update(e, serverTick(now_ns))) {
+          counters_.dr_error_m.add(*err);
+        } else if (view_.find(e.id) == nullptr) {
+          // Updated after its last despawn here: the gateway thinks we know it.
+          auto l = lifecycle_.find(e.id);
+          if (l == lifecycle_.end() || l->second < m->seq()) {
+            auto [u, _] = unknown_.try_emplace(e.id, Unknown{now_ns, now_ns});
+            u->second.last_ns = now_ns;
+          }
+        }
         ++counters_.updates;
       }
       return;
     }
-    case proto::Message::Despawn:
-      for (std::uint64_t id : *d.msg_as_Despawn()->ids()) counters_.despawns += view_.despawn(id);
+    case proto::Message::Despawn: {
+      const proto::Despawn* m = d.msg_as_Despawn();
+      if (!fresh(m->seq())) return;
+      for (std::uint64_t id : *m->ids()) {
+        if (!newerLifecycle(id, m->seq())) continue;
+        unknown_.erase(id);
+        counters_.despawns += view_.despawn(id);
+      }
       return;
+    }
     case proto::Message::Handoff:
       zone_ = d.msg_as_Handoff()->to_zone();
       ++counters_.handoffs;

@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "clients/remote_view.h"
 #include "clients/reservoir.h"
 #include "clients/wander.h"
 #include "common/scene.h"
+#include "gateway/ack_window.h"
 #include "gateway/impairment.h"
 #include "gateway/udp_socket.h"
 #include "gateway/wire_encode.h"
@@ -36,6 +38,8 @@ struct PlayerConfig {
   gateway::ImpairmentSettings impairment;  ///< loss / delay / reordering injected here
   bool blend = true;      ///< projective velocity blending of corrections; false: snap
   double blend_s = 0.25;  ///< blend time, seconds
+  double stale_after_s =
+      6;  ///< a known entity silent this long is counted a ghost (heartbeat + margin)
 };
 
 /// What one player counted.
@@ -43,6 +47,7 @@ struct PlayerCounters {
   std::uint64_t datagrams_in = 0, bytes_in = 0, datagrams_out = 0, bytes_out = 0;
   std::uint64_t updates = 0, spawns = 0, despawns = 0, handoffs = 0, pongs = 0;
   std::uint64_t hellos = 0, inputs = 0, send_failures = 0;
+  std::uint64_t duplicates = 0, stale_lifecycle = 0;  ///< datagrams seen twice; old spawn/despawn
   DropCounters drops;
   Reservoir rtt_ms;      ///< round trips, one per Pong
   Reservoir dr_error_m;  ///< correction seen at each update of a known entity
@@ -78,6 +83,14 @@ class SimPlayer {
   /// The codec announced in the Welcome (nullptr before).
   const dr::StateCodec* codec() const { return codec_ ? &*codec_ : nullptr; }
 
+  /// Known entities with no state for stale_after_s: ghosts of lost despawns.
+  std::size_t ghosts(std::int64_t now_ns) const;
+  /// Entities the gateway keeps updating that the player was never spawned for (lost spawns),
+  /// counted when updates kept coming for over a second without a Spawn.
+  std::size_t unspawned() const;
+  /// The acknowledgement window of gateway datagrams.
+  const gateway::AckWindow& acks() const { return acks_; }
+
   /// Handles one datagram from `from` (public so tests can feed crafted bytes).
   void handle(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns);
 
@@ -87,6 +100,10 @@ class SimPlayer {
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
   void onMessage(const proto::Datagram& d, std::int64_t now_ns);
+  /// Whether a numbered datagram is new (acknowledging it); false for a duplicate.
+  bool fresh(std::uint32_t seq);
+  /// Whether a spawn or despawn in datagram seq is newer than the last one applied to id.
+  bool newerLifecycle(std::uint64_t id, std::uint32_t seq);
   /// Unpacks states; nullopt (counted as out of range) if the stream is bad.
   std::optional<std::vector<dr::WireEntity>> unpack(std::uint64_t server_tick, std::uint16_t count,
                                                     const flatbuffers::Vector<std::uint8_t>* bytes,
@@ -109,6 +126,14 @@ class SimPlayer {
   double clock_tick_ = -1;  // newest server tick heard of, and when
   std::int64_t clock_ns_ = 0;
   PlayerCounters counters_;
+  gateway::AckWindow acks_;
+  // Per entity, the seq of the last Spawn or Despawn applied: a resent or reordered older one
+  // must not bring back a despawned entity or remove a respawned one.
+  std::unordered_map<std::uint64_t, std::uint32_t> lifecycle_;
+  struct Unknown {
+    std::int64_t first_ns, last_ns;
+  };
+  std::unordered_map<std::uint64_t, Unknown> unknown_;  // updated but not spawned here
   std::vector<std::uint8_t> rx_buffer_;
 };
 

@@ -58,9 +58,12 @@ void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint
   s->traffic.bytes_in += bytes.size();
   switch (d.msg_type()) {
     case proto::Message::Input:
+      // The ack is good even when the input itself is a stale duplicate.
+      s->resend.onAck(d.msg_as_Input()->ack(), d.msg_as_Input()->ack_bits(), now_ns);
       onInput(*d.msg_as_Input(), *s, out);
       return;
     case proto::Message::Ping:
+      s->resend.onAck(d.msg_as_Ping()->ack(), d.msg_as_Ping()->ack_bits(), now_ns);
       out.replies.push_back(
           {from, s->token, encodePong(s->token, d.msg_as_Ping()->client_time_us(), wallTimeUs())});
       ++accepted_;

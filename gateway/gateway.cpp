@@ -282,11 +282,43 @@ void Gateway::sendViews(std::int64_t now_ns) {
     at.self = s.avatar_id;
     at.sim_now = sim_now;
     ViewDiff diff = s.view.diff(selectVisible(cache_, grid_, at, s.view));
-    if (!diff.empty()) sendView(s, diff, sim_now);
+    if (config_.resend) addResends(s, diff, now_ns);
+    if (!diff.empty()) sendView(s, diff, now_ns);
   });
 }
 
-void Gateway::sendView(Session& s, const ViewDiff& diff, double /*sim_now*/) {
+void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {
+  ResendDue due = s.resend.due(now_ns);
+  std::size_t before = diff.spawns.size() + diff.updates.size() + diff.despawns.size();
+  auto merge = [](std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& more) {
+    into.insert(into.end(), more.begin(), more.end());
+    std::sort(into.begin(), into.end());
+    into.erase(std::unique(into.begin(), into.end()), into.end());
+  };
+  // Resends carry the newest state; only what the view still holds (or no longer holds, for a
+  // despawn) is worth sending: a newer spawn or despawn of the same id supersedes it.
+  auto keep = [&](const std::vector<std::uint64_t>& ids, bool known) {
+    std::vector<std::uint64_t> out;
+    for (std::uint64_t id : ids)
+      if (s.view.knows(id) == known && (!known || cache_.find(id) != nullptr)) out.push_back(id);
+    return out;
+  };
+  // A state of an entity whose spawn is unacknowledged goes as a Spawn: the client may not
+  // know it yet and would drop a bare update.
+  std::vector<std::uint64_t> plain, as_spawn;
+  for (std::uint64_t id : diff.updates)
+    (s.resend.spawnPending(id) ? as_spawn : plain).push_back(id);
+  diff.updates = std::move(plain);
+  merge(diff.spawns, as_spawn);
+  merge(diff.spawns, keep(due.spawns, true));
+  merge(diff.updates, keep(due.updates, true));
+  merge(diff.despawns, keep(due.despawns, false));
+  std::size_t after = diff.spawns.size() + diff.updates.size() + diff.despawns.size();
+  s.traffic.resent += after - before;
+  counters_.resent += after - before;
+}
+
+void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   // States go out as the zones sampled them, with their tick: the client runs the same model
   // from the same state, so nothing is extrapolated here.
   auto states = [&](const std::vector<std::uint64_t>& ids) {
@@ -301,10 +333,33 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, double /*sim_now*/) {
     for (const dr::WireEntity& e : v) t = std::max(t, e.tick);
     return t;
   };
+  // Every datagram gets the session's next seq (consecutive within one encoding); the tracker
+  // learns which ids each one held.
+  std::vector<std::size_t> counts;
+  ChunkSeq seq{[](void* t) { return static_cast<ResendTracker*>(t)->nextSeq(); }, &s.resend,
+               &counts};
+  auto send = [&](std::uint32_t first, const std::vector<Bytes>& chunks,
+                  const std::vector<std::uint64_t>& ids, Carried what) {
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < chunks.size(); ++i) {
+      sendTo(s, chunks[i]);
+      if (config_.resend)
+        s.resend.sent(first + std::uint32_t(i), std::span(ids).subspan(at, counts[i]), what,
+                      now_ns);
+      at += counts[i];
+    }
+    counts.clear();
+  };
   std::vector<dr::WireEntity> spawns = states(diff.spawns), updates = states(diff.updates);
-  for (const Bytes& b : encodeDespawnChunks(s.token, tick, diff.despawns)) sendTo(s, b);
-  for (const Bytes& b : encodeSpawnChunks(s.token, newest(spawns), codec_, spawns)) sendTo(s, b);
-  for (const Bytes& b : encodeStateChunks(s.token, newest(updates), codec_, updates)) sendTo(s, b);
+  std::uint32_t first = s.resend.upcoming();
+  send(first, encodeDespawnChunks(s.token, tick, diff.despawns, seq), diff.despawns,
+       Carried::Despawn);
+  first = s.resend.upcoming();
+  send(first, encodeSpawnChunks(s.token, newest(spawns), codec_, spawns, seq), diff.spawns,
+       Carried::Spawn);
+  first = s.resend.upcoming();
+  send(first, encodeStateChunks(s.token, newest(updates), codec_, updates, seq), diff.updates,
+       Carried::Update);
   s.traffic.despawns_sent += diff.despawns.size();
   s.traffic.spawns_sent += diff.spawns.size();
   s.traffic.updates_sent += diff.updates.size();

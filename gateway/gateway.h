@@ -40,6 +40,8 @@ struct GatewayConfig {
   double handoff_grace_s = 0;     ///< leave grace; 0 = two zone ticks, at least 50 ms
   std::string metrics_path;       ///< gateway.jsonl; empty = no metrics
   ImpairmentSettings impairment;  ///< loss / delay / reordering injected on the UDP side
+  bool resend =
+      true;  ///< resend unacknowledged spawns, states and despawns (false: for comparison)
 };
 
 class Gateway {
@@ -65,7 +67,9 @@ class Gateway {
   void updateInterest(std::int64_t now_ns);
   void applyCellDelta(const CellDelta& delta);
   void sendViews(std::int64_t now_ns);
-  void sendView(Session& s, const ViewDiff& diff, double sim_now);
+  /// Adds to diff what the client has not acknowledged within the timeout.
+  void addResends(Session& s, ViewDiff& diff, std::int64_t now_ns);
+  void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
   void sendTo(Session& s, const Bytes& bytes);
   void sendTo(const Endpoint& to, const Bytes& bytes);
   void closeSession(SlotHandle h, bool expired);

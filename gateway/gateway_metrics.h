@@ -17,6 +17,7 @@ struct GatewayCounters {
   std::uint64_t datagrams_in = 0, bytes_in = 0;
   std::uint64_t datagrams_out = 0, bytes_out = 0, send_failures = 0;
   std::uint64_t updates_forwarded = 0, spawns_sent = 0, despawns_sent = 0;
+  std::uint64_t resent = 0, acks_received = 0;
   std::uint64_t inputs_forwarded = 0, input_write_failures = 0;
   std::uint64_t spawn_requests = 0, welcomes = 0, handoffs = 0;
   std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;

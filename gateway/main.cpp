@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
   app.add_option("--session-timeout", cfg.session_timeout_s, "close sessions silent this long (s)")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-sessions", cfg.max_sessions, "refuse Hellos beyond this many sessions");
+  app.add_flag("!--no-resend", cfg.resend,
+               "never resend unacknowledged updates, spawns, despawns (for comparison)");
   app.add_option("--inject-loss", cfg.impairment.loss, "drop this fraction of datagrams (testing)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--inject-delay-ms", cfg.impairment.delay_ms, "delay outgoing datagrams (testing)")

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "common/generational_pool.h"
+#include "gateway/ack_window.h"
 #include "gateway/client_view.h"
 #include "gateway/udp_socket.h"
 
@@ -20,6 +21,7 @@ struct SessionTraffic {
   std::uint64_t datagrams_out = 0, bytes_out = 0;
   std::uint64_t updates_sent = 0, spawns_sent = 0, despawns_sent = 0;
   std::uint64_t inputs_forwarded = 0, handoffs = 0;
+  std::uint64_t resent = 0;  ///< spawns, states and despawns sent again for want of an ack
 };
 
 /// One player connected through this gateway.
@@ -36,6 +38,7 @@ struct Session {
   double spawn_x = 0, spawn_z = 0;   ///< where the avatar was requested (interest until it shows)
   std::int64_t created_ns = 0, last_heard_ns = 0;
   ClientView view;           ///< what the client has been sent
+  ResendTracker resend;      ///< what of it the client has not acknowledged yet
   double rate_tokens = -1;   ///< per-client rate limit bucket; < 0: not started (full)
   std::int64_t rate_ns = 0;  ///< when the bucket was last refilled
   SessionTraffic traffic;

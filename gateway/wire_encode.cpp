@@ -39,14 +39,18 @@ Bytes encodeHello(std::uint64_t client_nonce, std::string_view name) {
   return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n));
 }
 
-Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z) {
+Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
+                  std::uint32_t ack, std::uint32_t ack_bits) {
   flatbuffers::FlatBufferBuilder fbb(96);
-  return finish(fbb, token, proto::Message::Input, proto::CreateInput(fbb, seq, move_x, move_z));
+  return finish(fbb, token, proto::Message::Input,
+                proto::CreateInput(fbb, seq, move_x, move_z, ack, ack_bits));
 }
 
-Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us) {
+Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack,
+                 std::uint32_t ack_bits) {
   flatbuffers::FlatBufferBuilder fbb(96);
-  return finish(fbb, token, proto::Message::Ping, proto::CreatePing(fbb, client_time_us));
+  return finish(fbb, token, proto::Message::Ping,
+                proto::CreatePing(fbb, client_time_us, ack, ack_bits));
 }
 
 Bytes encodeBye(std::uint64_t token) {
@@ -105,13 +109,14 @@ namespace {
 template <typename Create>
 std::vector<Bytes> packed(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
                           std::span<const dr::WireEntity> states, proto::Message type,
-                          Create create) {
+                          const ChunkSeq& seq, Create create) {
   std::vector<Bytes> out;
   flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
   for (const dr::PackedChunk& c : codec.pack(states, tick, kPackedBytesPerDatagram)) {
     fbb.Clear();
     auto v = fbb.CreateVector(c.bytes.data(), c.bytes.size());
-    out.push_back(finish(fbb, token, type, create(fbb, std::uint16_t(c.count), v)));
+    out.push_back(finish(fbb, token, type, create(fbb, std::uint16_t(c.count), v, seq.take())));
+    if (seq.counts != nullptr) seq.counts->push_back(c.count);
   }
   return out;
 }
@@ -119,25 +124,29 @@ std::vector<Bytes> packed(std::uint64_t token, std::uint64_t tick, const dr::Sta
 
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
-                                     std::span<const dr::WireEntity> states) {
-  return packed(
-      token, tick, codec, states, proto::Message::StateBatch,
-      [&](auto& fbb, std::uint16_t n, auto v) { return proto::CreateStateBatch(fbb, tick, n, v); });
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq) {
+  return packed(token, tick, codec, states, proto::Message::StateBatch, seq,
+                [&](auto& fbb, std::uint16_t n, auto v, std::uint32_t q) {
+                  return proto::CreateStateBatch(fbb, tick, n, v, q);
+                });
 }
 
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
-                                     std::span<const dr::WireEntity> states) {
-  return packed(
-      token, tick, codec, states, proto::Message::Spawn,
-      [&](auto& fbb, std::uint16_t n, auto v) { return proto::CreateSpawn(fbb, tick, n, v); });
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq) {
+  return packed(token, tick, codec, states, proto::Message::Spawn, seq,
+                [&](auto& fbb, std::uint16_t n, auto v, std::uint32_t q) {
+                  return proto::CreateSpawn(fbb, tick, n, v, q);
+                });
 }
 
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
-                                       std::span<const std::uint64_t> ids) {
+                                       std::span<const std::uint64_t> ids, ChunkSeq seq) {
   return chunked(ids, kIdsPerDatagram, [&](auto& fbb, auto run) {
     auto v = fbb.CreateVector(run.data(), run.size());
-    return finish(fbb, token, proto::Message::Despawn, proto::CreateDespawn(fbb, tick, v));
+    if (seq.counts != nullptr) seq.counts->push_back(run.size());
+    return finish(fbb, token, proto::Message::Despawn,
+                  proto::CreateDespawn(fbb, tick, v, seq.take()));
   });
 }
 

@@ -51,24 +51,37 @@ struct HandoffInfo {
 };
 
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name);
-Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z);
-Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us);
+/// ack / ack_bits: the client's acknowledgement of gateway datagrams (gateway/ack_window.h).
+Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
+                  std::uint32_t ack = 0, std::uint32_t ack_bits = 0);
+/// ack / ack_bits as in encodeInput.
+Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack = 0,
+                 std::uint32_t ack_bits = 0);
 Bytes encodeBye(std::uint64_t token);
 /// The Datagram's token is the new session token too, so the client can check it.
 Bytes encodeWelcome(const WelcomeInfo& w);
 Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
 
+/// Sequence numbering of a run of chunks: chunk i gets seq next() (0 = unnumbered), and
+/// counts (if given) receives how many entities each chunk holds.
+struct ChunkSeq {
+  std::uint32_t (*next)(void*) = nullptr;
+  void* ctx = nullptr;
+  std::vector<std::size_t>* counts = nullptr;
+  std::uint32_t take() const { return next != nullptr ? next(ctx) : 0; }
+};
+
 /// StateBatch datagrams carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
-                                     std::span<const dr::WireEntity> states);
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq = {});
 /// Spawn datagrams carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
-                                     std::span<const dr::WireEntity> states);
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq = {});
 /// Despawn datagrams carrying all ids, kIdsPerDatagram per datagram, in order.
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
-                                       std::span<const std::uint64_t> ids);
+                                       std::span<const std::uint64_t> ids, ChunkSeq seq = {});
 
 }  // namespace zonesim::gateway

@@ -46,6 +46,7 @@ TEST(RemoteView, SnappingShowsTheNewModelAtOnce) {
   EXPECT_NEAR(*err, 1.0, 1e-9);
   EXPECT_NEAR(v.shown(1, 10)->x, 2, 1e-12);
   EXPECT_FALSE(v.update(state(1, 5, 0, 0, 0, 0), 10)) << "an older state never replaces a newer";
+  EXPECT_FALSE(v.update(state(1, 10, 2, 0, 1, 0), 10)) << "a repeat of the held sample is ignored";
   EXPECT_FALSE(v.update(state(9, 10, 0, 0, 0, 0), 10)) << "unknown entities are not invented";
   EXPECT_EQ(v.size(), 1u);
   EXPECT_TRUE(v.despawn(1));

@@ -188,5 +188,60 @@ TEST_F(SimPlayerTest, SpawnUpdateDespawnAndHandoffAreCounted) {
   EXPECT_NEAR(std::hypot(in->move_x(), in->move_z()), 1.0, 1e-3);
 }
 
+// Numbered datagrams as a resending gateway sends them.
+std::uint32_t counter(void* n) {
+  return ++*static_cast<std::uint32_t*>(n);
+}
+
+TEST_F(SimPlayerTest, DuplicatesAndStaleLifecycleAreIgnoredAndAcked) {
+  std::uint64_t token = welcome();
+  std::uint32_t seq = 0;
+  gateway::ChunkSeq numbered{counter, &seq};
+  std::vector<dr::WireEntity> one{state(5, 1)};
+  Bytes spawn = gateway::encodeSpawnChunks(token, 1, codec(), one, numbered)[0];  // seq 1
+  std::vector<std::uint64_t> gone{5};
+  Bytes despawn = gateway::encodeDespawnChunks(token, 2, gone, numbered)[0];  // seq 2
+  toPlayer(spawn);
+  toPlayer(spawn);  // a duplicate
+  EXPECT_EQ(player_->counters().duplicates, 1u);
+  EXPECT_EQ(player_->counters().spawns, 1u);
+  toPlayer(despawn);
+  EXPECT_EQ(player_->view().size(), 0u);
+  // The spawn resent in a later datagram than the despawn, but built before it: stale.
+  seq = 0;
+  Bytes late = gateway::encodeSpawnChunks(token, 1, codec(), one, numbered)[0];  // seq 1 again
+  Bytes resent_old = late;
+  toPlayer(resent_old);
+  EXPECT_EQ(player_->view().size(), 0u) << "no ghost: the despawn (seq 2) is newer";
+  // A respawn (seq 3) brings it back; the old despawn replayed after it does not remove it.
+  seq = 2;
+  toPlayer(gateway::encodeSpawnChunks(token, 3, codec(), one, numbered)[0]);
+  EXPECT_EQ(player_->view().size(), 1u);
+  seq = 1;
+  toPlayer(gateway::encodeDespawnChunks(token, 2, gone, numbered)[0]);  // seq 2, duplicate
+  EXPECT_EQ(player_->view().size(), 1u);
+  EXPECT_EQ(player_->acks().ack(), 3u);
+  EXPECT_EQ(player_->acks().bits(), 0b11u);
+  // The acks ride on the next input.
+  player_->act(nowNs());
+  const proto::Datagram* d = fromPlayer();
+  while (d && d->msg_type() != proto::Message::Input) d = fromPlayer();
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->msg_as_Input()->ack(), 3u);
+  EXPECT_EQ(d->msg_as_Input()->ack_bits(), 0b11u);
+}
+
+TEST_F(SimPlayerTest, UpdatesOfAnUnspawnedEntityAreNoticed) {
+  std::uint64_t token = welcome();
+  std::uint32_t seq = 0;
+  gateway::ChunkSeq numbered{counter, &seq};
+  std::vector<dr::WireEntity> one{state(9, 1)};
+  toPlayer(gateway::encodeStateChunks(token, 1, codec(), one, numbered)[0]);
+  EXPECT_EQ(player_->view().size(), 0u);
+  toPlayer(gateway::encodeSpawnChunks(token, 2, codec(), one, numbered)[0]);
+  EXPECT_EQ(player_->view().size(), 1u);
+  EXPECT_EQ(player_->unspawned(), 0u) << "a spawn settles it";
+}
+
 }  // namespace
 }  // namespace zonesim::clients
