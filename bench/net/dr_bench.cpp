@@ -40,6 +40,9 @@ struct Config {
   double orientation_deg = 3;
   bool blend = true;
   double loss = 0;
+  /// Resend-until-acknowledged (gateway/ack_window.h): a lost update, or one whose ack was
+  /// lost, is sent again with the newest state after this timeout; 0 = never resent.
+  double resend_rto_s = 0;
   double radius = 100;
 };
 
@@ -120,6 +123,18 @@ Result run(const Config& c, double seconds) {
   for (std::size_t i = 0; i < store.size(); ++i)
     if (store.kind[i] == zone::EntityKind::Avatar) observers.push_back(int(i));
   std::vector<dr::WireEntity> sent, batch;
+  // Resend bookkeeping per entity: the newest state sent, and when to send it again (-1: acked).
+  std::vector<dr::WireEntity> last(store.size());
+  std::vector<int> resend_at(store.size(), -1);
+  const int rto_ticks = std::max(1, int(std::lround(c.resend_rto_s / scene.dt)));
+  // One delivery over the lossy link: the state reaches the client unless lost; the sender
+  // hears of it unless the ack is lost too, and otherwise schedules a resend.
+  auto deliver = [&](std::size_t i, const dr::WireEntity& w, int tick) {
+    bool lost = c.loss > 0 && loss.uniform(0, 1) < c.loss;
+    if (!lost) view.update(w, double(tick));
+    bool ack_lost = c.resend_rto_s > 0 && loss.uniform(0, 1) < c.loss;
+    resend_at[i] = c.resend_rto_s > 0 && (lost || ack_lost) ? tick + rto_ticks : -1;
+  };
   std::vector<std::vector<char>> known(observers.size(), std::vector<char>(store.size(), 0));
   for (int tick = 0; tick < ticks; ++tick) {
     double t = tick * scene.dt;
@@ -140,8 +155,13 @@ Result run(const Config& c, double seconds) {
       int cell = grid.cellOf(store.pos[i].x(), store.pos[i].z());
       zone::DeadReckoningState& d = store.dr[i];
       bool first = d.cell < 0;
-      if (!first && reckoner.due(d, store.id[i], store.kind[i], truth, t) == dr::Due::None)
+      if (!first && reckoner.due(d, store.id[i], store.kind[i], truth, t) == dr::Due::None) {
+        if (resend_at[i] == tick) {  // unacknowledged: the newest state again
+          sent.push_back(last[i]);
+          deliver(i, last[i], tick);
+        }
         continue;
+      }
       d.cell = cell;
       dr::WireEntity w;
       w.id = store.id[i].value;
@@ -153,10 +173,11 @@ Result run(const Config& c, double seconds) {
       zone::DeadReckoner::markSent(d, w.state, t);
       sent.push_back(w);
       // The client; spawns are reliable, updates may be lost.
+      last[i] = w;
       if (first)
         view.spawn(w, double(tick));
-      else if (!(c.loss > 0 && loss.uniform(0, 1) < c.loss))
-        view.update(w, double(tick));
+      else
+        deliver(i, w, tick);
     }
     if (tick < warmup) continue;
     updates += double(sent.size());
@@ -233,9 +254,11 @@ const char* orderName(DeadReckoningModel::Order o) {
 int main(int argc, char** argv) {
   double seconds = 60;
   std::string csv_path;
+  std::vector<std::string> only;  // --only SET (repeatable): run just these sets
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
     if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv_path = argv[++i];
+    if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only.push_back(argv[++i]);
   }
   std::vector<Config> configs;
   using O = DeadReckoningModel::Order;
@@ -268,6 +291,11 @@ int main(int argc, char** argv) {
   c.loss = 0.1;
   configs.push_back(c);
   c = base;
+  c.name = "loss10r";
+  c.loss = 0.1;
+  c.resend_rto_s = 0.1;  // RTT (loopback plus a 30 Hz tick) + the 50 ms between acks
+  configs.push_back(c);
+  c = base;
   c.name = "hb1s";
   c.heartbeat = 1;
   c.loss = 0.1;
@@ -278,6 +306,10 @@ int main(int argc, char** argv) {
     c.radius = radius;
     configs.push_back(c);
   }
+  if (!only.empty())
+    std::erase_if(configs, [&](const Config& c) {
+      return std::find(only.begin(), only.end(), c.name) == only.end();
+    });
   FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
   if (csv)
     std::fprintf(csv,
