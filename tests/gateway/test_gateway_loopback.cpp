@@ -50,9 +50,11 @@ class GatewayLoopback : public ::testing::Test {
   }
 
   // Plays client and zone until the client has its Welcome, both entities and a StateBatch.
+  // The client acknowledges what it received, as client_stub does: until its spawns are
+  // acknowledged the gateway sends the entities' states as Spawns, not StateBatches.
   std::uint64_t handshakeAndFirstState() {
     std::uint64_t token = 0;
-    std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0;
+    std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0, next_ack = 0;
     while (nowNs() < deadline && !(token && spawned_avatar_ && spawned_npc_ && got_batch_)) {
       if (token == 0 && nowNs() >= next_hello) {
         client_.sendTo(gateway_addr_, encodeHello(99, "tester"));
@@ -61,6 +63,10 @@ class GatewayLoopback : public ::testing::Test {
       if (nowNs() >= next_tick) {
         zoneTick();
         next_tick = nowNs() + 33'000'000;
+      }
+      if (token != 0 && nowNs() >= next_ack) {
+        client_.sendTo(gateway_addr_, encodePing(token, 1, acks_.ack(), acks_.bits()));
+        next_ack = nowNs() + 50'000'000;
       }
       if (const proto::Datagram* d = receive()) observe(*d, token);
     }
@@ -95,6 +101,7 @@ class GatewayLoopback : public ::testing::Test {
       }
       case proto::Message::Spawn: {
         const proto::Spawn* m = d.msg_as_Spawn();
+        acks_.receive(m->seq());
         ASSERT_TRUE(codec_.has_value());
         auto got = codec_->unpack(std::span(m->packed()->data(), m->packed()->size()), m->count(),
                                   m->server_tick());
@@ -106,6 +113,7 @@ class GatewayLoopback : public ::testing::Test {
         break;
       }
       case proto::Message::StateBatch:
+        acks_.receive(d.msg_as_StateBatch()->seq());
         got_batch_ = true;
         break;
       default:
@@ -131,6 +139,7 @@ class GatewayLoopback : public ::testing::Test {
   float spawn_x_ = 0, spawn_z_ = 0;
   bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
   std::optional<dr::StateCodec> codec_;
+  AckWindow acks_;
   std::unique_ptr<Gateway> gateway_;
   std::unique_ptr<testing::ZoneEmulator> zone_;
   std::atomic<bool> stop_{false};
