@@ -1,5 +1,8 @@
 """Zones, a gateway and a client_stub for a few seconds: players get welcomed, receive updates,
-and at least one avatar changes zone, with the handoff seen by zones and clients alike."""
+and at least one avatar changes zone, with the handoff seen by zones and clients alike.
+With the argument `balancing`, the zones also move their boundaries every 15 ticks (any
+imbalance at all starts a move), so handoff and interest must keep working while they move."""
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -8,6 +11,7 @@ import harness as h
 
 SCENE = h.SOURCE_DIR / "scenes/test_e2e.yaml"
 CLIENT_SECONDS = 8
+BALANCING = "balancing" in sys.argv[1:]
 
 with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
     out = Path(tmp)
@@ -15,8 +19,9 @@ with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
     env = h.base_env()
     # The zones run until stopped: on a slow machine a fixed duration could end them before the
     # players' goodbyes (and the avatars' removal) went through.
+    balance = ["--balance-every", 15, "--balance-threshold", 1.0] if BALANCING else []
     zones = h.start(h.mpirun(4, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 600,
-                             "--realtime", "--metrics", out, "--dds-domain", domain),
+                             "--realtime", "--metrics", out, "--dds-domain", domain, *balance),
                     out / "zones.log", env)
     gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file", out / "port",
                        "--dds-domain", domain, "--metrics", out], out / "gateway.log", env)
@@ -49,6 +54,9 @@ with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
     h.check(handoffs >= 1, f"at least one avatar changed zone ({handoffs})")
     h.check(sum(c.get("handoffs", 0) for c in clients) >= 1, "clients were told of a handoff")
     h.check(sum(z["inputs_applied"] for z in zone_summaries) > 0, "zones applied player inputs")
+    if BALANCING:
+        moves = max(z["rebalances"] for z in zone_summaries)
+        h.check(moves >= 3, f"the zone boundaries moved while players played ({moves} times)")
     skipped = sum(z.get("inputs_skipped", 0) for z in zone_summaries)
     h.check(skipped == 0, f"no input sequence number was skipped across handoffs ({skipped})")
     timed = sum(z.get("handoffs_timed", 0) for z in zone_summaries)
