@@ -24,8 +24,8 @@ SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64
       next_ping_ns_(INT64_MAX),
       input_period_ns_(std::max<std::int64_t>(1, seconds(1.0 / config.input_hz))),
       wander_(config.world, config.retarget_seconds, config.seed, index),
-      rx_buffer_(gateway::kMaxDatagramBytes + 1),
-      impairment_(config.impairment, index) {
+      impairment_(config.impairment, index),
+      rx_buffer_(gateway::kMaxDatagramBytes + 1) {
   if (nonce_ == 0) nonce_ = 1;
 }
 

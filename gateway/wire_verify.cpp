@@ -16,9 +16,6 @@ bool finite(float v) {
 bool coordinate(float v) {
   return finite(v) && std::fabs(v) <= kMaxCoordinate;
 }
-bool speed(float v) {
-  return finite(v) && std::fabs(v) <= kMaxSpeed;
-}
 bool position(const proto::Vec3f& p) {
   return coordinate(p.x()) && coordinate(p.y()) && coordinate(p.z());
 }
