@@ -220,7 +220,9 @@ namespace {
 // nothing crashes (run under the sanitizers this also checks no out-of-bounds read).
 TEST(HandlerFuzz, CorruptedDatagramsAreAcceptedOrCountedNeverFatal) {
   SessionTable sessions(1, 8);
-  DatagramHandler handler(sessions, HandlerConfig{{{0, 0, 0}, {10, 10, 10}}, 30, 1});
+  HandlerConfig config;
+  config.world = {{0, 0, 0}, {10, 10, 10}};
+  DatagramHandler handler(sessions, config);
   Pcg32 rng(2024, 1);
   std::vector<Bytes> seeds{encodeHello(5, "fuzz"), encodeInput(7, 3, 0.5f, 0.5f), encodePing(7, 1),
                            encodeBye(7)};
