@@ -118,5 +118,35 @@ TEST(NeighbourGrid, OwnedPlusGhostSplitsMatchTheWholeFlockBitwise) {
   EXPECT_EQ(byId(whole), byId(split));
 }
 
+TEST(NeighbourGrid, HaloOfTheNeighbourRadiusIsEnoughForBitwiseSplits) {
+  // As a zone's halo does: each side sees only the other's agents within the neighbour radius
+  // of the split line. The line is off the cell boundaries (as zone borders are), so cells near
+  // it hold fewer agents than on one rank (those farther out are missing), which must not
+  // change any sum.
+  auto whole = randomAgents(1200, 12.0, 13);
+  auto split = whole;
+  const FlockSettings settings{};
+  const double line = 1.3, halo = settings.neighbourRadius;
+  Flock single{settings}, left{settings}, right{settings};
+  for (int s = 0; s < 20; ++s) {
+    single.step(whole.span(), {}, 1.0 / 30);
+    test::AgentArrays l, r, lGhost, rGhost;
+    for (std::size_t i = 0; i < split.ids.size(); ++i) {
+      double x = split.pos[i].x;
+      bool isLeft = x < line;
+      (isLeft ? l : r).add(split.ids[i], split.pos[i], split.vel[i]);
+      if (!isLeft && x < line + halo) lGhost.add(split.ids[i], split.pos[i], split.vel[i]);
+      if (isLeft && x >= line - halo) rGhost.add(split.ids[i], split.pos[i], split.vel[i]);
+    }
+    left.step(l.span(), lGhost.ghosts(), 1.0 / 30);
+    right.step(r.span(), rGhost.ghosts(), 1.0 / 30);
+    split = test::AgentArrays{};
+    for (auto* part : {&r, &l})
+      for (std::size_t i = 0; i < part->ids.size(); ++i)
+        split.add(part->ids[i], part->pos[i], part->vel[i]);
+  }
+  EXPECT_EQ(byId(whole), byId(split));
+}
+
 }  // namespace
 }  // namespace zonesim::crowd

@@ -45,10 +45,13 @@ void accumulateScalar(const NeighbourGrid& g, std::int32_t begin, std::int32_t e
 }
 
 #else
-// Two candidates per instruction (SSE2 is part of x86-64). Lanes are assigned by position
-// from the start of each row, so the summation order is still fixed by positions and ids.
-// In-range masks replace branches: about a third of the candidates from the cells fall
-// outside the radius, unpredictably.
+// Two candidates per instruction (SSE2 is part of x86-64) for the distances and terms; the
+// terms are then added one lane after the other into scalar sums (the low lanes), so a sum is
+// the sequential sum over the in-range neighbours in canonical order. Out-of-range candidates
+// add exact zeros. Summing per lane instead would pair candidates by their position in the
+// row, which shifts when a cell holds agents out of range that another rank's halo leaves out
+// (a zone run then differs from a single rank in the last bit). In-range masks replace
+// branches: about a third of the candidates from the cells fall outside the radius.
 struct Lanes {
   __m128d count = _mm_setzero_pd(), vx = _mm_setzero_pd(), vy = _mm_setzero_pd();
   __m128d rx = _mm_setzero_pd(), ry = _mm_setzero_pd(), sx = _mm_setzero_pd();
@@ -56,17 +59,22 @@ struct Lanes {
   int coincident = 0;
 };
 
+// acc + c[0] + c[1], in that order, in the low lane.
+inline __m128d addInOrder(__m128d acc, __m128d c) {
+  return _mm_add_sd(_mm_add_sd(acc, c), _mm_unpackhi_pd(c, c));
+}
+
 inline void accumulatePair(__m128d x, __m128d y, __m128d vx, __m128d vy, __m128d lanes, __m128d px,
                            __m128d py, __m128d nr2, __m128d sr, Lanes& a) {
   const __m128d one = _mm_set1_pd(1.0);
   __m128d dx = _mm_sub_pd(x, px), dy = _mm_sub_pd(y, py);
   __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
   __m128d in = _mm_and_pd(_mm_cmplt_pd(d2, nr2), lanes);
-  a.count = _mm_add_pd(a.count, _mm_and_pd(in, one));
-  a.vx = _mm_add_pd(a.vx, _mm_and_pd(in, vx));
-  a.vy = _mm_add_pd(a.vy, _mm_and_pd(in, vy));
-  a.rx = _mm_add_pd(a.rx, _mm_and_pd(in, dx));
-  a.ry = _mm_add_pd(a.ry, _mm_and_pd(in, dy));
+  a.count = addInOrder(a.count, _mm_and_pd(in, one));
+  a.vx = addInOrder(a.vx, _mm_and_pd(in, vx));
+  a.vy = addInOrder(a.vy, _mm_and_pd(in, vy));
+  a.rx = addInOrder(a.rx, _mm_and_pd(in, dx));
+  a.ry = addInOrder(a.ry, _mm_and_pd(in, dy));
   __m128d close = _mm_and_pd(_mm_cmplt_pd(d2, _mm_mul_pd(sr, sr)), lanes);
   if (_mm_movemask_pd(close)) {
     __m128d zero = _mm_cmple_pd(d2, _mm_set1_pd(1e-18));
@@ -75,15 +83,15 @@ inline void accumulatePair(__m128d x, __m128d y, __m128d vx, __m128d vy, __m128d
     __m128d d = _mm_sqrt_pd(_mm_or_pd(d2, _mm_and_pd(zero, one)));  // no sqrt(0) / 0
     __m128d w = _mm_div_pd(_mm_sub_pd(_mm_div_pd(sr, d), one), d);
     w = _mm_and_pd(push, w);
-    a.sx = _mm_sub_pd(a.sx, _mm_mul_pd(dx, w));
-    a.sy = _mm_sub_pd(a.sy, _mm_mul_pd(dy, w));
+    // Subtracting dx * w: adding its negation (exact) in lane order.
+    const __m128d sign = _mm_set1_pd(-0.0);
+    a.sx = addInOrder(a.sx, _mm_xor_pd(_mm_mul_pd(dx, w), sign));
+    a.sy = addInOrder(a.sy, _mm_xor_pd(_mm_mul_pd(dy, w), sign));
   }
 }
 
-double sumLanes(__m128d v) {
-  alignas(16) double t[2];
-  _mm_store_pd(t, v);
-  return t[0] + t[1];
+double lowLane(__m128d v) {
+  return _mm_cvtsd_f64(v);  // the sums run in the low lane; the high one is unused
 }
 #endif
 
@@ -105,10 +113,10 @@ NeighbourSums neighbourSums(const NeighbourGrid& g, Vec2 p, double nr, double sr
       accumulatePair(_mm_load_sd(g.xs() + k), _mm_load_sd(g.ys() + k), _mm_load_sd(g.vxs() + k),
                      _mm_load_sd(g.vys() + k), low, px, py, nr2v, srv, a);
   });
-  s.count = sumLanes(a.count);
-  s.vel = Vec2{sumLanes(a.vx), sumLanes(a.vy)};
-  s.rel = Vec2{sumLanes(a.rx), sumLanes(a.ry)};
-  s.sep = Vec2{sumLanes(a.sx), sumLanes(a.sy)};
+  s.count = lowLane(a.count);
+  s.vel = Vec2{lowLane(a.vx), lowLane(a.vy)};
+  s.rel = Vec2{lowLane(a.rx), lowLane(a.ry)};
+  s.sep = Vec2{lowLane(a.sx), lowLane(a.sy)};
   s.coincident = a.coincident;
 #else
   g.forEachRowNear(p, nr, [&](std::int32_t begin, std::int32_t end) {
