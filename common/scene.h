@@ -29,7 +29,19 @@ struct ZoneLayout {
   int rows = 1;     ///< zones along z
 };
 
-/// Walking NPCs wandering between random waypoints.
+/// Reynolds flocking for an NPC population (zone_node/crowd/flock.h, docs/crowd.md).
+struct NpcFlock {
+  bool enabled = false;            ///< the population flocks instead of wandering
+  double radius = 3.0;             ///< m: alignment and cohesion see neighbours this close
+  double separation_radius = 1.0;  ///< m: pushed apart closer than this
+  double separation_weight = 20;   ///< 1/s^2 per unit of (radius / distance - 1)
+  double alignment_weight = 1.0;   ///< 1/s: velocity follows the neighbours' mean velocity
+  double cohesion_weight = 0.5;    ///< 1/s^2: pull toward the neighbours' centre
+  double max_speed = 2.0;          ///< m/s
+  double max_force = 8.0;          ///< m/s^2, bound on the steering acceleration
+};
+
+/// Walking NPCs wandering between random waypoints, or flocking (`flock`).
 struct NpcPopulation {
   int count = 0;
   double min_speed = 1.0;  ///< m/s, each NPC draws its top speed in [min, max]
@@ -46,6 +58,7 @@ struct NpcPopulation {
   struct Gather {
     double x = 0, z = 0, radius = 0, start_s = 0, end_s = 0;
   } gather;
+  NpcFlock flock;  ///< flocking instead of waypoints when enabled
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).

@@ -70,9 +70,41 @@ SceneBox readRegion(const SceneMap& population, const SceneBox& world) {
   return box;
 }
 
+// Flocking NPCs steer by their neighbours instead of waypoints (docs/crowd.md).
+void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p) {
+  if (!population.optional("flock")) return;
+  if (population.optional("separation")) {
+    population.failAt("separation", "a flocking population separates through flock.separation");
+  }
+  if (population.optional("gather")) {
+    population.failAt("gather", "a flocking population follows its flock, not waypoints");
+  }
+  NpcFlock& f = p.flock;
+  f.enabled = true;
+  SceneMap m = population.section(
+      "flock", {"radius", "separation", "alignment", "cohesion", "max_speed", "max_force"});
+  m.read("radius", f.radius, Limit::above(0));
+  m.read("alignment", f.alignment_weight, Limit::atLeast(0));
+  m.read("cohesion", f.cohesion_weight, Limit::atLeast(0));
+  m.read("max_speed", f.max_speed, Limit::above(0));
+  m.read("max_force", f.max_force, Limit::above(0));
+  SceneMap sep = m.section("separation", {"radius", "weight"});
+  sep.read("radius", f.separation_radius, Limit::atLeast(0));
+  sep.read("weight", f.separation_weight, Limit::atLeast(0));
+  // Flockers across a border are seen through the halo; it must reach as far as they look.
+  if (f.radius > scene.halo_width) {
+    m.failAt("radius", formatNumber(f.radius) + " m is wider than halo.width (" +
+                           formatNumber(scene.halo_width) + " m)");
+  }
+  if (f.separation_radius > f.radius) {
+    sep.failAt("radius", formatNumber(f.separation_radius) +
+                             " m is wider than flock.radius: neighbours beyond it are not seen");
+  }
+}
+
 void readNpcs(const SceneNode& node, Scene& scene) {
   SceneMap m = node.map({"kind", "count", "speed", "acceleration", "waypoint_radius",
-                         "arrive_distance", "region", "separation", "gather"});
+                         "arrive_distance", "region", "separation", "gather", "flock"});
   NpcPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
@@ -102,6 +134,7 @@ void readNpcs(const SceneNode& node, Scene& scene) {
     sep.failAt("radius", formatNumber(p.separation_radius) + " m is wider than halo.width (" +
                              formatNumber(scene.halo_width) + " m)");
   }
+  readFlock(m, scene, p);
   scene.npcs.push_back(p);
 }
 

@@ -47,7 +47,8 @@ Vec3 nextWaypoint(const Scene& scene, const Vec3& from, double radius, std::uint
 void forEachInitialEntity(const Scene& scene,
                           const std::function<void(const EntityRecordData&)>& keep) {
   std::uint64_t counter = 0;
-  for (const NpcPopulation& p : scene.npcs) {
+  for (std::size_t group = 0; group < scene.npcs.size(); ++group) {
+    const NpcPopulation& p = scene.npcs[group];
     for (int i = 0; i < p.count; ++i) {
       auto [r, rng] = nextSceneEntity(scene, EntityKind::Npc, counter);
       r.pos = uniformIn(rng, p.region, scene.world.min.y);
@@ -63,6 +64,15 @@ void forEachInitialEntity(const Scene& scene,
       r.npc.gather_end = p.gather.end_s;
       r.rng_state = rng.state();
       r.npc.waypoint = nextWaypoint(scene, r.pos, p.waypoint_radius, r.rng_state, r.id);
+      if (p.flock.enabled) {
+        // A flock starts with random headings at flocking speed; alignment orders it.
+        r.npc.flock = std::int32_t(group);
+        Pcg32 more = Pcg32::fromState(r.rng_state, r.id.value);
+        double heading = more.uniform(0.0, 2.0 * M_PI);
+        double speed = std::min(r.npc.max_speed, p.flock.max_speed);
+        r.vel = Vec3(speed * std::cos(heading), 0, speed * std::sin(heading));
+        r.rng_state = more.state();
+      }
       keep(r);
     }
   }

@@ -11,6 +11,7 @@
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
 #include "zone_node/systems/emitters.h"
+#include "zone_node/systems/flock_movement.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
 
@@ -43,7 +44,9 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
-  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_;
+  flocks_ = std::make_unique<FlockMovement>(scene);
+  // Flocks read their neighbours across borders as ghosts too.
+  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active();
   forward_.resize(std::size_t(size_));
 
   auto keepIfMine = [&](const EntityRecordData& r) {
@@ -236,6 +239,7 @@ void ZoneNode::releaseHeldInputs() {
 void ZoneNode::ai() {
   if (walker_reach_ > 0) near_.build(store_, &halo_.ghosts(), walker_reach_);
   stepNpcs(scene_, store_, near_, double(tick_) * scene_.dt, scene_.dt);
+  if (flocks_->active()) flocks_->step(store_, &halo_.ghosts(), scene_.dt);
   stepAvatars(scene_.world, store_, scene_.dt);
 }
 

@@ -29,6 +29,7 @@ class ZoneLink;
 class CellPublisher;
 class EmitterSystem;
 class RigidBodySystem;
+class FlockMovement;
 
 struct ZoneOptions {
   int dds_domain = 0;
@@ -123,6 +124,7 @@ class ZoneNode {
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;
   std::unique_ptr<RigidBodySystem> bodies_;  // created when the first body shows up
+  std::unique_ptr<FlockMovement> flocks_;    // flocking NPC populations of the scene
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

@@ -115,10 +115,27 @@ const InlineCase kInlineCases[] = {
      "6: populations[0].count: required field is missing"},
     {"key_of_other_kind", withBase("populations:\n  - kind: npc\n    count: 1\n    rate: 5\n"),
      "8: populations[0].rate: unknown key (allowed: kind, count, speed, acceleration, "
-     "waypoint_radius, arrive_distance, region, separation, gather)"},
+     "waypoint_radius, arrive_distance, region, separation, gather, flock)"},
     {"gather_outside_world",
      withBase("populations:\n  - kind: npc\n    count: 1\n    gather:\n      point: [500, 0, 5]\n"),
      "9: populations[0].gather.point: is outside the world"},
+    {"flock_beyond_halo",
+     withBase("halo:\n  width: 2\npopulations:\n  - kind: npc\n    count: 1\n    flock:\n"
+              "      radius: 3\n"),
+     "11: populations[0].flock.radius: 3 m is wider than halo.width (2 m)"},
+    {"flock_and_separation",
+     withBase("populations:\n  - kind: npc\n    count: 1\n    separation: {radius: 1}\n"
+              "    flock: {radius: 3}\n"),
+     "8: populations[0].separation: a flocking population separates through flock.separation"},
+    {"flock_and_gather",
+     withBase("populations:\n  - kind: npc\n    count: 1\n    gather: {point: [5, 0, 5]}\n"
+              "    flock: {radius: 3}\n"),
+     "8: populations[0].gather: a flocking population follows its flock, not waypoints"},
+    {"flock_separation_beyond_radius",
+     withBase("halo:\n  width: 5\npopulations:\n  - kind: npc\n    count: 1\n    flock:\n"
+              "      radius: 2\n      separation: {radius: 2.5}\n"),
+     "12: populations[0].flock.separation.radius: 2.5 m is wider than flock.radius: neighbours "
+     "beyond it are not seen"},
     {"separation_beyond_halo",
      withBase("halo:\n  width: 2\npopulations:\n  - kind: npc\n    count: 1\n    separation:\n"
               "      radius: 3\n"),

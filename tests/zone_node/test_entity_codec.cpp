@@ -18,6 +18,7 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   npc.rng_state = 0xDEADBEEFCAFEBABEULL;
   npc.npc.waypoint = Vec3(9, 0, 8);
   npc.npc.max_speed = 1.75;
+  npc.npc.flock = 2;
   EntityRecordData avatar;
   avatar.id = EntityId::make(2, 1);
   avatar.kind = EntityKind::Avatar;
@@ -38,6 +39,8 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   EXPECT_EQ(q.entities[0].rng_state, npc.rng_state);
   EXPECT_EQ(q.entities[0].npc.waypoint, npc.npc.waypoint);
   EXPECT_EQ(q.entities[0].npc.max_speed, 1.75);
+  EXPECT_EQ(q.entities[0].npc.flock, 2);
+  EXPECT_EQ(q.entities[1].npc.flock, -1);  // the default when absent from the record
   EXPECT_EQ(q.entities[1].kind, EntityKind::Avatar);
   EXPECT_EQ(q.entities[1].avatar.player_id, 555u);
   EXPECT_EQ(q.entities[1].avatar.last_input_seq, 41u);

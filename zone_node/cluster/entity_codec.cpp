@@ -36,7 +36,7 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
       npc = fb::CreateNpcState(b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius,
                                r.npc.arrive_distance, r.npc.separation_radius,
                                r.npc.separation_weight, &gp, r.npc.gather_radius,
-                               r.npc.gather_start, r.npc.gather_end, r.npc.gathering);
+                               r.npc.gather_start, r.npc.gather_end, r.npc.gathering, r.npc.flock);
       break;
     }
     case EntityKind::Avatar:
@@ -74,9 +74,19 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
   r.rot = fromFb(e.rot());
   r.rng_state = e.rng_state();
   if (const fb::NpcState* n = e.npc()) {
-    r.npc = {fromFb(n->waypoint()), n->max_speed(),       n->accel(),
-             n->waypoint_radius(),  n->arrive_distance(), n->separation_radius(),
-             n->separation_weight()};
+    r.npc.waypoint = fromFb(n->waypoint());
+    r.npc.max_speed = n->max_speed();
+    r.npc.accel = n->accel();
+    r.npc.waypoint_radius = n->waypoint_radius();
+    r.npc.arrive_distance = n->arrive_distance();
+    r.npc.separation_radius = n->separation_radius();
+    r.npc.separation_weight = n->separation_weight();
+    if (n->gather_point()) r.npc.gather_point = fromFb(n->gather_point());
+    r.npc.gather_radius = n->gather_radius();
+    r.npc.gather_start = n->gather_start();
+    r.npc.gather_end = n->gather_end();
+    r.npc.gathering = n->gathering();
+    r.npc.flock = n->flock();
   }
   if (const fb::AvatarState* a = e.avatar()) {
     r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(),

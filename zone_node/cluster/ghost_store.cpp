@@ -10,11 +10,12 @@ void GhostStore::clear() {
   rot.clear();
   body.clear();
   owner.clear();
+  flock.clear();
   index_of_.clear();
 }
 
 void GhostStore::add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, const Quat& q,
-                     const BodyData& b, int from) {
+                     const BodyData& b, int from, std::int32_t group) {
   index_of_[e.value] = id.size();
   id.push_back(e);
   kind.push_back(k);
@@ -23,6 +24,7 @@ void GhostStore::add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, con
   rot.push_back(q);
   body.push_back(b);
   owner.push_back(from);
+  flock.push_back(group);
 }
 
 std::optional<std::size_t> GhostStore::indexOf(EntityId e) const {

@@ -26,9 +26,9 @@ class GhostStore {
  public:
   std::size_t size() const { return id.size(); }
   void clear();
-  /// Appends a ghost owned by rank `owner`.
+  /// Appends a ghost owned by rank `owner`; `flock`: an NPC's flock population (-1: none).
   void add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, const Quat& q, const BodyData& b,
-           int owner);
+           int owner, std::int32_t flock = -1);
   std::optional<std::size_t> indexOf(EntityId e) const;
 
   std::vector<EntityId> id;
@@ -38,6 +38,7 @@ class GhostStore {
   std::vector<Quat> rot;
   std::vector<BodyData> body;  ///< shape and material, for rigid-body ghosts
   std::vector<int> owner;
+  std::vector<std::int32_t> flock;  ///< NPCs: population index when flocking, else -1
 
  private:
   std::unordered_map<std::uint64_t, std::size_t> index_of_;

@@ -55,7 +55,7 @@ void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near,
   desired.reserve(store.count(EntityKind::Npc));
   std::vector<Neighbour> found;
   for (std::size_t i = 0; i < store.size(); ++i) {
-    if (store.kind[i] != EntityKind::Npc) continue;
+    if (store.kind[i] != EntityKind::Npc || store.npc[i].flock >= 0) continue;  // flock_movement
     Vec3 v = wanderVelocity(scene, store, i, time);
     const NpcData& npc = store.npc[i];
     if (npc.separation_radius > 0) {

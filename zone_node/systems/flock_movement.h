@@ -1,0 +1,46 @@
+#pragma once
+// Flocking NPCs in a zone: each flocking population of the scene is one crowd::Flock. Per tick
+// its NPCs are gathered into contiguous ground-plane arrays, the ghosts of the same population
+// (other ranks' flockers within the halo) are added as read-only neighbours, the flock steps and
+// the new state is written back. The flock's sums are in a canonical order (cells, then ids),
+// so the result does not depend on the store's order or on the decomposition.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/scene.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::crowd {
+class Flock;
+}  // namespace zonesim::crowd
+
+namespace zonesim::zone {
+
+class GhostStore;
+
+/// Steps the flocking NPC populations of a scene.
+class FlockMovement {
+ public:
+  /// One flock per population of `scene` with `flock.enabled`.
+  explicit FlockMovement(const Scene& scene);
+  ~FlockMovement();
+
+  /// Whether the scene has a flocking population at all.
+  bool active() const { return !groups_.empty(); }
+  /// Widest neighbour radius of the flocks (the halo must reach this far).
+  double reach() const { return reach_; }
+
+  /// Advances every flocking NPC of `store` by `dt`, seeing same-population `ghosts`.
+  /// Returns the number of NPCs stepped.
+  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt);
+
+ private:
+  struct Group;
+  const Scene& scene_;
+  std::vector<std::unique_ptr<Group>> groups_;  // one per flocking population
+  double reach_ = 0;
+};
+
+}  // namespace zonesim::zone
