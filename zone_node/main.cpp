@@ -103,7 +103,8 @@ int run(const Options& o, MPI_Comm comm) {
   }
   std::printf("%s\n", summary.c_str());
   std::fflush(stdout);
-  if (!o.dump_state.empty()) zone::dumpState(comm, node.store(), o.dump_state);
+  if (!o.dump_state.empty())
+    zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
   return node.conservation().failures == 0 ? 0 : 3;
 }
 

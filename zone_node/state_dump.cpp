@@ -38,7 +38,8 @@ void writeLine(std::FILE* f, const EntityRecordData& e) {
 
 }  // namespace
 
-void dumpState(MPI_Comm comm, const EntityStore& store, const std::string& path) {
+void dumpState(MPI_Comm comm, const EntityStore& store,
+               const std::vector<std::array<double, 6>>& particles, const std::string& path) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -59,6 +60,21 @@ void dumpState(MPI_Comm comm, const EntityStore& store, const std::string& path)
   }
   MPI_Gatherv(bytes.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0,
               comm);
+  // Particles: six doubles each, gathered the same way.
+  int np = int(particles.size() * 6);
+  std::vector<int> pcounts(static_cast<std::size_t>(size)), pdispls(static_cast<std::size_t>(size));
+  MPI_Gather(&np, 1, MPI_INT, pcounts.data(), 1, MPI_INT, 0, comm);
+  std::vector<std::array<double, 6>> all_particles;
+  if (rank == 0) {
+    int total = 0;
+    for (int r = 0; r < size; ++r) {
+      pdispls[std::size_t(r)] = total;
+      total += pcounts[std::size_t(r)];
+    }
+    all_particles.resize(std::size_t(total) / 6);
+  }
+  MPI_Gatherv(particles.data(), np, MPI_DOUBLE, all_particles.data(), pcounts.data(),
+              pdispls.data(), MPI_DOUBLE, 0, comm);
   if (rank != 0) return;
 
   std::vector<EntityRecordData> entities;
@@ -72,6 +88,11 @@ void dumpState(MPI_Comm comm, const EntityStore& store, const std::string& path)
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   for (const EntityRecordData& e : entities) writeLine(f, e);
+  std::sort(all_particles.begin(), all_particles.end());
+  for (const auto& q : all_particles)
+    std::fprintf(
+        f, "{\"kind\":\"particle\",\"pos\":[%.17g,%.17g,%.17g],\"vel\":[%.17g,%.17g,%.17g]}\n",
+        q[0], q[1], q[2], q[3], q[4], q[5]);
   std::fclose(f);
 }
 

@@ -88,6 +88,12 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
 
 ZoneNode::~ZoneNode() = default;
 
+std::vector<std::array<double, 6>> ZoneNode::liveParticles() const {
+  std::vector<std::array<double, 6>> out;
+  emitters_->liveParticles(out);
+  return out;
+}
+
 std::string ZoneNode::particleBackend() const {
   return emitters_->backendName();
 }

@@ -4,6 +4,7 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -76,6 +77,8 @@ class ZoneNode {
   /// Handoffs completed this tick: ticks from the avatar's arrival at this zone (the tick it
   /// crossed the border) to the first input applied here.
   const std::vector<std::uint64_t>& handoffLatencyTicks() const { return handoff_latency_ticks_; }
+  /// Position and velocity of every live particle of this zone's emitters.
+  std::vector<std::array<double, 6>> liveParticles() const;
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
   std::string particleBackend() const;
   /// The last checkpoint folder written ("" if none).

@@ -73,4 +73,15 @@ std::uint64_t EmitterSystem::step(EntityStore& store, double dt) {
   return alive;
 }
 
+void EmitterSystem::liveParticles(std::vector<std::array<double, 6>>& out) const {
+  std::vector<gpu::Vec3d> pos, vel;
+  for (const auto& [medium, system] : batches_) {
+    system->readPositions(pos);
+    system->readVelocities(vel);
+    for (std::size_t i = 0; i < system->slotCount(); ++i)
+      if (system->isAlive(i))
+        out.push_back({pos[i].x, pos[i].y, pos[i].z, vel[i].x, vel[i].y, vel[i].z});
+  }
+}
+
 }  // namespace zonesim::zone

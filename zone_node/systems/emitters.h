@@ -5,11 +5,13 @@
 // they neither migrate nor get published; an emitter that leaves the zone leaves its particles
 // to die out here.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "common/scene.h"
 #include "gpu/offload.h"
@@ -31,6 +33,9 @@ class EmitterSystem {
 
   /// Emits for every emitter in the store and integrates all particles; returns particles alive.
   std::uint64_t step(EntityStore& store, double dt);
+  /// Position and velocity (x, y, z, vx, vy, vz) of every live particle, appended to out
+  /// (reads back from the device on OpenCL).
+  void liveParticles(std::vector<std::array<double, 6>>& out) const;
   /// "cpu", "opencl", or "none" when the scene has no emitters.
   std::string backendName() const;
 
