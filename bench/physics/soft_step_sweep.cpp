@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "zone_node/physics/box_column.h"
 #include "zone_node/physics/world.h"
 
 namespace {
@@ -17,32 +18,12 @@ namespace {
 using zonesim::Vec3;
 using namespace zonesim::physics;
 
-/// Largest displacement of any box of a unit-cube column (densities bottom to top).
+/// Largest displacement of any box of the shared unit-cube column (densities bottom to top).
 double columnDrift(const WorldSettings& settings, const std::vector<double>& densities,
                    double seconds) {
-  World world(settings);
-  BodyDesc floor;
-  floor.type = BodyType::Static;
-  floor.shape = Shape::box(Vec3(50, 1, 50));
-  floor.position = Vec3(0, -1, 0);
-  world.addBody(floor);
-  std::vector<Vec3> start;
-  for (std::size_t k = 0; k < densities.size(); ++k) {
-    BodyDesc box;
-    box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
-    box.position = Vec3(0, 0.5 + static_cast<double>(k), 0);
-    box.friction = 0.5;
-    box.density = densities[k];
-    world.addBody(box);
-    start.push_back(box.position);
-  }
-  const int steps = static_cast<int>(std::lround(seconds * 60.0));
-  for (int s = 0; s < steps; ++s) world.step(1.0 / 60.0);
-  double worst = 0.0;
-  for (std::size_t k = 0; k < start.size(); ++k) {
-    worst = std::max(worst, (world.bodies().position[k + 1] - start[k]).norm());
-  }
-  return worst;
+  BoxColumn column(settings, densities);
+  column.run(seconds);
+  return column.drift().total;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "zone_node/physics/box_column.h"
 #include "zone_node/physics/integrator.h"
 #include "zone_node/physics/world.h"
 
@@ -60,28 +61,13 @@ double stackDrift(int iterations, int substeps, double& ms_per_step,
   settings.solver.kind = kind;
   settings.solver.velocity_iterations = iterations;
   settings.substeps = substeps;
-  zp::World world(settings);
-  zp::BodyDesc floor;
-  floor.type = zp::BodyType::Static;
-  floor.shape = zp::Shape::box(Vec3(50, 1, 50));
-  floor.position = Vec3(0, -1, 0);
-  world.addBody(floor);
-  for (int k = 0; k < boxes; ++k) {
-    zp::BodyDesc box;
-    box.shape = zp::Shape::box(Vec3(0.5, 0.5, 0.5));
-    box.position = Vec3(0, 0.5 + k, 0);
-    world.addBody(box);
-  }
+  zp::BoxColumn column(settings, std::vector<double>(std::size_t(boxes), 1000.0));
   const auto t0 = std::chrono::steady_clock::now();
-  for (int s = 0; s < 600; ++s) world.step(1.0 / 60.0);
+  column.run(10.0);  // 600 steps
   ms_per_step =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
       600.0;
-  double drift = 0.0;
-  for (int k = 0; k < boxes; ++k) {
-    drift = std::max(drift, (world.bodies().position[k + 1] - Vec3(0, 0.5 + k, 0)).norm());
-  }
-  return drift;
+  return column.drift().total;
 }
 
 }  // namespace

@@ -8,44 +8,21 @@
 #include <cstdio>
 #include <vector>
 
+#include "rebound.h"
+#include "zone_node/physics/box_column.h"
 #include "zone_node/physics/world.h"
 
 namespace zonesim::physics {
 namespace {
 
-/// A column of unit cubes on a static floor box; densities from bottom to top.
-struct Column {
-  World world;
-  std::vector<Vec3> start;
-
-  Column(const WorldSettings& settings, const std::vector<double>& densities) : world(settings) {
-    BodyDesc floor;
-    floor.type = BodyType::Static;
-    floor.shape = Shape::box(Vec3(50, 1, 50));
-    floor.position = Vec3(0, -1, 0);
-    world.addBody(floor);
-    for (std::size_t k = 0; k < densities.size(); ++k) {
-      BodyDesc box;
-      box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
-      box.position = Vec3(0, 0.5 + static_cast<double>(k), 0);
-      box.friction = 0.5;
-      box.density = densities[k];
-      world.addBody(box);
-      start.push_back(box.position);
-    }
-  }
-  void run(double seconds) {
-    const int steps = static_cast<int>(std::lround(seconds * 60.0));
-    for (int s = 0; s < steps; ++s) world.step(1.0 / 60.0);
-  }
-  /// Largest horizontal and vertical displacement of any box from its start.
+/// The shared stack scene, with the drift read as (horizontal, vertical) like the asserts.
+struct Column : BoxColumn {
+  Column(const WorldSettings& settings, const std::vector<double>& densities)
+      : BoxColumn(settings, densities) {}
   void drift(double& horizontal, double& vertical) const {
-    horizontal = vertical = 0.0;
-    for (std::size_t k = 0; k < start.size(); ++k) {
-      const Vec3 d = world.bodies().position[k + 1] - start[k];
-      horizontal = std::max(horizontal, std::hypot(d.x(), d.z()));
-      vertical = std::max(vertical, std::abs(d.y()));
-    }
+    const Drift d = BoxColumn::drift();
+    horizontal = d.horizontal;
+    vertical = d.vertical;
   }
 };
 
@@ -118,24 +95,7 @@ TEST(SoftStep, HundredToOneMassRatioStacksHoldAtOneStep) {
 // Restitution through the soft step: the bounce is applied once after the sub-steps.
 TEST(SoftStep, RestitutionGivesTheExpectedReboundHeight) {
   const double h = 2.0, e = 0.6, r = 0.5, dt = 1.0 / 1000.0;
-  World world(withSolver(SolverKind::SoftStep));
-  BodyDesc ground;
-  ground.type = BodyType::Static;
-  ground.shape = Shape::plane();
-  ground.restitution = e;
-  world.addBody(ground);
-  BodyDesc ball;
-  ball.shape = Shape::sphere(r);
-  ball.position = Vec3(0, r + h, 0);
-  ball.restitution = e;
-  const BodyIndex i = world.addBody(ball);
-  bool bounced = false;
-  double apex = 0.0;
-  for (int step = 0; step < 2500; ++step) {
-    world.step(dt);
-    bounced = bounced || world.bodies().linear_velocity[i].y() > 0.0;
-    if (bounced) apex = std::max(apex, world.bodies().position[i].y() - r);
-  }
+  const double apex = testing::reboundApex(withSolver(SolverKind::SoftStep), h, e, r, dt);
   std::printf("soft step rebound apex %.5f m, expected %.5f m\n", apex, e * e * h);
   EXPECT_NEAR(apex / (e * e * h), 1.0, 0.02);
 }
@@ -186,8 +146,8 @@ TEST(SolverKinds, SorWithOmegaOneIsGaussSeidel) {
   Column b(withSolver(SolverKind::GaussSeidel), {1000.0, 1000.0, 1000.0});
   a.run(2.0);
   b.run(2.0);
-  for (std::size_t i = 0; i < a.world.bodies().size(); ++i) {
-    EXPECT_EQ(a.world.bodies().position[i], b.world.bodies().position[i]);
+  for (std::size_t i = 0; i < a.world().bodies().size(); ++i) {
+    EXPECT_EQ(a.world().bodies().position[i], b.world().bodies().position[i]);
   }
 }
 

@@ -7,6 +7,9 @@
 #include <cstring>
 #include <numbers>
 
+#include "rebound.h"
+#include "zone_node/physics/box_column.h"
+
 namespace zonesim::physics {
 namespace {
 
@@ -54,25 +57,7 @@ TEST(World, ElasticCollisionConservesMomentumAndEnergy) {
 TEST(World, RestitutionGivesTheExpectedReboundHeight) {
   // Dropped from h onto a plane, a ball with restitution e rises to e^2 h.
   const double h = 2.0, e = 0.6, r = 0.5, dt = 1.0 / 1000.0;
-  World world;
-  BodyDesc ground;
-  ground.type = BodyType::Static;
-  ground.shape = Shape::plane();
-  ground.restitution = e;
-  world.addBody(ground);
-  BodyDesc ball;
-  ball.shape = Shape::sphere(r);
-  ball.position = Vec3(0, r + h, 0);
-  ball.restitution = e;
-  const BodyIndex i = world.addBody(ball);
-  bool bounced = false;
-  double apex = 0.0;
-  for (int step = 0; step < 2500; ++step) {
-    world.step(dt);
-    const double vy = world.bodies().linear_velocity[i].y();
-    bounced = bounced || vy > 0.0;
-    if (bounced) apex = std::max(apex, world.bodies().position[i].y() - r);
-  }
+  const double apex = testing::reboundApex(WorldSettings{}, h, e, r, dt);
   std::printf("rebound apex %.5f m, expected %.5f m\n", apex, e * e * h);
   EXPECT_NEAR(apex / (e * e * h), 1.0, 0.01);
 }
@@ -111,36 +96,17 @@ TEST(World, BoxOnSlopeHoldsAboveTanAngleAndSlidesBelow) {
   EXPECT_NEAR(slid / (0.5 * a * 4.0), 1.0, 0.03);
 }
 
-/// A column of unit cubes on a static floor; returns the largest drift of any box after
+/// The shared column of unit cubes (BoxColumn); returns the largest drift of any box after
 /// `seconds`, and fills top_height.
 double stackDrift(int boxes, int substeps, double seconds, double& top_height) {
   WorldSettings settings;
   settings.solver.velocity_iterations = 10;
   settings.solver.position_iterations = 2;
   settings.substeps = substeps;
-  World world(settings);
-  BodyDesc floor;
-  floor.type = BodyType::Static;
-  floor.shape = Shape::box(Vec3(50, 1, 50));
-  floor.position = Vec3(0, -1, 0);
-  world.addBody(floor);
-  std::vector<Vec3> start;
-  for (int k = 0; k < boxes; ++k) {
-    BodyDesc box;
-    box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
-    box.position = Vec3(0, 0.5 + k, 0);
-    box.friction = 0.5;
-    world.addBody(box);
-    start.push_back(box.position);
-  }
-  const int steps = static_cast<int>(std::lround(seconds * 60.0));
-  for (int s = 0; s < steps; ++s) world.step(1.0 / 60.0);
-  double drift = 0.0;
-  for (int k = 0; k < boxes; ++k) {
-    drift = std::max(drift, (world.bodies().position[k + 1] - start[k]).norm());
-  }
-  top_height = world.bodies().position[boxes].y();
-  return drift;
+  BoxColumn column(settings, std::vector<double>(std::size_t(boxes), 1000.0));
+  column.run(seconds);
+  top_height = column.topHeight();
+  return column.drift().total;
 }
 
 // Honest limit: with one step per 1/60 s and 10 iterations, plain PGS propagates the weight of
