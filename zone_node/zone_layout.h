@@ -4,6 +4,8 @@
 // (recursive coordinate bisection by entity count) and at run time (load balancing by measured
 // cost). Ranks are numbered row * columns + column.
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <utility>
 #include <vector>
@@ -19,6 +21,12 @@ struct ZoneRect {
     return x >= min_x && x < max_x && z >= min_z && z < max_z;
   }
   double area() const { return (max_x - min_x) * (max_z - min_z); }
+  /// Distance on the ground plane from (x, z) to the rectangle (0 inside).
+  double distanceTo(double x, double z) const {
+    double dx = std::max({min_x - x, 0.0, x - max_x});
+    double dz = std::max({min_z - z, 0.0, z - max_z});
+    return std::sqrt(dx * dx + dz * dz);
+  }
 };
 
 class ZoneLayout {

@@ -17,30 +17,33 @@
 
 namespace zonesim::zone {
 
+namespace {
+int rankIn(MPI_Comm comm) {
+  int r = 0;
+  MPI_Comm_rank(comm, &r);
+  return r;
+}
+int sizeOf(MPI_Comm comm) {
+  int s = 1;
+  MPI_Comm_size(comm, &s);
+  return s;
+}
+}  // namespace
+
 ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options,
                    const CheckpointImage* restart)
     : scene_(scene),
       comm_(comm),
-      rank_(0),
-      size_(1),
+      rank_(rankIn(comm)),
+      size_(sizeOf(comm)),
       options_(options),
-      layout_(ZoneLayout::forRanks(scene,
-                                   [&] {
-                                     int s = 1;
-                                     MPI_Comm_size(comm, &s);
-                                     return s;
-                                   }())),
+      layout_(ZoneLayout::forRanks(scene, size_)),
       grid_(scene.world, scene.interest_cell_size),
-      ids_(0),
-      migrator_(comm, 0, 1),
+      ids_(std::uint32_t(rank_)),
+      migrator_(comm, rank_, size_),
       balancer_(comm, options.balance),
-      halo_(comm, 0, 1, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)) {
-  MPI_Comm_rank(comm_, &rank_);
-  MPI_Comm_size(comm_, &size_);
-  ids_ = EntityIdAllocator(std::uint32_t(rank_));
-  migrator_ = Migrator(comm_, rank_, size_);
-  halo_ =
-      HaloExchange(comm_, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width));
+      // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
+      halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)) {
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;

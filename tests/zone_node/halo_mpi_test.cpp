@@ -39,12 +39,6 @@ std::vector<Flat> gatherAll(const EntityStore& s) {
   return all;
 }
 
-double distanceTo(const ZoneRect& r, double x, double z) {
-  double dx = std::max({r.min_x - x, 0.0, x - r.max_x});
-  double dz = std::max({r.min_z - z, 0.0, z - r.max_z});
-  return std::sqrt(dx * dx + dz * dz);
-}
-
 class HaloTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -73,7 +67,7 @@ class HaloTest : public ::testing::Test {
     for (const Flat& f : gatherAll(store_)) {
       if (EntityId{f.id}.creatorRank() == std::uint32_t(rank_) && store_.indexOf(EntityId{f.id}))
         continue;
-      double d = distanceTo(mine, f.x, f.z);
+      double d = mine.distanceTo(f.x, f.z);
       std::optional<std::size_t> gi = g.indexOf(EntityId{f.id});
       if (d < kWidth) {
         ++within;
@@ -142,7 +136,7 @@ TEST_F(HaloTest, RebuildsWhenEntitiesComeAndGoOrBoundariesMove) {
   const GhostStore& g = halo.ghosts();
   ZoneRect mine = moved.rect(rank_);
   for (std::size_t i = 0; i < g.size(); ++i)
-    EXPECT_LT(distanceTo(mine, g.pos[i].x(), g.pos[i].z()), kWidth + kSkin);
+    EXPECT_LT(mine.distanceTo(g.pos[i].x(), g.pos[i].z()), kWidth + kSkin);
 }
 
 }  // namespace

@@ -52,13 +52,6 @@ GhostWire pack(const EntityStore& s, std::size_t i) {
   return w;
 }
 
-/// Distance on the ground plane from (x, z) to a zone rectangle (0 inside).
-double distanceTo(const ZoneRect& r, double x, double z) {
-  double dx = std::max({r.min_x - x, 0.0, x - r.max_x});
-  double dz = std::max({r.min_z - z, 0.0, z - r.max_z});
-  return std::sqrt(dx * dx + dz * dz);
-}
-
 }  // namespace
 
 HaloExchange::HaloExchange(MPI_Comm comm, int rank, int size, double width, double skin)
@@ -97,7 +90,7 @@ void HaloExchange::borders(const EntityStore& store, const ZoneLayout& layout) {
   for (std::size_t i = 0; i < store.size(); ++i) {
     if (store.kind[i] == EntityKind::Emitter) continue;  // its particles are zone-local effects
     for (std::size_t n = 0; n < near.size(); ++n)
-      if (distanceTo(rects[n], store.pos[i].x(), store.pos[i].z()) < reach)
+      if (rects[n].distanceTo(store.pos[i].x(), store.pos[i].z()) < reach)
         send_[std::size_t(near[n])].push_back(store.id[i]);
   }
   built_ = true;
