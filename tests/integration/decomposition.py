@@ -35,8 +35,18 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
         lines = dumps[1].count("\n")
         h.check(lines > 0, f"{scene}: the dump lists {lines} entities")
         if scene == "particles":
-            live = dumps[1].count('"particle"')
-            h.check(live > 1000, f"{scene}: {live} live particles are in the dump")
+            rows = [json.loads(line) for line in dumps[1].splitlines()]
+            emitters = [r["pos"] for r in rows if r["kind"] == "emitter"]
+            particles = [r["pos"] for r in rows if r["kind"] == "particle"]
+            h.check(len(particles) > 1000, f"{scene}: {len(particles)} live particles are in the dump")
+            # On the scene's 2x2 grid (borders at x = 50 and z = 50): particles in another zone
+            # than the emitter nearest to them, i.e. sprays that crossed a border.
+            zone = lambda p: (p[0] >= 50, p[2] >= 50)
+            nearest = lambda p: min(emitters, key=lambda e: (e[0] - p[0]) ** 2 + (e[2] - p[2]) ** 2)
+            crossed = sum(zone(p) != zone(nearest(p)) for p in particles)
+            h.check(crossed > len(particles) // 20,
+                    f"{scene}: {crossed} of {len(particles)} particles are over a border from the "
+                    "emitter nearest to them")
         h.check(dumps[1] == dumps[2], f"{scene}: 2 ranks end bitwise equal to 1 rank")
         h.check(dumps[1] == dumps[4], f"{scene}: 4 ranks end bitwise equal to 1 rank")
         if scene in GHOST_SCENES:
