@@ -165,6 +165,18 @@ struct AuraNimbus {
   double max_nimbus = 150;      ///< metres: cap of the grown nimbus
 };
 
+/// The world's obstacle map: a Moving AI .map grid laid on the ground plane (`map:` key).
+/// Column x runs along world x, row y along world z. Loaded by zone_node/world_map.h.
+struct ObstacleMap {
+  std::string file;      ///< path resolved against the scene file's folder; empty: no map
+  double origin_x = 0;   ///< world x of the outer corner of cell (0, 0)
+  double origin_z = 0;   ///< world z of the outer corner of cell (0, 0)
+  double cell_size = 1;  ///< side of one cell, metres
+  int line = 0;          ///< line of `map.file` in the scene (for errors found on loading)
+  /// Whether the scene has a map.
+  bool present() const { return !file.empty(); }
+};
+
 /// A whole scene; the docs for every key are in docs/scene-format.md.
 struct Scene {
   std::string name;
@@ -184,6 +196,7 @@ struct Scene {
   std::vector<EmitterPopulation> emitters;
   ClientProfile clients;
   AuraNimbus aura_nimbus;  ///< keys in the interest section
+  ObstacleMap map;         ///< walls and open ground for crowds and path finding
 };
 
 /// Radius of the sphere around a body's centre that holds its whole shape.

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "common/scene.h"
+#include "common/scene_crowd.h"
 #include "common/scene_document.h"
 #include "common/scene_node.h"
 
@@ -354,7 +355,7 @@ void readClients(const SceneMap& root, ClientProfile& clients) {
 
 Scene readScene(const SceneNode& document, const std::string& file) {
   SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
-                                "dead_reckoning", "physics", "populations", "clients"});
+                                "dead_reckoning", "physics", "populations", "clients", "map"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -371,6 +372,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readPhysics(root, scene.physics);
   readPopulations(root, scene);
   readClients(root, scene.clients);
+  readObstacleMap(root, file, scene);
   return scene;
 }
 

@@ -58,6 +58,9 @@ class SceneNode {
   /// The document root of `file`; the line is that of its first node.
   static SceneNode root(YAML::Node node, const std::string& file);
 
+  /// 1-based line of this node in its file.
+  int line() const { return line_; }
+
   /// Throws SceneError at this node.
   [[noreturn]] void fail(const std::string& what) const;
   /// Throws SceneError about a key of this mapping: at its value if present, else here.

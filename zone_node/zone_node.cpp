@@ -14,6 +14,7 @@
 #include "zone_node/systems/flock_movement.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
+#include "zone_node/world_map.h"
 
 namespace zonesim::zone {
 
@@ -48,6 +49,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
   flocks_ = std::make_unique<FlockMovement>(scene);
+  map_ = loadWorldMap(scene);
   // Flocks read their neighbours across borders as ghosts too.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active();
   forward_.resize(std::size_t(size_));

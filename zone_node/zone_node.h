@@ -31,6 +31,7 @@ class CellPublisher;
 class EmitterSystem;
 class RigidBodySystem;
 class FlockMovement;
+struct WorldMap;
 
 struct ZoneOptions {
   int dds_domain = 0;
@@ -81,6 +82,8 @@ class ZoneNode {
   std::vector<std::array<double, 6>> liveParticles() const;
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
   std::string particleBackend() const;
+  /// The scene's obstacle map (`map:` key), or null when it has none.
+  const WorldMap* worldMap() const { return map_.get(); }
   /// The last checkpoint folder written ("" if none).
   const std::string& lastCheckpoint() const { return last_checkpoint_; }
 
@@ -128,6 +131,7 @@ class ZoneNode {
   std::unique_ptr<EmitterSystem> emitters_;
   std::unique_ptr<RigidBodySystem> bodies_;  // created when the first body shows up
   std::unique_ptr<FlockMovement> flocks_;    // flocking NPC populations of the scene
+  std::shared_ptr<const WorldMap> map_;      // the scene's walls; null without `map:`
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

@@ -93,7 +93,7 @@ const InlineCase kInlineCases[] = {
      "8: populations[0].size: only boxes have a size"},
     {"unknown_top_level", withBase("colour: red\n"),
      "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
-     "dead_reckoning, physics, populations, clients)"},
+     "dead_reckoning, physics, populations, clients, map)"},
     {"empty_value", withBase("clients:\n  players:\n  speed: 3\n"),
      "6: clients.players: expected a whole number, got nothing"},
     {"fractional_count", withBase("clients: {players: 2.5}\n"),

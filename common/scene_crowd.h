@@ -1,0 +1,16 @@
+#pragma once
+// Scene keys for crowds and the world's obstacle map (docs/scene-format.md); internal to the
+// scene loader, which calls one hook per key.
+
+#include <string>
+
+#include "common/scene.h"
+#include "common/scene_node.h"
+
+namespace zonesim {
+
+/// Reads the optional top-level `map` key; `file` is the scene's path (relative map paths are
+/// resolved against its folder).
+void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene);
+
+}  // namespace zonesim
