@@ -75,11 +75,13 @@ int run(const Options& o, MPI_Comm comm) {
     metrics = MetricsWriter(o.metrics_dir + "/zone_" + std::to_string(node.rank()) + ".jsonl");
   }
   zone::ZoneReport report(node);
-  ZS_INFO("zone %d/%d rect [%.1f,%.1f]-[%.1f,%.1f]: %zu entities, particles on %s, %llu ticks",
-          node.rank(), node.size(), node.layout().rect(node.rank()).min_x,
-          node.layout().rect(node.rank()).min_z, node.layout().rect(node.rank()).max_x,
-          node.layout().rect(node.rank()).max_z, node.store().size(),
-          node.particleBackend().c_str(), (unsigned long long)ticks);
+  ZS_INFO(
+      "zone %d/%d rect [%.1f,%.1f]-[%.1f,%.1f]: %zu entities, particles on %s, flocks on "
+      "%s, %llu ticks",
+      node.rank(), node.size(), node.layout().rect(node.rank()).min_x,
+      node.layout().rect(node.rank()).min_z, node.layout().rect(node.rank()).max_x,
+      node.layout().rect(node.rank()).max_z, node.store().size(), node.particleBackend().c_str(),
+      node.flockBackend().c_str(), (unsigned long long)ticks);
 
   Stopwatch wall;
   timespec next;
@@ -143,7 +145,7 @@ int main(int argc, char** argv) {
       "--restart", o.restart,
       "continue from a checkpoint (a checkpoint folder, or a --checkpoint-dir: its LATEST)");
   app.add_option("--gpu", o.zone.gpu,
-                 "particle integration on OpenCL: on, off, auto (measured default threshold) or "
+                 "particles and flocks on OpenCL: on, off, auto (measured default thresholds) or "
                  "probe (auto with thresholds timed on rank 0 at start and broadcast)")
       ->check(CLI::IsMember({"on", "off", "auto", "probe"}));
   zonesim::addCommonOptions(app, o.common);

@@ -48,7 +48,15 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
-  flocks_ = std::make_unique<FlockMovement>(scene);
+  // --gpu probe: auto, with thresholds timed on rank 0 only and shared (collective), so that
+  // every rank puts particles and flocks on the same backend.
+  bool offloadable = false;
+  for (const EmitterPopulation& p : scene_.emitters) offloadable |= p.count > 0;
+  for (const NpcPopulation& p : scene_.npcs) offloadable |= p.flock.enabled && p.count > 0;
+  const bool probe = options_.gpu == "probe";
+  const std::string gpu_mode = probe ? "auto" : options_.gpu;
+  const gpu::OffloadThresholds thresholds = agreedThresholds(comm_, probe && offloadable);
+  flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds);
   map_ = loadWorldMap(scene);
   // Flocks read their neighbours across borders as ghosts too.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active();
@@ -81,12 +89,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
         link_->announce({store_.avatar[i].player_id, store_.id[i].value, -1, rank_, tick_,
                          store_.avatar[i].last_input_seq});
   }
-  // --gpu probe: auto, with thresholds timed on rank 0 only and shared (collective).
-  bool has_emitters = false;
-  for (const EmitterPopulation& p : scene_.emitters) has_emitters |= p.count > 0;
-  bool probe = options_.gpu == "probe";
-  gpu::OffloadThresholds thresholds = agreedThresholds(comm_, probe && has_emitters);
-  emitters_ = std::make_unique<EmitterSystem>(scene_, probe ? "auto" : options_.gpu, thresholds);
+  emitters_ = std::make_unique<EmitterSystem>(scene_, gpu_mode, thresholds);
   // The first tick's systems already read ghosts.
   halo();
 }
@@ -101,6 +104,10 @@ std::vector<std::array<double, 6>> ZoneNode::liveParticles() const {
 
 std::string ZoneNode::particleBackend() const {
   return emitters_->backendName();
+}
+
+std::string ZoneNode::flockBackend() const {
+  return flocks_->backendName();
 }
 
 void ZoneNode::tick() {

@@ -84,6 +84,8 @@ class ZoneNode {
   std::string particleBackend() const;
   /// The scene's obstacle map (`map:` key), or null when it has none.
   const WorldMap* worldMap() const { return map_.get(); }
+  /// Which backend the flocking populations use ("cpu", "opencl" or "none").
+  std::string flockBackend() const;
   /// The last checkpoint folder written ("" if none).
   const std::string& lastCheckpoint() const { return last_checkpoint_; }
 

@@ -44,6 +44,7 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.add("conservation_checks", zone.conservation().checks);
   s.add("conservation_failures", zone.conservation().failures);
   s.add("particle_backend", zone.particleBackend());
+  s.add("flock_backend", zone.flockBackend());
   s.add("handoffs_timed", std::uint64_t(handoff_latency_ms_.size()));
   if (!handoff_latency_ms_.empty()) {
     s.add("handoff_latency_ms_p50", percentile(handoff_latency_ms_, 50))

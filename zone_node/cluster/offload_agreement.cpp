@@ -1,7 +1,10 @@
 #include "zone_node/cluster/offload_agreement.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "common/log.h"
 #include "gpu/default_runtime.h"
@@ -10,7 +13,20 @@
 
 namespace zonesim::zone {
 
+void shareCpuDeviceAmongLocalRanks(MPI_Comm comm) {
+  MPI_Comm local = MPI_COMM_NULL;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int ranks_here = 1;
+  MPI_Comm_size(local, &ranks_here);
+  MPI_Comm_free(&local);
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned share = std::max(1u, cores / unsigned(std::max(1, ranks_here)));
+  // Only PoCL reads this; a setting from the environment wins (overwrite = 0).
+  setenv("POCL_MAX_PTHREAD_COUNT", std::to_string(share).c_str(), 0);
+}
+
 gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe) {
+  shareCpuDeviceAmongLocalRanks(comm);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   gpu::OffloadThresholds t = gpu::defaultThresholds();

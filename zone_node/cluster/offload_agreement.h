@@ -11,8 +11,14 @@
 
 namespace zonesim::zone {
 
+/// Caps a PoCL CPU device at this rank's share of the machine's cores (cores / ranks on this
+/// machine) unless POCL_MAX_PTHREAD_COUNT is set: PoCL otherwise starts a worker per core in
+/// every rank, and two ranks on two cores ran a 20,000-boid flock tick 30x slower than with
+/// one worker each (docs/gpu.md). Collective; must run before the process opens OpenCL.
+void shareCpuDeviceAmongLocalRanks(MPI_Comm comm);
+
 /// The thresholds every rank uses: probed on rank 0 when `probe` (and a device exists there),
-/// else gpu::defaultThresholds(); collective.
+/// else gpu::defaultThresholds(); collective. Calls shareCpuDeviceAmongLocalRanks first.
 gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe);
 
 }  // namespace zonesim::zone

@@ -4,15 +4,17 @@
 
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/crowd/flock.h"
+#include "zone_node/systems/flock_backend.h"
 #include "zone_node/systems/steering.h"
 
 namespace zonesim::zone {
 
 /// One flocking population: its stepper and the gather buffers (kept to avoid reallocation).
 struct FlockMovement::Group {
-  Group(std::int32_t p, const crowd::FlockSettings& s) : population(p), flock(s) {}
+  Group(std::int32_t p, const crowd::FlockSettings& s, gpu::Backend b)
+      : population(p), flock(s, b) {}
   std::int32_t population;
-  crowd::Flock flock;
+  FlockBackend flock;
   std::vector<std::size_t> index;  // store index of each gathered agent
   std::vector<std::uint64_t> ids, ghost_ids;
   std::vector<crowd::Vec2> pos, vel, ghost_pos, ghost_vel;
@@ -34,11 +36,15 @@ crowd::FlockSettings settingsOf(const NpcFlock& f) {
 
 }  // namespace
 
-FlockMovement::FlockMovement(const Scene& scene) : scene_(scene) {
+FlockMovement::FlockMovement(const Scene& scene, const std::string& gpu_mode,
+                             const gpu::OffloadThresholds& thresholds)
+    : scene_(scene) {
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlock& f = scene.npcs[p].flock;
     if (!f.enabled) continue;
-    groups_.push_back(std::make_unique<Group>(std::int32_t(p), settingsOf(f)));
+    gpu::Backend b = flockBackendFor(gpu_mode, std::size_t(scene.npcs[p].count), thresholds);
+    groups_.push_back(std::make_unique<Group>(std::int32_t(p), settingsOf(f), b));
+    if (backend_ != "opencl") backend_ = gpu::backendName(b);
     reach_ = std::max(reach_, f.radius);
   }
 }

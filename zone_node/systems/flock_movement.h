@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "common/scene.h"
+#include "gpu/offload.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::crowd {
@@ -23,12 +25,16 @@ class GhostStore;
 /// Steps the flocking NPC populations of a scene.
 class FlockMovement {
  public:
-  /// One flock per population of `scene` with `flock.enabled`.
-  explicit FlockMovement(const Scene& scene);
+  /// One flock per population of `scene` with `flock.enabled`, each on the backend that
+  /// `gpu_mode` ("off", "on", "auto") and the shared thresholds give its population.
+  explicit FlockMovement(const Scene& scene, const std::string& gpu_mode = "off",
+                         const gpu::OffloadThresholds& thresholds = {});
   ~FlockMovement();
 
   /// Whether the scene has a flocking population at all.
   bool active() const { return !groups_.empty(); }
+  /// "opencl" if some population steps on the device, else "cpu"; "none" without flocks.
+  const std::string& backendName() const { return backend_; }
   /// Widest neighbour radius of the flocks (the halo must reach this far).
   double reach() const { return reach_; }
 
@@ -41,6 +47,7 @@ class FlockMovement {
   const Scene& scene_;
   std::vector<std::unique_ptr<Group>> groups_;  // one per flocking population
   double reach_ = 0;
+  std::string backend_ = "none";
 };
 
 }  // namespace zonesim::zone
