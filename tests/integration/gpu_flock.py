@@ -2,7 +2,7 @@
 (gpu/planar_flock.h, PoCL here), ghosts included, on 2 ranks; every rank reports the backend in
 its summary, and the run stays close to --gpu off (the crowd library's double flock) over 10
 ticks. Bounds: one step differs by at most 3e-2 m/s per agent and typically 1e-6 m/s
-(tests/gpu/planar_flock_test.cpp); a flock amplifies differences, so the horizon is short:
+(tests/zone_node/test_flock_backend.cpp); a flock amplifies differences, so the horizon is short:
 after 10 ticks (0.5 s) positions within 1e-4 m at p99 and 2e-2 m at most, velocities within
 1e-3 m/s at p99 and 1e-1 m/s at most (measured: docs/gpu.md)."""
 import json
