@@ -7,29 +7,29 @@
 #include <vector>
 
 #include "gpu/cl_runtime.h"
-#include "gpu/particle_types.h"
+#include "gpu/crowd_engine.h"
 
 namespace zonesim::gpu {
 
-class ClCrowd {
+class ClCrowd final : public CrowdEngine {
  public:
   /// Builds the kernel on runtime's device; throws GpuError on failure.
   explicit ClCrowd(std::shared_ptr<const ClRuntime> runtime);
   /// Waits for queued commands, since a pending upload still reads host memory.
-  ~ClCrowd();
+  ~ClCrowd() override;
   ClCrowd(const ClCrowd&) = delete;
   ClCrowd& operator=(const ClCrowd&) = delete;
 
   /// Uploads the agents (two writes); buffers grow only past their capacity.
-  void setAgents(std::span<const Vec3d> positions, std::span<const Vec3d> velocities);
+  void setAgents(std::span<const Vec3d> positions, std::span<const Vec3d> velocities) override;
   /// Uploads desired (one write) and queues the step.
-  void step(std::span<const Vec3d> desired, double dt, double max_dv);
+  void step(std::span<const Vec3d> desired, double dt, double max_dv) override;
   /// Positions of every agent (one blocking read).
-  void readPositions(std::vector<Vec3d>& out);
+  void readPositions(std::vector<Vec3d>& out) override;
   /// Velocities of every agent (one blocking read).
-  void readVelocities(std::vector<Vec3d>& out);
+  void readVelocities(std::vector<Vec3d>& out) override;
   /// The device's description.
-  const std::string& description() const { return runtime_->description(); }
+  std::string description() const override { return runtime_->description(); }
 
  private:
   void write(cl_mem buffer, std::span<const Vec3d> values);
