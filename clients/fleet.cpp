@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
+#include <stdexcept>
 #include <system_error>
 
 #include "clients/fleet_summary.h"
@@ -55,6 +57,36 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
   for (auto& p : players_) p->bye();
   writeMetrics(nowNs());
   metrics_.flush();
+  writeOwnStream();
+  writeDisplayed();
+}
+
+void ClientFleet::writeDisplayed() const {
+  if (config_.display_path.empty()) return;
+  std::FILE* f = std::fopen(config_.display_path.c_str(), "w");
+  if (f == nullptr) throw std::runtime_error("cannot write " + config_.display_path);
+  std::fprintf(f, "player,tick,id,order,x,y,z\n");
+  for (std::size_t i = 0; i < players_.size(); ++i)
+    for (const DisplaySample& d : players_[i]->displayed())
+      std::fprintf(f, "%zu,%llu,%llu,%d,%.4f,%.4f,%.4f\n", i,
+                   static_cast<unsigned long long>(d.tick), static_cast<unsigned long long>(d.id),
+                   int(d.order), d.x, d.y, d.z);
+  std::fclose(f);
+}
+
+void ClientFleet::writeOwnStream() const {
+  if (config_.own_stream_path.empty()) return;
+  std::FILE* f = std::fopen(config_.own_stream_path.c_str(), "w");
+  if (f == nullptr) throw std::runtime_error("cannot write " + config_.own_stream_path);
+  // "U": a new state of the player's own avatar arrived (tick = its sample tick); "H": a
+  // Handoff notice (tick = the crossing tick). server_tick is the player's clock estimate.
+  std::fprintf(f, "player,event,t_ms,tick,server_tick\n");
+  for (std::size_t i = 0; i < players_.size(); ++i)
+    for (const OwnEvent& e : players_[i]->ownStream())
+      std::fprintf(f, "%zu,%c,%.3f,%llu,%.3f\n", i, e.handoff ? 'H' : 'U',
+                   double(e.t_ns - start_ns_) * 1e-6, static_cast<unsigned long long>(e.tick),
+                   e.server_tick);
+  std::fclose(f);
 }
 
 void ClientFleet::writeMetrics(std::int64_t now_ns) {

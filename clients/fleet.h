@@ -19,7 +19,9 @@ struct FleetConfig {
   PlayerConfig player;
   int players = 32;
   double duration_s = 10;
-  std::string metrics_path;  ///< clients.jsonl; empty = none
+  std::string metrics_path;     ///< clients.jsonl; empty = none
+  std::string own_stream_path;  ///< own_stream.csv: own states and handoffs; empty = none
+  std::string display_path;     ///< display.csv: sampled entities as shown; empty = none
 };
 
 class ClientFleet {
@@ -37,6 +39,10 @@ class ClientFleet {
 
  private:
   void writeMetrics(std::int64_t now_ns);
+  /// Writes every player's own stream as CSV (player, event, t_ms, tick, server_tick).
+  void writeOwnStream() const;
+  /// Writes what every player showed of the sampled entities (player, tick, id, order, x, y, z).
+  void writeDisplayed() const;
 
   FleetConfig config_;
   std::int64_t start_ns_;

@@ -22,6 +22,7 @@ void addSum(PlayerCounters& t, const PlayerCounters& c, bool samples) {
   t.send_failures += c.send_failures;
   t.duplicates += c.duplicates;
   t.stale_lifecycle += c.stale_lifecycle;
+  t.repeats += c.repeats;
   for (std::size_t r = 0; r < std::size_t(gateway::DropReason::Count); ++r)
     t.drops.add(gateway::DropReason(r), c.drops[gateway::DropReason(r)]);
   if (!samples) return;
@@ -50,6 +51,7 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("dropped", c.drops.total())
       .add("duplicates", c.duplicates)
       .add("stale_lifecycle", c.stale_lifecycle)
+      .add("repeats", c.repeats)
       .add("rtt_ms_p50", percentile(c.rtt_ms.samples(), 50))
       .add("rtt_ms_p99", percentile(c.rtt_ms.samples(), 99))
       .add("dr_error_m_p50", percentile(c.dr_error_m.samples(), 50))

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   app.add_option("--duration", duration, "seconds to run")->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "seed of the players' wander targets");
-  app.add_option("--metrics", metrics_dir, "write DIR/clients.jsonl, a line per second");
+  app.add_option("--metrics", metrics_dir,
+                 "write DIR/clients.jsonl (a line per second) and DIR/own_stream.csv");
   app.add_option("--summary", summary_path, "write the summary JSON here");
   zonesim::gateway::ImpairmentSettings impair;
   bool snap = false;
@@ -37,6 +38,10 @@ int main(int argc, char** argv) {
   app.add_option("--inject-jitter-ms", impair.jitter_ms,
                  "plus uniform jitter, which reorders (testing)")
       ->check(CLI::NonNegativeNumber);
+  std::uint32_t truth_every = 0;
+  app.add_option("--truth-every", truth_every,
+                 "with --metrics: write DIR/display.csv, where every K-th entity id was shown "
+                 "each tick (zone_node --truth-every K writes the truth)");
   app.add_flag("--snap", snap, "show corrections at once instead of blending them in");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
@@ -53,12 +58,17 @@ int main(int argc, char** argv) {
     cfg.player.seed = seed;
     cfg.player.impairment = impair;
     cfg.player.blend = !snap;
-    cfg.player.stale_after_s = scene.dead_reckoning.heartbeat_seconds + 1.0;
+    cfg.player.truth_every = truth_every;
+    // Heartbeat + 2 s: the player's server clock may run up to 1 s ahead of the zones before it
+    // falls back (sim_player.cpp), so 1 s of margin alone counts a late heartbeat as a ghost.
+    cfg.player.stale_after_s = scene.dead_reckoning.heartbeat_seconds + 2.0;
     cfg.players = players > 0 ? players : scene.clients.players;
     cfg.duration_s = duration;
     if (!metrics_dir.empty()) {
       std::filesystem::create_directories(metrics_dir);
       cfg.metrics_path = metrics_dir + "/clients.jsonl";
+      cfg.own_stream_path = metrics_dir + "/own_stream.csv";
+      if (truth_every > 0) cfg.display_path = metrics_dir + "/display.csv";
     }
     zonesim::clients::ClientFleet fleet(cfg);
     fleet.run(zonesim::stopRequested());

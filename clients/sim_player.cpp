@@ -4,6 +4,7 @@
 
 #include "common/entity_id.h"
 #include "common/timer.h"
+#include "idl/truth_sample.h"
 
 namespace zonesim::clients {
 
@@ -11,6 +12,10 @@ namespace {
 std::int64_t seconds(double s) {
   return std::int64_t(s * 1e9);
 }
+// An hour of own states at 30 Hz: the log stays bounded whatever the run length.
+constexpr std::size_t kMaxOwnEvents = 108'000;
+// Sampled entities shown, per player: a few hundred thousand lines is minutes of a busy view.
+constexpr std::size_t kMaxDisplaySamples = 400'000;
 }  // namespace
 
 SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns)
@@ -48,7 +53,25 @@ void SimPlayer::send(const gateway::Bytes& bytes) {
 std::int64_t SimPlayer::act(std::int64_t now_ns) {
   if (impairment_.active()) counters_.send_failures += impairment_.flush(socket_, now_ns);
   std::int64_t held = impairment_.nextDueNs();
-  return std::min(held, actDue(now_ns));
+  std::int64_t due = std::min(held, actDue(now_ns));
+  return config_.truth_every > 0 ? std::min(due, logDisplay(now_ns)) : due;
+}
+
+std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
+  if (!welcomed() || clock_tick_ < 0) return INT64_MAX;  // no server clock yet
+  double now_tick = serverTick(now_ns);
+  auto tick = std::int64_t(now_tick);
+  if (tick > displayed_tick_ && displayed_.size() < kMaxDisplaySamples) {
+    displayed_tick_ = tick;
+    view_.forEach([&](std::uint64_t id, const dr::WireEntity& e) {
+      if (!dr::truthSampled(id, config_.truth_every)) return;
+      // What the player would draw for that tick, with what it knows now.
+      if (auto p = view_.shown(id, double(tick)))
+        displayed_.push_back(
+            {std::uint64_t(tick), id, e.model.order, float(p->x), float(p->y), float(p->z)});
+    });
+  }
+  return now_ns + std::int64_t((double(tick + 1) - now_tick) / tick_rate_ * 1e9) + 1;
 }
 
 std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
@@ -94,6 +117,10 @@ std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(
     clock_ns_ = now_ns;
   }
   return got;
+}
+
+void SimPlayer::logOwn(std::int64_t now_ns, std::uint64_t tick, bool handoff) {
+  if (own_.size() < kMaxOwnEvents) own_.push_back({now_ns, tick, serverTick(now_ns), handoff});
 }
 
 void SimPlayer::sendInput(std::int64_t now_ns) {
@@ -216,10 +243,14 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
         if (!newerLifecycle(e.id, m->seq())) continue;
         unknown_.erase(e.id);
         // A resent spawn of an entity already shown is its newest state: blend, do not jump.
-        if (view_.find(e.id) != nullptr)
+        const dr::WireEntity* held = view_.find(e.id);
+        bool newer = held == nullptr || e.tick > held->tick;
+        counters_.repeats += newer ? 0 : 1;
+        if (held != nullptr)
           view_.update(e, serverTick(now_ns));
         else
           view_.spawn(e, serverTick(now_ns));
+        if (e.id == avatar_id_ && newer) logOwn(now_ns, e.tick, false);
         ++counters_.spawns;
       }
       return;
@@ -232,7 +263,10 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
       for (const dr::WireEntity& e : *got) {
         if (auto err = view_.update(e, serverTick(now_ns))) {
           counters_.dr_error_m.add(*err);
-        } else if (view_.find(e.id) == nullptr) {
+          if (e.id == avatar_id_) logOwn(now_ns, e.tick, false);
+        } else if (view_.find(e.id) != nullptr) {
+          ++counters_.repeats;  // already held: a resend whose first copy arrived
+        } else {
           // Updated after its last despawn here: the gateway thinks we know it.
           auto l = lifecycle_.find(e.id);
           if (l == lifecycle_.end() || l->second < m->seq()) {
@@ -257,6 +291,7 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
     case proto::Message::Handoff:
       zone_ = d.msg_as_Handoff()->to_zone();
       ++counters_.handoffs;
+      logOwn(now_ns, d.msg_as_Handoff()->tick(), true);
       return;
     case proto::Message::Pong: {
       std::int64_t sent_us = std::int64_t(d.msg_as_Pong()->client_time_us());

@@ -40,6 +40,22 @@ struct PlayerConfig {
   double blend_s = 0.25;  ///< blend time, seconds
   double stale_after_s =
       6;  ///< a known entity silent this long is counted a ghost (heartbeat + margin)
+  std::uint32_t truth_every = 0;  ///< log what is shown of every k-th id each tick (0: none)
+};
+
+/// Where a player showed a sampled entity (idl/truth_sample.h) at a server tick.
+struct DisplaySample {
+  std::uint64_t tick = 0, id = 0;
+  dr::Order order = dr::Order::First;
+  float x = 0, y = 0, z = 0;
+};
+
+/// One event of a player's own stream: a new state of its avatar arrived, or a Handoff notice.
+struct OwnEvent {
+  std::int64_t t_ns = 0;   ///< receive time (the fleet's clock)
+  std::uint64_t tick = 0;  ///< the state's sample tick, or the handoff's crossing tick
+  double server_tick = 0;  ///< the player's estimate of the server tick at receipt
+  bool handoff = false;
 };
 
 /// What one player counted.
@@ -48,6 +64,7 @@ struct PlayerCounters {
   std::uint64_t updates = 0, spawns = 0, despawns = 0, handoffs = 0, pongs = 0;
   std::uint64_t hellos = 0, inputs = 0, send_failures = 0;
   std::uint64_t duplicates = 0, stale_lifecycle = 0;  ///< datagrams seen twice; old spawn/despawn
+  std::uint64_t repeats = 0;  ///< states of a known entity no newer than the one held (resends)
   DropCounters drops;
   Reservoir rtt_ms;      ///< round trips, one per Pong
   Reservoir dr_error_m;  ///< correction seen at each update of a known entity
@@ -76,6 +93,10 @@ class SimPlayer {
   const RemoteView& view() const { return view_; }
   const PlayerCounters& counters() const { return counters_; }
   const Wander& wander() const { return wander_; }
+  /// Receipts of the avatar's own states and of Handoff notices, in arrival order (bounded).
+  const std::vector<OwnEvent>& ownStream() const { return own_; }
+  /// What was shown of the sampled entities, one sample per entity and server tick (bounded).
+  const std::vector<DisplaySample>& displayed() const { return displayed_; }
 
   /// The estimated server tick at now_ns (fractional): the newest tick heard of, advanced by
   /// the wall time since at the announced tick rate.
@@ -105,6 +126,11 @@ class SimPlayer {
   /// Whether a spawn or despawn in datagram seq is newer than the last one applied to id.
   bool newerLifecycle(std::uint64_t id, std::uint32_t seq);
   /// Unpacks states; nullopt (counted as out of range) if the stream is bad.
+  /// Logs the sampled entities as shown at the current whole server tick, once per tick;
+  /// returns when the next tick starts.
+  std::int64_t logDisplay(std::int64_t now_ns);
+  /// Logs an own-avatar state or a handoff (up to kMaxOwnEvents).
+  void logOwn(std::int64_t now_ns, std::uint64_t tick, bool handoff);
   std::optional<std::vector<dr::WireEntity>> unpack(std::uint64_t server_tick, std::uint16_t count,
                                                     const flatbuffers::Vector<std::uint8_t>* bytes,
                                                     std::int64_t now_ns);
@@ -135,6 +161,9 @@ class SimPlayer {
   };
   std::unordered_map<std::uint64_t, Unknown> unknown_;  // updated but not spawned here
   std::vector<std::uint8_t> rx_buffer_;
+  std::vector<OwnEvent> own_;
+  std::vector<DisplaySample> displayed_;
+  std::int64_t displayed_tick_ = -1;  // the last server tick logged
 };
 
 }  // namespace zonesim::clients

@@ -10,6 +10,9 @@ import statistics
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import own_stream  # noqa: E402  (deploy/own_stream.py)
+
 
 def load(path):
     return json.loads(Path(path).read_text())
@@ -17,7 +20,12 @@ def load(path):
 
 def last_json_line(path):
     lines = [l for l in Path(path).read_text().splitlines() if l.strip()] if Path(path).exists() else []
-    return json.loads(lines[-1]) if lines else {}
+    for line in reversed(lines[-2:]):  # the last may be half written while the run goes on
+        try:
+            return json.loads(line)
+        except json.JSONDecodeError:
+            continue
+    return {}
 
 
 def build_report(run):
@@ -25,7 +33,11 @@ def build_report(run):
     clients = load(run / "clients_summary.json") if (run / "clients_summary.json").exists() else {}
     gateway = last_json_line(run / "gateway.jsonl")
     per_client = clients.get("clients", [])
+    own = run / "own_stream.csv"
+    gaps = own_stream.analyse(own_stream.load(own)) if own.exists() else None
     return {
+        "own_stream": own_stream.summary(gaps) if gaps else None,
+        "_own_stream": gaps,
         "run": str(run),
         "zones": [{
             "rank": z["rank"], "rect": z["rect"], "ticks": z["ticks"],
@@ -71,6 +83,9 @@ def print_report(r):
               f"{c['updates_per_s']:>9.1f} {c.get('handoffs', 0):>8}")
     print(f"mean per client: {t['bytes_in_per_s_mean']:.0f} B/s in, {t['bytes_out_per_s_mean']:.0f} B/s out, "
           f"{t['updates_per_s_mean']:.1f} updates/s")
+    if r.get("_own_stream"):
+        print()
+        own_stream.print_table(r["_own_stream"])
 
 
 def print_progress(run):
@@ -89,7 +104,8 @@ def main():
         sys.exit("usage: report.py RUN_DIR | report.py --progress RUN_DIR")
     run = Path(sys.argv[1])
     report = build_report(run)
-    (run / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+    saved = {k: v for k, v in report.items() if not k.startswith("_")}
+    (run / "report.json").write_text(json.dumps(saved, indent=2) + "\n")
     print_report(report)
     print(f"\nreport.json written to {run / 'report.json'}")
 

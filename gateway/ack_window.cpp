@@ -50,6 +50,7 @@ void ResendTracker::ackOne(std::uint32_t seq, std::int64_t now_ns) {
   if (f.seq != seq || f.acked) return;  // fell out of the ring, or a repeated ack
   f.acked = true;
   ++acked_;
+  newest_acked_sent_ns_ = std::max(newest_acked_sent_ns_, f.sent_ns);
   // RTT sample as in TCP (RFC 6298), from the first ack of each datagram.
   double rtt = std::max(0.0, double(now_ns - f.sent_ns) * 1e-9);
   if (srtt_s_ < 0) {
@@ -78,11 +79,13 @@ std::int64_t ResendTracker::rtoNs() const {
   return std::int64_t(std::clamp(rto, min_rto_s_, max_rto_s_) * 1e9);
 }
 
-ResendDue ResendTracker::due(std::int64_t now_ns) const {
+ResendDue ResendTracker::due(std::int64_t now_ns, LossDetection how) const {
   ResendDue d;
   std::int64_t rto = rtoNs();
+  bool later_acks = how == LossDetection::LaterAck;
   for (const auto& [id, p] : pending_) {
-    if (now_ns - p.sent_ns < rto) continue;
+    bool overtaken = later_acks && p.sent_ns < newest_acked_sent_ns_;
+    if (!overtaken && now_ns - p.sent_ns < rto) continue;
     (p.what == Carried::Spawn    ? d.spawns
      : p.what == Carried::Update ? d.updates
                                  : d.despawns)

@@ -39,6 +39,12 @@ struct ResendDue {
   bool empty() const { return spawns.empty() && updates.empty() && despawns.empty(); }
 };
 
+/// How the sender recognises a lost datagram.
+enum class LossDetection : std::uint8_t {
+  Timeout,   ///< only when it is not acknowledged within the retransmission timeout
+  LaterAck,  ///< also as soon as a datagram sent in a later tick is acknowledged before it
+};
+
 /// Sender side, one per session.
 class ResendTracker {
  public:
@@ -56,9 +62,9 @@ class ResendTracker {
   void onAck(std::uint32_t ack, std::uint32_t bits, std::int64_t now_ns);
   /// Whether the entity's spawn is not yet acknowledged (its states must go as Spawn).
   bool spawnPending(std::uint64_t id) const;
-  /// Entities to send again now: their newest state (or despawn) went out over rto() ago
-  /// and is not acknowledged.
-  ResendDue due(std::int64_t now_ns) const;
+  /// Entities to send again now: their newest state (or despawn) is not acknowledged and went
+  /// out over rto() ago or (LaterAck) before a datagram that is acknowledged.
+  ResendDue due(std::int64_t now_ns, LossDetection how = LossDetection::Timeout) const;
   /// The retransmission timeout now, nanoseconds: smoothed ack RTT + 4 deviations, bounded.
   std::int64_t rtoNs() const;
   /// Entities with something unacknowledged.
@@ -89,6 +95,9 @@ class ResendTracker {
   double srtt_s_ = -1, rttvar_s_ = 0;
   double min_rto_s_, max_rto_s_;
   std::uint64_t acked_ = 0;
+  // Send time of the newest datagram acknowledged: anything unacknowledged sent in an earlier
+  // tick was overtaken, so lost (datagrams of one tick share a send time and may be reordered).
+  std::int64_t newest_acked_sent_ns_ = INT64_MIN;
 };
 
 }  // namespace zonesim::gateway

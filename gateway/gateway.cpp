@@ -288,7 +288,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
 }
 
 void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {
-  ResendDue due = s.resend.due(now_ns);
+  ResendDue due = s.resend.due(now_ns, config_.loss_detection);
   std::size_t before = diff.spawns.size() + diff.updates.size() + diff.despawns.size();
   auto merge = [](std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& more) {
     into.insert(into.end(), more.begin(), more.end());

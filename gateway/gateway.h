@@ -42,6 +42,7 @@ struct GatewayConfig {
   ImpairmentSettings impairment;  ///< loss / delay / reordering injected on the UDP side
   bool resend =
       true;  ///< resend unacknowledged spawns, states and despawns (false: for comparison)
+  LossDetection loss_detection = LossDetection::Timeout;  ///< when a datagram counts as lost
 };
 
 class Gateway {

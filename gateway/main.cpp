@@ -58,6 +58,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-sessions", cfg.max_sessions, "refuse Hellos beyond this many sessions");
   app.add_flag("!--no-resend", cfg.resend,
                "never resend unacknowledged updates, spawns, despawns (for comparison)");
+  bool resend_early = false;
+  app.add_flag("--resend-early", resend_early,
+               "resend as soon as a datagram of a later tick is acknowledged, not only after "
+               "the retransmission timeout (for comparison: more resends, no less error)");
   app.add_option("--inject-loss", cfg.impairment.loss, "drop this fraction of datagrams (testing)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--inject-delay-ms", cfg.impairment.delay_ms, "delay outgoing datagrams (testing)")
@@ -73,6 +77,7 @@ int main(int argc, char** argv) {
     zonesim::applyCommonOptions(common, "gateway");
     cfg.scene = zonesim::loadScene(scene_path);
     cfg.port = std::uint16_t(port);
+    if (resend_early) cfg.loss_detection = zonesim::gateway::LossDetection::LaterAck;
     cfg.spawn_seed = seed >= 0 ? std::uint64_t(seed) : cfg.scene.seed;
     if (!metrics_dir.empty()) {
       std::filesystem::create_directories(metrics_dir);

@@ -17,6 +17,7 @@
 #include "common/stop_signal.h"
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/state_dump.h"
+#include "zone_node/truth_log.h"
 #include "zone_node/zone_node.h"
 #include "zone_node/zone_report.h"
 
@@ -30,6 +31,7 @@ struct Options {
   std::string metrics_dir;
   std::string dump_state;
   std::string restart;
+  std::uint32_t truth_every = 0;
   zonesim::zone::ZoneOptions zone;
   zonesim::CommonOptions common;
 };
@@ -75,6 +77,9 @@ int run(const Options& o, MPI_Comm comm) {
     metrics = MetricsWriter(o.metrics_dir + "/zone_" + std::to_string(node.rank()) + ".jsonl");
   }
   zone::ZoneReport report(node);
+  zone::TruthLog truth(
+      o.metrics_dir.empty() ? "" : o.metrics_dir + "/truth_" + std::to_string(node.rank()) + ".csv",
+      o.truth_every);
   ZS_INFO(
       "zone %d/%d rect [%.1f,%.1f]-[%.1f,%.1f]: %zu entities, particles on %s, flocks on "
       "%s, %llu ticks",
@@ -92,6 +97,7 @@ int run(const Options& o, MPI_Comm comm) {
     Stopwatch tick_time;
     node.tick();
     report.recordTick(node, tick_time.elapsedSeconds(), metrics);
+    truth.record(node.tickCount() - 1, node.store());  // the tick just published
     if (o.realtime) {
       next = addSeconds(next, period);
       sleepUntil(next);
@@ -125,6 +131,9 @@ int main(int argc, char** argv) {
                "pace ticks at the scene's tick rate (otherwise as fast as possible)");
   app.add_option("--metrics", o.metrics_dir,
                  "folder for zone_<rank>.jsonl and zone_<rank>_summary.json");
+  app.add_option("--truth-every", o.truth_every,
+                 "with --metrics: write truth_<rank>.csv, the true position of every K-th "
+                 "entity id each tick (for deploy/truth_error.py)");
   app.add_option("--dump-state", o.dump_state,
                  "write every entity's final state (JSON lines) here");
   app.add_option("--dds-domain", o.zone.dds_domain, "DDS domain id");

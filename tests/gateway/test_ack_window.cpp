@@ -70,10 +70,33 @@ TEST(ResendTracker, LostDatagramIsResentAfterTimeoutOnly) {
   EXPECT_FALSE(t.spawnPending(9));
   std::int64_t rto = t.rtoNs();
   EXPECT_GE(rto, 50 * kMs);
-  EXPECT_TRUE(t.due(rto - 1).empty());
-  ResendDue d = t.due(rto);
+  // Both went out in the same tick: s2's ack does not prove s1 lost (reordered, maybe).
+  EXPECT_TRUE(t.due(rto - 1, LossDetection::LaterAck).empty());
+  EXPECT_TRUE(t.due(rto - 1, LossDetection::Timeout).empty());
+  ResendDue d = t.due(rto, LossDetection::Timeout);
   EXPECT_EQ(d.spawns, ids({7}));
   EXPECT_TRUE(d.updates.empty() && d.despawns.empty());
+}
+
+TEST(ResendTracker, AnAckOfALaterTicksDatagramMarksEarlierOnesLost) {
+  ResendTracker t(0.05, 1.0);
+  auto lost = ids({4, 6}), later = ids({5});
+  std::uint32_t s1 = t.nextSeq();
+  t.sent(s1, lost, Carried::Update, 0);
+  std::uint32_t s2 = t.nextSeq();
+  t.sent(s2, later, Carried::Update, 33 * kMs);  // the next tick
+  constexpr auto kEarly = LossDetection::LaterAck;
+  EXPECT_TRUE(t.due(34 * kMs, kEarly).empty());  // nothing acknowledged yet: wait
+  t.onAck(s2, 0, 36 * kMs);                      // s2 arrived, s1 (bit 0) did not
+  EXPECT_LT(36 * kMs, t.rtoNs());
+  EXPECT_EQ(t.due(36 * kMs, kEarly).updates, ids({4, 6}));       // at once
+  EXPECT_TRUE(t.due(36 * kMs, LossDetection::Timeout).empty());  // the default rule waits
+  // A resend goes out in a new datagram: it is not presumed lost until a later one is acked.
+  std::uint32_t s3 = t.nextSeq();
+  t.sent(s3, lost, Carried::Update, 40 * kMs);
+  EXPECT_TRUE(t.due(41 * kMs, kEarly).empty());
+  t.onAck(s3, 0b10, 60 * kMs);
+  EXPECT_EQ(t.pending(), 0u);
 }
 
 TEST(ResendTracker, OnlyTheNewestCarrierSettlesAnEntity) {
