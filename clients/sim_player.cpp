@@ -14,8 +14,8 @@ std::int64_t seconds(double s) {
 }
 // An hour of own states at 30 Hz: the log stays bounded whatever the run length.
 constexpr std::size_t kMaxOwnEvents = 108'000;
-// Sampled entities shown, per player: a few hundred thousand lines is minutes of a busy view.
-constexpr std::size_t kMaxDisplaySamples = 400'000;
+// Sampled entities shown, per player (32 bytes each): minutes of a view with a dozen sampled.
+constexpr std::size_t kMaxDisplaySamples = 100'000;
 }  // namespace
 
 SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns)

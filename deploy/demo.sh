@@ -2,13 +2,16 @@
 # The main job: a local cluster of 4 zone ranks, one gateway and one client_stub with 32 players
 # on scenes/demo.yaml for about 20 s, then the handoff/bandwidth report (printed and report.json).
 # Usage: deploy/demo.sh [RUN_DIR]
-#   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS, ZONESIM_DEMO_SCENE)
+#   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS, ZONESIM_DEMO_SCENE,
+#    ZONESIM_DEMO_TRUTH_EVERY: zones log the truth of every K-th entity id and clients what they
+#    showed of it, for the error-against-truth table of the report; 0 = off)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
 SECONDS_RUN="${ZONESIM_DEMO_SECONDS:-20}"
 PLAYERS="${ZONESIM_DEMO_PLAYERS:-32}"
 SCENE="${ZONESIM_DEMO_SCENE:-$ZONESIM_ROOT/scenes/demo.yaml}"
+TRUTH_EVERY="${ZONESIM_DEMO_TRUTH_EVERY:-32}"
 RUN_DIR="$(realpath -m "${1:-$ZONESIM_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}")"
 BIN="$BUILD_DIR/bin"
 mkdir -p "$RUN_DIR"
@@ -26,7 +29,7 @@ echo "== run folder: $RUN_DIR (DDS domain $DOMAIN)"
 # Zones run a little longer than the clients so that every client second has live zones.
 ZONE_SECONDS=$(( SECONDS_RUN + 6 ))
 mpirun -np 4 --oversubscribe --bind-to none "$BIN/zone_node" --scene "$SCENE" --duration "$ZONE_SECONDS" \
-  --realtime --metrics "$RUN_DIR" --dds-domain "$DOMAIN" >"$RUN_DIR/zones.log" 2>&1 &
+  --realtime --metrics "$RUN_DIR" --dds-domain "$DOMAIN" --truth-every "$TRUTH_EVERY" >"$RUN_DIR/zones.log" 2>&1 &
 zones_pid=$!
 pids+=("$zones_pid")
 
@@ -42,6 +45,7 @@ sleep 2  # let DDS discovery between zones and gateway settle before players ask
 echo "== $PLAYERS players for $SECONDS_RUN s against 127.0.0.1:$PORT"
 "$BIN/client_stub" --scene "$SCENE" --gateway "127.0.0.1:$PORT" --players "$PLAYERS" \
   --duration "$SECONDS_RUN" --metrics "$RUN_DIR" --summary "$RUN_DIR/clients_summary.json" \
+  --truth-every "$TRUTH_EVERY" \
   >"$RUN_DIR/clients.log" 2>&1 &
 clients_pid=$!
 pids+=("$clients_pid")

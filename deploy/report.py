@@ -12,6 +12,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import own_stream  # noqa: E402  (deploy/own_stream.py)
+import truth_error  # noqa: E402  (deploy/truth_error.py)
 
 
 def load(path):
@@ -35,7 +36,9 @@ def build_report(run):
     per_client = clients.get("clients", [])
     own = run / "own_stream.csv"
     gaps = own_stream.analyse(own_stream.load(own)) if own.exists() else None
+    truth = truth_error.figures(*truth_error.join(run)) if (run / "display.csv").exists() else None
     return {
+        "truth_error": truth,
         "own_stream": own_stream.summary(gaps) if gaps else None,
         "_own_stream": gaps,
         "run": str(run),
@@ -86,6 +89,9 @@ def print_report(r):
     if r.get("_own_stream"):
         print()
         own_stream.print_table(r["_own_stream"])
+    if r.get("truth_error") and r["truth_error"]["orders"]:
+        print()
+        truth_error.print_table(r["truth_error"])
 
 
 def print_progress(run):
