@@ -56,7 +56,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   const bool probe = options_.gpu == "probe";
   const std::string gpu_mode = probe ? "auto" : options_.gpu;
   const gpu::OffloadThresholds thresholds = agreedThresholds(comm_, probe && offloadable);
-  flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds);
+  flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
   map_ = loadWorldMap(scene);
   // Flocks read their neighbours across borders as ghosts too.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active();

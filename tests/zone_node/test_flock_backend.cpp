@@ -155,7 +155,12 @@ TEST(FlockBackend, FlockMovementReportsItsBackend) {
   s.npcs.push_back(f);
   EXPECT_EQ(FlockMovement(s, "off").backendName(), "cpu");
   EXPECT_EQ(FlockMovement(s).backendName(), "cpu");  // off unless asked
+  // auto weighs a zone's share: 100 flockers on 2 ranks are 50 per zone, below 60.
+  gpu::OffloadThresholds t;
+  t.boids = 60;
+  EXPECT_EQ(FlockMovement(s, "auto", t, 2).backendName(), "cpu");
   if (!gpu::openClAvailable()) GTEST_SKIP() << "no OpenCL device";
+  EXPECT_EQ(FlockMovement(s, "auto", t, 1).backendName(), "opencl");
   EXPECT_EQ(FlockMovement(s, "on").backendName(), "opencl");
 }
 

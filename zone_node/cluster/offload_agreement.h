@@ -18,7 +18,8 @@ namespace zonesim::zone {
 void shareCpuDeviceAmongLocalRanks(MPI_Comm comm);
 
 /// The thresholds every rank uses: probed on rank 0 when `probe` (and a device exists there),
-/// else gpu::defaultThresholds(); collective. Calls shareCpuDeviceAmongLocalRanks first.
+/// else gpu::defaultThresholds(); collective. The boids threshold is the zone flocks' own
+/// (probeFlockBackends), not gpu::Flock's. Calls shareCpuDeviceAmongLocalRanks first.
 gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe);
 
 }  // namespace zonesim::zone

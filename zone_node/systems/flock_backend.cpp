@@ -1,5 +1,10 @@
 #include "zone_node/systems/flock_backend.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "common/rng.h"
 #include "gpu/planar_flock.h"
 
 namespace zonesim::zone {
@@ -26,12 +31,51 @@ gpu::PlanarFlockParams paramsOf(const crowd::FlockSettings& s) {
 
 }  // namespace
 
-gpu::Backend flockBackendFor(std::string_view gpu_mode, std::size_t population,
+gpu::Backend flockBackendFor(std::string_view gpu_mode, std::size_t agents,
                              const gpu::OffloadThresholds& thresholds) {
   gpu::GpuMode mode = gpu::parseGpuMode(gpu_mode);
   // Off never opens a device; on and auto ask whether one exists (on fails later without it).
   bool available = mode != gpu::GpuMode::Off && gpu::openClAvailable();
-  return gpu::chooseBackend(mode, gpu::Workload::Boids, population, available, thresholds);
+  return gpu::chooseBackend(mode, gpu::Workload::Boids, agents, available, thresholds);
+}
+
+std::vector<gpu::ProbeSample> probeFlockBackends(std::span<const std::size_t> sizes) {
+  constexpr double kDensity = 0.3, kDt = 0.05;  // per m^2, as scenes/flock_large.yaml
+  std::vector<gpu::ProbeSample> samples;
+  for (std::size_t n : sizes) {
+    // n agents in a square and their ghosts in a 3 m strip along one side.
+    Pcg32 rng(19, n);
+    const double side = std::sqrt(double(n) / kDensity);
+    std::vector<std::uint64_t> ids(n), ghost_ids;
+    std::vector<crowd::Vec2> pos(n), vel(n), ghost_pos, ghost_vel;
+    for (std::size_t i = 0; i < n; ++i) {
+      ids[i] = 2 * i;
+      pos[i] = {rng.uniform(0, side), rng.uniform(0, side)};
+      vel[i] = {rng.uniform(-2, 2), rng.uniform(-2, 2)};
+    }
+    for (std::size_t i = 0; i < std::size_t(side * 3 * kDensity); ++i) {
+      ghost_ids.push_back(2 * i + 1);
+      ghost_pos.push_back({side + rng.uniform(0, 3), rng.uniform(0, side)});
+      ghost_vel.push_back({rng.uniform(-2, 2), rng.uniform(-2, 2)});
+    }
+    const crowd::GhostSpan ghosts{ghost_ids, ghost_pos, ghost_vel};
+    auto secondsPerStep = [&](gpu::Backend backend) {
+      FlockBackend flock(crowd::FlockSettings{}, backend);
+      std::vector<crowd::Vec2> p = pos, v = vel;
+      auto step = [&] { flock.step(crowd::AgentSpan{ids, p, v}, ghosts, kDt); };
+      step();  // warm: buffers, and PoCL compiles at first launch
+      double best = INFINITY;
+      for (int run = 0; run < 2; ++run) {
+        auto start = std::chrono::steady_clock::now();
+        for (int k = 0; k < 3; ++k) step();
+        std::chrono::duration<double> s = std::chrono::steady_clock::now() - start;
+        best = std::min(best, s.count() / 3);
+      }
+      return best;
+    };
+    samples.push_back({n, secondsPerStep(gpu::Backend::Cpu), secondsPerStep(gpu::Backend::OpenCl)});
+  }
+  return samples;
 }
 
 FlockBackend::FlockBackend(const crowd::FlockSettings& settings, gpu::Backend backend)

@@ -21,10 +21,15 @@ struct Vec2d;
 
 namespace zonesim::zone {
 
-/// The backend for a flocking population of `population` agents (its count in the scene, the
+/// The backend for a flock of `agents` per zone (its count in the scene over the ranks, the
 /// same on every rank): `gpu_mode` "off", "on" or "auto" as for particles (gpu/backend.h).
-gpu::Backend flockBackendFor(std::string_view gpu_mode, std::size_t population,
+gpu::Backend flockBackendFor(std::string_view gpu_mode, std::size_t agents,
                              const gpu::OffloadThresholds& thresholds);
+
+/// Times a zone flock step (agents at 0.3 per m^2, about 8 neighbours, a halo of ghosts) on the
+/// crowd flock and on the OpenCL flock at each size: best of 2 runs of 3 steps after a warm-up
+/// step, for gpu::crossover. Throws gpu::NoDeviceError without a device.
+std::vector<gpu::ProbeSample> probeFlockBackends(std::span<const std::size_t> sizes);
 
 /// One population's flock stepper on the chosen backend, with crowd::Flock's step signature.
 class FlockBackend {

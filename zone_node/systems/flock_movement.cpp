@@ -37,12 +37,13 @@ crowd::FlockSettings settingsOf(const NpcFlock& f) {
 }  // namespace
 
 FlockMovement::FlockMovement(const Scene& scene, const std::string& gpu_mode,
-                             const gpu::OffloadThresholds& thresholds)
+                             const gpu::OffloadThresholds& thresholds, int ranks)
     : scene_(scene) {
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlock& f = scene.npcs[p].flock;
     if (!f.enabled) continue;
-    gpu::Backend b = flockBackendFor(gpu_mode, std::size_t(scene.npcs[p].count), thresholds);
+    const std::size_t share = std::size_t(scene.npcs[p].count) / std::size_t(std::max(1, ranks));
+    gpu::Backend b = flockBackendFor(gpu_mode, share, thresholds);
     groups_.push_back(std::make_unique<Group>(std::int32_t(p), settingsOf(f), b));
     if (backend_ != "opencl") backend_ = gpu::backendName(b);
     reach_ = std::max(reach_, f.radius);

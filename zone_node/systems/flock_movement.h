@@ -26,9 +26,10 @@ class GhostStore;
 class FlockMovement {
  public:
   /// One flock per population of `scene` with `flock.enabled`, each on the backend that
-  /// `gpu_mode` ("off", "on", "auto") and the shared thresholds give its population.
+  /// `gpu_mode` ("off", "on", "auto") and the shared thresholds give its share of the
+  /// population on `ranks` zones (the batch a zone steps; the same on every rank).
   explicit FlockMovement(const Scene& scene, const std::string& gpu_mode = "off",
-                         const gpu::OffloadThresholds& thresholds = {});
+                         const gpu::OffloadThresholds& thresholds = {}, int ranks = 1);
   ~FlockMovement();
 
   /// Whether the scene has a flocking population at all.
