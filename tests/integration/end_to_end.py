@@ -59,6 +59,13 @@ with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
         h.check(moves >= 3, f"the zone boundaries moved while players played ({moves} times)")
     skipped = sum(z.get("inputs_skipped", 0) for z in zone_summaries)
     h.check(skipped == 0, f"no input sequence number was skipped across handoffs ({skipped})")
+    # Every input the gateway forwarded was applied exactly once, or reached its zone after the
+    # player left (unroutable): none lost or applied twice across the handoffs.
+    forwarded = h.load_json(out / "gateway_summary.json")["inputs_forwarded"]
+    applied = sum(z["inputs_applied"] for z in zone_summaries)
+    unroutable = sum(z.get("inputs_unroutable", 0) for z in zone_summaries)
+    h.check(applied + unroutable == forwarded,
+            f"inputs applied {applied} + after the player left {unroutable} == forwarded {forwarded}")
     timed = sum(z.get("handoffs_timed", 0) for z in zone_summaries)
     h.check(timed >= 1, f"handoffs were followed by inputs applied at the new owner ({timed})")
     h.check(sum(z["conservation_failures"] for z in zone_summaries) == 0, "nothing lost or doubled")
