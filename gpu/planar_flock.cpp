@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu/cl_error.h"
@@ -84,8 +85,8 @@ void PlanarFlock::Device::step(std::span<const std::uint64_t> ids, std::span<Vec
   const std::size_t total = owned + ghosts.ids.size();
   auto entryPos = [&](std::size_t i) { return i < owned ? pos[i] : ghosts.pos[i - owned]; };
 
-  // The grid covers every entry: cells of the neighbour radius, grown if there would be too
-  // many, from the lowest corner.
+  // The grid covers every entry: cells of the neighbour radius on global coordinates
+  // (floor(x / cell), as the crowd flock's grid), grown if there would be too many.
   double lo_x = std::numeric_limits<double>::infinity(), lo_y = lo_x;
   double hi_x = -lo_x, hi_y = -lo_x;
   for (std::size_t i = 0; i < total; ++i) {
@@ -99,10 +100,12 @@ void PlanarFlock::Device::step(std::span<const std::uint64_t> ids, std::span<Vec
     throw std::invalid_argument("planar flock: a position is not finite");
   const std::size_t budget = std::max(kMinCellBudget, 4 * total);
   double cell = params.neighbour_radius;
-  double nx = 1, ny = 1;
+  double gx0 = 0, gy0 = 0, nx = 1, ny = 1;
   for (;;) {
-    nx = std::floor((hi_x - lo_x) / cell) + 1;
-    ny = std::floor((hi_y - lo_y) / cell) + 1;
+    gx0 = std::floor(lo_x / cell);
+    gy0 = std::floor(lo_y / cell);
+    nx = std::floor(hi_x / cell) - gx0 + 1;
+    ny = std::floor(hi_y / cell) - gy0 + 1;
     if (nx * ny <= double(budget)) break;
     cell *= 2;
   }
@@ -110,13 +113,15 @@ void PlanarFlock::Device::step(std::span<const std::uint64_t> ids, std::span<Vec
   const std::size_t cell_count = std::size_t(cx_count) * cy_count;
   reserve(total, owned, cell_count);
 
-  // Counting sort into cells, stable in entry order.
+  // Counting sort into cells, then each cell by id: the kernel visits neighbours in cell rows,
+  // then ids, and positions go up relative to their global cell's corner, so every sum is the
+  // same whichever rank owns the agent and whatever else its grid holds (on one device).
   cell_of.resize(total);
   host_starts.assign(cell_count + 1, 0);
   for (std::size_t i = 0; i < total; ++i) {
     Vec2d p = entryPos(i);
-    double fx = std::clamp(std::floor((p.x - lo_x) / cell), 0.0, nx - 1);
-    double fy = std::clamp(std::floor((p.y - lo_y) / cell), 0.0, ny - 1);
+    double fx = std::clamp(std::floor(p.x / cell) - gx0, 0.0, nx - 1);
+    double fy = std::clamp(std::floor(p.y / cell) - gy0, 0.0, ny - 1);
     cell_of[i] = cl_uint(fy) * cx_count + cl_uint(fx);
     ++host_starts[cell_of[i] + 1];
   }
@@ -130,11 +135,21 @@ void PlanarFlock::Device::step(std::span<const std::uint64_t> ids, std::span<Vec
     const cl_uint k = next_slot[c]++;
     Vec2d p = entryPos(i);
     Vec2d v = i < owned ? vel[i] : ghosts.vel[i - owned];
-    double corner_x = lo_x + double(c % cx_count) * cell,
-           corner_y = lo_y + double(c / cx_count) * cell;
+    double corner_x = (gx0 + double(c % cx_count)) * cell;
+    double corner_y = (gy0 + double(c / cx_count)) * cell;
     host_state[k] = float4(p.x - corner_x, p.y - corner_y, v.x, v.y);
     host_ids[k] = i < owned ? ids[i] : ghosts.ids[i - owned];
     host_slots[k] = {{cl_uint(i), c}};
+  }
+  // A cell holds a few entries: insertion sort by id.
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    for (cl_uint k = host_starts[c] + 1; k < host_starts[c + 1]; ++k) {
+      for (cl_uint j = k; j > host_starts[c] && host_ids[j - 1] > host_ids[j]; --j) {
+        std::swap(host_ids[j - 1], host_ids[j]);
+        std::swap(host_state[j - 1], host_state[j]);
+        std::swap(host_slots[j - 1], host_slots[j]);
+      }
+    }
   }
   cl_uint mode = 0;
   if (!controls.goal.empty()) mode |= 1u;

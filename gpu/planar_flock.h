@@ -36,7 +36,9 @@ struct PlanarFlockParams {
   double max_force = 8.0;           ///< m/s^2
 };
 
-/// One step's agents: owned ones (moved) and ghosts (seen only); ids unique across both.
+/// One step's agents: owned ones (moved) and ghosts (seen only); ids unique across both. Sums
+/// run in cell-then-id order on global cells, so a result does not depend on the order given
+/// or on which other agents are present beyond the neighbour radius.
 struct PlanarAgents {
   std::span<const std::uint64_t> ids;  ///< stable ids (break exact overlaps, as on the CPU)
   std::span<const Vec2d> pos;          ///< positions

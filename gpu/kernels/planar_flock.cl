@@ -9,6 +9,8 @@
 // moves positions with that velocity in double. Cells are at least the neighbour radius, so
 // the 3 x 3 cells around an agent hold every neighbour.
 //
+// Cells are global (floor(x / cell)) and each cell's entries sorted by id, so the sums run in
+// cell rows, then ids, over in-range neighbours only: the same on every rank (see docs/gpu.md).
 // Each entry's position is relative to its cell's corner: offsets between neighbours are then
 // (cell difference) * cell + (local difference), exact to a float ulp of the cell size wherever
 // the zone lies, instead of a ulp of the world's extent.

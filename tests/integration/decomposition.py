@@ -4,16 +4,21 @@ exactly, and (scenes/crowd.yaml) walkers that keep apart read their neighbours a
 borders from ghosts that are bitwise the owners' state; (scenes/crowd_flock.yaml) flocking NPCs
 do the same through the crowd library's Flock, whose sums run in a canonical order;
 (scenes/particles.yaml, --gpu off) fountains whose sprays cross zone borders end with the same
-live particles (positions and velocities, bit for bit)."""
+live particles (positions and velocities, bit for bit); (crowd_flock with --gpu on) the same
+flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in cell-then-id
+order on global cells, so a rank's other agents change nothing)."""
 import json
 import tempfile
 from pathlib import Path
 
 import harness as h
 
-SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "particles": 300}
-EXTRA = {"particles": ["--gpu", "off"]}  # double precision on the CPU: no float device rounding
-GHOST_SCENES = ("crowd", "crowd_flock")
+SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "particles": 300,
+          "crowd_flock_gpu": 300}
+FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
+EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
+         "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"]}
+GHOST_SCENES = ("crowd", "crowd_flock", "crowd_flock_gpu")
 
 with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
     out = Path(tmp)
@@ -25,11 +30,15 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
             dump = out / f"{scene}_{ranks}.jsonl"
             metrics = out / f"{scene}_{ranks}_metrics"
             h.run(h.mpirun(ranks, h.bin_dir() / "zone_node", "--scene",
-                           h.SOURCE_DIR / f"scenes/{scene}.yaml", "--ticks", ticks, "--no-dds",
+                           h.SOURCE_DIR / f"scenes/{FILES.get(scene, scene)}.yaml", "--ticks",
+                           ticks, "--no-dds",
                            "--dump-state", dump, "--metrics", metrics, *EXTRA.get(scene, [])),
                   out / f"{scene}_{ranks}.log", h.base_env(), timeout=300)
             dumps[ranks] = dump.read_text()
             summaries = [json.loads(p.read_text()) for p in metrics.glob("zone_*_summary.json")]
+            if scene == "crowd_flock_gpu":
+                backends = {z["flock_backend"] for z in summaries}
+                h.check(backends == {"opencl"}, f"{scene}: flocks on OpenCL ({sorted(backends)})")
             ghosts_sent[ranks] = sum(s.get("ghosts_sent", 0) for s in summaries)
             migrated[ranks] = sum(s.get("migrated_out", 0) for s in summaries)
         lines = dumps[1].count("\n")
