@@ -13,8 +13,8 @@ namespace zonesim::zone {
 
 /// Caps a PoCL CPU device at this rank's share of the machine's cores (cores / ranks on this
 /// machine) unless POCL_MAX_PTHREAD_COUNT is set: PoCL otherwise starts a worker per core in
-/// every rank, and two ranks on two cores ran a 20,000-boid flock tick 30x slower than with
-/// one worker each (docs/gpu.md). Collective; must run before the process opens OpenCL.
+/// every rank, and two ranks on two cores then ran ticks of hundreds of milliseconds instead
+/// of a few (docs/gpu.md). Collective; must run before the process opens OpenCL.
 void shareCpuDeviceAmongLocalRanks(MPI_Comm comm);
 
 /// The thresholds every rank uses: probed on rank 0 when `probe` (and a device exists there),
