@@ -33,11 +33,18 @@ void RigidJoints::addPointRows(const BodyStorage& bodies, const Anchor& anchor, 
   const Vec3 rb = fixed ? Vec3::Zero() : Vec3(bodies.orientation[anchor.b] * anchor.local_b);
   const Vec3 pa = bodies.position[anchor.a] + ra;
   const Vec3 pb = fixed ? anchor.local_b : Vec3(bodies.position[anchor.b] + rb);
+  // Rows along the lever arm and across it rather than along the world axes: for a round body
+  // these are the effective mass's eigenvectors, so the rows do not fight each other (along
+  // world axes a 2 m pendulum at dt 1/60 and 10 iterations kept a 2 cm gap).
+  const Vec3 arm = ra.squaredNorm() > 1e-18 ? ra : rb;
+  const Vec3 u = arm.squaredNorm() > 1e-18 ? Vec3(arm.normalized()) : Vec3::UnitX();
+  const Vec3 v = u.cross(std::abs(u.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY()).normalized();
+  const Vec3 basis[3] = {u, v, u.cross(v)};
   for (int axis = 0; axis < 3; ++axis) {
     Row& r = rows_[next++];
     r.a = anchor.a;
     r.b = anchor.b;
-    r.d = Vec3::Unit(axis);
+    r.d = basis[axis];
     r.ca = ra.cross(r.d);
     r.cb = rb.cross(r.d);
     r.wa = bodies.inv_inertia_world[r.a] * r.ca;
@@ -46,7 +53,7 @@ void RigidJoints::addPointRows(const BodyStorage& bodies, const Anchor& anchor, 
     r.mb = fixed ? 0.0 : bodies.inv_mass[r.b];
     const double inv = r.ma + r.mb + r.ca.dot(r.wa) + r.cb.dot(r.wb);
     r.mass = inv > 0.0 ? 1.0 / inv : 0.0;
-    r.bias = rate * (pb - pa)[axis];
+    r.bias = rate * (pb - pa).dot(r.d);
   }
 }
 
