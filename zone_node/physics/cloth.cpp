@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "zone_node/physics/cloth_collision.h"
+
 namespace zonesim::physics {
 
 Cloth::Cloth(const ClothDesc& desc) : desc_(desc) {
@@ -13,7 +15,7 @@ Cloth::Cloth(const ClothDesc& desc) : desc_(desc) {
   inv_mass_.assign(n, 1.0 / desc.particle_mass);
   for (int r = 0; r < desc.rows; ++r) {
     for (int c = 0; c < desc.columns; ++c) {
-      x_[index(c, r)] = desc.origin + desc.spacing * Vec3(c, -r, 0);
+      x_[index(c, r)] = desc.origin + desc.spacing * (c * desc.column_axis + r * desc.row_axis);
     }
   }
   for (int r = 0; r < desc.rows; ++r) {
@@ -50,7 +52,7 @@ void Cloth::accumulateForces() {
   }
 }
 
-void Cloth::step(double dt, int substeps) {
+void Cloth::step(double dt, int substeps, ClothColliders* colliders) {
   const int n = std::max(1, substeps);
   const double h = dt / n;
   for (int k = 0; k < n; ++k) {
@@ -60,6 +62,7 @@ void Cloth::step(double dt, int substeps) {
       v_[i] += h * inv_mass_[i] * f_[i];
       x_[i] += h * v_[i];
     }
+    if (colliders) colliders->resolve(x_, v_, inv_mass_, desc_.thickness, desc_.friction);
     if (desc_.tear_strain > 0.0) tear();
   }
 }
@@ -96,6 +99,14 @@ Vec3 Cloth::pinForce() const {
     if (inv_mass_[s.b] == 0.0) total -= f;
   }
   return total;
+}
+
+Vec3 Cloth::momentum() const {
+  Vec3 p = Vec3::Zero();
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (inv_mass_[i] > 0.0) p += v_[i] / inv_mass_[i];
+  }
+  return p;
 }
 
 double Cloth::kineticEnergy() const {

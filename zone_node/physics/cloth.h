@@ -16,7 +16,9 @@ struct ClothDesc {
   int columns = 10;                      ///< Particles along the patch's width (x).
   int rows = 10;                         ///< Particles along its height (down from the origin).
   double spacing = 0.1;                  ///< m between grid neighbours.
-  Vec3 origin = Vec3::Zero();            ///< Particle (0, 0); rows go along -y, columns +x.
+  Vec3 origin = Vec3::Zero();            ///< Particle (0, 0).
+  Vec3 column_axis = Vec3::UnitX();      ///< Unit direction from column c to c + 1.
+  Vec3 row_axis = -Vec3::UnitY();        ///< Unit direction from row r to r + 1.
   double particle_mass = 0.01;           ///< kg.
   double stiffness = 200.0;              ///< N/m of structural springs.
   double shear_stiffness = 50.0;         ///< N/m of diagonal springs (0: none).
@@ -24,7 +26,11 @@ struct ClothDesc {
   double spring_damping = 0.05;          ///< N s/m along each spring.
   double tear_strain = 0.0;              ///< Remove a spring beyond (length/rest - 1); 0: never.
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s^2.
+  double thickness = 0.02;               ///< m kept between particles and colliding bodies.
+  double friction = 0.3;                 ///< Coulomb coefficient against bodies.
 };
+
+class ClothColliders;
 
 /// Spring families.
 enum class SpringKind : std::uint8_t { Structural, Shear, Bend };
@@ -50,13 +56,22 @@ class Cloth {
   /// Fixes a particle in place (infinite mass); it can still be moved by setting its position.
   void pin(std::uint32_t i) { inv_mass_[i] = 0.0; }
   /// Advances by dt in `substeps` semi-implicit Euler sub-steps, then tears over-stretched
-  /// springs (checked after every sub-step).
-  void step(double dt, int substeps);
+  /// springs (checked after every sub-step). With colliders, every sub-step ends by pushing
+  /// the particles out of the bodies (cloth_collision.h).
+  void step(double dt, int substeps, ClothColliders* colliders = nullptr);
+  /// The description it was built from.
+  const ClothDesc& desc() const { return desc_; }
+  /// Particle inverse masses (0: pinned).
+  const std::vector<double>& inverseMasses() const { return inv_mass_; }
+  /// Total momentum of the free particles (kg m/s).
+  Vec3 momentum() const;
 
   /// Particle positions.
   std::vector<Vec3>& positions() { return x_; }
   /// Particle positions.
   const std::vector<Vec3>& positions() const { return x_; }
+  /// Particle velocities.
+  std::vector<Vec3>& velocities() { return v_; }
   /// Particle velocities.
   const std::vector<Vec3>& velocities() const { return v_; }
   /// The springs still in the mesh.
