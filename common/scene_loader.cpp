@@ -18,6 +18,7 @@
 #include "common/scene_crowd.h"
 #include "common/scene_document.h"
 #include "common/scene_node.h"
+#include "common/scene_physics.h"
 
 namespace zonesim {
 namespace {
@@ -286,7 +287,8 @@ void readTick(const SceneMap& root, Scene& scene) {
 void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   SceneMap m =
       root.section("physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
-                               "position_iterations", "sleep", "solver", "sor_omega"});
+                               "position_iterations", "sleep", "solver", "sor_omega", "bodies",
+                               "joints", "cloths", "explosions"});
   ps.integrator = PhysicsSettings::Integrator(
       m.choice("integrator",
                {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
@@ -370,6 +372,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readHalo(root, scene);
   readDeadReckoning(root, scene.dead_reckoning);
   readPhysics(root, scene.physics);
+  readPhysicsObjects(root, scene);  // common/scene_physics.cpp
   readPopulations(root, scene);
   readClients(root, scene.clients);
   readObstacleMap(root, file, scene);

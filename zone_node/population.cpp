@@ -108,6 +108,31 @@ void forEachInitialEntity(const Scene& scene,
       keep(r);
     }
   }
+  // Named bodies come last, so adding them leaves every other entity's id as it was.
+  for (const SceneBody& b : scene.physics.bodies) {
+    auto [r, rng] = nextSceneEntity(scene, EntityKind::RigidBody, counter);
+    r.pos = Vec3(b.position.x, b.position.y, b.position.z);
+    r.vel = Vec3(b.velocity.x, b.velocity.y, b.velocity.z);
+    r.body.angular_velocity =
+        Vec3(b.angular_velocity.x, b.angular_velocity.y, b.angular_velocity.z);
+    r.body.shape = std::uint8_t(b.shape);
+    r.body.radius = b.radius;
+    r.body.half_extents = Vec3(b.size.x, b.size.y, b.size.z) * 0.5;
+    r.body.half_height = 0.5 * b.length;
+    r.body.mass = b.mass;
+    r.body.friction = b.friction;
+    r.body.restitution = b.restitution;
+    r.rng_state = rng.state();
+    keep(r);
+  }
+}
+
+EntityId namedBodyId(const Scene& scene, std::size_t k) {
+  std::uint64_t before = 0;
+  for (const NpcPopulation& p : scene.npcs) before += std::uint64_t(p.count);
+  for (const RigidBodyPopulation& p : scene.rigid_bodies) before += std::uint64_t(p.count);
+  for (const EmitterPopulation& p : scene.emitters) before += std::uint64_t(p.count);
+  return EntityId::make(kSceneCreator, before + k + 1);
 }
 
 }  // namespace zonesim::zone

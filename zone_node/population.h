@@ -18,6 +18,9 @@ constexpr std::uint32_t kSceneCreator = 0xFFFF;
 void forEachInitialEntity(const Scene& scene,
                           const std::function<void(const EntityRecordData&)>& keep);
 
+/// The id of scene.physics.bodies[k] (they follow every population's entities).
+EntityId namedBodyId(const Scene& scene, std::size_t k);
+
 /// Draws the next waypoint for an NPC around `from`, clamped to the world.
 Vec3 nextWaypoint(const Scene& scene, const Vec3& from, double radius, std::uint64_t& rng_state,
                   EntityId id);

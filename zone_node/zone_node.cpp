@@ -48,6 +48,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
+  bodies_in_scene_ |= !scene.physics.bodies.empty();
   // --gpu probe: auto, with thresholds timed on rank 0 only and shared (collective), so that
   // every rank puts particles and flocks on the same backend.
   bool offloadable = false;
@@ -262,9 +263,9 @@ void ZoneNode::ai() {
 }
 
 void ZoneNode::physics() {
-  if (store_.count(EntityKind::RigidBody) > 0 && !bodies_)
+  if ((store_.count(EntityKind::RigidBody) > 0 || !scene_.physics.cloths.empty()) && !bodies_)
     bodies_ = std::make_unique<RigidBodySystem>(scene_, rank_);
-  if (bodies_) counters_.bodies_awake = bodies_->step(store_, &halo_.ghosts(), scene_.dt);
+  if (bodies_) counters_.bodies_awake = bodies_->step(store_, &halo_.ghosts(), scene_.dt, tick_);
   if (!bodies_in_scene_ || size_ == 1) return;
   // Contacts across borders: the pushes this zone gave its neighbours' bodies go back to them
   // (every rank takes part, bodies or not, as the exchange is collective).

@@ -1,9 +1,13 @@
 #include "zone_node/systems/rigid_bodies.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "zone_node/cluster/ghost_store.h"
+#include "zone_node/physics/cloth.h"
+#include "zone_node/physics/cloth_collision.h"
 #include "zone_node/physics/world.h"
+#include "zone_node/population.h"
 
 namespace zonesim::zone {
 
@@ -55,6 +59,41 @@ physics::BodyDesc wall(const Vec3& point, const Vec3& normal) {
   return d;
 }
 
+Vec3 vec(const SceneVec3& v) {
+  return Vec3(v.x, v.y, v.z);
+}
+
+physics::Cloth makeCloth(const SceneCloth& c) {
+  physics::ClothDesc d;
+  d.columns = c.columns;
+  d.rows = c.rows;
+  d.spacing = c.spacing;
+  d.origin = vec(c.origin);
+  d.column_axis = vec(c.column_axis);
+  d.row_axis = vec(c.row_axis);
+  d.particle_mass = c.particle_mass;
+  d.stiffness = c.stiffness;
+  d.shear_stiffness = c.shear_stiffness;
+  d.bend_stiffness = c.bend_stiffness;
+  d.spring_damping = c.damping;
+  d.tear_strain = c.tear_strain;
+  d.thickness = c.thickness;
+  d.friction = c.friction;
+  physics::Cloth cloth(d);
+  for (auto [col, row] : c.pins) cloth.pin(cloth.index(col, row));
+  return cloth;
+}
+
+/// Cloth sub-steps per tick: semi-implicit Euler is stable for h w < 2; a particle's stiffest
+/// mode is bounded by w^2 = 8 (k + k_shear + k_bend) / m (every spring on it in phase), and
+/// h w <= 0.5 keeps the drape's damping and sag close to the converged ones.
+int clothSubsteps(const SceneCloth& c, double dt) {
+  if (c.substeps > 0) return c.substeps;
+  const double w =
+      std::sqrt(8.0 * (c.stiffness + c.shear_stiffness + c.bend_stiffness) / c.particle_mass);
+  return std::max(1, int(std::ceil(dt * w / 0.5)));
+}
+
 }  // namespace
 
 // The engine and its enums mirror the scene's (same order): checked here, where both are seen.
@@ -63,7 +102,16 @@ static_assert(int(physics::BroadphaseKind::AabbTree) == int(PhysicsSettings::Bro
 static_assert(int(physics::SolverKind::Projection) == int(PhysicsSettings::Solver::Projection));
 static_assert(int(physics::SolverKind::GaussSeidel) == int(PhysicsSettings::Solver::GaussSeidel));
 
-RigidBodySystem::RigidBodySystem(const Scene& scene, int rank) : scene_(scene), rank_(rank) {}
+static_assert(int(physics::Falloff::Quadratic) == int(SceneExplosion::Falloff::Quadratic));
+static_assert(int(BodyData::Capsule) == int(SceneBody::Shape::Capsule));
+
+RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
+    : scene_(scene), rank_(rank), cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
+  for (const SceneCloth& c : scene.physics.cloths) {
+    cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));
+    cloth_substeps_.push_back(clothSubsteps(c, scene.dt));
+  }
+}
 
 RigidBodySystem::~RigidBodySystem() = default;
 
@@ -119,15 +167,112 @@ void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts
     world_->addBody(d);
     foreign_entity_.push_back(ghosts->id[g]);
   }
+  addJoints();
   ++rebuilds_;
 }
 
-std::size_t RigidBodySystem::step(EntityStore& store, const GhostStore* ghosts, double dt) {
+void RigidBodySystem::addJoints() {
+  joints_added_ = 0;
+  const std::vector<SceneBody>& named = scene_.physics.bodies;
+  auto bodyOf = [&](int k) -> std::optional<physics::BodyIndex> {
+    EntityId id = namedBodyId(scene_, std::size_t(k));
+    auto it = std::find(body_entity_.begin(), body_entity_.end(), id);
+    if (it == body_entity_.end()) return std::nullopt;
+    return physics::BodyIndex(first_dynamic_ + (it - body_entity_.begin()));
+  };
+  for (const SceneJoint& j : scene_.physics.joints) {
+    std::optional<physics::BodyIndex> a = bodyOf(j.a);
+    std::optional<physics::BodyIndex> b = j.b >= 0 ? bodyOf(j.b) : physics::kNoBody;
+    if (!a || !b) continue;  // a body is gone (quarantined, or never here)
+    // Anchors in the bodies' frames at the scene's start poses (identity orientations), so a
+    // rebuild later in the run keeps the same joint.
+    const Vec3 pa = vec(named[j.a].position);
+    const Vec3 pb = j.b >= 0 ? vec(named[j.b].position) : Vec3::Zero();
+    switch (j.type) {
+      case SceneJoint::Type::Distance: {
+        physics::DistanceJoint d;
+        d.a = *a;
+        d.b = *b;
+        d.local_a = vec(j.anchor_a) - pa;
+        d.local_b = vec(j.anchor_b) - pb;
+        d.length = j.length;
+        world_->addDistanceJoint(d);
+        break;
+      }
+      case SceneJoint::Type::Ball: {
+        physics::BallJoint d;
+        d.a = *a;
+        d.b = *b;
+        d.local_a = vec(j.anchor) - pa;
+        d.local_b = vec(j.anchor) - pb;
+        world_->addBallJoint(d);
+        break;
+      }
+      case SceneJoint::Type::Hinge: {
+        physics::HingeJoint d;
+        d.a = *a;
+        d.b = *b;
+        d.local_a = vec(j.anchor) - pa;
+        d.local_b = vec(j.anchor) - pb;
+        d.axis_a = d.axis_b = vec(j.axis);
+        world_->addHingeJoint(d);
+        break;
+      }
+    }
+    ++joints_added_;
+  }
+}
+
+bool RigidBodySystem::explode(std::uint64_t k, double dt) {
+  bool acted = false;
+  physics::BodyStorage& s = world_->bodies();
+  for (const SceneExplosion& e : scene_.physics.explosions) {
+    // The first tick starting at or after its time (1e-9 of a tick forgives round-off).
+    const auto fire = std::uint64_t(std::max(0.0, std::ceil(e.time / dt - 1e-9)));
+    if (k < fire) continue;
+    double impulse = 0;
+    if (e.impulse > 0) {
+      if (k != fire) continue;
+      impulse = e.impulse;
+    } else {
+      const double left = e.duration - double(k - fire) * dt;
+      if (left <= 1e-12) continue;
+      impulse = e.force * std::min(dt, left);
+    }
+    const Vec3 centre = vec(e.position);
+    for (std::size_t n = 0; n < body_entity_.size(); ++n) {
+      auto i = physics::BodyIndex(first_dynamic_ + n);
+      if (s.inv_mass[i] == 0.0) continue;  // frozen
+      const Vec3 d = s.position[i] - centre;
+      const double r = d.norm();
+      if (r == 0.0 || r >= e.radius) continue;
+      const double j =
+          impulse * physics::falloffFactor(physics::Falloff(int(e.falloff)), r, e.radius);
+      s.linear_velocity[i] += (s.inv_mass[i] * j / r) * d;
+      world_->wake(i);
+      acted = true;
+    }
+  }
+  return acted;
+}
+
+void RigidBodySystem::stepCloths(double dt) {
+  if (cloths_.empty()) return;
+  cloth_colliders_->gather(world_->bodies());
+  for (std::size_t c = 0; c < cloths_.size(); ++c)
+    cloths_[c]->step(dt, cloth_substeps_[c], cloth_colliders_.get());
+  cloth_colliders_->applyReactions(*world_);
+}
+
+std::size_t RigidBodySystem::step(EntityStore& store, const GhostStore* ghosts, double dt,
+                                  std::optional<std::uint64_t> tick) {
+  const std::uint64_t tick_index = tick ? *tick : ticks_;
+  ticks_ = tick_index + 1;
   ghost_impulses_.clear();
   IdSetDigest now;
   for (std::size_t i = 0; i < store.size(); ++i)
     if (store.kind[i] == EntityKind::RigidBody) now.add(store.id[i]);
-  if (now.count == 0) {
+  if (now.count == 0 && cloths_.empty()) {
     world_.reset();
     members_ = {};
     foreign_entity_.clear();
@@ -157,19 +302,23 @@ std::size_t RigidBodySystem::step(EntityStore& store, const GhostStore* ghosts, 
       foreign_awake = true;
     }
   }
+  explode(tick_index, dt);
   // Sleeping bodies are not stepped at all; the statics count as asleep in the engine or not,
   // so compare the dynamic bodies' state directly.
   std::size_t awake = 0;
-  for (std::size_t k = 0; k < bodies; ++k)
-    awake += !world_->asleep(physics::BodyIndex(first_dynamic_ + k));
-  if (awake == 0 && !foreign_awake) return 0;
-  std::size_t frozen_before = world_->quarantined().size();
-  world_->step(dt);
-  quarantined_ += world_->quarantined().size() - frozen_before;
+  for (std::size_t n = 0; n < bodies; ++n)
+    awake += !world_->asleep(physics::BodyIndex(first_dynamic_ + n));
+  if (awake == 0 && !foreign_awake && cloths_.empty()) return 0;
+  if (awake > 0 || foreign_awake) {
+    std::size_t frozen_before = world_->quarantined().size();
+    world_->step(dt);
+    quarantined_ += world_->quarantined().size() - frozen_before;
+  }
+  stepCloths(dt);
   awake = 0;
-  for (std::size_t k = 0; k < bodies; ++k) {
-    auto bi = physics::BodyIndex(first_dynamic_ + k);
-    std::size_t i = *store.indexOf(body_entity_[k]);
+  for (std::size_t n = 0; n < bodies; ++n) {
+    auto bi = physics::BodyIndex(first_dynamic_ + n);
+    std::size_t i = *store.indexOf(body_entity_[n]);
     store.pos[i] = s.position[bi];
     store.vel[i] = s.linear_velocity[bi];
     store.rot[i] = s.orientation[bi];

@@ -11,9 +11,18 @@
 // else), solves, and hands each ghost's velocity change back to the owner, which adds it to its
 // body. The solver applies equal and opposite impulses, so momentum is conserved to round-off;
 // the owner's body feels the push one tick late in position (its velocity is right).
+//
+// The scene's hand-placed objects (physics.bodies, joints, cloths, explosions): joints are
+// added to the engine's world whenever it is rebuilt, with anchors fixed from the scene's
+// start poses; cloths are zone-local mass-spring patches stepped after the bodies and colliding
+// with them (and the ground and walls) both ways; explosions act on this zone's own bodies
+// only (never on ghosts, whose owners apply them), an impulse in the first tick starting at or
+// after its time, a blast as a per-tick impulse F f(r) dt for as long as it lasts. The loader
+// allows joints and cloths only on a single zone.
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "common/entity_id.h"
@@ -24,7 +33,9 @@
 
 namespace zonesim::physics {
 class World;
-}
+class Cloth;
+class ClothColliders;
+}  // namespace zonesim::physics
 
 namespace zonesim::zone {
 
@@ -34,9 +45,17 @@ class RigidBodySystem {
   RigidBodySystem(const Scene& scene, int rank);
   ~RigidBodySystem();
 
-  /// Steps the zone's bodies by dt, pushing the ghosts of higher ranks' bodies as well, and
-  /// writes their state back; returns how many are awake.
-  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt);
+  /// Steps the zone's bodies (and cloths) by dt, pushing the ghosts of higher ranks' bodies as
+  /// well, and writes their state back; returns how many are awake. `tick` is the number of
+  /// the tick being stepped (it times the explosions); absent: the count of earlier calls.
+  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt,
+                   std::optional<std::uint64_t> tick = std::nullopt);
+  /// The scene's cloths, in scene order.
+  std::size_t clothCount() const { return cloths_.size(); }
+  /// Cloth i as stepped so far.
+  const physics::Cloth& cloth(std::size_t i) const { return *cloths_[i]; }
+  /// Joints in the engine's world (those of the scene whose bodies this zone holds).
+  std::size_t joints() const { return joints_added_; }
   /// What the last step did to other zones' bodies (to send to their owners).
   const std::vector<GhostImpulse>& ghostImpulses() const { return ghost_impulses_; }
   /// Adds velocity changes other zones computed for this zone's bodies (wakes them).
@@ -51,6 +70,12 @@ class RigidBodySystem {
                const std::vector<std::size_t>& foreign);
   /// Ghost indices of the bodies whose contacts with ours this zone resolves, in id order.
   std::vector<std::size_t> foreignBodies(const GhostStore* ghosts) const;
+  /// Adds the scene's joints whose bodies this world holds.
+  void addJoints();
+  /// Applies the scene's explosions due in tick k to this zone's bodies; true if any acted.
+  bool explode(std::uint64_t k, double dt);
+  /// Steps every cloth by dt against the world's bodies.
+  void stepCloths(double dt);
 
   const Scene& scene_;
   int rank_;
@@ -62,6 +87,11 @@ class RigidBodySystem {
   std::vector<GhostImpulse> ghost_impulses_;
   std::uint64_t quarantined_ = 0;
   std::uint64_t rebuilds_ = 0;
+  std::uint64_t ticks_ = 0;  // calls so far, the tick when none is given
+  std::size_t joints_added_ = 0;
+  std::vector<std::unique_ptr<physics::Cloth>> cloths_;
+  std::vector<int> cloth_substeps_;
+  std::unique_ptr<physics::ClothColliders> cloth_colliders_;
 };
 
 }  // namespace zonesim::zone

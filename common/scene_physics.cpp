@@ -1,0 +1,205 @@
+// physics.bodies, .joints, .cloths and .explosions (docs/scene-format.md). Joints and cloths
+// need the whole scene in one zone: a joint's bodies would have to cross zone borders together
+// and a cloth is simulated by the zone that holds it, so both are rejected on more zones.
+
+#include "common/scene_physics.h"
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace zonesim {
+namespace {
+
+double length(const SceneVec3& v) {
+  return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+}
+
+SceneVec3 scaled(const SceneVec3& v, double s) {
+  return {v.x * s, v.y * s, v.z * s};
+}
+
+bool insideWorld(const SceneVec3& p, const SceneBox& w) {
+  return p.x >= w.min.x && p.x <= w.max.x && p.y >= w.min.y && p.y <= w.max.y && p.z >= w.min.z &&
+         p.z <= w.max.z;
+}
+
+SceneVec3 pointInWorld(const SceneNode& node, const SceneBox& world) {
+  SceneVec3 p = node.vec3();
+  if (!insideWorld(p, world)) node.fail("is outside the world");
+  return p;
+}
+
+/// A unit direction from a non-zero vec3.
+SceneVec3 direction(const SceneNode& node) {
+  SceneVec3 v = node.vec3();
+  double n = length(v);
+  if (n < 1e-9) node.fail("must not be the zero vector");
+  return scaled(v, 1.0 / n);
+}
+
+void requireOneZone(const SceneNode& node, const Scene& scene, const char* what) {
+  if (scene.zones.columns * scene.zones.rows == 1) return;
+  node.fail(std::string(what) + " need a single zone (zones: columns 1, rows 1): " +
+            "their bodies and particles are not carried across zone borders");
+}
+
+SceneBody readBody(const SceneNode& node, const Scene& scene,
+                   const std::vector<SceneBody>& earlier) {
+  SceneMap m = node.map({"name", "shape", "position", "size", "radius", "length", "velocity",
+                         "angular_velocity", "mass", "friction", "restitution"});
+  SceneBody b;
+  SceneNode name = m.required("name");
+  b.name = name.text();
+  if (b.name.empty()) name.fail("must not be empty");
+  for (const SceneBody& e : earlier)
+    if (e.name == b.name) name.fail("another body is already called '" + b.name + "'");
+  b.shape = SceneBody::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
+  b.position = pointInWorld(m.required("position"), scene.world);
+  if (auto size = m.optional("size")) {
+    if (b.shape != SceneBody::Shape::Box) m.failAt("size", "only boxes have a size");
+    b.size = size->vec3();
+    if (b.size.x <= 0 || b.size.y <= 0 || b.size.z <= 0) m.failAt("size", "every edge must be > 0");
+  }
+  m.read("radius", b.radius, Limit::above(0));
+  m.read("length", b.length, Limit::above(0));
+  if (auto v = m.optional("velocity")) b.velocity = v->vec3();
+  if (auto w = m.optional("angular_velocity")) b.angular_velocity = w->vec3();
+  m.read("mass", b.mass, Limit::above(0));
+  m.read("friction", b.friction, Limit::atLeast(0));
+  m.read("restitution", b.restitution, Limit::between(0, 1));
+  return b;
+}
+
+int bodyIndex(const SceneNode& node, const std::vector<SceneBody>& bodies) {
+  std::string name = node.text();
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == name) return int(i);
+  node.fail("no body called '" + name + "' in physics.bodies");
+}
+
+SceneJoint readJoint(const SceneNode& node, const Scene& scene) {
+  SceneMap m = node.map({"type", "a", "b", "anchor", "anchor_a", "anchor_b", "axis", "length"});
+  const std::vector<SceneBody>& bodies = scene.physics.bodies;
+  SceneJoint j;
+  m.required("type");
+  j.type = SceneJoint::Type(m.choice("type", {"distance", "ball", "hinge"}, 0));
+  j.a = bodyIndex(m.required("a"), bodies);
+  if (auto b = m.optional("b")) {
+    j.b = bodyIndex(*b, bodies);
+    if (j.b == j.a) b->fail("a joint needs two different bodies");
+  }
+  auto only = [&](const char* key, bool allowed, const char* types) {
+    if (!allowed && m.optional(key)) m.failAt(key, std::string("only ") + types + " have it");
+  };
+  const bool distance = j.type == SceneJoint::Type::Distance;
+  only("anchor", !distance, "ball and hinge joints");
+  only("anchor_a", distance, "distance joints");
+  only("anchor_b", distance, "distance joints");
+  only("length", distance, "distance joints");
+  only("axis", j.type == SceneJoint::Type::Hinge, "hinges");
+  if (!distance) {
+    j.anchor = pointInWorld(m.required("anchor"), scene.world);
+    if (auto axis = m.optional("axis")) j.axis = direction(*axis);
+    return j;
+  }
+  j.anchor_a = bodies[j.a].position;
+  if (auto a = m.optional("anchor_a")) j.anchor_a = pointInWorld(*a, scene.world);
+  if (j.b >= 0) {
+    j.anchor_b = bodies[j.b].position;
+    if (auto b = m.optional("anchor_b")) j.anchor_b = pointInWorld(*b, scene.world);
+  } else {
+    j.anchor_b = pointInWorld(m.required("anchor_b"), scene.world);
+  }
+  SceneVec3 d{j.anchor_b.x - j.anchor_a.x, j.anchor_b.y - j.anchor_a.y,
+              j.anchor_b.z - j.anchor_a.z};
+  j.length = length(d);
+  m.read("length", j.length, Limit::atLeast(0));
+  return j;
+}
+
+SceneCloth readCloth(const SceneNode& node, const Scene& scene) {
+  SceneMap m = node.map({"origin", "columns", "rows", "spacing", "column_axis", "row_axis",
+                         "particle_mass", "stiffness", "shear_stiffness", "bend_stiffness",
+                         "damping", "tear_strain", "thickness", "friction", "substeps", "pins"});
+  SceneCloth c;
+  c.origin = pointInWorld(m.required("origin"), scene.world);
+  m.read("columns", c.columns, Limit::between(1, 256));
+  m.read("rows", c.rows, Limit::between(1, 256));
+  m.read("spacing", c.spacing, Limit::above(0));
+  if (auto a = m.optional("column_axis")) c.column_axis = direction(*a);
+  if (auto a = m.optional("row_axis")) c.row_axis = direction(*a);
+  const SceneVec3 &u = c.column_axis, &v = c.row_axis;
+  SceneVec3 cross{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+  if (length(cross) < 1e-6) m.failAt("row_axis", "must not be parallel to column_axis");
+  m.read("particle_mass", c.particle_mass, Limit::above(0));
+  m.read("stiffness", c.stiffness, Limit::above(0));
+  m.read("shear_stiffness", c.shear_stiffness, Limit::atLeast(0));
+  m.read("bend_stiffness", c.bend_stiffness, Limit::atLeast(0));
+  m.read("damping", c.damping, Limit::atLeast(0));
+  m.read("tear_strain", c.tear_strain, Limit::atLeast(0));
+  m.read("thickness", c.thickness, Limit::atLeast(0));
+  m.read("friction", c.friction, Limit::atLeast(0));
+  m.read("substeps", c.substeps, Limit::between(0, 10000));
+  for (auto corner :
+       {SceneVec3{0, 0, 0}, SceneVec3{double(c.columns - 1), double(c.rows - 1), 0}}) {
+    SceneVec3 p{c.origin.x + c.spacing * (corner.x * u.x + corner.y * v.x),
+                c.origin.y + c.spacing * (corner.x * u.y + corner.y * v.y),
+                c.origin.z + c.spacing * (corner.x * u.z + corner.y * v.z)};
+    if (!insideWorld(p, scene.world)) m.failAt("spacing", "the patch reaches outside the world");
+  }
+  if (auto pins = m.optional("pins")) {
+    for (const SceneNode& pin : pins->items()) {
+      std::vector<SceneNode> cr = pin.items();
+      if (cr.size() != 2) pin.fail("expected [column, row]");
+      int col = cr[0].integer(Limit::between(0, c.columns - 1));
+      int row = cr[1].integer(Limit::between(0, c.rows - 1));
+      c.pins.emplace_back(col, row);
+    }
+  }
+  return c;
+}
+
+SceneExplosion readExplosion(const SceneNode& node, const Scene& scene) {
+  SceneMap m = node.map({"time", "position", "radius", "impulse", "force", "duration", "falloff"});
+  SceneExplosion e;
+  e.time = m.required("time").number(Limit::atLeast(0));
+  e.position = pointInWorld(m.required("position"), scene.world);
+  e.radius = m.required("radius").number(Limit::above(0));
+  e.falloff = SceneExplosion::Falloff(m.choice("falloff", {"constant", "linear", "quadratic"}, 1));
+  const bool impulse = bool(m.optional("impulse")), force = bool(m.optional("force"));
+  if (impulse == force) node.fail("give either impulse (instant) or force and duration (a blast)");
+  if (impulse) {
+    e.impulse = m.required("impulse").number(Limit::above(0));
+    if (m.optional("duration")) m.failAt("duration", "only a blast (force) lasts");
+  } else {
+    e.force = m.required("force").number(Limit::above(0));
+    e.duration = m.required("duration").number(Limit::above(0));
+  }
+  return e;
+}
+
+}  // namespace
+
+void readPhysicsObjects(const SceneMap& root, Scene& scene) {
+  std::optional<SceneNode> section = root.optional("physics");
+  if (!section) return;
+  SceneMap physics(*section);
+  PhysicsSettings& ps = scene.physics;
+  if (auto list = physics.optional("bodies"))
+    for (const SceneNode& item : list->items())
+      ps.bodies.push_back(readBody(item, scene, ps.bodies));
+  if (auto list = physics.optional("joints")) {
+    for (const SceneNode& item : list->items()) ps.joints.push_back(readJoint(item, scene));
+    if (!ps.joints.empty()) requireOneZone(*list, scene, "joints");
+  }
+  if (auto list = physics.optional("cloths")) {
+    for (const SceneNode& item : list->items()) ps.cloths.push_back(readCloth(item, scene));
+    if (!ps.cloths.empty()) requireOneZone(*list, scene, "cloths");
+  }
+  if (auto list = physics.optional("explosions"))
+    for (const SceneNode& item : list->items()) ps.explosions.push_back(readExplosion(item, scene));
+}
+
+}  // namespace zonesim
