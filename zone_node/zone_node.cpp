@@ -45,6 +45,14 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       balancer_(comm, options.balance),
       // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
       halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)) {
+  // Jointed bodies do not migrate together and a cloth belongs to no entity: one zone only
+  // (the loader checks the scene's zones; this catches a run on more ranks).
+  if (size_ > 1 && (!scene.physics.joints.empty() || !scene.physics.cloths.empty())) {
+    throw std::runtime_error(scene.name +
+                             ": physics.joints and physics.cloths need a single zone;"
+                             " run on 1 rank, not " +
+                             std::to_string(size_));
+  }
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
