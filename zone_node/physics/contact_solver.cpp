@@ -31,6 +31,8 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
   normal_.resize(points);
   row_count_.clear();
   friction_.resize(points);
+  jn_.resize(points);
+  jt_.resize(points);
   std::uint32_t next = 0;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const BodyContact& bc = contacts[c];
@@ -79,9 +81,9 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
         np.target = cp.depth < 0.0 ? cp.depth / dt : 0.0;
       }
       const bool warm = settings.warm_starting;
-      np.jn = warm ? bc.impulse[i][0] : 0.0;
-      fp.jt[0] = warm ? bc.impulse[i][1] : 0.0;
-      fp.jt[1] = warm ? bc.impulse[i][2] : 0.0;
+      jn_[k.first + i] = warm ? bc.impulse[i][0] : 0.0;
+      jt_[k.first + i][0] = warm ? bc.impulse[i][1] : 0.0;
+      jt_[k.first + i][1] = warm ? bc.impulse[i][2] : 0.0;
       np.jp = 0.0;
       np.vn0 = vn;
       np.max_jn = 0.0;
@@ -116,9 +118,9 @@ void ContactSolver::warmStart(BodyStorage& bodies) {
     for (int i = 0; i < k.count; ++i) {
       const NormalPoint& np = normal_[k.first + i];
       const FrictionPoint& fp = friction_[k.first + i];
-      apply(k, k.n, np.row, np.jn);
-      apply(k, k.t[0], fp.row[0], fp.jt[0]);
-      apply(k, k.t[1], fp.row[1], fp.jt[1]);
+      apply(k, k.n, np.row, jn_[k.first + i]);
+      apply(k, k.t[0], fp.row[0], jt_[k.first + i][0]);
+      apply(k, k.t[1], fp.row[1], jt_[k.first + i][1]);
     }
   }
 }
@@ -136,24 +138,24 @@ void ContactSolver::iterate(BodyStorage& bodies, double omega) {
     for (int i = 0; i < k.count; ++i) {
       NormalPoint& p = normal_[k.first + i];
       const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
-      const double old = p.jn;
-      p.jn = std::max(0.0, old - omega * p.row.mass * (vn - p.target));
-      apply(k, k.n, p.row, p.jn - old);
+      const double old = jn_[k.first + i];
+      jn_[k.first + i] = std::max(0.0, old - omega * p.row.mass * (vn - p.target));
+      apply(k, k.n, p.row, jn_[k.first + i] - old);
     }
   }
   for (const Constraint& k : constraints_) {
     for (int i = 0; i < k.count; ++i) {
       FrictionPoint& p = friction_[k.first + i];
-      const double limit = k.friction * normal_[k.first + i].jn;
+      const double limit = k.friction * jn_[k.first + i];
       // A point that carries no load and no friction stays at zero: clamping to [-0, 0] would
       // give zero again, so skip the two rows (most side points in a pile).
-      if (limit == 0.0 && p.jt[0] == 0.0 && p.jt[1] == 0.0) continue;
+      if (limit == 0.0 && jt_[k.first + i][0] == 0.0 && jt_[k.first + i][1] == 0.0) continue;
       for (int t = 0; t < 2; ++t) {
         const Row& row = p.row[t];
         const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
-        const double old = p.jt[t];
-        p.jt[t] = std::clamp(old - omega * row.mass * vt, -limit, limit);
-        apply(k, k.t[t], row, p.jt[t] - old);
+        const double old = jt_[k.first + i][t];
+        jt_[k.first + i][t] = std::clamp(old - omega * row.mass * vt, -limit, limit);
+        apply(k, k.t[t], row, jt_[k.first + i][t] - old);
       }
     }
   }
@@ -164,7 +166,7 @@ void ContactSolver::storeImpulses(std::span<BodyContact> contacts) const {
     const Constraint& k = constraints_[c];
     for (int i = 0; i < k.count; ++i) {
       const FrictionPoint& fp = friction_[k.first + i];
-      contacts[c].impulse[i] = {normal_[k.first + i].jn, fp.jt[0], fp.jt[1]};
+      contacts[c].impulse[i] = {jn_[k.first + i], jt_[k.first + i][0], jt_[k.first + i][1]};
     }
   }
 }

@@ -9,6 +9,7 @@
 // pseudo-velocities that move positions this step and are then discarded: velocities, momenta
 // and energy are left exactly as the velocity solve made them.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -147,13 +148,12 @@ class ContactSolver {
     Row row;
     double target;  // Normal velocity the solve aims for (bounce or allowed approach).
     double depth;
-    double jn, jp;
+    double jp;      // Split impulse (the normal impulse lives in jn_).
     double vn0;     // Relative normal velocity at prepare (restitution in the soft step).
     double max_jn;  // Largest normal impulse of the soft step (restitution only if touched).
   };
   struct FrictionPoint {
-    Row row[2];
-    double jt[2];
+    Row row[2];  // The impulses live in jt_.
   };
   struct Constraint {
     BodyIndex a, b;
@@ -168,6 +168,11 @@ class ContactSolver {
   std::vector<Constraint> constraints_;
   std::vector<NormalPoint> normal_;
   std::vector<FrictionPoint> friction_;
+  // Accumulated normal and friction impulses per point, apart from the rows: the friction pass
+  // reads them for every point but the rows only of points that carry load, and a loaded
+  // pyramid's side points (most of them) then cost 24 bytes instead of two cache lines.
+  std::vector<double> jn_;
+  std::vector<std::array<double, 2>> jt_;
   std::vector<Vec3> ps_v_, ps_w_;
   std::vector<Vec3> jac_v_, jac_w_;       // Jacobi: velocities the iteration reads.
   std::vector<std::uint16_t> row_count_;  // Jacobi: contact points touching each body.

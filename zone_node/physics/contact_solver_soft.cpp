@@ -58,23 +58,23 @@ void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
         impulse_scale = spring.impulse_scale;
       }
       const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
-      const double old = p.jn;
+      const double old = jn_[k.first + i];
       const double delta = -p.row.mass * mass_scale * (vn + bias) - impulse_scale * old;
-      p.jn = std::max(0.0, old + delta);
-      p.max_jn = std::max(p.max_jn, p.jn);
-      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, p.jn - old);
+      jn_[k.first + i] = std::max(0.0, old + delta);
+      p.max_jn = std::max(p.max_jn, jn_[k.first + i]);
+      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
     }
   }
   for (const Constraint& k : constraints_) {
     for (int i = 0; i < k.count; ++i) {
       FrictionPoint& p = friction_[k.first + i];
-      const double limit = k.friction * normal_[k.first + i].jn;
+      const double limit = k.friction * jn_[k.first + i];
       for (int t = 0; t < 2; ++t) {
         const Row& row = p.row[t];
         const double vt = k.t[t].dot(v[k.b] - v[k.a]) + row.cb.dot(w[k.b]) - row.ca.dot(w[k.a]);
-        const double old = p.jt[t];
-        p.jt[t] = std::clamp(old - row.mass * vt, -limit, limit);
-        applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], row, p.jt[t] - old);
+        const double old = jt_[k.first + i][t];
+        jt_[k.first + i][t] = std::clamp(old - row.mass * vt, -limit, limit);
+        applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], row, jt_[k.first + i][t] - old);
       }
     }
   }
@@ -91,9 +91,9 @@ void ContactSolver::applyRestitution(BodyStorage& bodies) {
       // Only points that were approaching fast and actually pushed this step bounce.
       if (p.vn0 > -threshold || p.max_jn == 0.0) continue;
       const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
-      const double old = p.jn;
-      p.jn = std::max(0.0, old - p.row.mass * (vn + k.restitution * p.vn0));
-      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, p.jn - old);
+      const double old = jn_[k.first + i];
+      jn_[k.first + i] = std::max(0.0, old - p.row.mass * (vn + k.restitution * p.vn0));
+      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
     }
   }
 }

@@ -52,18 +52,18 @@ void ContactSolver::iterateJacobi(BodyStorage& bodies) {
           NormalPoint& p = normal_[k.first + i];
           const double vn =
               relative(k.n, jac_v_[k.a], jac_w_[k.a], jac_v_[k.b], jac_w_[k.b], p.row);
-          const double old = p.jn;
-          p.jn = std::max(0.0, old - f * p.row.mass * (vn - p.target));
-          applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, p.jn - old);
+          const double old = jn_[k.first + i];
+          jn_[k.first + i] = std::max(0.0, old - f * p.row.mass * (vn - p.target));
+          applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
         } else {
           FrictionPoint& p = friction_[k.first + i];
-          const double limit = k.friction * normal_[k.first + i].jn;
+          const double limit = k.friction * jn_[k.first + i];
           for (int t = 0; t < 2; ++t) {
             const double vt =
                 relative(k.t[t], jac_v_[k.a], jac_w_[k.a], jac_v_[k.b], jac_w_[k.b], p.row[t]);
-            const double old = p.jt[t];
-            p.jt[t] = std::clamp(old - f * p.row[t].mass * vt, -limit, limit);
-            applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], p.row[t], p.jt[t] - old);
+            const double old = jt_[k.first + i][t];
+            jt_[k.first + i][t] = std::clamp(old - f * p.row[t].mass * vt, -limit, limit);
+            applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], p.row[t], jt_[k.first + i][t] - old);
           }
         }
       }
@@ -80,13 +80,14 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
     for (int i = 0; i < k.count; ++i) {
       NormalPoint& p = normal_[k.first + i];
       FrictionPoint& fp = friction_[k.first + i];
-      p.jn = fp.jt[0] = fp.jt[1] = 0.0;  // A penalty force has no memory.
+      jn_[k.first + i] = jt_[k.first + i][0] = jt_[k.first + i][1] =
+          0.0;  // A penalty force has no memory.
       if (p.depth <= 0.0) continue;
       // Spring k = m omega^2 and damper c = 2 zeta m omega on the row's effective mass m.
       const double vn = relative(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
       const double force = p.row.mass * (omega * omega * p.depth - 2.0 * zeta * omega * vn);
-      p.jn = std::max(0.0, force) * dt_;
-      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, p.jn);
+      jn_[k.first + i] = std::max(0.0, force) * dt_;
+      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i]);
     }
   }
   // Friction: Coulomb rows bounded by mu times each spring's impulse, iterated like PGS
@@ -95,12 +96,12 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
     for (const Constraint& k : constraints_) {
       for (int i = 0; i < k.count; ++i) {
         FrictionPoint& fp = friction_[k.first + i];
-        const double limit = k.friction * normal_[k.first + i].jn;
+        const double limit = k.friction * jn_[k.first + i];
         for (int t = 0; t < 2; ++t) {
           const double vt = relative(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], fp.row[t]);
-          const double old = fp.jt[t];
-          fp.jt[t] = std::clamp(old - fp.row[t].mass * vt, -limit, limit);
-          applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], fp.row[t], fp.jt[t] - old);
+          const double old = jt_[k.first + i][t];
+          jt_[k.first + i][t] = std::clamp(old - fp.row[t].mass * vt, -limit, limit);
+          applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], fp.row[t], jt_[k.first + i][t] - old);
         }
       }
     }
@@ -128,9 +129,9 @@ void ContactSolver::projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta)
       const double limit = k.friction * p.jp;
       for (int t = 0; t < 2; ++t) {
         const double slip = relative(k.t[t], dp[k.a], dtheta[k.a], dp[k.b], dtheta[k.b], fp.row[t]);
-        const double before = fp.jt[t];
-        fp.jt[t] = std::clamp(before - fp.row[t].mass * slip, -limit, limit);
-        move(k, k.t[t], fp.row[t], fp.jt[t] - before);
+        const double before = jt_[k.first + i][t];
+        jt_[k.first + i][t] = std::clamp(before - fp.row[t].mass * slip, -limit, limit);
+        move(k, k.t[t], fp.row[t], jt_[k.first + i][t] - before);
       }
     }
   }

@@ -158,9 +158,14 @@ void World::findContacts(double dt) {
     }
   }
   // Pair order decides the Gauss-Seidel order: sort for determinism and warm-start lookup.
-  std::sort(contacts_.begin(), contacts_.end(), [](const BodyContact& x, const BodyContact& y) {
+  // The broadphase's pairs come sorted (and proxies are in body order), so without planes the
+  // list is already in order; checking is linear, moving ~250-byte contacts is not.
+  const auto byPair = [](const BodyContact& x, const BodyContact& y) {
     return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
+  };
+  if (!std::is_sorted(contacts_.begin(), contacts_.end(), byPair)) {
+    std::sort(contacts_.begin(), contacts_.end(), byPair);
+  }
 }
 
 void World::addContact(BodyIndex a, BodyIndex b, double margin) {
