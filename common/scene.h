@@ -42,6 +42,25 @@ struct NpcFlock {
   double max_force = 8.0;          ///< m/s^2, bound on the steering acceleration
 };
 
+/// A flow-field crowd (zone_node/crowd/flow_crowd.h, docs/crowd.md): each NPC heads for one
+/// of a few destinations on the scene's map, along a field computed once per destination.
+struct NpcFlow {
+  bool enabled = false;  ///< the population follows flow fields instead of wandering
+  /// A goal on the ground plane; `line` is where the scene gives it (for errors on loading).
+  struct Destination {
+    double x = 0, z = 0;
+    int line = 0;
+  };
+  std::vector<Destination> destinations;  ///< each NPC draws one from its id
+  double max_speed = 2.0;                 ///< m/s
+  double max_force = 10.0;                ///< m/s^2, bound on the steering acceleration
+  double steer_rate = 4.0;                ///< 1/s: rate at which velocity follows the field
+  double separation_radius = 0.6;         ///< m: pushed apart closer than this
+  double separation_weight = 10.0;        ///< 1/s^2 per unit of (radius / distance - 1)
+  double arrive_radius = 0.75;            ///< m from the goal cell's centre: arrived, stops
+  double slow_radius = 2.0;               ///< m: speed ramps down this close to the goal
+};
+
 /// Walking NPCs wandering between random waypoints, or flocking (`flock`).
 struct NpcPopulation {
   int count = 0;
@@ -60,6 +79,7 @@ struct NpcPopulation {
     double x = 0, z = 0, radius = 0, start_s = 0, end_s = 0;
   } gather;
   NpcFlock flock;  ///< flocking instead of waypoints when enabled
+  NpcFlow flow;    ///< flow-field crowd instead of waypoints when enabled
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).

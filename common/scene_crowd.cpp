@@ -39,4 +39,45 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
   m.read("cell_size", map.cell_size, Limit::above(0));
 }
 
+void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p) {
+  if (!population.optional("flow")) return;
+  for (const char* other : {"separation", "gather", "flock"}) {
+    if (population.optional(other)) {
+      population.failAt(other, "a flow-field population follows its fields, not this");
+    }
+  }
+  NpcFlow& f = p.flow;
+  f.enabled = true;
+  SceneMap m = population.section("flow", {"destinations", "max_speed", "max_force", "steer_rate",
+                                           "separation", "arrive_radius", "slow_radius"});
+  if (!scene.map.present()) {
+    m.failAt("destinations", "a flow-field population needs the scene's map: key");
+  }
+  SceneNode list = m.required("destinations");
+  std::vector<SceneNode> items = list.items();
+  if (items.empty()) list.fail("needs at least one destination");
+  if (items.size() > 256) list.fail("at most 256 destinations (one field each)");
+  for (const SceneNode& item : items) {
+    SceneVec3 at = item.vec3();  // [x, y, z]; y is ignored
+    if (at.x < scene.world.min.x || at.x > scene.world.max.x || at.z < scene.world.min.z ||
+        at.z > scene.world.max.z)
+      item.fail("x, z (" + formatNumber(at.x) + ", " + formatNumber(at.z) +
+                ") is outside the world");
+    f.destinations.push_back({at.x, at.z, item.line()});
+  }
+  m.read("max_speed", f.max_speed, Limit::above(0));
+  m.read("max_force", f.max_force, Limit::above(0));
+  m.read("steer_rate", f.steer_rate, Limit::above(0));
+  m.read("arrive_radius", f.arrive_radius, Limit::above(0));
+  m.read("slow_radius", f.slow_radius, Limit::above(0));
+  SceneMap sep = m.section("separation", {"radius", "weight"});
+  sep.read("radius", f.separation_radius, Limit::atLeast(0));
+  sep.read("weight", f.separation_weight, Limit::atLeast(0));
+  // Neighbours across a border are seen through the halo; it must reach as far as they push.
+  if (f.separation_radius > scene.halo_width) {
+    sep.failAt("radius", formatNumber(f.separation_radius) + " m is wider than halo.width (" +
+                             formatNumber(scene.halo_width) + " m)");
+  }
+}
+
 }  // namespace zonesim

@@ -13,4 +13,7 @@ namespace zonesim {
 /// resolved against its folder).
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene);
 
+/// Reads the optional `flow` block of an NPC population (after the map: a flow needs one).
+void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p);
+
 }  // namespace zonesim

@@ -106,7 +106,7 @@ void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p)
 
 void readNpcs(const SceneNode& node, Scene& scene) {
   SceneMap m = node.map({"kind", "count", "speed", "acceleration", "waypoint_radius",
-                         "arrive_distance", "region", "separation", "gather", "flock"});
+                         "arrive_distance", "region", "separation", "gather", "flock", "flow"});
   NpcPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
@@ -137,6 +137,7 @@ void readNpcs(const SceneNode& node, Scene& scene) {
                              formatNumber(scene.halo_width) + " m)");
   }
   readFlock(m, scene, p);
+  readNpcFlow(m, scene, p);
   scene.npcs.push_back(p);
 }
 
@@ -373,9 +374,9 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readDeadReckoning(root, scene.dead_reckoning);
   readPhysics(root, scene.physics);
   readPhysicsObjects(root, scene);  // common/scene_physics.cpp
+  readObstacleMap(root, file, scene);
   readPopulations(root, scene);
   readClients(root, scene.clients);
-  readObstacleMap(root, file, scene);
   return scene;
 }
 

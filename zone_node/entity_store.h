@@ -30,7 +30,9 @@ struct NpcData {
   double gather_radius = 0;          ///< 0: never gathers
   double gather_start = 0, gather_end = 0;  ///< simulated seconds
   bool gathering = false;                   ///< the current waypoint is one of the gathering's
-  std::int32_t flock = -1;  ///< its population's index in Scene::npcs if it flocks, else -1
+  /// Its population's index in Scene::npcs when a crowd system moves it (a flock or a flow
+  /// crowd: the population says which), else -1 (a wanderer).
+  std::int32_t flock = -1;
 };
 
 /// A player's avatar, driven by inputs applied exactly once by sequence number.

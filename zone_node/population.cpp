@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
 #include <utility>
 
 #include "common/rng.h"
+#include "zone_node/world_map.h"
 
 namespace zonesim::zone {
 
@@ -44,14 +47,33 @@ Vec3 nextWaypoint(const Scene& scene, const Vec3& from, double radius, std::uint
                          scene.world.max.z - margin));
 }
 
+namespace {
+
+// With a map, NPCs start on open cells: draws in the region are repeated (from the NPC's own
+// stream, so every rank draws the same) until one lands on an open cell.
+Vec3 openStart(Pcg32& rng, const NpcPopulation& p, const Scene& scene, const WorldMap* map,
+               std::size_t group) {
+  constexpr int kTries = 10000;
+  for (int t = 0; t < kTries; ++t) {
+    Vec3 at = uniformIn(rng, p.region, scene.world.min.y);
+    if (!map || map->walkable(at.x(), at.z())) return at;
+  }
+  throw SceneError((scene.source_path.empty() ? scene.name : scene.source_path) +
+                   ":0: populations[" + std::to_string(group) +
+                   "].region: " + std::to_string(kTries) + " draws found no open cell of the map");
+}
+
+}  // namespace
+
 void forEachInitialEntity(const Scene& scene,
                           const std::function<void(const EntityRecordData&)>& keep) {
+  std::shared_ptr<const WorldMap> map = loadWorldMap(scene);
   std::uint64_t counter = 0;
   for (std::size_t group = 0; group < scene.npcs.size(); ++group) {
     const NpcPopulation& p = scene.npcs[group];
     for (int i = 0; i < p.count; ++i) {
       auto [r, rng] = nextSceneEntity(scene, EntityKind::Npc, counter);
-      r.pos = uniformIn(rng, p.region, scene.world.min.y);
+      r.pos = openStart(rng, p, scene, map.get(), group);
       r.npc.max_speed = rng.uniform(p.min_speed, p.max_speed);
       r.npc.accel = p.acceleration;
       r.npc.waypoint_radius = p.waypoint_radius;
@@ -73,6 +95,9 @@ void forEachInitialEntity(const Scene& scene,
         r.vel = Vec3(speed * std::cos(heading), 0, speed * std::sin(heading));
         r.rng_state = more.state();
       }
+      // A flow NPC starts at rest; the flow system moves it (the population index tells it
+      // apart from wanderers, as for flocks).
+      if (p.flow.enabled) r.npc.flock = std::int32_t(group);
       keep(r);
     }
   }

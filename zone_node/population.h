@@ -14,7 +14,8 @@ namespace zonesim::zone {
 /// Creator "rank" of entities defined by the scene (ids identical for any rank count).
 constexpr std::uint32_t kSceneCreator = 0xFFFF;
 
-/// Calls keep(record) for every initial entity of the scene, in global id order.
+/// Calls keep(record) for every initial entity of the scene, in global id order. With a map,
+/// NPCs start on open cells (throws SceneError when a region has none).
 void forEachInitialEntity(const Scene& scene,
                           const std::function<void(const EntityRecordData&)>& keep);
 

@@ -12,6 +12,7 @@
 #include "zone_node/systems/avatar_movement.h"
 #include "zone_node/systems/emitters.h"
 #include "zone_node/systems/flock_movement.h"
+#include "zone_node/systems/flow_movement.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
 #include "zone_node/world_map.h"
@@ -67,8 +68,9 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   const gpu::OffloadThresholds thresholds = agreedThresholds(comm_, probe && offloadable);
   flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
   map_ = loadWorldMap(scene);
-  // Flocks read their neighbours across borders as ghosts too.
-  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active();
+  flows_ = std::make_unique<FlowMovement>(scene, map_.get());
+  // Flocks and flow crowds read their neighbours across borders as ghosts too.
+  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active();
   forward_.resize(std::size_t(size_));
 
   auto keepIfMine = [&](const EntityRecordData& r) {
@@ -267,6 +269,7 @@ void ZoneNode::ai() {
   if (walker_reach_ > 0) near_.build(store_, &halo_.ghosts(), walker_reach_);
   stepNpcs(scene_, store_, near_, double(tick_) * scene_.dt, scene_.dt);
   if (flocks_->active()) flocks_->step(store_, &halo_.ghosts(), scene_.dt);
+  if (flows_->active()) flows_->step(store_, &halo_.ghosts(), scene_.dt);
   stepAvatars(scene_.world, store_, scene_.dt);
 }
 

@@ -31,6 +31,7 @@ class CellPublisher;
 class EmitterSystem;
 class RigidBodySystem;
 class FlockMovement;
+class FlowMovement;
 struct WorldMap;
 
 struct ZoneOptions {
@@ -134,6 +135,7 @@ class ZoneNode {
   std::unique_ptr<RigidBodySystem> bodies_;  // created when the first body shows up
   std::unique_ptr<FlockMovement> flocks_;    // flocking NPC populations of the scene
   std::shared_ptr<const WorldMap> map_;      // the scene's walls; null without `map:`
+  std::unique_ptr<FlowMovement> flows_;      // flow-field NPC populations (need map_)
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

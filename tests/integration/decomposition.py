@@ -3,6 +3,8 @@ and per-entity random streams do not depend on the decomposition, migration carr
 exactly, and (scenes/crowd.yaml) walkers that keep apart read their neighbours across zone
 borders from ghosts that are bitwise the owners' state; (scenes/crowd_flock.yaml) flocking NPCs
 do the same through the crowd library's Flock, whose sums run in a canonical order;
+(scenes/courtyard_flow.yaml) a flow-field crowd on an obstacle map pushes apart across borders
+through ghosts and decides arrivals from positions alone;
 (scenes/particles.yaml, --gpu off) fountains whose sprays cross zone borders end with the same
 live particles (positions and velocities, bit for bit); (crowd_flock with --gpu on) the same
 flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in cell-then-id
@@ -13,12 +15,12 @@ from pathlib import Path
 
 import harness as h
 
-SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "particles": 300,
-          "crowd_flock_gpu": 300}
+SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
+          "particles": 300, "crowd_flock_gpu": 300}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"]}
-GHOST_SCENES = ("crowd", "crowd_flock", "crowd_flock_gpu")
+GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu")
 
 with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
     out = Path(tmp)

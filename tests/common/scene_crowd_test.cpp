@@ -1,5 +1,6 @@
-// The top-level `map:` key: where the obstacle map lies and the errors for a bad one. The grid
-// itself is parsed by zone_node/world_map.h (tests/zone_node/test_world_map.cpp).
+// Crowd keys of the scene (common/scene_crowd.cpp): the top-level `map:` key (where the
+// obstacle map lies; the grid itself is parsed by zone_node/world_map.h, tested in
+// tests/zone_node/test_world_map.cpp) and an NPC population's `flow` block.
 
 #include <gtest/gtest.h>
 
@@ -78,6 +79,59 @@ TEST(SceneMap, ErrorsNameLineAndField) {
               parseScene(sceneWith("map: {file: maps/courtyard.map, size: 3}\n"), kSceneName);
             }),
             kSceneName + ":5: map.size: unknown key (allowed: file, origin, cell_size)");
+}
+
+const std::string kMap = "map: {file: maps/courtyard.map}\n";
+
+std::string flowScene(const std::string& flow_text, const std::string& map = kMap) {
+  return sceneWith(map + "populations:\n  - kind: npc\n    count: 5\n    flow:\n" + flow_text);
+}
+
+TEST(SceneFlow, DestinationsAndDefaultsComeThrough) {
+  Scene s = parseScene(flowScene("      destinations: [[1, 0, 2], [30.5, 5, 40]]\n"
+                                 "      max_speed: 3\n"
+                                 "      separation: {radius: 0.8}\n"),
+                       kSceneName);
+  ASSERT_EQ(s.npcs.size(), 1u);
+  const NpcFlow& f = s.npcs[0].flow;
+  EXPECT_TRUE(f.enabled);
+  EXPECT_FALSE(s.npcs[0].flock.enabled);
+  ASSERT_EQ(f.destinations.size(), 2u);
+  EXPECT_EQ(f.destinations[1].x, 30.5);
+  EXPECT_EQ(f.destinations[1].z, 40);
+  EXPECT_EQ(f.destinations[1].line, 10);
+  EXPECT_EQ(f.max_speed, 3);
+  EXPECT_EQ(f.separation_radius, 0.8);
+  EXPECT_EQ(f.separation_weight, NpcFlow{}.separation_weight);
+  EXPECT_EQ(f.arrive_radius, NpcFlow{}.arrive_radius);
+}
+
+TEST(SceneFlow, ErrorsNameLineAndField) {
+  auto error = [](const std::string& text) {
+    return sceneError([&] { parseScene(text, kSceneName); });
+  };
+  EXPECT_EQ(error(flowScene("      destinations: [[1, 0, 2]]\n", "")),
+            kSceneName +
+                ":9: populations[0].flow.destinations: a flow-field population needs "
+                "the scene's map: key");
+  EXPECT_EQ(error(flowScene("      max_speed: 2\n")),
+            kSceneName + ":10: populations[0].flow.destinations: required field is missing");
+  EXPECT_EQ(error(flowScene("      destinations: []\n")),
+            kSceneName + ":10: populations[0].flow.destinations: needs at least one destination");
+  EXPECT_EQ(error(flowScene("      destinations: [[1, 0, 2], [500, 0, 2]]\n")),
+            kSceneName +
+                ":10: populations[0].flow.destinations[1]: x, z (500, 2) is outside "
+                "the world");
+  EXPECT_EQ(error(flowScene("      destinations: [[1, 0, 2]]\n      steer_rate: 0\n")),
+            kSceneName + ":11: populations[0].flow.steer_rate: must be > 0, got 0");
+  EXPECT_EQ(error(flowScene("      destinations: [[1, 0, 2]]\n      separation: {radius: 11}\n")),
+            kSceneName +
+                ":11: populations[0].flow.separation.radius: 11 m is wider than "
+                "halo.width (10 m)");
+  EXPECT_EQ(error(flowScene("      destinations: [[1, 0, 2]]\n    flock: {radius: 2}\n")),
+            kSceneName +
+                ":11: populations[0].flock: a flow-field population follows its "
+                "fields, not this");
 }
 
 }  // namespace

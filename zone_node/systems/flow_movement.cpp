@@ -1,0 +1,141 @@
+#include "zone_node/systems/flow_movement.h"
+
+#include <algorithm>
+#include <string>
+
+#include "zone_node/cluster/ghost_store.h"
+#include "zone_node/crowd/flow_crowd.h"
+#include "zone_node/systems/steering.h"
+#include "zone_node/world_map.h"
+
+namespace zonesim::zone {
+
+/// One flow population: its crowd (fields shared by all its NPCs) and the gather buffers.
+struct FlowMovement::Group {
+  Group(std::int32_t p, const WorldMap& map, const crowd::FlowCrowdSettings& s)
+      : population(p), crowd(map.grid, map.frame, s) {}
+  std::int32_t population;
+  crowd::FlowCrowd crowd;
+  std::vector<std::size_t> index;  // store index of each gathered NPC
+  std::vector<std::uint64_t> ids, ghost_ids;
+  std::vector<crowd::Vec2> pos, vel, ghost_pos, ghost_vel;
+  std::vector<std::uint16_t> dest;
+  std::vector<std::uint8_t> arrived;
+};
+
+int flowDestination(std::uint64_t id, int count) {
+  // splitmix64's finaliser: consecutive ids spread evenly over the destinations.
+  std::uint64_t z = id + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  return int(z % std::uint64_t(count));
+}
+
+namespace {
+
+crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
+  crowd::FlowCrowdSettings s;
+  s.maxSpeed = f.max_speed;
+  s.maxForce = f.max_force;
+  s.steerRate = f.steer_rate;
+  s.separationRadius = f.separation_radius;
+  s.separationWeight = f.separation_weight;
+  s.arriveRadius = f.arrive_radius;
+  s.slowRadius = f.slow_radius;
+  s.gridCell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
+  return s;
+}
+
+std::string sceneFile(const Scene& scene) {
+  return scene.source_path.empty() ? scene.name : scene.source_path;
+}
+
+}  // namespace
+
+FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map) {
+  for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
+    const NpcFlow& f = scene.npcs[p].flow;
+    if (!f.enabled) continue;
+    if (!map) throw SceneError(sceneFile(scene) + ":0: map: a flow population needs a map");
+    auto g = std::make_unique<Group>(std::int32_t(p), *map, settingsOf(f));
+    for (std::size_t k = 0; k < f.destinations.size(); ++k) {
+      const NpcFlow::Destination& d = f.destinations[k];
+      if (!map->walkable(d.x, d.z)) {
+        throw SceneError(sceneFile(scene) + ":" + std::to_string(d.line) + ": populations[" +
+                         std::to_string(p) + "].flow.destinations[" + std::to_string(k) +
+                         "]: lies on a blocked cell of the map");
+      }
+      g->crowd.addDestination(map->frame.cellOf({d.x, d.z}));
+    }
+    groups_.push_back(std::move(g));
+    reach_ = std::max(reach_, f.separation_radius);
+  }
+}
+
+FlowMovement::~FlowMovement() = default;
+
+FlowMovement::Group* FlowMovement::groupOf(std::int32_t population) const {
+  for (const auto& g : groups_)
+    if (g->population == population) return g.get();
+  return nullptr;
+}
+
+bool FlowMovement::arrived(const EntityStore& store, std::size_t i) const {
+  Group* g = groupOf(store.npc[i].flock);
+  if (!g) return false;
+  int d = flowDestination(store.id[i].value, g->crowd.destinationCount());
+  return g->crowd.hasArrived({store.pos[i].x(), store.pos[i].z()}, d);
+}
+
+std::size_t FlowMovement::step(EntityStore& store, const GhostStore* ghosts, double dt) {
+  std::size_t walking = 0;
+  for (const std::unique_ptr<Group>& gp : groups_) {
+    Group& g = *gp;
+    const int count = g.crowd.destinationCount();
+    g.index.clear();
+    g.ids.clear();
+    g.pos.clear();
+    g.vel.clear();
+    g.dest.clear();
+    g.arrived.clear();
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      if (store.kind[i] != EntityKind::Npc || store.npc[i].flock != g.population) continue;
+      crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
+      int d = flowDestination(store.id[i].value, count);
+      g.index.push_back(i);
+      g.ids.push_back(store.id[i].value);
+      g.pos.push_back(p);
+      g.vel.push_back({store.vel[i].x(), store.vel[i].z()});
+      g.dest.push_back(std::uint16_t(d));
+      g.arrived.push_back(g.crowd.hasArrived(p, d) ? 1 : 0);
+    }
+    // Ghosts that have arrived left the crowd on their owner too: leave them out here.
+    g.ghost_ids.clear();
+    g.ghost_pos.clear();
+    g.ghost_vel.clear();
+    if (ghosts) {
+      for (std::size_t k = 0; k < ghosts->size(); ++k) {
+        if (ghosts->kind[k] != EntityKind::Npc || ghosts->flock[k] != g.population) continue;
+        crowd::Vec2 p{ghosts->pos[k].x(), ghosts->pos[k].z()};
+        if (g.crowd.hasArrived(p, flowDestination(ghosts->id[k].value, count))) continue;
+        g.ghost_ids.push_back(ghosts->id[k].value);
+        g.ghost_pos.push_back(p);
+        g.ghost_vel.push_back({ghosts->vel[k].x(), ghosts->vel[k].z()});
+      }
+    }
+    if (g.ids.empty()) continue;
+    g.crowd.step(crowd::AgentSpan{g.ids, g.pos, g.vel}, g.dest, g.arrived,
+                 crowd::GhostSpan{g.ghost_ids, g.ghost_pos, g.ghost_vel}, dt);
+    for (std::size_t a = 0; a < g.index.size(); ++a) {
+      std::size_t i = g.index[a];
+      store.pos[i] = Vec3(g.pos[a].x, store.pos[i].y(), g.pos[a].y);
+      store.vel[i] = Vec3(g.vel[a].x, 0.0, g.vel[a].y);
+      store.rot[i] = facing(store.rot[i], store.vel[i]);
+      walking += g.arrived[a] ? 0 : 1;
+    }
+  }
+  return walking;
+}
+
+}  // namespace zonesim::zone

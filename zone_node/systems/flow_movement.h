@@ -1,0 +1,54 @@
+#pragma once
+// Flow-field crowds in a zone: each NPC population with `flow` is one crowd::FlowCrowd on the
+// scene's map, with one field per destination built once at start and shared by all its NPCs.
+// An NPC's destination is drawn from its id (flowDestination), so it needs no state that
+// migration would carry, and every rank agrees on it, ghosts included. An NPC within the
+// arrival radius of its goal has arrived: it stands still and leaves the crowd (neither moved
+// nor seen), which every rank decides from the position alone. The separation sums run in the
+// crowd library's canonical order over owned NPCs and ghosts, so a zone run ends bitwise equal
+// on any number of ranks.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/scene.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::zone {
+
+class GhostStore;
+struct WorldMap;
+
+/// Destination index in [0, count) of the flow NPC with this id (a hash, fixed for its life).
+int flowDestination(std::uint64_t id, int count);
+
+/// Steps the flow-field NPC populations of a scene.
+class FlowMovement {
+ public:
+  /// One crowd per population of `scene` with `flow.enabled`, on `map` (must outlive this;
+  /// required when there is such a population). Throws SceneError when a destination lies on a
+  /// blocked cell.
+  FlowMovement(const Scene& scene, const WorldMap* map);
+  ~FlowMovement();
+
+  /// Whether the scene has a flow-field population at all.
+  bool active() const { return !groups_.empty(); }
+  /// Widest separation radius of the crowds (the halo must reach this far).
+  double reach() const { return reach_; }
+
+  /// Advances every flow NPC of `store` by `dt`, seeing same-population `ghosts`. Returns the
+  /// number of NPCs still on their way (not arrived) after the step.
+  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt);
+
+  /// Whether the NPC at `store` index `i` (a flow NPC) stands at its destination.
+  bool arrived(const EntityStore& store, std::size_t i) const;
+
+ private:
+  struct Group;
+  Group* groupOf(std::int32_t population) const;
+  std::vector<std::unique_ptr<Group>> groups_;  // one per flow population
+  double reach_ = 0;
+};
+
+}  // namespace zonesim::zone
