@@ -49,43 +49,46 @@ void benchFlock(const std::vector<int>& counts, int steps) {
       "into the grid's cell order once before timing)\n\n",
       steps);
   std::printf(
-      "| agents | storage | ms/step | agent updates/s | neighbours/agent |\n"
-      "|---|---|---|---|---|\n");
+      "| agents | storage | lanes | ms/step | agent updates/s | neighbours/agent |\n"
+      "|---|---|---|---|---|---|\n");
   for (int n : counts) {
-    for (bool sorted : {false, true}) {
-      double side = std::sqrt(n / 0.5);
-      Agents a;
-      Pcg32 rng(1, 1);
-      for (int i = 0; i < n; ++i) {
-        a.ids.push_back(std::uint64_t(i) * 2654435761ULL);  // ids unrelated to position
-        a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
-        a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
-      }
-      Flock flock{FlockSettings{}};
-      for (int k = 0; k < 5; ++k) flock.step(a.span(), {}, 1.0 / 30);  // warm the buffers
-      if (sorted) {
-        // What an entity store kept in spatial order would hand over (agents move little per
-        // tick, so the order stays nearly sorted between occasional re-sorts).
-        Agents b;
-        for (const GridEntry& e : flock.grid().entries()) {
-          b.ids.push_back(a.ids[e.src]);
-          b.pos.push_back(a.pos[e.src]);
-          b.vel.push_back(a.vel[e.src]);
+    for (bool sorted : {false, true})
+      for (int lanes : {1, 2, 4}) {
+        double side = std::sqrt(n / 0.5);
+        Agents a;
+        Pcg32 rng(1, 1);
+        for (int i = 0; i < n; ++i) {
+          a.ids.push_back(std::uint64_t(i) * 2654435761ULL);  // ids unrelated to position
+          a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
+          a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
         }
-        a = std::move(b);
+        Flock flock{FlockSettings{}};
+        // Agents per pass over the neighbour cells: 1, 2 (SSE2) or 4 (AVX); same results.
+        int used = flock.useLanes(lanes);
+        for (int k = 0; k < 5; ++k) flock.step(a.span(), {}, 1.0 / 30);  // warm the buffers
+        if (sorted) {
+          // What an entity store kept in spatial order would hand over (agents move little per
+          // tick, so the order stays nearly sorted between occasional re-sorts).
+          Agents b;
+          for (const GridEntry& e : flock.grid().entries()) {
+            b.ids.push_back(a.ids[e.src]);
+            b.pos.push_back(a.pos[e.src]);
+            b.vel.push_back(a.vel[e.src]);
+          }
+          a = std::move(b);
+        }
+        auto t0 = Clock::now();
+        for (int k = 0; k < steps; ++k) flock.step(a.span(), {}, 1.0 / 30);
+        double ms = msSince(t0) / steps;
+        // Mean neighbours within the radius, from the last grid (not timed).
+        long long pairs = 0;
+        for (const GridEntry& e : flock.grid().entries())
+          flock.grid().forEachNear(e.pos, 3.0, [&](const GridEntry& o) {
+            if (o.id != e.id && lengthSq(o.pos - e.pos) < 9.0) ++pairs;
+          });
+        std::printf("| %d | %s | %d | %.3f | %.3g | %.1f |\n", n, sorted ? "cell" : "random", used,
+                    ms, n / (ms * 1e-3), double(pairs) / n);
       }
-      auto t0 = Clock::now();
-      for (int k = 0; k < steps; ++k) flock.step(a.span(), {}, 1.0 / 30);
-      double ms = msSince(t0) / steps;
-      // Mean neighbours within the radius, from the last grid (not timed).
-      long long pairs = 0;
-      for (const GridEntry& e : flock.grid().entries())
-        flock.grid().forEachNear(e.pos, 3.0, [&](const GridEntry& o) {
-          if (o.id != e.id && lengthSq(o.pos - e.pos) < 9.0) ++pairs;
-        });
-      std::printf("| %d | %s | %.3f | %.3g | %.1f |\n", n, sorted ? "cell" : "random", ms,
-                  n / (ms * 1e-3), double(pairs) / n);
-    }
   }
 }
 

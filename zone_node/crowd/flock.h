@@ -29,8 +29,11 @@ struct FlockSettings {
 class Flock {
  public:
   /// A flock stepper with the given settings.
-  explicit Flock(const FlockSettings& settings) : settings_(settings) {}
+  explicit Flock(const FlockSettings& settings) : settings_(settings) { useLanes(4); }
 
+  /// Agents whose neighbour sums run in one pass: 1, 2 (SSE2) or 4 (AVX, where the CPU has
+  /// it; the default). Every width gives bitwise the same step; returns the width in use.
+  int useLanes(int lanes);
   /// Advances `agents` by `dt` (semi-implicit Euler). `ghosts` are seen, not moved.
   /// `goalVel`: empty, or a desired velocity per agent. `plan`: per-agent dt/detail (lod.h).
   void step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
@@ -46,6 +49,7 @@ class Flock {
 
   FlockSettings settings_;
   NeighbourGrid grid_;
+  int lanes_ = 1;
 };
 
 }  // namespace zonesim::crowd

@@ -60,22 +60,66 @@ class NeighbourGrid {
   /// indexes entries() and the coordinate arrays xs() .. vys(), for vectorised loops.
   template <class F>
   void forEachRowNear(Vec2 p, double radius, F&& f) const {
+    forEachRowNearAll(&p, 1, radius, f);
+  }
+
+  /// As forEachRowNear for two discs at once: per row, the smallest range of cells holding
+  /// both chords, rows in order. Each disc's own entries come in its canonical order, with
+  /// extra entries (out of its reach) in between: a step can sum for two agents in one pass.
+  template <class F>
+  void forEachRowNearEither(Vec2 a, Vec2 b, double radius, F&& f) const {
+    const Vec2 p[2] = {a, b};
+    forEachRowNearAll(p, 2, radius, f);
+  }
+
+  /// As forEachRowNearEither for the discs around `p[0 .. n)` (n >= 1).
+  template <class F>
+  void forEachRowNearAll(const Vec2* p, int n, double radius, F&& f) const {
     if (entries_.empty()) return;
-    long long cy0 = cellCoord(p.y - radius) - minY_, cy1 = cellCoord(p.y + radius) - minY_;
+    double yLo = p[0].y, yHi = p[0].y;
+    for (int i = 1; i < n; ++i) {
+      yLo = std::min(yLo, p[i].y);
+      yHi = std::max(yHi, p[i].y);
+    }
+    long long cy0 = cellCoord(yLo - radius) - minY_, cy1 = cellCoord(yHi + radius) - minY_;
     if (cy0 < 0) cy0 = 0;
     if (cy1 >= height_) cy1 = height_ - 1;
-    const double r2 = radius * radius;
     for (long long cy = cy0; cy <= cy1; ++cy) {
-      double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
-      double gap = p.y < rowLo ? rowLo - p.y : (p.y > rowHi ? p.y - rowHi : 0.0);
-      double half = std::sqrt(std::max(0.0, r2 - gap * gap));
-      long long cx0 = cellCoord(p.x - half) - minX_, cx1 = cellCoord(p.x + half) - minX_;
+      long long cx0 = 1, cx1 = 0;  // empty
+      for (int i = 0; i < n; ++i) {
+        long long x0, x1;
+        chord(p[i], radius, cy, x0, x1);
+        if (x0 > x1) continue;
+        if (cx0 > cx1) {
+          cx0 = x0;
+          cx1 = x1;
+        } else {
+          cx0 = std::min(cx0, x0);
+          cx1 = std::max(cx1, x1);
+        }
+      }
+      if (cx0 > cx1) continue;
       if (cx0 < 0) cx0 = 0;
       if (cx1 >= width_) cx1 = width_ - 1;
       if (cx0 > cx1) continue;
       const std::int32_t* row = starts_.data() + cy * width_;
       if (row[cx0] < row[cx1 + 1]) f(row[cx0], row[cx1 + 1]);
     }
+  }
+
+  /// The ranges forEachRowNearAll(p, n, radius) visits, as (begin, end) pairs in `out`;
+  /// returns how many, or -1 when there are more than `cap` (for loops that cannot take a
+  /// callback, such as code compiled for another instruction set).
+  int rowRangesNearAll(const Vec2* p, int n, double radius, std::int32_t* out, int cap) const {
+    int count = 0;
+    forEachRowNearAll(p, n, radius, [&](std::int32_t begin, std::int32_t end) {
+      if (count < cap) {
+        out[2 * count] = begin;
+        out[2 * count + 1] = end;
+      }
+      ++count;
+    });
+    return count <= cap ? count : -1;
   }
 
   /// x of every entry, in cell order (structure of arrays for vectorised neighbour loops).
@@ -99,6 +143,20 @@ class NeighbourGrid {
     return t - (s < static_cast<double>(t));
   }
   void add(std::uint64_t id, Vec2 p, Vec2 v, std::int32_t src);
+  // Cells [x0, x1] of row cy (relative to the box) that the disc's chord crosses, unclipped;
+  // x0 > x1 when the row lies outside the disc's rows.
+  void chord(Vec2 p, double radius, long long cy, long long& x0, long long& x1) const {
+    if (cy < cellCoord(p.y - radius) - minY_ || cy > cellCoord(p.y + radius) - minY_) {
+      x0 = 1;
+      x1 = 0;
+      return;
+    }
+    double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
+    double gap = p.y < rowLo ? rowLo - p.y : (p.y > rowHi ? p.y - rowHi : 0.0);
+    double half = std::sqrt(std::max(0.0, radius * radius - gap * gap));
+    x0 = cellCoord(p.x - half) - minX_;
+    x1 = cellCoord(p.x + half) - minX_;
+  }
 
   double cellSize_ = 1.0;
   double invCell_ = 1.0;
