@@ -61,7 +61,8 @@ struct Thresholds {
 };
 
 /// Why an update is due (None: the receivers' prediction is still good).
-enum class Due : std::uint8_t { None, Position, Orientation, Heartbeat };
+/// Rest: the entity stopped (a body fell asleep) while receivers still extrapolate a motion.
+enum class Due : std::uint8_t { None, Position, Orientation, Heartbeat, Rest };
 
 /// Compares the truth now with what receivers predict from `sent` after `elapsed` seconds.
 Due updateDue(const State& sent, const Model& m, double elapsed, const V3& true_pos,

@@ -3,6 +3,7 @@
 // Removal swaps the last entity into the hole, so indices are not stable across a tick's
 // migrations: hold EntityIds, and look them up with indexOf().
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <unordered_map>
@@ -74,7 +75,11 @@ struct DeadReckoningState {
   int cell = -1;    ///< interest cell it was last published in; -1 = never published here
   dr::State sent;   ///< the quantised state receivers hold
   double time = 0;  ///< sim time `sent` was sampled
-  Vec3 last_vel = Vec3::Zero();      ///< previous tick's velocity (acceleration estimate)
+  /// Velocities of the last ticks (oldest first once full): the acceleration estimate's window.
+  static constexpr int kVelocityWindow = 6;
+  std::array<Vec3, kVelocityWindow> vel_history{};
+  int vel_count = 0;                 ///< how many of vel_history hold a tick (up to the window)
+  int vel_next = 0;                  ///< where the next tick's velocity goes
   Quat last_rot = Quat::Identity();  ///< previous tick's orientation (angular velocity estimate)
   bool has_last = false;
 };

@@ -59,8 +59,8 @@ TEST(DeadReckoning, EstimatesAccelerationAndSpinFromTheLastTick) {
 // Runs the sender on an analytic trajectory; returns updates sent and checks that after every
 // tick's decision the receivers' prediction is within the threshold (plus quantisation).
 template <typename Truth>
-int runSender(DeadReckoning cfg, EntityKind kind, Truth truth, double seconds,
-              double& worst_after) {
+int runSender(DeadReckoning cfg, EntityKind kind, Truth truth, double seconds, double& worst_after,
+              double* mean_after = nullptr) {
   Scene scene = worldScene();
   scene.dead_reckoning = cfg;
   InterestGrid grid(scene.world, scene.interest_cell_size);
@@ -68,9 +68,10 @@ int runSender(DeadReckoning cfg, EntityKind kind, Truth truth, double seconds,
   EntityStore store;
   store.add(entity(kind));
   const double dt = 1.0 / 30;
-  int updates = 0;
+  int updates = 0, ticks = 0;
   worst_after = 0;
-  for (int tick = 0; tick * dt <= seconds; ++tick) {
+  double sum_after = 0;
+  for (int tick = 0; tick * dt <= seconds; ++tick, ++ticks) {
     double t = tick * dt;
     truth(t, store.pos[0], store.vel[0], store.rot[0]);
     dr::State now = trueState(store, 0, tick > 0 ? dt : 0);
@@ -83,9 +84,11 @@ int runSender(DeadReckoning cfg, EntityKind kind, Truth truth, double seconds,
       ++updates;
     }
     dr::Model m = modelFor(cfg, kind);
-    worst_after = std::max(worst_after,
-                           dr::distance(dr::predictPosition(d.sent, m.order, t - d.time), now.pos));
+    double after = dr::distance(dr::predictPosition(d.sent, m.order, t - d.time), now.pos);
+    worst_after = std::max(worst_after, after);
+    sum_after += after;
   }
+  if (mean_after != nullptr) *mean_after = sum_after / ticks;
   return updates;
 }
 
@@ -153,6 +156,103 @@ TEST(DeadReckoning, StaticModelSendsOnlyOnMoveOrHeartbeat) {
   n = runSender(cfg, EntityKind::Emitter, moving, 30, worst);
   EXPECT_NEAR(n, 60, 3);
   EXPECT_LE(worst, 0.5 + 0.01);
+}
+
+// A sphere rolling at 0.92 m/s whose contact makes it hop 1.1 cm up and down with a 3-tick
+// period, as the solver's resting contact does (velocity -0.33, +0.33, 0 m/s vertically).
+void rollingWithContactJitter(double t, Vec3& p, Vec3& v, Quat& q) {
+  static constexpr double kVy[3] = {-0.33, 0.33, 0.0};
+  static constexpr double kY[3] = {0.5078, 0.5188, 0.5188};
+  int k = int(std::lround(t * 30)) % 3;
+  p = Vec3(100 + 0.92 * t, kY[k], 100);
+  v = Vec3(0.92, kVy[k], 0);
+  q = Quat::Identity();
+}
+
+TEST(DeadReckoning, ContactJitterSendsTheMeanVelocityAndNoAcceleration) {
+  EntityStore store;
+  store.add(entity(EntityKind::RigidBody));
+  const double dt = 1.0 / 30;
+  dr::State s;
+  for (int tick = 0; tick < 20; ++tick) {
+    rollingWithContactJitter(tick * dt, store.pos[0], store.vel[0], store.rot[0]);
+    s = trueState(store, 0, tick > 0 ? dt : 0);
+    rememberTick(store, 0);
+  }
+  // One tick's difference says 10 to 20 m/s^2; the window says the body is not accelerating.
+  EXPECT_EQ(estimateMotion(store.dr[0], store.vel[0], dt).kind, MotionEstimate::Kind::Oscillating);
+  EXPECT_EQ(s.acc.x, 0);
+  EXPECT_EQ(s.acc.y, 0);
+  EXPECT_NEAR(s.vel.x, 0.92, 1e-12);
+  EXPECT_NEAR(s.vel.y, 0, 1e-12);  // the mean over the window: two whole hops
+}
+
+TEST(DeadReckoning, FreeFallKeepsItsAccelerationAndAnImpactDropsIt) {
+  EntityStore store;
+  store.add(entity(EntityKind::RigidBody));
+  const double dt = 1.0 / 30, g = -9.81;
+  auto estimate = [&](double vy) {
+    store.vel[0] = Vec3(1, vy, 0);
+    MotionEstimate e = estimateMotion(store.dr[0], store.vel[0], dt);
+    rememberTick(store, 0);
+    return e;
+  };
+  MotionEstimate e;
+  for (int tick = 0; tick < 10; ++tick) e = estimate(-3 + g * tick * dt);
+  EXPECT_EQ(e.kind, MotionEstimate::Kind::Steady);
+  EXPECT_NEAR(e.acc.y(), g, 1e-9);
+  EXPECT_NEAR(e.acc.x(), 0, 1e-9);
+  // A bounce reverses the velocity in one tick: no acceleration until the window is clear of it.
+  double up = 5;
+  e = estimate(up);
+  EXPECT_EQ(e.kind, MotionEstimate::Kind::Changing);
+  EXPECT_EQ(e.acc.y(), 0);
+  EXPECT_EQ(e.vel.y(), up);
+  for (int tick = 1; tick <= DeadReckoningState::kVelocityWindow; ++tick)
+    e = estimate(up + g * tick * dt);
+  EXPECT_EQ(e.kind, MotionEstimate::Kind::Steady);
+  EXPECT_NEAR(e.acc.y(), g, 1e-9);
+}
+
+TEST(DeadReckoning, SecondOrderSenderFollowsARollingBodyThroughContactJitter) {
+  DeadReckoning cfg;  // rigid bodies: second order, rotating
+  cfg.position_threshold = 0.5;
+  cfg.heartbeat_seconds = 5;
+  double worst, mean;
+  int n = runSender(cfg, EntityKind::RigidBody, rollingWithContactJitter, 30, worst, &mean);
+  // One tick's acceleration (+-10..20 m/s^2) would cross 0.5 m within a few tenths of a second;
+  // the window's mean motion leaves only heartbeats and the 1.1 cm hop.
+  EXPECT_LE(n, 1 + int(30 / 3.75) + 2);
+  EXPECT_LE(worst, 0.5 + 0.01);
+  EXPECT_LT(mean, 0.05);
+}
+
+TEST(DeadReckoning, ABodyThatFallsAsleepIsSentAtRest) {
+  DeadReckoning cfg;
+  Scene scene = worldScene();
+  scene.dead_reckoning = cfg;
+  DeadReckoner reckoner(cfg, dr::codecParams(scene));
+  EntityStore store;
+  store.add(entity(EntityKind::RigidBody));
+  const double dt = 1.0 / 30;
+  store.pos[0] = Vec3(100, 0.5, 100);
+  store.vel[0] = Vec3(0.05, 0, 0);  // creeping, below any position threshold for seconds
+  dr::State moving = trueState(store, 0, 0);
+  rememberTick(store, 0);
+  int largest;
+  DeadReckoningState& d = store.dr[0];
+  DeadReckoner::markSent(d, reckoner.quantised(moving, EntityKind::RigidBody, 0, &largest), 0);
+  EXPECT_EQ(reckoner.due(d, store.id[0], EntityKind::RigidBody, trueState(store, 0, dt), dt),
+            dr::Due::None);
+  // The solver puts it to sleep (and zeroes its velocity): receivers are told at once.
+  store.body[0].sleeping = true;
+  store.vel[0] = Vec3::Zero();
+  dr::State rest = trueState(store, 0, dt);
+  EXPECT_EQ(rest.vel.x, 0);
+  EXPECT_EQ(rest.acc.x, 0);
+  EXPECT_EQ(reckoner.due(d, store.id[0], EntityKind::RigidBody, rest, 2 * dt), dr::Due::Rest);
+  DeadReckoner::markSent(d, reckoner.quantised(rest, EntityKind::RigidBody, 0, &largest), 2 * dt);
+  EXPECT_EQ(reckoner.due(d, store.id[0], EntityKind::RigidBody, rest, 3 * dt), dr::Due::None);
 }
 
 }  // namespace

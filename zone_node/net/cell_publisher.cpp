@@ -153,6 +153,9 @@ PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departur
       case dr::Due::Heartbeat:
         ++stats.heartbeats;
         break;
+      case dr::Due::Rest:
+        ++stats.rest_updates;
+        break;
     }
     sendNow(ch.updates_out);
   }

@@ -30,6 +30,7 @@ struct PublishStats {
   std::uint64_t position_updates = 0;     ///< updates sent for the position threshold
   std::uint64_t orientation_updates = 0;  ///< updates sent for the orientation threshold
   std::uint64_t heartbeats = 0;           ///< updates sent for the heartbeat
+  std::uint64_t rest_updates = 0;         ///< updates sent because a moving entity stopped
   std::uint64_t subscribed_cells = 0;
   std::uint64_t write_failures = 0;  ///< writes that timed out (a reader not keeping up)
 };

@@ -17,9 +17,27 @@ dr::Model modelFor(const DeadReckoning& cfg, EntityKind kind);
 /// The scene's thresholds in the model's units.
 dr::Thresholds thresholdsOf(const DeadReckoning& cfg);
 
-/// The entity's true state now. Acceleration (and, except for rigid bodies, whose solver knows
-/// it, angular velocity) is estimated from the previous tick's velocity and orientation kept in
-/// store.dr[i]; dt <= 0 means no previous tick, and the estimates are zero.
+/// Per-tick acceleration estimates within this of their window mean (m/s^2) count as steady.
+constexpr double kSteadyAccelerationTolerance = 2.0;
+
+/// What the sender tells receivers of an entity's motion, from its velocity over the window.
+struct MotionEstimate {
+  /// Steady: the per-tick accelerations agree (free flight, braking), acc is their mean.
+  /// Oscillating: the velocity jitters about a mean (contact): vel is that mean, acc zero.
+  /// Changing: an impact or turn: the velocity now, acc zero. None: no history yet.
+  enum class Kind : std::uint8_t { None, Steady, Oscillating, Changing };
+  Vec3 vel, acc;
+  Kind kind;
+};
+
+/// The motion to send for an entity whose velocity is `vel` now, given the last ticks' in d
+/// (dt apart). Contact solvers make a resting or rolling body's velocity flip tick to tick;
+/// one tick's difference would give second-order receivers an acceleration of tens of m/s^2.
+MotionEstimate estimateMotion(const DeadReckoningState& d, const Vec3& vel, double dt);
+
+/// The entity's true state now, with the motion of estimateMotion (a sleeping rigid body: at
+/// rest). Angular velocity is the solver's for rigid bodies, otherwise estimated from the
+/// previous tick's orientation; dt <= 0 means no previous tick, and the estimates are zero.
 dr::State trueState(const EntityStore& store, std::size_t i, double dt);
 /// Keeps this tick's velocity and orientation for the next tick's estimates.
 void rememberTick(EntityStore& store, std::size_t i);
