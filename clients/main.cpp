@@ -43,6 +43,11 @@ int main(int argc, char** argv) {
                  "with --metrics: write DIR/display.csv, where every K-th entity id was shown "
                  "each tick (zone_node --truth-every K writes the truth)");
   app.add_flag("--snap", snap, "show corrections at once instead of blending them in");
+  double max_lead_s = zonesim::clients::PlayerConfig{}.max_lead_s;
+  app.add_option("--max-lead-s", max_lead_s,
+                 "the server-clock estimate runs at most this far past the newest tick heard "
+                 "(0: unbounded, for comparison)")
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
@@ -59,8 +64,10 @@ int main(int argc, char** argv) {
     cfg.player.impairment = impair;
     cfg.player.blend = !snap;
     cfg.player.truth_every = truth_every;
-    // Heartbeat + 2 s: the player's server clock may run up to 1 s ahead of the zones before it
-    // falls back (sim_player.cpp), so 1 s of margin alone counts a late heartbeat as a ghost.
+    cfg.player.max_lead_s = max_lead_s;
+    // Heartbeat + 2 s: with --max-lead-s 0 the player's server clock may run up to 1 s ahead of
+    // the zones before it falls back (sim_player.cpp), so 1 s of margin alone counts a late
+    // heartbeat as a ghost.
     cfg.player.stale_after_s = scene.dead_reckoning.heartbeat_seconds + 2.0;
     cfg.players = players > 0 ? players : scene.clients.players;
     cfg.duration_s = duration;

@@ -98,7 +98,9 @@ std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
 
 double SimPlayer::serverTick(std::int64_t now_ns) const {
   if (clock_tick_ < 0) return 0;
-  return clock_tick_ + double(now_ns - clock_ns_) * 1e-9 * tick_rate_;
+  double run_on = clock_tick_ + double(now_ns - clock_ns_) * 1e-9 * tick_rate_;
+  if (config_.max_lead_s <= 0) return run_on;
+  return std::min(run_on, newest_tick_ + config_.max_lead_s * tick_rate_);
 }
 
 std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(
@@ -112,6 +114,7 @@ std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(
   // Follow the server clock: jump forward to a newer tick; fall back only when the estimate
   // ran more than a second ahead (the gateway stalled or the rate was off).
   double est = serverTick(now_ns);
+  newest_tick_ = std::max(newest_tick_, double(server_tick));
   if (clock_tick_ < 0 || double(server_tick) > est || est - double(server_tick) > tick_rate_) {
     clock_tick_ = double(server_tick);
     clock_ns_ = now_ns;
@@ -288,11 +291,22 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
       }
       return;
     }
-    case proto::Message::Handoff:
-      zone_ = d.msg_as_Handoff()->to_zone();
+    case proto::Message::Handoff: {
+      // Resent under a new seq until acknowledged: the crossing tick tells a repeat (or a
+      // notice overtaken by a newer handoff) from news.
+      const proto::Handoff* h = d.msg_as_Handoff();
+      if (!fresh(h->seq())) return;
+      if (handoffs_seen_ > 0 && h->tick() <= last_handoff_tick_) {
+        ++counters_.repeats;
+        return;
+      }
+      ++handoffs_seen_;
+      last_handoff_tick_ = h->tick();
+      zone_ = h->to_zone();
       ++counters_.handoffs;
-      logOwn(now_ns, d.msg_as_Handoff()->tick(), true);
+      logOwn(now_ns, h->tick(), true);
       return;
+    }
     case proto::Message::Pong: {
       std::int64_t sent_us = std::int64_t(d.msg_as_Pong()->client_time_us());
       double rtt_ms = double(now_ns / 1000 - sent_us) * 1e-3;

@@ -41,6 +41,10 @@ struct PlayerConfig {
   double stale_after_s =
       6;  ///< a known entity silent this long is counted a ghost (heartbeat + margin)
   std::uint32_t truth_every = 0;  ///< log what is shown of every k-th id each tick (0: none)
+  /// The server-clock estimate runs at most this far (seconds) past the newest tick heard of,
+  /// so that stalled zones freeze the view instead of flinging entities along their last
+  /// motion; the gateway tells a quiet view the tick more often than this. 0: unbounded.
+  double max_lead_s = 0.25;
 };
 
 /// Where a player showed a sampled entity (idl/truth_sample.h) at a server tick.
@@ -64,7 +68,7 @@ struct PlayerCounters {
   std::uint64_t updates = 0, spawns = 0, despawns = 0, handoffs = 0, pongs = 0;
   std::uint64_t hellos = 0, inputs = 0, send_failures = 0;
   std::uint64_t duplicates = 0, stale_lifecycle = 0;  ///< datagrams seen twice; old spawn/despawn
-  std::uint64_t repeats = 0;  ///< states of a known entity no newer than the one held (resends)
+  std::uint64_t repeats = 0;  ///< states or handoffs no newer than the ones held (resends)
   DropCounters drops;
   Reservoir rtt_ms;      ///< round trips, one per Pong
   Reservoir dr_error_m;  ///< correction seen at each update of a known entity
@@ -99,7 +103,7 @@ class SimPlayer {
   const std::vector<DisplaySample>& displayed() const { return displayed_; }
 
   /// The estimated server tick at now_ns (fractional): the newest tick heard of, advanced by
-  /// the wall time since at the announced tick rate.
+  /// the wall time since at the announced tick rate, at most max_lead_s past it.
   double serverTick(std::int64_t now_ns) const;
   /// The codec announced in the Welcome (nullptr before).
   const dr::StateCodec* codec() const { return codec_ ? &*codec_ : nullptr; }
@@ -149,8 +153,10 @@ class SimPlayer {
   gateway::Impairment impairment_;
   std::optional<dr::StateCodec> codec_;
   double tick_rate_ = 30;
-  double clock_tick_ = -1;  // newest server tick heard of, and when
+  double clock_tick_ = -1;  // the tick the clock was last set to, and when
   std::int64_t clock_ns_ = 0;
+  double newest_tick_ = -1;                                  // the newest server tick heard of
+  std::uint64_t handoffs_seen_ = 0, last_handoff_tick_ = 0;  // the newest handoff applied
   PlayerCounters counters_;
   gateway::AckWindow acks_;
   // Per entity, the seq of the last Spawn or Despawn applied: a resent or reordered older one

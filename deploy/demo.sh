@@ -4,7 +4,8 @@
 # Usage: deploy/demo.sh [RUN_DIR]
 #   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS, ZONESIM_DEMO_SCENE,
 #    ZONESIM_DEMO_TRUTH_EVERY: zones log the truth of every K-th entity id and clients what they
-#    showed of it, for the error-against-truth table of the report; 0 = off)
+#    showed of it, for the error-against-truth table of the report; 0 = off;
+#    ZONESIM_DEMO_CLIENT_ARGS: more client_stub options, e.g. "--max-lead-s 0" to compare)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
@@ -12,6 +13,7 @@ SECONDS_RUN="${ZONESIM_DEMO_SECONDS:-20}"
 PLAYERS="${ZONESIM_DEMO_PLAYERS:-32}"
 SCENE="${ZONESIM_DEMO_SCENE:-$ZONESIM_ROOT/scenes/demo.yaml}"
 TRUTH_EVERY="${ZONESIM_DEMO_TRUTH_EVERY:-32}"
+read -r -a CLIENT_ARGS <<<"${ZONESIM_DEMO_CLIENT_ARGS:-}"
 RUN_DIR="$(realpath -m "${1:-$ZONESIM_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}")"
 BIN="$BUILD_DIR/bin"
 mkdir -p "$RUN_DIR"
@@ -45,7 +47,7 @@ sleep 2  # let DDS discovery between zones and gateway settle before players ask
 echo "== $PLAYERS players for $SECONDS_RUN s against 127.0.0.1:$PORT"
 "$BIN/client_stub" --scene "$SCENE" --gateway "127.0.0.1:$PORT" --players "$PLAYERS" \
   --duration "$SECONDS_RUN" --metrics "$RUN_DIR" --summary "$RUN_DIR/clients_summary.json" \
-  --truth-every "$TRUTH_EVERY" \
+  --truth-every "$TRUTH_EVERY" "${CLIENT_ARGS[@]}" \
   >"$RUN_DIR/clients.log" 2>&1 &
 clients_pid=$!
 pids+=("$clients_pid")

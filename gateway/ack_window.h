@@ -60,6 +60,12 @@ class ResendTracker {
             std::int64_t now_ns);
   /// An ack (highest seq, bitfield) arrived at now_ns.
   void onAck(std::uint32_t ack, std::uint32_t bits, std::int64_t now_ns);
+  /// Whether datagram seq was acknowledged (false too once it fell out of the ring of flights:
+  /// a resend then is needless at worst).
+  bool acknowledged(std::uint32_t seq) const {
+    const Flight& f = flights_[seq % kFlights];
+    return f.seq == seq && f.acked;
+  }
   /// Whether the entity's spawn is not yet acknowledged (its states must go as Spawn).
   bool spawnPending(std::uint64_t id) const;
   /// Entities to send again now: their newest state (or despawn) is not acknowledged and went

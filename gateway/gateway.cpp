@@ -185,10 +185,31 @@ void Gateway::applyOwnership(const zonesim_dds_OwnershipEvent& e) {
     return;
   }
   if (e.from_zone < 0) return;  // a repeated creation notice: nothing moved
-  HandoffInfo info{e.avatar_id, e.from_zone, e.to_zone, e.tick, e.last_input_seq};
-  sendTo(*s, encodeHandoff(s->token, info));
+  // Numbered and resent until acknowledged, like a Spawn: a newer handoff supersedes it.
+  s->handoff = PendingHandoff{{e.avatar_id, e.from_zone, e.to_zone, e.tick, e.last_input_seq}, 0};
+  sendHandoff(*s, nowNs());
   ++s->traffic.handoffs;
   ++counters_.handoffs;
+}
+
+void Gateway::sendHandoff(Session& s, std::int64_t now_ns) {
+  PendingHandoff& h = *s.handoff;
+  h.info.seq = s.resend.nextSeq();
+  h.sent_ns = now_ns;
+  s.resend.sent(h.info.seq, {}, Carried::Update, now_ns);
+  sendTo(s, encodeHandoff(s.token, h.info));
+}
+
+void Gateway::resendHandoff(Session& s, std::int64_t now_ns) {
+  if (!s.handoff) return;
+  if (s.resend.acknowledged(s.handoff->info.seq)) {
+    s.handoff.reset();
+    return;
+  }
+  if (now_ns - s.handoff->sent_ns < s.resend.rtoNs()) return;
+  sendHandoff(s, now_ns);
+  ++s.traffic.handoffs_resent;
+  ++counters_.handoffs_resent;
 }
 
 void Gateway::expireSessions(std::int64_t now_ns) {
@@ -282,8 +303,20 @@ void Gateway::sendViews(std::int64_t now_ns) {
     at.self = s.avatar_id;
     at.sim_now = sim_now;
     ViewDiff diff = s.view.diff(selectVisible(cache_, grid_, at, s.view));
-    if (config_.resend) addResends(s, diff, now_ns);
-    if (!diff.empty()) sendView(s, diff, now_ns);
+    if (config_.resend) {
+      addResends(s, diff, now_ns);
+      resendHandoff(s, now_ns);
+    }
+    std::uint64_t tick = clock_.tick();
+    if (!diff.empty()) {
+      sendView(s, diff, now_ns);
+      s.told_tick = std::max(s.told_tick, tick);
+    } else if (config_.clock_every_ticks > 0 &&
+               tick >= s.told_tick + std::uint64_t(config_.clock_every_ticks)) {
+      sendTo(s, encodeClockTick(s.token, tick));
+      s.told_tick = tick;
+      ++counters_.clock_ticks;
+    }
   });
 }
 

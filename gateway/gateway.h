@@ -43,6 +43,10 @@ struct GatewayConfig {
   bool resend =
       true;  ///< resend unacknowledged spawns, states and despawns (false: for comparison)
   LossDetection loss_detection = LossDetection::Timeout;  ///< when a datagram counts as lost
+  /// A client that was sent nothing for this many zone ticks gets an empty StateBatch with
+  /// the current tick, so its clock (bounded to run a little past the newest tick it heard,
+  /// clients/sim_player.h) keeps running while its view is quiet. 0: never.
+  int clock_every_ticks = 6;
 };
 
 class Gateway {
@@ -71,6 +75,10 @@ class Gateway {
   /// Adds to diff what the client has not acknowledged within the timeout.
   void addResends(Session& s, ViewDiff& diff, std::int64_t now_ns);
   void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
+  /// Sends the session's pending Handoff notice under a new seq.
+  void sendHandoff(Session& s, std::int64_t now_ns);
+  /// Forgets the pending Handoff once acknowledged; sends it again after the timeout.
+  void resendHandoff(Session& s, std::int64_t now_ns);
   void sendTo(Session& s, const Bytes& bytes);
   void sendTo(const Endpoint& to, const Bytes& bytes);
   void closeSession(SlotHandle h, bool expired);

@@ -21,6 +21,8 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("spawn_requests", c.spawn_requests)
       .add("welcomes", c.welcomes)
       .add("handoffs", c.handoffs)
+      .add("handoffs_resent", c.handoffs_resent)
+      .add("clock_ticks", c.clock_ticks)
       .add("sessions_opened", c.sessions_opened)
       .add("sessions_closed", c.sessions_closed)
       .add("sessions_expired", c.sessions_expired)
@@ -65,7 +67,8 @@ std::string playerJson(const PlayerRecord& p) {
       .add("spawns_sent", t.spawns_sent)
       .add("despawns_sent", t.despawns_sent)
       .add("inputs_forwarded", t.inputs_forwarded)
-      .add("handoffs", t.handoffs);
+      .add("handoffs", t.handoffs)
+      .add("handoffs_resent", t.handoffs_resent);
   return j.str();
 }
 

@@ -20,6 +20,8 @@ struct GatewayCounters {
   std::uint64_t resent = 0, acks_received = 0;
   std::uint64_t inputs_forwarded = 0, input_write_failures = 0;
   std::uint64_t spawn_requests = 0, welcomes = 0, handoffs = 0;
+  std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
+  std::uint64_t clock_ticks = 0;      ///< empty StateBatches sent to quiet views
   std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;
   std::uint64_t dds_samples = 0, ownership_foreign = 0, ownership_stale = 0;
 };

@@ -12,6 +12,7 @@
 #include "gateway/ack_window.h"
 #include "gateway/client_view.h"
 #include "gateway/udp_socket.h"
+#include "gateway/wire_encode.h"
 
 namespace zonesim::gateway {
 
@@ -21,7 +22,14 @@ struct SessionTraffic {
   std::uint64_t datagrams_out = 0, bytes_out = 0;
   std::uint64_t updates_sent = 0, spawns_sent = 0, despawns_sent = 0;
   std::uint64_t inputs_forwarded = 0, handoffs = 0;
-  std::uint64_t resent = 0;  ///< spawns, states and despawns sent again for want of an ack
+  std::uint64_t resent = 0;           ///< spawns, states and despawns sent again for want of an ack
+  std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
+};
+
+/// The newest Handoff notice of a session, until the client acknowledges it.
+struct PendingHandoff {
+  HandoffInfo info;  ///< info.seq: the datagram that carried it last
+  std::int64_t sent_ns = 0;
 };
 
 /// One player connected through this gateway.
@@ -37,10 +45,12 @@ struct Session {
   std::uint32_t last_input_seq = 0;  ///< last seq forwarded to the zone
   double spawn_x = 0, spawn_z = 0;   ///< where the avatar was requested (interest until it shows)
   std::int64_t created_ns = 0, last_heard_ns = 0;
-  ClientView view;           ///< what the client has been sent
-  ResendTracker resend;      ///< what of it the client has not acknowledged yet
-  double rate_tokens = -1;   ///< per-client rate limit bucket; < 0: not started (full)
-  std::int64_t rate_ns = 0;  ///< when the bucket was last refilled
+  ClientView view;                        ///< what the client has been sent
+  ResendTracker resend;                   ///< what of it the client has not acknowledged yet
+  std::optional<PendingHandoff> handoff;  ///< sent, not yet acknowledged
+  std::uint64_t told_tick = 0;  ///< the newest server tick a datagram to the client carried
+  double rate_tokens = -1;      ///< per-client rate limit bucket; < 0: not started (full)
+  std::int64_t rate_ns = 0;     ///< when the bucket was last refilled
   SessionTraffic traffic;
 };
 

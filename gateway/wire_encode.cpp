@@ -100,9 +100,16 @@ Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_
 
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h) {
   flatbuffers::FlatBufferBuilder fbb(128);
-  auto msg =
-      proto::CreateHandoff(fbb, h.avatar_id, h.from_zone, h.to_zone, h.tick, h.last_input_seq);
+  auto msg = proto::CreateHandoff(fbb, h.avatar_id, h.from_zone, h.to_zone, h.tick,
+                                  h.last_input_seq, h.seq);
   return finish(fbb, token, proto::Message::Handoff, msg);
+}
+
+Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  auto none = fbb.CreateVector(static_cast<const std::uint8_t*>(nullptr), 0);
+  return finish(fbb, token, proto::Message::StateBatch,
+                proto::CreateStateBatch(fbb, tick, 0, none, 0));
 }
 
 namespace {

@@ -48,6 +48,7 @@ struct HandoffInfo {
   int to_zone = 0;
   std::uint64_t tick = 0;
   std::uint32_t last_input_seq = 0;
+  std::uint32_t seq = 0;  ///< the session's datagram seq (0: unnumbered)
 };
 
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name);
@@ -62,6 +63,9 @@ Bytes encodeBye(std::uint64_t token);
 Bytes encodeWelcome(const WelcomeInfo& w);
 Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
+/// A StateBatch with no states: tells a client whose view is quiet that the zones' clock moved
+/// on (unnumbered: nothing in it needs resending).
+Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick);
 
 /// Sequence numbering of a run of chunks: chunk i gets seq next() (0 = unnumbered), and
 /// counts (if given) receives how many entities each chunk holds.

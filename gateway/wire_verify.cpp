@@ -21,9 +21,13 @@ bool position(const proto::Vec3f& p) {
 }
 
 /// Packed states: present, and not claiming more records than the bytes can hold (20 bits is
-/// the smallest record). The values are range-checked as they are unpacked.
-bool validPacked(std::uint16_t count, const flatbuffers::Vector<std::uint8_t>* packed) {
-  return packed != nullptr && count > 0 && std::size_t(count) * 20 <= packed->size() * 8;
+/// the smallest record). The values are range-checked as they are unpacked. A StateBatch may
+/// be empty (a clock tick, encodeClockTick: nothing packed); a Spawn may not.
+bool validPacked(std::uint16_t count, const flatbuffers::Vector<std::uint8_t>* packed,
+                 bool may_be_empty) {
+  if (packed == nullptr) return false;
+  if (count == 0) return may_be_empty && packed->size() == 0;
+  return std::size_t(count) * 20 <= packed->size() * 8;
 }
 
 bool step(float v, float lo, float hi) {
@@ -61,9 +65,9 @@ bool checkToClient(const proto::Datagram& d) {
     case proto::Message::Welcome:
       return checkWelcome(*d.msg_as_Welcome());
     case proto::Message::StateBatch:
-      return validPacked(d.msg_as_StateBatch()->count(), d.msg_as_StateBatch()->packed());
+      return validPacked(d.msg_as_StateBatch()->count(), d.msg_as_StateBatch()->packed(), true);
     case proto::Message::Spawn:
-      return validPacked(d.msg_as_Spawn()->count(), d.msg_as_Spawn()->packed());
+      return validPacked(d.msg_as_Spawn()->count(), d.msg_as_Spawn()->packed(), false);
     case proto::Message::Despawn:
       return d.msg_as_Despawn()->ids() != nullptr;
     case proto::Message::Handoff: {

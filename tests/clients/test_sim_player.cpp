@@ -193,6 +193,36 @@ std::uint32_t counter(void* n) {
   return ++*static_cast<std::uint32_t*>(n);
 }
 
+TEST_F(SimPlayerTest, AResentHandoffIsAppliedOnceAndAnOlderOneNever) {
+  std::uint64_t token = welcome();
+  gateway::HandoffInfo h{77, 2, 3, 10, 4, 1};
+  toPlayer(gateway::encodeHandoff(token, h));
+  h.seq = 2;  // the gateway resends it under a new seq when the ack is late
+  toPlayer(gateway::encodeHandoff(token, h));
+  EXPECT_EQ(player_->counters().handoffs, 1u);
+  EXPECT_EQ(player_->counters().repeats, 1u);
+  EXPECT_EQ(player_->acks().ack(), 2u) << "both copies acknowledged";
+  // A later handoff, then the earlier one arriving late: the zone stays the later one's.
+  toPlayer(gateway::encodeHandoff(token, {77, 3, 1, 40, 9, 4}));
+  toPlayer(gateway::encodeHandoff(token, {77, 2, 3, 10, 4, 3}));
+  EXPECT_EQ(player_->counters().handoffs, 2u);
+  EXPECT_EQ(player_->zone(), 1);
+}
+
+TEST_F(SimPlayerTest, TheServerClockRunsAtMostMaxLeadPastTheNewestTick) {
+  std::uint64_t token = welcome();
+  std::int64_t t0 = nowNs();
+  Endpoint from = Endpoint::loopback(gateway_.localPort());
+  player_->handle(gateway::encodeClockTick(token, 300), from, t0);
+  EXPECT_NEAR(player_->serverTick(t0), 300, 1e-9);
+  // 0.1 s later: 3 ticks on at 30 Hz. 2 s later (the zones stalled): max_lead_s (0.25 s) on.
+  EXPECT_NEAR(player_->serverTick(t0 + 100'000'000), 303, 1e-6);
+  EXPECT_NEAR(player_->serverTick(t0 + 2'000'000'000), 300 + 0.25 * 30, 1e-6);
+  // The next tick heard moves the clock on again.
+  player_->handle(gateway::encodeClockTick(token, 330), from, t0 + 2'000'000'000);
+  EXPECT_NEAR(player_->serverTick(t0 + 2'000'000'000), 330, 1e-9);
+}
+
 TEST_F(SimPlayerTest, DuplicatesAndStaleLifecycleAreIgnoredAndAcked) {
   std::uint64_t token = welcome();
   std::uint32_t seq = 0;

@@ -182,6 +182,26 @@ TEST_F(GatewayLoopback, WelcomeSpawnStateBatchInputsAndHandoff) {
   EXPECT_GT(inputs[0].seq, seq_at_handoff);
 }
 
+TEST_F(GatewayLoopback, AHandoffIsResentUntilAcknowledged) {
+  startGateway();
+  std::uint64_t token = handshakeAndFirstState();
+  ASSERT_NE(token, 0u) << "no Welcome";
+  zone_->publishOwnership(player_, kAvatar, 0, 1, tick_ + 1, seq_);
+  // The client acknowledges nothing of it: the same notice comes again under a new seq.
+  std::vector<std::uint32_t> seqs;
+  std::int64_t deadline = nowNs() + kTimeoutNs;
+  while (seqs.size() < 2 && nowNs() < deadline) {
+    const proto::Datagram* d = receive();
+    if (!d || d->msg_type() != proto::Message::Handoff) continue;
+    const proto::Handoff* h = d->msg_as_Handoff();
+    EXPECT_EQ(h->to_zone(), 1);
+    EXPECT_EQ(h->tick(), tick_ + 1);
+    seqs.push_back(h->seq());
+  }
+  ASSERT_EQ(seqs.size(), 2u);
+  EXPECT_GT(seqs[1], seqs[0]);
+}
+
 TEST_F(GatewayLoopback, ForgedTrafficIsCountedAndHarmless) {
   client_.sendTo(gateway_addr_, Bytes{0xde, 0xad, 0xbe, 0xef, 1, 2, 3, 4, 5, 6});
   client_.sendTo(gateway_addr_, encodeInput(12345, 1, 0, 1));
