@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/scene_ai.h"
+
 namespace zonesim {
 
 /// Plain 3-vector for scene data (keeps Eigen out of this widely included header).
@@ -280,6 +282,7 @@ struct Scene {
   ClientProfile clients;
   AuraNimbus aura_nimbus;  ///< keys in the interest section
   ObstacleMap map;         ///< walls and open ground for crowds and path finding
+  AgentSettings agents;    ///< AI agent types and populations (common/scene_ai.h)
 };
 
 /// Radius of the sphere around a body's centre that holds its whole shape.

@@ -21,6 +21,9 @@
 #include "common/scene_physics.h"
 
 namespace zonesim {
+
+void readAgents(const SceneMap& root, Scene& scene);  // scene_ai.cpp
+
 namespace {
 
 // Entity ids give the creating rank 16 bits, so a grid may have at most 2^16 zone ranks.
@@ -358,7 +361,8 @@ void readClients(const SceneMap& root, ClientProfile& clients) {
 
 Scene readScene(const SceneNode& document, const std::string& file) {
   SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
-                                "dead_reckoning", "physics", "populations", "clients", "map"});
+                                "dead_reckoning", "physics", "populations", "clients", "map",
+                                "agents"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -377,6 +381,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readObstacleMap(root, file, scene);
   readPopulations(root, scene);
   readClients(root, scene.clients);
+  readAgents(root, scene);
   return scene;
 }
 

@@ -140,6 +140,22 @@ std::vector<SceneNode> SceneNode::items() const {
   return out;
 }
 
+std::vector<std::pair<std::string, SceneNode>> SceneNode::entries() const {
+  if (!node_.IsMap()) fail("expected a mapping, got " + describeValue());
+  std::vector<std::pair<std::string, SceneNode>> out;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    int key_line = it->first.Mark().line + 1;
+    if (!it->first.IsScalar()) throwSceneError(*file_, key_line, path_, "keys must be plain names");
+    for (const auto& [name, node] : out) {
+      if (name == it->first.Scalar())
+        throwSceneError(*file_, key_line, childPath(name),
+                        "duplicate key (first given on line " + std::to_string(node.line()) + ")");
+    }
+    out.emplace_back(it->first.Scalar(), child(it->first, it->second));
+  }
+  return out;
+}
+
 std::optional<SceneNode> SceneNode::peek(std::string_view key) const {
   if (!node_.IsMap()) fail("expected a mapping, got " + describeValue());
   for (auto it = node_.begin(); it != node_.end(); ++it) {

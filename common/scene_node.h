@@ -72,6 +72,12 @@ class SceneNode {
   std::vector<SceneNode> items() const;
   /// Looks up a key without checking the others (to dispatch on it before map()).
   std::optional<SceneNode> peek(std::string_view key) const;
+  /// The key-value pairs of a mapping with free keys (plain names, each once), in file order.
+  std::vector<std::pair<std::string, SceneNode>> entries() const;
+  /// The file this node was read from (as named to the parser).
+  const std::string& file() const { return *file_; }
+  /// Whether the value is a scalar (a name or number, not a list or mapping).
+  bool isScalar() const { return node_.IsScalar(); }
   /// An empty mapping standing in for an absent key, located at this node.
   SceneNode emptyChild(std::string_view key) const;
 

@@ -17,6 +17,7 @@ std::size_t EntityStore::add(const EntityRecordData& r) {
   avatar.push_back(r.avatar);
   body.push_back(r.body);
   emitter.push_back(r.emitter);
+  agent.push_back(r.agent);
   dr.push_back({});
   index_of_[r.id.value] = i;
   if (r.kind == EntityKind::Avatar) avatar_of_player_[r.avatar.player_id] = i;
@@ -52,12 +53,13 @@ void EntityStore::removeAt(std::size_t i) {
   swapPop(avatar, i);
   swapPop(body, i);
   swapPop(emitter, i);
+  swapPop(agent, i);
   swapPop(dr, i);
 }
 
 EntityRecordData EntityStore::record(std::size_t i) const {
-  return {id[i],        kind[i], pos[i],    vel[i],  rot[i],
-          rng_state[i], npc[i],  avatar[i], body[i], emitter[i]};
+  return {id[i],  kind[i],   pos[i],  vel[i],     rot[i],  rng_state[i],
+          npc[i], avatar[i], body[i], emitter[i], agent[i]};
 }
 
 std::optional<std::size_t> EntityStore::indexOf(EntityId e) const {

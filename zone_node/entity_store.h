@@ -70,6 +70,39 @@ struct EmitterData {
   int max_particles = 4096;
 };
 
+/// An AI agent's own state (zone_node/systems/agent_*.h); travels with the entity on migration,
+/// so a behaviour continues on the next zone exactly as it would have on this one.
+struct AgentData {
+  static constexpr int kLevels = 8;    ///< nesting depth of machine states kept
+  static constexpr int kMaxPlan = 16;  ///< GOAP actions kept
+  std::int32_t type = -1;              ///< index in Scene::agents.types; -1: not an agent
+  std::int32_t state = 0;              ///< machine leaf state (fsm, guard)
+  std::int32_t step = 0;               ///< machine steps taken
+  std::int32_t entered[kLevels] = {};  ///< step at which each level of the state was entered
+  std::int32_t action = 0;             ///< AgentAction chosen last tick
+  std::int32_t transitions = 0;        ///< machine transitions so far
+  double health = 100, energy = 100;   ///< needs, 0..100
+  double speed_factor = 1;             ///< fuzzy: blended speed over the type's top speed
+  double approach = 0;                 ///< fuzzy: -1 away from the enemy .. 1 toward it
+  // GOAP: the plan made at the start, executed step by step.
+  std::uint64_t facts = 0;           ///< world facts as the agent believes them
+  std::int32_t plan[kMaxPlan] = {};  ///< action indices
+  std::int32_t plan_length = -1;     ///< -1: not planned yet
+  std::int32_t plan_step = 0;        ///< next action to do
+  double action_time = 0;            ///< seconds spent at the current action's place
+  double plan_cost = 0;              ///< summed cost of the actions done
+  // Travel: goal, the path (cells of the scene's map) and progress along its spline.
+  std::int32_t goal = 0;  ///< index of the current goal in the type's list
+  std::int32_t nav = 0;   ///< AgentNav: 0 none, 1 waiting, 2 moving, 3 arrived, 4 no path
+  double dwell = 0;       ///< seconds spent at the reached goal
+  double origin_x = 0, origin_z = 0;  ///< where the current path starts (its first point)
+  double target_x = 0, target_z = 0;  ///< where it ends
+  double travelled = 0;               ///< arc length walked along the path's spline
+  std::int32_t replans = 0;           ///< paths requested again after a door cut them
+  std::int32_t arrivals = 0;          ///< goals reached
+  std::vector<std::int32_t> path;     ///< cells as x, y pairs; empty when not moving
+};
+
 /// What the publish phase last told subscribers about the entity (sender-side dead reckoning).
 struct DeadReckoningState {
   int cell = -1;    ///< interest cell it was last published in; -1 = never published here
@@ -96,6 +129,7 @@ struct EntityRecordData {
   AvatarData avatar;
   BodyData body;
   EmitterData emitter;
+  AgentData agent;
 };
 
 class EntityStore {
@@ -124,6 +158,7 @@ class EntityStore {
   std::vector<AvatarData> avatar;
   std::vector<BodyData> body;
   std::vector<EmitterData> emitter;
+  std::vector<AgentData> agent;  ///< type -1 for entities that are not AI agents
   std::vector<DeadReckoningState> dr;
 
  private:

@@ -150,6 +150,26 @@ void forEachInitialEntity(const Scene& scene,
     r.rng_state = rng.state();
     keep(r);
   }
+  // AI agents after everything else (named bodies included), so scenes without them keep every
+  // other entity's id.
+  for (const AgentPopulation& p : scene.agents.populations) {
+    const AgentType& type = scene.agents.types[std::size_t(p.type)];
+    for (int i = 0; i < p.count; ++i) {
+      auto [r, rng] = nextSceneEntity(scene, EntityKind::Npc, counter);
+      r.pos = Vec3(rng.uniform(p.min_x, p.max_x), scene.world.min.y, rng.uniform(p.min_z, p.max_z));
+      r.npc.max_speed = type.speed;
+      r.npc.accel = type.acceleration;
+      r.npc.waypoint_radius = type.wander_radius;
+      r.npc.arrive_distance = type.arrive_distance;
+      r.agent.type = p.type;
+      r.agent.facts = type.goap.initial;
+      // Travellers start at a goal of their own, so they spread over the routes.
+      if (!type.goals.empty()) r.agent.goal = std::int32_t(rng.next() % type.goals.size());
+      r.rng_state = rng.state();
+      r.npc.waypoint = nextWaypoint(scene, r.pos, type.wander_radius, r.rng_state, r.id);
+      keep(r);
+    }
+  }
 }
 
 EntityId namedBodyId(const Scene& scene, std::size_t k) {

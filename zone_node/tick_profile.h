@@ -46,6 +46,11 @@ struct TickCounters {
   std::uint64_t halo_bytes = 0;         ///< bytes of those copies
   std::uint64_t halo_rebuilds = 0;      ///< 1 when the ghost send lists were rebuilt
   std::uint64_t ghost_impulses_in = 0;  ///< pushes neighbours' contacts gave this zone's bodies
+  std::uint64_t agents = 0;             ///< AI agents stepped
+  std::uint64_t agent_transitions = 0;  ///< their state machine transitions
+  std::uint64_t paths_planned = 0;      ///< path planner calls (at most the per-tick budget)
+  std::uint64_t paths_queued = 0;       ///< path requests left waiting for a later tick
+  std::uint64_t path_replans = 0;       ///< agents whose path a closing door cut
 };
 
 /// Every counter with its name: totals, metrics lines and summaries iterate this one list.
@@ -83,6 +88,11 @@ inline constexpr CounterField kCounterFields[] = {
     {"ghosts_sent", &TickCounters::ghosts_sent, false},
     {"halo_bytes", &TickCounters::halo_bytes, false},
     {"halo_rebuilds", &TickCounters::halo_rebuilds, false},
-    {"ghost_impulses_in", &TickCounters::ghost_impulses_in, false}};
+    {"ghost_impulses_in", &TickCounters::ghost_impulses_in, false},
+    {"agents", &TickCounters::agents, true},
+    {"agent_transitions", &TickCounters::agent_transitions, false},
+    {"paths_planned", &TickCounters::paths_planned, false},
+    {"paths_queued", &TickCounters::paths_queued, true},
+    {"path_replans", &TickCounters::path_replans, false}};
 
 }  // namespace zonesim::zone

@@ -9,6 +9,7 @@
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/zone_link.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/agent_system.h"
 #include "zone_node/systems/avatar_movement.h"
 #include "zone_node/systems/emitters.h"
 #include "zone_node/systems/flock_movement.h"
@@ -69,8 +70,12 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
   map_ = loadWorldMap(scene);
   flows_ = std::make_unique<FlowMovement>(scene, map_.get());
-  // Flocks and flow crowds read their neighbours across borders as ghosts too.
-  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active();
+  agents_ = std::make_unique<AgentSystem>(scene, map_ ? &map_->grid : nullptr,
+                                          map_ ? map_->frame : crowd::MapFrame{});
+  // Flocks and flow crowds read their neighbours across borders as ghosts too, and agents see
+  // enemies there.
+  halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active() ||
+                 (agents_->active() && agents_->reach() > 0);
   forward_.resize(std::size_t(size_));
 
   auto keepIfMine = [&](const EntityRecordData& r) {
@@ -267,6 +272,15 @@ void ZoneNode::releaseHeldInputs() {
 
 void ZoneNode::ai() {
   if (walker_reach_ > 0) near_.build(store_, &halo_.ghosts(), walker_reach_);
+  // Agents first: they sense the walkers where the tick found them, as their ghosts are.
+  if (agents_->active()) {
+    AgentTickStats a = agents_->step(store_, &halo_.ghosts(), double(tick_) * scene_.dt, scene_.dt);
+    counters_.agents = a.agents;
+    counters_.agent_transitions = a.transitions;
+    counters_.paths_planned = a.paths.planned;
+    counters_.paths_queued = a.paths.queued;
+    counters_.path_replans = a.paths.replans;
+  }
   stepNpcs(scene_, store_, near_, double(tick_) * scene_.dt, scene_.dt);
   if (flocks_->active()) flocks_->step(store_, &halo_.ghosts(), scene_.dt);
   if (flows_->active()) flows_->step(store_, &halo_.ghosts(), scene_.dt);

@@ -33,6 +33,7 @@ class RigidBodySystem;
 class FlockMovement;
 class FlowMovement;
 struct WorldMap;
+class AgentSystem;
 
 struct ZoneOptions {
   int dds_domain = 0;
@@ -136,6 +137,7 @@ class ZoneNode {
   std::unique_ptr<FlockMovement> flocks_;    // flocking NPC populations of the scene
   std::shared_ptr<const WorldMap> map_;      // the scene's walls; null without `map:`
   std::unique_ptr<FlowMovement> flows_;      // flow-field NPC populations (need map_)
+  std::unique_ptr<AgentSystem> agents_;      // AI agents (scene key `agents`)
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

@@ -8,7 +8,9 @@ through ghosts and decides arrivals from positions alone;
 (scenes/particles.yaml, --gpu off) fountains whose sprays cross zone borders end with the same
 live particles (positions and velocities, bit for bit); (crowd_flock with --gpu on) the same
 flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in cell-then-id
-order on global cells, so a rank's other agents change nothing)."""
+order on global cells, so a rank's other agents change nothing); (scenes/agents.yaml) AI agents
+that see wanderers across borders through ghosts and carry their machine states and plans with
+them when they migrate."""
 import json
 import tempfile
 from pathlib import Path
@@ -16,11 +18,11 @@ from pathlib import Path
 import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
-          "particles": 300, "crowd_flock_gpu": 300}
+          "particles": 300, "crowd_flock_gpu": 300, "agents": 300}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"]}
-GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu")
+GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents")
 
 with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
     out = Path(tmp)

@@ -1,6 +1,7 @@
 #include "zone_node/cluster/entity_codec.h"
 
 #include <algorithm>
+#include <string>
 
 #include "entity_record_generated.h"
 
@@ -57,10 +58,62 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
                                        r.emitter.restitution, r.emitter.max_particles);
       break;
   }
+  flatbuffers::Offset<fb::AgentState> agent;
+  if (r.agent.type >= 0) {
+    const AgentData& a = r.agent;
+    auto entered = b.CreateVector(a.entered, AgentData::kLevels);
+    auto plan = b.CreateVector(a.plan, AgentData::kMaxPlan);
+    auto path = b.CreateVector(a.path);
+    agent = fb::CreateAgentState(b, a.type, a.state, a.step, entered, a.action, a.transitions,
+                                 a.health, a.energy, a.speed_factor, a.approach, a.facts, plan,
+                                 a.plan_length, a.plan_step, a.action_time, a.plan_cost, a.goal,
+                                 a.nav, a.dwell, a.origin_x, a.origin_z, a.target_x, a.target_z,
+                                 a.travelled, a.replans, a.arrivals, path);
+  }
   fb::Vec3d pos = toFb(r.pos), vel = toFb(r.vel);
   fb::Quatd rot = toFb(r.rot);
   return fb::CreateEntityRecord(b, r.id.value, fb::EntityKind(r.kind), &pos, &vel, &rot,
-                                r.rng_state, npc, avatar, body, emitter);
+                                r.rng_state, npc, avatar, body, emitter, agent);
+}
+
+template <typename T, typename V>
+void copyInts(const V* from, T* to, std::size_t n, const char* what) {
+  if (!from) return;
+  if (from->size() != n) throw CodecError(std::string("agent record with a bad ") + what);
+  for (std::size_t i = 0; i < n; ++i) to[i] = from->Get(flatbuffers::uoffset_t(i));
+}
+
+void decodeAgent(const fb::AgentState& g, AgentData& a) {
+  a.type = g.type();
+  a.state = g.state();
+  a.step = g.step();
+  copyInts(g.entered(), a.entered, AgentData::kLevels, "state entry list");
+  a.action = g.action();
+  a.transitions = g.transitions();
+  a.health = g.health();
+  a.energy = g.energy();
+  a.speed_factor = g.speed_factor();
+  a.approach = g.approach();
+  a.facts = g.facts();
+  copyInts(g.plan(), a.plan, AgentData::kMaxPlan, "plan");
+  a.plan_length = g.plan_size();
+  if (a.plan_length > AgentData::kMaxPlan) throw CodecError("agent record with a long plan");
+  a.plan_step = g.plan_step();
+  a.action_time = g.action_time();
+  a.plan_cost = g.plan_cost();
+  a.goal = g.goal();
+  a.nav = g.nav();
+  a.dwell = g.dwell();
+  a.origin_x = g.origin_x();
+  a.origin_z = g.origin_z();
+  a.target_x = g.target_x();
+  a.target_z = g.target_z();
+  a.travelled = g.travelled();
+  a.replans = g.replans();
+  a.arrivals = g.arrivals();
+  a.path.clear();
+  if (const auto* p = g.path()) a.path.assign(p->begin(), p->end());
+  if (a.path.size() % 2 != 0) throw CodecError("agent record with an odd path");
 }
 
 EntityRecordData decodeEntity(const fb::EntityRecord& e) {
@@ -102,6 +155,7 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
     r.emitter = {m->rate(), m->lifetime(),    m->speed(),        m->spawn_accumulator(),
                  m->drag(), m->restitution(), m->max_particles()};
   }
+  if (const fb::AgentState* g = e.agent()) decodeAgent(*g, r.agent);
   if (!r.id) throw CodecError("entity record without id");
   return r;
 }

@@ -11,11 +11,12 @@ void GhostStore::clear() {
   body.clear();
   owner.clear();
   flock.clear();
+  agent.clear();
   index_of_.clear();
 }
 
 void GhostStore::add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, const Quat& q,
-                     const BodyData& b, int from, std::int32_t group) {
+                     const BodyData& b, int from, std::int32_t group, std::int32_t agent_type) {
   index_of_[e.value] = id.size();
   id.push_back(e);
   kind.push_back(k);
@@ -25,6 +26,7 @@ void GhostStore::add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, con
   body.push_back(b);
   owner.push_back(from);
   flock.push_back(group);
+  agent.push_back(agent_type);
 }
 
 std::optional<std::size_t> GhostStore::indexOf(EntityId e) const {

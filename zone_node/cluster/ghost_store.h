@@ -26,9 +26,10 @@ class GhostStore {
  public:
   std::size_t size() const { return id.size(); }
   void clear();
-  /// Appends a ghost owned by rank `owner`; `flock`: an NPC's flock population (-1: none).
+  /// Appends a ghost owned by rank `owner`; `flock`: an NPC's flock population (-1: none);
+  /// `agent`: an NPC's AI agent type (-1: not an agent).
   void add(EntityId e, EntityKind k, const Vec3& p, const Vec3& v, const Quat& q, const BodyData& b,
-           int owner, std::int32_t flock = -1);
+           int owner, std::int32_t flock = -1, std::int32_t agent = -1);
   std::optional<std::size_t> indexOf(EntityId e) const;
 
   std::vector<EntityId> id;
@@ -39,6 +40,7 @@ class GhostStore {
   std::vector<BodyData> body;  ///< shape and material, for rigid-body ghosts
   std::vector<int> owner;
   std::vector<std::int32_t> flock;  ///< NPCs: population index when flocking, else -1
+  std::vector<std::int32_t> agent;  ///< NPCs: AI agent type, else -1 (agents tell foe from kin)
 
  private:
   std::unordered_map<std::uint64_t, std::size_t> index_of_;

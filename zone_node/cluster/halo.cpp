@@ -19,14 +19,16 @@ struct GhostWire {
   double radius, half_height, mass, friction, restitution;
   std::uint64_t shape_and_sleep;  // shape | sleeping << 8
   std::int64_t flock;             // NPCs: flock population (-1: none), so flocks see only kin
+  std::int64_t agent;             // NPCs: AI agent type (-1: none), so agents tell foes apart
 };
-static_assert(sizeof(GhostWire) == 8 * 25, "GhostWire must be packed doubles");
+static_assert(sizeof(GhostWire) == 8 * 26, "GhostWire must be packed doubles");
 
 GhostWire pack(const EntityStore& s, std::size_t i) {
   GhostWire w{};
   w.id = s.id[i].value;
   w.kind = std::uint64_t(s.kind[i]);
   w.flock = s.kind[i] == EntityKind::Npc ? s.npc[i].flock : -1;
+  w.agent = s.kind[i] == EntityKind::Npc ? s.agent[i].type : -1;
   for (int k = 0; k < 3; ++k) {
     w.pos[k] = s.pos[i][k];
     w.vel[k] = s.vel[i][k];
@@ -143,7 +145,7 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
       }
       ghosts_.add(EntityId{w.id}, EntityKind(w.kind), Vec3(w.pos[0], w.pos[1], w.pos[2]),
                   Vec3(w.vel[0], w.vel[1], w.vel[2]), Quat(w.rot[0], w.rot[1], w.rot[2], w.rot[3]),
-                  b, r, std::int32_t(w.flock));
+                  b, r, std::int32_t(w.flock), std::int32_t(w.agent));
     }
   }
   stats.ghosts = ghosts_.size();

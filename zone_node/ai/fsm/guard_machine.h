@@ -19,6 +19,11 @@ class GuardMachine {
   /// Guard states.
   enum class State { Patrol, Chase, Attack, Flee };
 
+  /// A guard starting to patrol.
+  GuardMachine() = default;
+  /// A guard resumed in `state` entered `ticks` ago (state kept outside, e.g. by a zone agent).
+  GuardMachine(State state, int ticks) : state_(state), ticks_(ticks) {}
+
   /// Advances one tick; returns true when the state changed.
   bool step(const GuardInputs& in);
   /// Current state.

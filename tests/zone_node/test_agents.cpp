@@ -1,0 +1,205 @@
+// AI agents in a zone (zone_node/systems/agent_*.h) configured from scenes: the interpreted and
+// hand-coded guard make the same transitions, GOAP agents execute the cheapest plan, decision
+// trees and fuzzy machines act on what agents see, and scene mistakes name their line.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "common/scene.h"
+#include "zone_node/systems/agent_system.h"
+#include "zone_node/zone_node.h"
+
+namespace zonesim::zone {
+namespace {
+
+ZoneOptions noDds() {
+  ZoneOptions o;
+  o.dds = false;
+  o.check_every = 0;
+  o.gpu = "off";
+  return o;
+}
+
+std::string source(const std::string& rel) {
+  return std::string(ZONESIM_SOURCE_DIR) + "/" + rel;
+}
+
+int typeIndex(const Scene& s, const std::string& name) {
+  for (std::size_t t = 0; t < s.agents.types.size(); ++t)
+    if (s.agents.types[t].name == name) return int(t);
+  return -1;
+}
+
+TEST(Agents, InterpretedAndHandCodedGuardsMakeTheSameTransitions) {
+  // The same scene twice: guards run the machine file in one, the C++ GuardMachine in the
+  // other. Same seed, same ids, same senses: identical states and positions every tick.
+  Scene file = loadScene(source("scenes/agents.yaml"));
+  Scene coded = file;
+  int guard = typeIndex(file, "guard");
+  ASSERT_GE(guard, 0);
+  coded.agents.types[std::size_t(guard)].behaviour = AgentType::Behaviour::Guard;
+  ZoneNode a(file, MPI_COMM_WORLD, noDds());
+  ZoneNode b(coded, MPI_COMM_WORLD, noDds());
+  std::set<int> states_seen;
+  int guards = 0;
+  for (int tick = 0; tick < 400; ++tick) {
+    a.tick();
+    b.tick();
+    ASSERT_EQ(a.store().size(), b.store().size());
+    guards = 0;
+    for (std::size_t i = 0; i < a.store().size(); ++i) {
+      const AgentData& x = a.store().agent[i];
+      if (x.type != guard) continue;
+      ++guards;
+      const AgentData& y = b.store().agent[i];
+      ASSERT_EQ(a.store().id[i], b.store().id[i]);
+      ASSERT_EQ(x.state, y.state) << "tick " << tick << " agent " << i;
+      ASSERT_EQ(x.transitions, y.transitions);
+      ASSERT_EQ(x.action, y.action);
+      ASSERT_EQ(a.store().pos[i], b.store().pos[i]);
+      states_seen.insert(x.state);
+    }
+  }
+  EXPECT_EQ(guards, 40);
+  // Patrol, chase, attack and flee all happened: the comparison covered every transition.
+  EXPECT_EQ(states_seen.size(), 4u);
+  int transitions = 0;
+  for (std::size_t i = 0; i < a.store().size(); ++i)
+    if (a.store().agent[i].type == guard) transitions += a.store().agent[i].transitions;
+  EXPECT_GT(transitions, 100);
+}
+
+TEST(Agents, HierarchicalSentriesKeepCombatTimerAcrossSubstates) {
+  Scene s = loadScene(source("scenes/agents.yaml"));
+  int sentry = typeIndex(s, "sentry");
+  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  std::set<int> actions;
+  for (int tick = 0; tick < 400; ++tick) {
+    node.tick();
+    for (std::size_t i = 0; i < node.store().size(); ++i)
+      if (node.store().agent[i].type == sentry) actions.insert(node.store().agent[i].action);
+  }
+  // Leaf states of the nested combat state act, and so do the top-level ones.
+  EXPECT_TRUE(actions.count(int(AgentAction::Chase)));
+  EXPECT_TRUE(actions.count(int(AgentAction::Wander)));
+  EXPECT_TRUE(actions.count(int(AgentAction::Attack)));
+}
+
+const char* kWorkers = R"(
+world: {min: [0, 0, 0], max: [100, 10, 100]}
+tick: {dt: 0.1}
+seed: 5
+zones: {columns: 1, rows: 1}
+agents:
+  types:
+    - name: worker
+      behaviour: goap
+      goap:
+        facts: [has_axe, has_wood, wood_stored]
+        goal: {wood_stored: true}
+        actions:
+          - {name: get_axe, effects: {has_axe: true}, cost: AXE, at: [20, 20], duration_s: 1}
+          - {name: chop, pre: {has_axe: true}, effects: {has_wood: true}, cost: 1, at: [50, 80], duration_s: 2}
+          - {name: gather, effects: {has_wood: true}, cost: 5, at: [80, 30], duration_s: 3}
+          - {name: store, pre: {has_wood: true}, effects: {has_wood: false, wood_stored: true}, cost: 1, at: [50, 50], duration_s: 1}
+      speed: 4
+      sight: 0
+  populations:
+    - {type: worker, count: 12}
+)";
+
+// Runs workers until all are done; returns their executed plans.
+std::vector<AgentData> runWorkers(const std::string& axe_cost) {
+  std::string text = kWorkers;
+  text.replace(text.find("AXE"), 3, axe_cost);
+  Scene s = parseScene(text, "workers");
+  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  for (int tick = 0; tick < 1500; ++tick) node.tick();
+  return {node.store().agent.begin(), node.store().agent.end()};
+}
+
+TEST(Agents, GoapWorkersExecuteTheCheapestPlan) {
+  // Axe cheap: get_axe (2) + chop (1) + store (1) = 4 beats gather (5) + store (1) = 6.
+  for (const AgentData& a : runWorkers("2")) {
+    ASSERT_EQ(a.plan_length, 3);
+    EXPECT_EQ(a.plan[0], 0);
+    EXPECT_EQ(a.plan[1], 1);
+    EXPECT_EQ(a.plan[2], 3);
+    EXPECT_EQ(a.plan_step, 3);  // executed to the end
+    EXPECT_DOUBLE_EQ(a.plan_cost, 4.0);
+    EXPECT_EQ(a.facts, 0b101u);  // has_axe, wood_stored; the wood went into the store
+  }
+  // Axe dear: 6 + 1 + 1 = 8 loses to gather + store = 6.
+  for (const AgentData& a : runWorkers("6")) {
+    ASSERT_EQ(a.plan_length, 2);
+    EXPECT_EQ(a.plan[0], 2);
+    EXPECT_EQ(a.plan[1], 3);
+    EXPECT_EQ(a.plan_step, 2);
+    EXPECT_DOUBLE_EQ(a.plan_cost, 6.0);
+    EXPECT_EQ(a.facts, 0b100u);
+  }
+}
+
+TEST(Agents, TreeAndFuzzyAgentsActOnWhatTheySee) {
+  Scene s = loadScene(source("scenes/agents.yaml"));
+  int scout = typeIndex(s, "scout"), skittish = typeIndex(s, "skittish");
+  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  int chases = 0, flees_near = 0, blended = 0;
+  for (int tick = 0; tick < 300; ++tick) {
+    node.tick();
+    for (std::size_t i = 0; i < node.store().size(); ++i) {
+      const AgentData& a = node.store().agent[i];
+      if (a.type == scout && a.action == int(AgentAction::Chase)) ++chases;
+      if (a.type == skittish && a.approach < -0.99) ++flees_near;
+      if (a.type == skittish && a.approach > -0.99 && a.approach < 0) ++blended;
+    }
+  }
+  EXPECT_GT(chases, 0);      // a wanderer came within 6 m of a scout
+  EXPECT_GT(flees_near, 0);  // one came within 2 m of a skittish agent: full flight
+  EXPECT_GT(blended, 0);     // between 2 and 5 m: flight blended with curiosity
+}
+
+const char* kBadTypes = R"(
+world: {min: [0, 0, 0], max: [100, 10, 100]}
+tick: {dt: 0.1}
+seed: 5
+zones: {columns: 1, rows: 1}
+agents:
+  types:
+    - name: a
+      behaviour: tree
+      tree: {if: stamina < 3, then: idle, else: wander}
+)";
+
+TEST(Agents, SceneMistakesNameTheirLine) {
+  try {
+    parseScene(kBadTypes, "bad.yaml");
+    FAIL() << "unknown input accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.yaml:10:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown input 'stamina'"), std::string::npos);
+  }
+  std::string dance = kBadTypes;
+  dance.replace(dance.find("idle"), 4, "dance");
+  EXPECT_THROW(parseScene(dance, "bad.yaml"), SceneError);
+  std::string far = kBadTypes;
+  far.replace(far.find("behaviour: tree"), 15, "sight: 50\n      behaviour: tree");
+  EXPECT_THROW(parseScene(far, "bad.yaml"), SceneError);  // sight wider than the halo
+  // A state of the machine file left without an action is found when the zone loads it.
+  std::string fsm = std::string(kBadTypes).substr(0, std::string(kBadTypes).find("    - name: a"));
+  fsm += "    - name: g\n      behaviour: fsm\n      machine: " + source("scenes/ai/guard.yaml") +
+         "\n      actions: {patrol: wander, chase: chase, attack: attack}\n"
+         "  populations: [{type: g, count: 1}]\n";
+  Scene s = parseScene(fsm, "fsm.yaml");
+  try {
+    ZoneNode node(s, MPI_COMM_WORLD, noDds());
+    FAIL() << "unmapped state accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("fsm.yaml:8:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'flee' has no action"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace zonesim::zone

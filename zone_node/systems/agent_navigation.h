@@ -1,0 +1,89 @@
+#pragma once
+// How AI agents get somewhere: on a scene with an obstacle map, navigating types ask the zone's
+// PathService for an A* or HPA* path (queued under the scene's per-tick budget) and walk it along
+// a centripetal Catmull-Rom spline from their exact position to their exact target; doors that
+// close at a scene time cut paths, and the agents whose remaining path crossed the door ask
+// again from where they stand. Without a map, or for types that do not navigate, they steer
+// straight at the target. The path itself is AgentData (it migrates with the agent); the spline
+// is a local cache rebuilt from it, so it is the same on every rank.
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "common/math.h"
+#include "common/scene.h"
+#include "zone_node/ai/grid_map.h"
+#include "zone_node/ai/path_service.h"
+#include "zone_node/ai/spline_path.h"
+#include "zone_node/crowd/map_frame.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::zone {
+
+/// AgentData::nav values.
+enum class AgentNav : std::int32_t { None = 0, Waiting = 1, Moving = 2, Arrived = 3, NoPath = 4 };
+
+/// Path-service figures of one tick.
+struct AgentPathStats {
+  std::uint64_t planned = 0;  ///< planner calls this tick
+  std::uint64_t queued = 0;   ///< requests still waiting after the tick
+  std::uint64_t replans = 0;  ///< agents whose path a door cut this tick
+};
+
+/// Paths, doors and path following for a zone's agents.
+class AgentNavigation {
+ public:
+  /// `grid` (copied: doors change the copy) may be null for a scene without a map.
+  AgentNavigation(const Scene& scene, const ai::GridMap* grid, const crowd::MapFrame& frame);
+  ~AgentNavigation();
+
+  /// Whether the scene has a map to plan on.
+  bool hasMap() const { return service_ != nullptr; }
+  /// The map as the doors left it (null without a map).
+  const ai::GridMap* grid() const { return service_ ? &grid_ : nullptr; }
+  /// Where the map lies.
+  const crowd::MapFrame& frame() const { return frame_; }
+
+  /// Opens and closes the doors due by `time`; agents whose path crosses a closed door, and
+  /// agents without a path when one opens, will ask again.
+  void applyDoors(double time, EntityStore& store);
+  /// Agent i heads for (x, z) this tick: a navigating agent without a path to it asks for one.
+  void want(EntityStore& store, std::size_t i, double x, double z, bool navigate);
+  /// Plans queued requests within the budget and hands finished paths to their agents.
+  void plan(EntityStore& store);
+  /// Moves agent i toward its target by `dt` at `speed`: along its spline when it has a path,
+  /// else straight with braking (the caller's steering integrates `desired`). Returns true
+  /// when the position was set directly (spline), false when `desired` holds a velocity.
+  bool follow(EntityStore& store, std::size_t i, double speed, double accel, double arrive,
+              double dt, Vec3& desired);
+  /// Figures since the last call.
+  AgentPathStats takeStats();
+
+ private:
+  const ai::SplinePath& splineOf(const EntityStore& store, std::size_t i);
+
+  const Scene& scene_;
+  ai::GridMap grid_;
+  crowd::MapFrame frame_;
+  std::unique_ptr<ai::PathService> service_;
+  std::size_t next_door_ = 0;
+  std::uint64_t map_changes_ = 0;
+  struct Request {
+    EntityId id;
+    ai::Cell from, to;
+  };
+  std::vector<Request> requests_;                                 // asked this tick
+  std::unordered_map<std::uint64_t, ai::PathRequestId> pending_;  // agent id -> request
+  struct Spline {
+    std::vector<std::int32_t> path;
+    double ox = 0, oz = 0, tx = 0, tz = 0;
+    std::unique_ptr<ai::SplinePath> spline;
+  };
+  std::unordered_map<std::uint64_t, Spline> splines_;  // looked up by agent id, never iterated
+  std::uint64_t planned_before_ = 0;
+  std::uint64_t replans_ = 0;
+};
+
+}  // namespace zonesim::zone

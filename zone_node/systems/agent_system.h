@@ -1,0 +1,62 @@
+#pragma once
+// AI agents in the zone tick. Each agent type of the scene composes a decision behaviour
+// (agent_decisions.h, agent_goap.h), perception (agent_senses.h), needs (health and energy that
+// the senses report back) and locomotion (steering, or paths and splines: agent_navigation.h).
+// Per tick: doors due open or close, every agent senses the tick's starting state, decides,
+// names where it is heading, the path service plans within its budget, then every agent moves.
+// An agent's result depends only on its own state (AgentData, which migrates with it), the
+// entities within its sight (the halo covers them) and the tick: the same on any decomposition
+// as long as the path budget does not bind (docs/ai.md).
+
+#include <memory>
+#include <vector>
+
+#include "common/scene.h"
+#include "zone_node/ai/grid_map.h"
+#include "zone_node/crowd/map_frame.h"
+#include "zone_node/entity_store.h"
+#include "zone_node/systems/agent_navigation.h"
+#include "zone_node/systems/agent_senses.h"
+
+namespace zonesim::zone {
+
+class GhostStore;
+class AgentDecisions;
+class AgentGoapPlans;
+
+/// Agent figures of one tick.
+struct AgentTickStats {
+  std::uint64_t agents = 0;       ///< agents stepped
+  std::uint64_t transitions = 0;  ///< state machine transitions
+  AgentPathStats paths;           ///< path service
+};
+
+/// Steps every AI agent of a zone.
+class AgentSystem {
+ public:
+  /// Loads the scene's behaviours (throws SceneError or ai::ParseError naming the file and
+  /// line); `grid` is the scene's map or null.
+  AgentSystem(const Scene& scene, const ai::GridMap* grid, const crowd::MapFrame& frame);
+  ~AgentSystem();
+
+  /// Whether the scene has agent types at all.
+  bool active() const { return !scene_.agents.types.empty(); }
+  /// Widest sight of a type: agents read ghosts this far across a border.
+  double reach() const { return reach_; }
+  /// Advances every agent of `store` from simulated time `time` by `dt`.
+  AgentTickStats step(EntityStore& store, const GhostStore* ghosts, double time, double dt);
+
+ private:
+  void move(EntityStore& store, std::size_t i, const AgentSenses& senses, double dt);
+  void updateNeeds(AgentData& a, const AgentType& t, const AgentSenses& s, double speed,
+                   double dt) const;
+
+  const Scene& scene_;
+  double reach_ = 0;
+  std::unique_ptr<AgentDecisions> decisions_;
+  std::unique_ptr<AgentGoapPlans> goap_;
+  AgentNavigation nav_;
+  std::vector<AgentSenses> senses_;
+};
+
+}  // namespace zonesim::zone
