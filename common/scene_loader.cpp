@@ -360,9 +360,9 @@ void readClients(const SceneMap& root, ClientProfile& clients) {
 }
 
 Scene readScene(const SceneNode& document, const std::string& file) {
-  SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
-                                "dead_reckoning", "physics", "populations", "clients", "map",
-                                "agents"});
+  SceneMap root =
+      document.map({"name", "world", "tick", "seed", "zones", "interest", "halo", "dead_reckoning",
+                    "physics", "populations", "clients", "map", "agents"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {

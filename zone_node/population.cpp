@@ -151,12 +151,17 @@ void forEachInitialEntity(const Scene& scene,
     keep(r);
   }
   // AI agents after everything else (named bodies included), so scenes without them keep every
-  // other entity's id.
+  // other entity's id. On a map they start on open ground: positions on blocked cells are drawn
+  // again (from the agent's own stream).
   for (const AgentPopulation& p : scene.agents.populations) {
     const AgentType& type = scene.agents.types[std::size_t(p.type)];
     for (int i = 0; i < p.count; ++i) {
       auto [r, rng] = nextSceneEntity(scene, EntityKind::Npc, counter);
-      r.pos = Vec3(rng.uniform(p.min_x, p.max_x), scene.world.min.y, rng.uniform(p.min_z, p.max_z));
+      for (int draw = 0; draw < 1000; ++draw) {
+        r.pos =
+            Vec3(rng.uniform(p.min_x, p.max_x), scene.world.min.y, rng.uniform(p.min_z, p.max_z));
+        if (!map || map->walkable(r.pos.x(), r.pos.z())) break;
+      }
       r.npc.max_speed = type.speed;
       r.npc.accel = type.acceleration;
       r.npc.waypoint_radius = type.wander_radius;

@@ -93,7 +93,26 @@ const InlineCase kInlineCases[] = {
      "8: populations[0].size: only boxes have a size"},
     {"unknown_top_level", withBase("colour: red\n"),
      "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
-     "dead_reckoning, physics, populations, clients, map)"},
+     "dead_reckoning, physics, populations, clients, map, agents)"},
+    {"agent_unknown_action",
+     withBase("agents:\n  types:\n    - {name: a, behaviour: tree, tree: dance}\n"),
+     "7: agents.types[0].tree: unknown action 'dance' (allowed: idle, wander, chase, flee, "
+     "attack, travel)"},
+    {"agent_sight_past_halo",
+     withBase("agents:\n  types:\n    - {name: a, behaviour: guard, sight: 20}\n"),
+     "7: agents.types[0].sight: 20 m is wider than halo.width (10 m)"},
+    {"agent_unknown_type",
+     withBase("agents:\n  types: [{name: a, behaviour: guard}]\n  populations: [{type: b, "
+              "count: 1}]\n"),
+     "7: agents.populations[0].type: unknown agent type 'b'"},
+    {"agent_navigate_without_map",
+     withBase("agents:\n  types:\n    - {name: a, behaviour: travel, goals: [[1, 1]], "
+              "navigate: true}\n"),
+     "7: agents.types[0].navigate: paths need the scene's map (top-level map: key)"},
+    {"agent_unknown_fact",
+     withBase("agents:\n  types:\n    - name: a\n      behaviour: goap\n      goap:\n"
+              "        facts: [x]\n        goal: {y: true}\n"),
+     "11: agents.types[0].goap.goal.y: unknown fact 'y'"},
     {"empty_value", withBase("clients:\n  players:\n  speed: 3\n"),
      "6: clients.players: expected a whole number, got nothing"},
     {"fractional_count", withBase("clients: {players: 2.5}\n"),

@@ -29,7 +29,9 @@ TEST_P(ShippedScene, LoadsWithItsNameAndPath) {
   Scene scene = loadScene(path);
   EXPECT_EQ(scene.name, GetParam());
   EXPECT_EQ(scene.source_path, path);
-  EXPECT_GT(scene.npcs.size() + scene.rigid_bodies.size() + scene.emitters.size(), 0u);
+  EXPECT_GT(scene.npcs.size() + scene.rigid_bodies.size() + scene.emitters.size() +
+                scene.agents.populations.size(),
+            0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shippedScenes()),

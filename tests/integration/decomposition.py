@@ -10,7 +10,8 @@ live particles (positions and velocities, bit for bit); (crowd_flock with --gpu 
 flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in cell-then-id
 order on global cells, so a rank's other agents change nothing); (scenes/agents.yaml) AI agents
 that see wanderers across borders through ghosts and carry their machine states and plans with
-them when they migrate."""
+them when they migrate; (scenes/agents_paths.yaml) couriers whose A* paths migrate with them
+and are re-planned when a door closes."""
 import json
 import tempfile
 from pathlib import Path
@@ -18,7 +19,8 @@ from pathlib import Path
 import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
-          "particles": 300, "crowd_flock_gpu": 300, "agents": 300}
+          "particles": 300, "crowd_flock_gpu": 300, "agents": 300,
+          "agents_paths": 600}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"]}

@@ -66,6 +66,28 @@ void AgentNavigation::applyDoors(double time, EntityStore& store) {
   }
 }
 
+ai::Cell AgentNavigation::startCell(double x, double z) const {
+  ai::Cell c = frame_.cellOf({x, z});
+  if (grid_.passable(c.x, c.y)) return c;
+  // Standing in a cell that closed (a door shut on the agent): start from the open neighbour
+  // whose centre is nearest, so the path leads out of it.
+  ai::Cell best = c;
+  double best_d = 1e300;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ai::Cell n{c.x + dx, c.y + dy};
+      if (!grid_.passable(n.x, n.y)) continue;
+      crowd::Vec2 m = frame_.centre(n);
+      double d = std::hypot(m.x - x, m.y - z);
+      if (d < best_d) {
+        best_d = d;
+        best = n;
+      }
+    }
+  }
+  return best;
+}
+
 void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z, bool navigate) {
   AgentData& a = store.agent[i];
   bool moved_target = a.target_x != x || a.target_z != z;
@@ -87,8 +109,7 @@ void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z
     return;
   }
   a.nav = navOf(AgentNav::Waiting);
-  requests_.push_back(
-      {store.id[i], frame_.cellOf({a.origin_x, a.origin_z}), frame_.cellOf({x, z})});
+  requests_.push_back({store.id[i], startCell(a.origin_x, a.origin_z), frame_.cellOf({x, z})});
 }
 
 void AgentNavigation::plan(EntityStore& store) {

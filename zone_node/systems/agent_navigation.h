@@ -62,6 +62,7 @@ class AgentNavigation {
   AgentPathStats takeStats();
 
  private:
+  ai::Cell startCell(double x, double z) const;
   const ai::SplinePath& splineOf(const EntityStore& store, std::size_t i);
 
   const Scene& scene_;
