@@ -1,0 +1,137 @@
+// agent_bench: AI time per tick of zone agents (zone_node/systems/agent_system.h) for N agents
+// of each behaviour, on one core, with wandering NPCs around as what they see. Each case builds
+// a one-zone scene from text (the agents: keys of docs/scene-format.md), creates the scene's
+// entities, and times AgentSystem::step alone (the wanderers are stepped untimed between ticks).
+// Prints one row per case: behaviour, agents, us per tick, ns per agent update, paths planned.
+//
+//   build/bin/agent_bench [--ticks T] [--sizes 1000,10000]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "zone_node/population.h"
+#include "zone_node/systems/agent_system.h"
+#include "zone_node/systems/neighbourhood.h"
+#include "zone_node/systems/npc_movement.h"
+#include "zone_node/world_map.h"
+
+using namespace zonesim;
+using namespace zonesim::zone;
+
+namespace {
+
+struct Case {
+  const char* label;
+  const char* type;  // the agent type's keys, indented for the scene below
+  bool map;
+};
+
+const Case kCases[] = {
+    {"fsm (guard.yaml)",
+     "behaviour: fsm\n      machine: " ZONESIM_SOURCE_DIR "/scenes/ai/guard.yaml\n"
+     "      actions: {patrol: wander, chase: chase, attack: attack, flee: flee}",
+     false},
+    {"guard (C++)", "behaviour: guard", false},
+    {"hierarchical fsm",
+     "behaviour: fsm\n      machine: " ZONESIM_SOURCE_DIR "/scenes/ai/guard_hierarchical.yaml\n"
+     "      actions: {patrol: wander, chase: chase, attack: attack, flee: flee}",
+     false},
+    {"decision tree",
+     "behaviour: tree\n      tree: {if: health < 40, then: flee, else: {if: enemy_distance < 6, "
+     "then: chase, else: wander}}",
+     false},
+    {"fuzzy",
+     "behaviour: fuzzy\n      fuzzy:\n        - {input: enemy_distance, membership: [0, 0, 2, 5], "
+     "speed: 3, approach: -1}\n        - {input: enemy_distance, membership: [2, 5, 1e12, 1e12], "
+     "speed: 1.5, approach: 0.3}",
+     false},
+    {"goap",
+     "behaviour: goap\n      goap:\n        facts: [has_axe, has_wood, stored]\n        goal: "
+     "{stored: true}\n        actions:\n          - {name: axe, effects: {has_axe: true}, cost: 2, "
+     "at: [20, 20]}\n          - {name: chop, pre: {has_axe: true}, effects: {has_wood: true}, "
+     "cost: 1, at: [100, 100], duration_s: 2}\n          - {name: gather, effects: {has_wood: "
+     "true}, cost: 5, at: [50, 110]}\n          - {name: store, pre: {has_wood: true}, effects: "
+     "{has_wood: false, stored: true}, cost: 1, at: [64, 64], duration_s: 1}",
+     false},
+    {"travel (straight)", "behaviour: travel\n      goals: [[20, 22], [100, 22]]", false},
+    {"travel (A* paths)",
+     "behaviour: travel\n      navigate: true\n      goals: [[20, 22], [100, 22]]", true},
+};
+
+std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa) {
+  std::string s =
+      "world: {min: [0, 0, 0], max: [128, 10, 128]}\ntick: {dt: 0.05}\nseed: 3\n"
+      "zones: {columns: 1, rows: 1}\nhalo: {width: 10}\n"
+      "populations:\n  - {kind: npc, count: " +
+      std::to_string(std::max(1, agents / 4)) + ", speed: [0.8, 1.6]}\n";
+  if (c.map)
+    s += "map: {file: " ZONESIM_SOURCE_DIR
+         "/scenes/maps/courtyard.map, origin: [0, 0, 0], cell_size: 2}\n";
+  s += "agents:\n  types:\n    - name: t\n      " + std::string(c.type) +
+       "\n      speed: 3\n      sight: 8\n  populations:\n    - {type: t, count: " +
+       std::to_string(agents) + ", region: {min: [6, 6], max: [40, 60]}}\n";
+  s += "  paths: {planner: " + std::string(hpa ? "hpa" : "astar") +
+       ", cluster_size: 8, paths_per_tick: " + std::to_string(paths_per_tick) + "}\n";
+  return s;
+}
+
+void run(const Case& c, int agents, int ticks, int paths_per_tick, bool hpa, const char* label) {
+  Scene scene = parseScene(sceneText(c, agents, paths_per_tick, hpa), "bench");
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  std::shared_ptr<const WorldMap> map = loadWorldMap(scene);
+  AgentSystem system(scene, map ? &map->grid : nullptr, map ? map->frame : crowd::MapFrame{});
+  Neighbourhood near;  // wanderers do not separate: never queried
+  double seconds = 0;
+  std::uint64_t planned = 0, updates = 0;
+  for (int t = 0; t < ticks; ++t) {
+    auto t0 = std::chrono::steady_clock::now();
+    AgentTickStats s = system.step(store, nullptr, t * scene.dt, scene.dt);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    planned += s.paths.planned;
+    updates += s.agents;
+    stepNpcs(scene, store, near, t * scene.dt, scene.dt);
+  }
+  std::printf("| %s | %d | %.0f | %.0f | %llu |\n", label, agents, seconds / ticks * 1e6,
+              seconds / double(updates) * 1e9, (unsigned long long)planned);
+}
+
+std::vector<int> parseSizes(const char* text) {
+  std::vector<int> out;
+  for (const char* p = text; *p;) {
+    out.push_back(std::atoi(p));
+    p = std::strchr(p, ',');
+    if (!p) break;
+    ++p;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int ticks = 200;
+  std::vector<int> sizes{1000, 10000};
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--ticks")) ticks = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--sizes")) sizes = parseSizes(argv[i + 1]);
+  }
+  std::printf("| behaviour | agents | us/tick | ns/agent update | paths planned |\n");
+  std::printf("|---|---|---|---|---|\n");
+  for (int n : sizes) {
+    for (const Case& c : kCases) {
+      if (c.map) {
+        run(c, n, ticks, 1000000, false, "travel (A* paths, budget off)");
+        run(c, n, ticks, 8, false, "travel (A* paths, 8/tick)");
+        run(c, n, ticks, 8, true, "travel (HPA* 8, 8/tick)");
+      } else {
+        run(c, n, ticks, 8, false, c.label);
+      }
+    }
+  }
+}
