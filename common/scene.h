@@ -262,6 +262,18 @@ struct ObstacleMap {
   bool present() const { return !file.empty(); }
 };
 
+/// Level of detail for crowds (zone_node/crowd/lod.h): NPCs far from every player are updated
+/// less often, the farthest without steering (`lod:` key; absent: every NPC every tick).
+struct CrowdLod {
+  bool enabled = false;     ///< the scene has a `lod` key
+  double near_radius = 40;  ///< m from the nearest player: every tick, full steering
+  double far_radius = 120;  ///< m: between near and far, every `mid_every` ticks
+  int mid_every = 2;        ///< ticks between updates of the middle band
+  int far_every = 8;        ///< ticks between updates beyond far_radius
+  bool mid_steers = true;   ///< the middle band keeps its neighbour terms
+  bool far_steers = false;  ///< the far band follows its field only
+};
+
 /// A whole scene; the docs for every key are in docs/scene-format.md.
 struct Scene {
   std::string name;
@@ -283,6 +295,7 @@ struct Scene {
   AuraNimbus aura_nimbus;  ///< keys in the interest section
   ObstacleMap map;         ///< walls and open ground for crowds and path finding
   AgentSettings agents;    ///< AI agent types and populations (common/scene_ai.h)
+  CrowdLod lod;            ///< level of detail of the crowd systems
 };
 
 /// Radius of the sphere around a body's centre that holds its whole shape.

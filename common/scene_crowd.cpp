@@ -39,6 +39,20 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
   m.read("cell_size", map.cell_size, Limit::above(0));
 }
 
+void readCrowdLod(const SceneMap& root, Scene& scene) {
+  if (!root.optional("lod")) return;
+  CrowdLod& l = scene.lod;
+  l.enabled = true;
+  SceneMap m = root.section(
+      "lod", {"near_radius", "far_radius", "mid_every", "far_every", "mid_steers", "far_steers"});
+  m.read("near_radius", l.near_radius, Limit::atLeast(0));
+  m.read("far_radius", l.far_radius, Limit::atLeast(l.near_radius));
+  m.read("mid_every", l.mid_every, Limit::between(1, 64));
+  m.read("far_every", l.far_every, Limit::between(1, 64));
+  m.read("mid_steers", l.mid_steers);
+  m.read("far_steers", l.far_steers);
+}
+
 void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p) {
   if (!population.optional("flow")) return;
   for (const char* other : {"separation", "gather", "flock"}) {

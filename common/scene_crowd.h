@@ -13,6 +13,9 @@ namespace zonesim {
 /// resolved against its folder).
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene);
 
+/// Reads the optional top-level `lod` key.
+void readCrowdLod(const SceneMap& root, Scene& scene);
+
 /// Reads the optional `flow` block of an NPC population (after the map: a flow needs one).
 void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 

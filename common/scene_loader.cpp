@@ -362,7 +362,7 @@ void readClients(const SceneMap& root, ClientProfile& clients) {
 Scene readScene(const SceneNode& document, const std::string& file) {
   SceneMap root =
       document.map({"name", "world", "tick", "seed", "zones", "interest", "halo", "dead_reckoning",
-                    "physics", "populations", "clients", "map", "agents"});
+                    "physics", "populations", "clients", "map", "agents", "lod"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -382,6 +382,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readPopulations(root, scene);
   readClients(root, scene.clients);
   readAgents(root, scene);
+  readCrowdLod(root, scene);
   return scene;
 }
 

@@ -6,6 +6,7 @@
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/cluster/conservation.h"
 #include "zone_node/cluster/offload_agreement.h"
+#include "zone_node/cluster/player_positions.h"
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/zone_link.h"
 #include "zone_node/population.h"
@@ -283,7 +284,11 @@ void ZoneNode::ai() {
   }
   stepNpcs(scene_, store_, near_, double(tick_) * scene_.dt, scene_.dt);
   if (flocks_->active()) flocks_->step(store_, &halo_.ghosts(), scene_.dt);
-  if (flows_->active()) flows_->step(store_, &halo_.ghosts(), scene_.dt);
+  if (flows_->active()) {
+    // Every rank takes part in the gather (the scene decides, so all agree).
+    if (scene_.lod.enabled) players_ = gatherAvatarPositions(comm_, store_);
+    flows_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
+  }
   stepAvatars(scene_.world, store_, scene_.dt);
 }
 

@@ -19,6 +19,7 @@
 #include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/load_balancer.h"
 #include "zone_node/cluster/migration.h"
+#include "zone_node/crowd/vec2.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/tick_profile.h"
@@ -138,6 +139,7 @@ class ZoneNode {
   std::shared_ptr<const WorldMap> map_;      // the scene's walls; null without `map:`
   std::unique_ptr<FlowMovement> flows_;      // flow-field NPC populations (need map_)
   std::unique_ptr<AgentSystem> agents_;      // AI agents (scene key `agents`)
+  std::vector<crowd::Vec2> players_;         // every avatar of the cluster, for crowd LOD
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

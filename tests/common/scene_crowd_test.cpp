@@ -134,5 +134,25 @@ TEST(SceneFlow, ErrorsNameLineAndField) {
                 "fields, not this");
 }
 
+TEST(SceneLod, AbsentMeansOffAndValuesComeThrough) {
+  EXPECT_FALSE(parseScene(sceneWith(""), kSceneName).lod.enabled);
+  Scene s = parseScene(sceneWith("lod: {near_radius: 10, far_radius: 30, far_every: 4, "
+                                 "far_steers: true}\n"),
+                       kSceneName);
+  EXPECT_TRUE(s.lod.enabled);
+  EXPECT_EQ(s.lod.near_radius, 10);
+  EXPECT_EQ(s.lod.far_radius, 30);
+  EXPECT_EQ(s.lod.mid_every, CrowdLod{}.mid_every);
+  EXPECT_EQ(s.lod.far_every, 4);
+  EXPECT_TRUE(s.lod.mid_steers);
+  EXPECT_TRUE(s.lod.far_steers);
+  EXPECT_EQ(sceneError([] {
+              parseScene(sceneWith("lod: {near_radius: 50, far_radius: 30}\n"), kSceneName);
+            }),
+            kSceneName + ":5: lod.far_radius: must be >= 50, got 30");
+  EXPECT_EQ(sceneError([] { parseScene(sceneWith("lod: {mid_every: 0}\n"), kSceneName); }),
+            kSceneName + ":5: lod.mid_every: must be in [1, 64], got 0");
+}
+
 }  // namespace
 }  // namespace zonesim

@@ -6,9 +6,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "zone_node/crowd/vec2.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/flow_movement.h"
 #include "zone_node/world_map.h"
@@ -74,6 +77,56 @@ TEST(FlowMovement, ADestinationOnAWallIsASceneError) {
               scene.source_path +
                   ":31: populations[0].flow.destinations[1]: lies on a blocked cell of the map");
   }
+}
+
+// Runs the courtyard crowd to the end; per NPC (by id) the tick it arrived. Counts NPC updates.
+std::map<std::uint64_t, int> arrivalTicks(const Scene& scene, std::span<const crowd::Vec2> players,
+                                          std::size_t& updates) {
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  FlowMovement flows(scene, map.get());
+  std::map<std::uint64_t, int> arrived;
+  updates = 0;
+  for (int tick = 0; tick < 4000 && arrived.size() < store.size(); ++tick) {
+    flows.step(store, nullptr, scene.dt, players, tick);
+    updates += flows.updates();
+    for (std::size_t i = 0; i < store.size(); ++i)
+      if (flows.arrived(store, i)) arrived.emplace(store.id[i].value, tick + 1);
+  }
+  return arrived;
+}
+
+TEST(FlowMovement, LevelOfDetailReachesTheSameOutcome) {
+  // A player in the west hall: NPCs near it update every tick, the rest of the courtyard every
+  // 2 or 8 ticks (the far ones without separation). Every NPC still arrives, and its arrival
+  // time moves little (LOD steps catch up the time they skip, and arrival is checked each
+  // update, so an NPC arrives at most one period late).
+  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
+  std::vector<crowd::Vec2> players{{8.0, 40.0}};
+  std::size_t full_updates = 0, lod_updates = 0;
+  auto full = arrivalTicks(scene, players, full_updates);
+  scene.lod.enabled = true;
+  scene.lod.near_radius = 12;
+  scene.lod.far_radius = 30;
+  auto lod = arrivalTicks(scene, players, lod_updates);
+  ASSERT_EQ(full.size(), 400u);
+  ASSERT_EQ(lod.size(), 400u);
+  double sum = 0, worst = 0, mean_full = 0;
+  for (auto [id, t] : full) {
+    double d = std::abs(lod.at(id) - t) * scene.dt;
+    sum += d;
+    worst = std::max(worst, d);
+    mean_full += t * scene.dt;
+  }
+  mean_full /= full.size();
+  std::printf(
+      "updates %zu full, %zu with LOD (%.2fx fewer); arrival time moved %.2f s on "
+      "average (mean arrival %.1f s), %.1f s at worst\n",
+      full_updates, lod_updates, double(full_updates) / lod_updates, sum / full.size(), mean_full,
+      worst);
+  EXPECT_LT(lod_updates, full_updates / 2);
+  EXPECT_LT(sum / full.size(), 0.1 * mean_full);
 }
 
 }  // namespace

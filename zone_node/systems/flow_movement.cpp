@@ -5,6 +5,7 @@
 
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/crowd/flow_crowd.h"
+#include "zone_node/crowd/lod.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/world_map.h"
 
@@ -12,10 +13,12 @@ namespace zonesim::zone {
 
 /// One flow population: its crowd (fields shared by all its NPCs) and the gather buffers.
 struct FlowMovement::Group {
-  Group(std::int32_t p, const WorldMap& map, const crowd::FlowCrowdSettings& s)
-      : population(p), crowd(map.grid, map.frame, s) {}
+  Group(std::int32_t p, const WorldMap& map, const crowd::FlowCrowdSettings& s,
+        const crowd::LodSettings& l)
+      : population(p), crowd(map.grid, map.frame, s), lod(l) {}
   std::int32_t population;
   crowd::FlowCrowd crowd;
+  crowd::LevelOfDetail lod;
   std::vector<std::size_t> index;  // store index of each gathered NPC
   std::vector<std::uint64_t> ids, ghost_ids;
   std::vector<crowd::Vec2> pos, vel, ghost_pos, ghost_vel;
@@ -47,18 +50,29 @@ crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
   return s;
 }
 
+crowd::LodSettings lodOf(const CrowdLod& l) {
+  crowd::LodSettings s;
+  s.nearRadius = l.near_radius;
+  s.farRadius = l.far_radius;
+  s.midEvery = l.mid_every;
+  s.farEvery = l.far_every;
+  s.midSteers = l.mid_steers;
+  s.farSteers = l.far_steers;
+  return s;
+}
+
 std::string sceneFile(const Scene& scene) {
   return scene.source_path.empty() ? scene.name : scene.source_path;
 }
 
 }  // namespace
 
-FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map) {
+FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map) : lod_(scene.lod.enabled) {
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlow& f = scene.npcs[p].flow;
     if (!f.enabled) continue;
     if (!map) throw SceneError(sceneFile(scene) + ":0: map: a flow population needs a map");
-    auto g = std::make_unique<Group>(std::int32_t(p), *map, settingsOf(f));
+    auto g = std::make_unique<Group>(std::int32_t(p), *map, settingsOf(f), lodOf(scene.lod));
     for (std::size_t k = 0; k < f.destinations.size(); ++k) {
       const NpcFlow::Destination& d = f.destinations[k];
       if (!map->walkable(d.x, d.z)) {
@@ -88,8 +102,10 @@ bool FlowMovement::arrived(const EntityStore& store, std::size_t i) const {
   return g->crowd.hasArrived({store.pos[i].x(), store.pos[i].z()}, d);
 }
 
-std::size_t FlowMovement::step(EntityStore& store, const GhostStore* ghosts, double dt) {
+std::size_t FlowMovement::step(EntityStore& store, const GhostStore* ghosts, double dt,
+                               std::span<const crowd::Vec2> players, std::int64_t tick) {
   std::size_t walking = 0;
+  updates_ = 0;
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
     const int count = g.crowd.destinationCount();
@@ -125,8 +141,14 @@ std::size_t FlowMovement::step(EntityStore& store, const GhostStore* ghosts, dou
       }
     }
     if (g.ids.empty()) continue;
+    // Far from every player an NPC steps less often (by the time it skipped), the farthest
+    // along its field only; the plan depends on ids, positions and the tick alone.
+    crowd::StepPlan plan;
+    if (lod_) plan = g.lod.plan(g.ids, g.pos, players, tick, dt);
     g.crowd.step(crowd::AgentSpan{g.ids, g.pos, g.vel}, g.dest, g.arrived,
-                 crowd::GhostSpan{g.ghost_ids, g.ghost_pos, g.ghost_vel}, dt);
+                 crowd::GhostSpan{g.ghost_ids, g.ghost_pos, g.ghost_vel}, dt, plan);
+    for (std::size_t a = 0; a < g.ids.size(); ++a)
+      updates_ += (plan.empty() || plan.dt[a] > 0) && !g.arrived[a] ? 1 : 0;
     for (std::size_t a = 0; a < g.index.size(); ++a) {
       std::size_t i = g.index[a];
       store.pos[i] = Vec3(g.pos[a].x, store.pos[i].y(), g.pos[a].y);

@@ -10,9 +10,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "common/scene.h"
+#include "zone_node/crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {
@@ -37,9 +39,14 @@ class FlowMovement {
   /// Widest separation radius of the crowds (the halo must reach this far).
   double reach() const { return reach_; }
 
-  /// Advances every flow NPC of `store` by `dt`, seeing same-population `ghosts`. Returns the
+  /// Advances every flow NPC of `store` by `dt`, seeing same-population `ghosts`. With the
+  /// scene's `lod`, `players` (every player avatar of the cluster, x-z) and `tick` choose each
+  /// NPC's update (crowd::LevelOfDetail: the same plan for an NPC on every rank). Returns the
   /// number of NPCs still on their way (not arrived) after the step.
-  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt);
+  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt,
+                   std::span<const crowd::Vec2> players = {}, std::int64_t tick = 0);
+  /// NPC updates (agent steps) done by the last step() (all NPCs on the way without LOD).
+  std::size_t updates() const { return updates_; }
 
   /// Whether the NPC at `store` index `i` (a flow NPC) stands at its destination.
   bool arrived(const EntityStore& store, std::size_t i) const;
@@ -49,6 +56,8 @@ class FlowMovement {
   Group* groupOf(std::int32_t population) const;
   std::vector<std::unique_ptr<Group>> groups_;  // one per flow population
   double reach_ = 0;
+  bool lod_ = false;  // the scene's lod key: plan updates by distance to the players
+  std::size_t updates_ = 0;
 };
 
 }  // namespace zonesim::zone
