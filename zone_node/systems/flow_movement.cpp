@@ -6,7 +6,7 @@
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/crowd/flow_crowd.h"
 #include "zone_node/crowd/lod.h"
-#include "zone_node/systems/steering.h"
+#include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -15,13 +15,10 @@ namespace zonesim::zone {
 struct FlowMovement::Group {
   Group(std::int32_t p, const WorldMap& map, const crowd::FlowCrowdSettings& s,
         const crowd::LodSettings& l)
-      : population(p), crowd(map.grid, map.frame, s), lod(l) {}
-  std::int32_t population;
+      : view(p), crowd(map.grid, map.frame, s), lod(l) {}
+  PlanarCrowd view;
   crowd::FlowCrowd crowd;
   crowd::LevelOfDetail lod;
-  std::vector<std::size_t> index;  // store index of each gathered NPC
-  std::vector<std::uint64_t> ids, ghost_ids;
-  std::vector<crowd::Vec2> pos, vel, ghost_pos, ghost_vel;
   std::vector<std::uint16_t> dest;
   std::vector<std::uint8_t> arrived;
 };
@@ -91,7 +88,7 @@ FlowMovement::~FlowMovement() = default;
 
 FlowMovement::Group* FlowMovement::groupOf(std::int32_t population) const {
   for (const auto& g : groups_)
-    if (g->population == population) return g.get();
+    if (g->view.population == population) return g.get();
   return nullptr;
 }
 
@@ -109,53 +106,28 @@ std::size_t FlowMovement::step(EntityStore& store, const GhostStore* ghosts, dou
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
     const int count = g.crowd.destinationCount();
-    g.index.clear();
-    g.ids.clear();
-    g.pos.clear();
-    g.vel.clear();
+    g.view.gatherAgents(store);
     g.dest.clear();
     g.arrived.clear();
-    for (std::size_t i = 0; i < store.size(); ++i) {
-      if (store.kind[i] != EntityKind::Npc || store.npc[i].flock != g.population) continue;
-      crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
-      int d = flowDestination(store.id[i].value, count);
-      g.index.push_back(i);
-      g.ids.push_back(store.id[i].value);
-      g.pos.push_back(p);
-      g.vel.push_back({store.vel[i].x(), store.vel[i].z()});
+    for (std::size_t a = 0; a < g.view.ids.size(); ++a) {
+      int d = flowDestination(g.view.ids[a], count);
       g.dest.push_back(std::uint16_t(d));
-      g.arrived.push_back(g.crowd.hasArrived(p, d) ? 1 : 0);
+      g.arrived.push_back(g.crowd.hasArrived(g.view.pos[a], d) ? 1 : 0);
     }
     // Ghosts that have arrived left the crowd on their owner too: leave them out here.
-    g.ghost_ids.clear();
-    g.ghost_pos.clear();
-    g.ghost_vel.clear();
-    if (ghosts) {
-      for (std::size_t k = 0; k < ghosts->size(); ++k) {
-        if (ghosts->kind[k] != EntityKind::Npc || ghosts->flock[k] != g.population) continue;
-        crowd::Vec2 p{ghosts->pos[k].x(), ghosts->pos[k].z()};
-        if (g.crowd.hasArrived(p, flowDestination(ghosts->id[k].value, count))) continue;
-        g.ghost_ids.push_back(ghosts->id[k].value);
-        g.ghost_pos.push_back(p);
-        g.ghost_vel.push_back({ghosts->vel[k].x(), ghosts->vel[k].z()});
-      }
-    }
-    if (g.ids.empty()) continue;
+    g.view.gatherGhosts(ghosts, [&](std::uint64_t id, crowd::Vec2 p) {
+      return !g.crowd.hasArrived(p, flowDestination(id, count));
+    });
+    if (g.view.ids.empty()) continue;
     // Far from every player an NPC steps less often (by the time it skipped), the farthest
     // along its field only; the plan depends on ids, positions and the tick alone.
     crowd::StepPlan plan;
-    if (lod_) plan = g.lod.plan(g.ids, g.pos, players, tick, dt);
-    g.crowd.step(crowd::AgentSpan{g.ids, g.pos, g.vel}, g.dest, g.arrived,
-                 crowd::GhostSpan{g.ghost_ids, g.ghost_pos, g.ghost_vel}, dt, plan);
-    for (std::size_t a = 0; a < g.ids.size(); ++a)
+    if (lod_) plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt);
+    g.crowd.step(g.view.agents(), g.dest, g.arrived, g.view.ghostSpan(), dt, plan);
+    for (std::size_t a = 0; a < g.view.ids.size(); ++a)
       updates_ += (plan.empty() || plan.dt[a] > 0) && !g.arrived[a] ? 1 : 0;
-    for (std::size_t a = 0; a < g.index.size(); ++a) {
-      std::size_t i = g.index[a];
-      store.pos[i] = Vec3(g.pos[a].x, store.pos[i].y(), g.pos[a].y);
-      store.vel[i] = Vec3(g.vel[a].x, 0.0, g.vel[a].y);
-      store.rot[i] = facing(store.rot[i], store.vel[i]);
-      walking += g.arrived[a] ? 0 : 1;
-    }
+    g.view.writeBack(store);
+    for (std::uint8_t done : g.arrived) walking += done ? 0 : 1;
   }
   return walking;
 }
