@@ -72,11 +72,20 @@ TEST(NeighbourGrid, EntriesPointBackToTheirSource) {
   }
 }
 
-// Runs `steps` flock steps and returns the final state keyed by id.
+// The state of every agent keyed by id, so runs that store agents differently compare equal.
 std::map<std::uint64_t, std::pair<Vec2, Vec2>> byId(const test::AgentArrays& a) {
   std::map<std::uint64_t, std::pair<Vec2, Vec2>> m;
   for (std::size_t i = 0; i < a.ids.size(); ++i) m[a.ids[i]] = {a.pos[i], a.vel[i]};
   return m;
+}
+
+// Two "ranks'" agents back in one array after a split step, `first` stored first.
+test::AgentArrays joined(const test::AgentArrays& first, const test::AgentArrays& second) {
+  test::AgentArrays all;
+  for (const auto* part : {&first, &second})
+    for (std::size_t i = 0; i < part->ids.size(); ++i)
+      all.add(part->ids[i], part->pos[i], part->vel[i]);
+  return all;
 }
 
 TEST(NeighbourGrid, FlockStepsAreBitwiseIndependentOfStorageOrder) {
@@ -110,10 +119,7 @@ TEST(NeighbourGrid, OwnedPlusGhostSplitsMatchTheWholeFlockBitwise) {
     test::AgentArrays lGhost = r, rGhost = l;
     left.step(l.span(), lGhost.ghosts(), 1.0 / 30);
     right.step(r.span(), rGhost.ghosts(), 1.0 / 30);
-    split = test::AgentArrays{};
-    for (auto* part : {&r, &l})
-      for (std::size_t i = 0; i < part->ids.size(); ++i)
-        split.add(part->ids[i], part->pos[i], part->vel[i]);
+    split = joined(r, l);
   }
   EXPECT_EQ(byId(whole), byId(split));
 }
@@ -140,10 +146,7 @@ TEST(NeighbourGrid, HaloOfTheNeighbourRadiusIsEnoughForBitwiseSplits) {
     }
     left.step(l.span(), lGhost.ghosts(), 1.0 / 30);
     right.step(r.span(), rGhost.ghosts(), 1.0 / 30);
-    split = test::AgentArrays{};
-    for (auto* part : {&r, &l})
-      for (std::size_t i = 0; i < part->ids.size(); ++i)
-        split.add(part->ids[i], part->pos[i], part->vel[i]);
+    split = joined(r, l);
   }
   EXPECT_EQ(byId(whole), byId(split));
 }

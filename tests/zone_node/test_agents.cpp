@@ -7,20 +7,13 @@
 #include <string>
 
 #include "common/scene.h"
+#include "test_helpers.h"
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_node.h"
 
 namespace zonesim::zone {
 namespace {
-
-ZoneOptions noDds() {
-  ZoneOptions o;
-  o.dds = false;
-  o.check_every = 0;
-  o.gpu = "off";
-  return o;
-}
 
 std::string source(const std::string& rel) {
   return std::string(ZONESIM_SOURCE_DIR) + "/" + rel;
@@ -40,8 +33,8 @@ TEST(Agents, InterpretedAndHandCodedGuardsMakeTheSameTransitions) {
   int guard = typeIndex(file, "guard");
   ASSERT_GE(guard, 0);
   coded.agents.types[std::size_t(guard)].behaviour = AgentType::Behaviour::Guard;
-  ZoneNode a(file, MPI_COMM_WORLD, noDds());
-  ZoneNode b(coded, MPI_COMM_WORLD, noDds());
+  ZoneNode a(file, MPI_COMM_WORLD, testing::localZone(0));
+  ZoneNode b(coded, MPI_COMM_WORLD, testing::localZone(0));
   std::set<int> states_seen;
   int guards = 0;
   for (int tick = 0; tick < 400; ++tick) {
@@ -74,7 +67,7 @@ TEST(Agents, InterpretedAndHandCodedGuardsMakeTheSameTransitions) {
 TEST(Agents, HierarchicalSentriesKeepCombatTimerAcrossSubstates) {
   Scene s = loadScene(source("scenes/agents.yaml"));
   int sentry = typeIndex(s, "sentry");
-  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
   std::set<int> actions;
   for (int tick = 0; tick < 400; ++tick) {
     node.tick();
@@ -115,7 +108,7 @@ std::vector<AgentData> runWorkers(const std::string& axe_cost) {
   std::string text = kWorkers;
   text.replace(text.find("AXE"), 3, axe_cost);
   Scene s = parseScene(text, "workers");
-  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
   for (int tick = 0; tick < 1500; ++tick) node.tick();
   return {node.store().agent.begin(), node.store().agent.end()};
 }
@@ -145,7 +138,7 @@ TEST(Agents, GoapWorkersExecuteTheCheapestPlan) {
 TEST(Agents, TreeAndFuzzyAgentsActOnWhatTheySee) {
   Scene s = loadScene(source("scenes/agents.yaml"));
   int scout = typeIndex(s, "scout"), skittish = typeIndex(s, "skittish");
-  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
   int chases = 0, flees_near = 0, blended = 0;
   for (int tick = 0; tick < 300; ++tick) {
     node.tick();
@@ -194,7 +187,7 @@ TEST(Agents, SceneMistakesNameTheirLine) {
          "  populations: [{type: g, count: 1}]\n";
   Scene s = parseScene(fsm, "fsm.yaml");
   try {
-    ZoneNode node(s, MPI_COMM_WORLD, noDds());
+    ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
     FAIL() << "unmapped state accepted";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("fsm.yaml:8:"), std::string::npos) << e.what();
@@ -221,7 +214,7 @@ CourierRun runCouriers(int paths_per_tick, int expansions_per_tick, int ticks) {
   Scene s = loadScene(source("scenes/agents_paths.yaml"));
   s.agents.paths.paths_per_tick = paths_per_tick;
   s.agents.paths.expansions_per_tick = expansions_per_tick;
-  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
   const WorldMap& map = *node.worldMap();
   CourierRun r;
   std::set<std::uint64_t> in_door;  // agents standing in the north doorway

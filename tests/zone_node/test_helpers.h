@@ -1,7 +1,8 @@
 #pragma once
-// Small scenes built in code for zone tests (no files needed).
+// Small scenes built in code for zone tests (no files needed), and the options to run them.
 
 #include "common/scene.h"
+#include "zone_node/zone_node.h"
 
 namespace zonesim::testing {
 
@@ -23,6 +24,16 @@ inline Scene npcScene(int npcs, std::uint64_t seed = 7) {
   p.region = s.world;
   s.npcs.push_back(p);
   return s;
+}
+
+/// Options for a zone run inside a test: no DDS, the CPU path, conservation checked every
+/// `check_every` ticks (0: never).
+inline zone::ZoneOptions localZone(int check_every) {
+  zone::ZoneOptions o;
+  o.dds = false;
+  o.check_every = check_every;
+  o.gpu = "off";
+  return o;
 }
 
 }  // namespace zonesim::testing

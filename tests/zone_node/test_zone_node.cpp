@@ -6,17 +6,9 @@
 namespace zonesim::zone {
 namespace {
 
-ZoneOptions noDds() {
-  ZoneOptions o;
-  o.dds = false;
-  o.check_every = 1;
-  o.gpu = "off";
-  return o;
-}
-
 TEST(ZoneNode, ASingleZoneConservesItsEntitiesAndSkipsIdleSystems) {
   Scene s = testing::npcScene(300);
-  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(1));
   ASSERT_EQ(node.size(), 1);
   EXPECT_EQ(node.store().size(), 300u);
   for (int t = 0; t < 120; ++t) {
@@ -41,7 +33,7 @@ TEST(ZoneNode, RigidBodiesAndEmittersRunWhenTheSceneHasThem) {
   emitters.rate = 300;
   emitters.region = s.world;
   s.emitters.push_back(emitters);
-  ZoneNode node(s, MPI_COMM_WORLD, noDds());
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(1));
   node.tick();
   EXPECT_EQ(node.counters().bodies_awake, 5u);
   for (int t = 0; t < 30; ++t) node.tick();
