@@ -29,11 +29,7 @@ for n in counts:
         gw = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
                       out / "port", "--dds-domain", domain, "--metrics", out, "--max-sessions",
                       100000], out / "gateway.log", env)
-        for _ in range(100):
-            if (out / "port").exists() and (out / "port").read_text().strip():
-                break
-            time.sleep(0.1)
-        port = (out / "port").read_text().strip()
+        port = h.wait_for_port(out / "port", gw, out / "gateway.log")
         time.sleep(2)
         h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway", f"127.0.0.1:{port}",
                "--players", n, "--duration", SECONDS, "--summary", out / "clients.json"],

@@ -25,12 +25,7 @@ with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
                     out / "zones.log", env)
     gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file", out / "port",
                        "--dds-domain", domain, "--metrics", out], out / "gateway.log", env)
-    for _ in range(100):
-        if (out / "port").exists() and (out / "port").read_text().strip():
-            break
-        time.sleep(0.1)
-    h.check((out / "port").exists(), "gateway wrote its port")
-    port = (out / "port").read_text().strip()
+    port = h.wait_for_port(out / "port", gateway, out / "gateway.log")
     time.sleep(2)
     h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway", f"127.0.0.1:{port}", "--players", 12,
            "--duration", CLIENT_SECONDS, "--summary", out / "clients.json", "--metrics", out],

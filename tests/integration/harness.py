@@ -111,6 +111,21 @@ def _cleanup():
         stop(p, grace=2.0)
 
 
+def wait_for_port(port_file, proc, log_path, timeout=120.0):
+    """The port a process wrote to port_file once it listens. The wait is long because a loaded
+    CI machine (2 cores, a fuzzer and four ranks beside us) can take many seconds to start it;
+    a process that dies meanwhile ends the wait at once, with its log."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        text = port_file.read_text().strip() if port_file.exists() else ""
+        if text:
+            return text
+        if proc.poll() is not None:
+            fail(f"exited with {proc.returncode} before writing {port_file}\n{tail(log_path)}")
+        time.sleep(0.1)
+    fail(f"no port in {port_file} after {timeout:.0f} s\n{tail(log_path)}")
+
+
 def tail(path, lines=40):
     try:
         return "".join(Path(path).read_text(errors="replace").splitlines(True)[-lines:])

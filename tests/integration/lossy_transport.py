@@ -35,14 +35,6 @@ TRUTH_EVERY = 4  # every 4th entity id: the zones log its true position, the cli
 TRUTH_BOUND_M = 0.5 + 0.25
 
 
-def wait_port(path):
-    for _ in range(100):
-        if path.exists() and path.read_text().strip():
-            return path.read_text().strip()
-        time.sleep(0.1)
-    h.fail(f"no port in {path}")
-
-
 with tempfile.TemporaryDirectory(prefix="zs_lossy_") as tmp:
     out = Path(tmp)
     domain = h.free_dds_domain()
@@ -59,7 +51,8 @@ with tempfile.TemporaryDirectory(prefix="zs_lossy_") as tmp:
                                   "--port-file", d / "port", "--dds-domain", domain,
                                   "--gateway-id", gid, "--metrics", d, "--inject-loss", LOSS,
                                   *extra], d / "gateway.log", env)
-    ports = {name: wait_port(out / name / "port") for name in variants}
+    ports = {name: h.wait_for_port(out / name / "port", gateways[name], out / name / "gateway.log")
+             for name in variants}
     time.sleep(2)
     for name in variants:
         d = out / name
