@@ -1,4 +1,4 @@
-// crowd_bench [--agents 1000,10000,100000] [--steps N] [--only flock|flow|lod]
+// crowd_bench [--agents 1000,10000,100000] [--lanes 1,2,4,8] [--steps N] [--only flock|flow|lod]
 //              [--lod-seconds S]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
 // fields on one core, flow field build time, and (--only lod) AI time and outcome drift with
@@ -42,7 +42,7 @@ struct Agents {
   AgentSpan span() { return AgentSpan{ids, pos, vel}; }
 };
 
-void benchFlock(const std::vector<int>& counts, int steps) {
+void benchFlock(const std::vector<int>& counts, const std::vector<int>& laneList, int steps) {
   std::printf(
       "\nFlocking (density 0.5 agents/m^2, neighbour radius 3 m, %d steps of 1/30 s; "
       "storage: random = ids and array order unrelated to position, cell = arrays reordered "
@@ -53,7 +53,7 @@ void benchFlock(const std::vector<int>& counts, int steps) {
       "|---|---|---|---|---|---|\n");
   for (int n : counts) {
     for (bool sorted : {false, true})
-      for (int lanes : {1, 2, 4}) {
+      for (int lanes : laneList) {
         double side = std::sqrt(n / 0.5);
         Agents a;
         Pcg32 rng(1, 1);
@@ -251,12 +251,15 @@ std::vector<int> parseList(const char* s) {
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // rows appear as they are measured
   std::vector<int> counts{1000, 10000, 100000};
+  std::vector<int> lanes{1, 2, 4, 8};
   int steps = 30;
   double lodSeconds = 200;
   std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--agents") && i + 1 < argc)
       counts = parseList(argv[++i]);
+    else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc)
+      lanes = parseList(argv[++i]);
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc)
       steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
@@ -264,13 +267,14 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--lod-seconds") && i + 1 < argc)
       lodSeconds = std::stod(argv[++i]);
     else {
-      std::fprintf(stderr,
-                   "usage: crowd_bench [--agents LIST] [--steps N] [--only flock|flow|lod] "
-                   "[--lod-seconds S]\n");
+      std::fprintf(
+          stderr,
+          "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N] [--only flock|flow|lod] "
+          "[--lod-seconds S]\n");
       return 2;
     }
   }
-  if (only.empty() || only == "flock") benchFlock(counts, steps);
+  if (only.empty() || only == "flock") benchFlock(counts, lanes, steps);
   if (only.empty() || only == "flow") benchFlow(counts, steps);
   if (only == "lod") benchLod(counts, lodSeconds);
   return 0;

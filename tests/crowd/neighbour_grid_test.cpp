@@ -180,8 +180,8 @@ TEST(NeighbourGrid, AnAgentsStepDoesNotDependOnWhichAgentItIsPairedWith) {
 }
 
 TEST(NeighbourGrid, EveryVectorWidthGivesTheSameStepBitwise) {
-  // One agent per pass, two (SSE2) and four (AVX where the CPU has it): the same flock, with
-  // ghosts and exact overlaps, ends bitwise equal after 20 steps.
+  // One agent per pass, two (SSE2), four (AVX) and eight (AVX-512) where the CPU has them:
+  // the same flock, with ghosts and exact overlaps, ends bitwise equal after 20 steps.
   auto base = randomAgents(1001, 11.0, 23);
   for (int k = 0; k < 60; k += 6) {
     Vec2 p = base.pos[std::size_t(k)], v = base.vel[std::size_t(k) + 1];
@@ -190,7 +190,7 @@ TEST(NeighbourGrid, EveryVectorWidthGivesTheSameStepBitwise) {
   auto ghosts = randomAgents(300, 14.0, 24);
   for (auto& id : ghosts.ids) id |= 1ULL << 62;  // disjoint from the owned ids
   std::map<std::uint64_t, std::pair<Vec2, Vec2>> reference;
-  for (int lanes : {1, 2, 4}) {
+  for (int lanes : {1, 2, 4, 8}) {
     auto a = base;
     Flock f{FlockSettings{}};
     int used = f.useLanes(lanes);

@@ -178,22 +178,29 @@ NeighbourSums neighbourSums(const NeighbourGrid& g, Vec2 p, double nr, double sr
 #if defined(__x86_64__) && defined(__GNUC__)
 #define ZONESIM_FLOCK_AVX 1
 
-// Four agents at once, one per lane of an AVX register, on the same scheme as PairLanes
-// (each lane is the sequential sum over its agent's in-range neighbours in canonical order).
-// AVX without FMA: every product is rounded before it is added, exactly as in the SSE2 loops,
-// so the lanes are bitwise the one-agent sums. Chosen at run time (CPUs without AVX take the
-// SSE2 pairs); the target attribute keeps the rest of the library baseline x86-64.
-struct QuadSums {
-  double count[4], vx[4], vy[4], rx[4], ry[4], sx[4], sy[4];
-  int coincident[4] = {0, 0, 0, 0};
+// Four (AVX) or eight (AVX-512) agents at once, one per vector lane, on the same scheme as
+// PairLanes: each candidate of the union of the agents' rows is broadcast to every lane, so
+// each lane is the sequential sum over its agent's in-range neighbours in canonical order.
+// No FMA (the build is ISO C++, so GCC does not contract): every product is rounded before it
+// is added, exactly as in the SSE2 loops, so the lanes are bitwise the one-agent sums. Chosen
+// at run time; the target attributes keep the rest of the library baseline x86-64.
+//
+// Two passes over the candidates. The first adds the count, velocity and offset terms for
+// every candidate without a branch and notes, in canonical order, the candidates closer than
+// the separation radius to some lane (about one in five). The second adds the separation
+// terms (a square root and two divisions) of the noted ones only. A branch per candidate on
+// "close to any lane" was taken at random and cost more than the arithmetic it skipped.
+struct LaneSums {
+  double count[8], vx[8], vy[8], rx[8], ry[8], sx[8], sy[8], coincident[8];
 };
 
-// Rows of the union of the four discs, at most this many (else the caller takes two pairs).
-constexpr int kQuadRows = 16;
+// Rows of the union of the discs, at most this many (else the caller takes two pairs).
+constexpr int kGroupRows = 16;
 
 __attribute__((target("avx"))) void neighbourSumsQuad(const NeighbourGrid& g, const Vec2* p,
                                                       const std::int32_t* ranges, int rows,
-                                                      double nr, double sr, QuadSums& out) {
+                                                      double nr, double sr, std::int32_t* noted,
+                                                      LaneSums& out) {
   const __m256d px = _mm256_set_pd(p[3].x, p[2].x, p[1].x, p[0].x);
   const __m256d py = _mm256_set_pd(p[3].y, p[2].y, p[1].y, p[0].y);
   const __m256d nr2 = _mm256_set1_pd(nr * nr), srv = _mm256_set1_pd(sr);
@@ -201,32 +208,39 @@ __attribute__((target("avx"))) void neighbourSumsQuad(const NeighbourGrid& g, co
   const __m256d tiny = _mm256_set1_pd(1e-18), sign = _mm256_set1_pd(-0.0);
   __m256d count = _mm256_setzero_pd(), vx = _mm256_setzero_pd(), vy = _mm256_setzero_pd();
   __m256d rx = _mm256_setzero_pd(), ry = _mm256_setzero_pd(), sx = _mm256_setzero_pd();
-  __m256d sy = _mm256_setzero_pd();
-  int* coincident = out.coincident;
+  __m256d sy = _mm256_setzero_pd(), coin = _mm256_setzero_pd();
+  const double *xs = g.xs(), *ys = g.ys(), *vxs = g.vxs(), *vys = g.vys();
+  int close = 0;
   for (int r = 0; r < rows; ++r) {
     for (std::int32_t k = ranges[2 * r]; k < ranges[2 * r + 1]; ++k) {
-      __m256d dx = _mm256_sub_pd(_mm256_broadcast_sd(g.xs() + k), px);
-      __m256d dy = _mm256_sub_pd(_mm256_broadcast_sd(g.ys() + k), py);
+      __m256d dx = _mm256_sub_pd(_mm256_broadcast_sd(xs + k), px);
+      __m256d dy = _mm256_sub_pd(_mm256_broadcast_sd(ys + k), py);
       __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
       __m256d in = _mm256_cmp_pd(d2, nr2, _CMP_LT_OQ);
       count = _mm256_add_pd(count, _mm256_and_pd(in, one));
-      vx = _mm256_add_pd(vx, _mm256_and_pd(in, _mm256_broadcast_sd(g.vxs() + k)));
-      vy = _mm256_add_pd(vy, _mm256_and_pd(in, _mm256_broadcast_sd(g.vys() + k)));
+      vx = _mm256_add_pd(vx, _mm256_and_pd(in, _mm256_broadcast_sd(vxs + k)));
+      vy = _mm256_add_pd(vy, _mm256_and_pd(in, _mm256_broadcast_sd(vys + k)));
       rx = _mm256_add_pd(rx, _mm256_and_pd(in, dx));
       ry = _mm256_add_pd(ry, _mm256_and_pd(in, dy));
-      __m256d close = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
-      if (_mm256_movemask_pd(close)) {
-        __m256d zero = _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ);
-        int m = _mm256_movemask_pd(_mm256_and_pd(close, zero));
-        for (int l = 0; l < 4; ++l) coincident[l] += (m >> l) & 1;
-        __m256d push = _mm256_andnot_pd(zero, close);
-        __m256d d = _mm256_sqrt_pd(_mm256_or_pd(d2, _mm256_and_pd(zero, one)));
-        __m256d w =
-            _mm256_and_pd(push, _mm256_div_pd(_mm256_sub_pd(_mm256_div_pd(srv, d), one), d));
-        sx = _mm256_add_pd(sx, _mm256_xor_pd(_mm256_mul_pd(dx, w), sign));
-        sy = _mm256_add_pd(sy, _mm256_xor_pd(_mm256_mul_pd(dy, w), sign));
-      }
+      __m256d near = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
+      __m256d zero = _mm256_and_pd(near, _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ));
+      coin = _mm256_add_pd(coin, _mm256_and_pd(zero, one));
+      noted[close] = k;
+      close += _mm256_movemask_pd(_mm256_andnot_pd(zero, near)) != 0;
     }
+  }
+  for (int c = 0; c < close; ++c) {
+    const std::int32_t k = noted[c];
+    __m256d dx = _mm256_sub_pd(_mm256_broadcast_sd(xs + k), px);
+    __m256d dy = _mm256_sub_pd(_mm256_broadcast_sd(ys + k), py);
+    __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    __m256d near = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
+    __m256d zero = _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ);
+    __m256d push = _mm256_andnot_pd(zero, near);
+    __m256d d = _mm256_sqrt_pd(_mm256_or_pd(d2, _mm256_and_pd(zero, one)));  // no sqrt(0) / 0
+    __m256d w = _mm256_and_pd(push, _mm256_div_pd(_mm256_sub_pd(_mm256_div_pd(srv, d), one), d));
+    sx = _mm256_add_pd(sx, _mm256_xor_pd(_mm256_mul_pd(dx, w), sign));
+    sy = _mm256_add_pd(sy, _mm256_xor_pd(_mm256_mul_pd(dy, w), sign));
   }
   _mm256_storeu_pd(out.count, count);
   _mm256_storeu_pd(out.vx, vx);
@@ -235,6 +249,64 @@ __attribute__((target("avx"))) void neighbourSumsQuad(const NeighbourGrid& g, co
   _mm256_storeu_pd(out.ry, ry);
   _mm256_storeu_pd(out.sx, sx);
   _mm256_storeu_pd(out.sy, sy);
+  _mm256_storeu_pd(out.coincident, coin);
+}
+
+// The eight-lane version. Masked adds leave a lane's sum as it was where the AVX loop adds an
+// exact zero: the same value, since a sum that starts at +0 is never -0.
+__attribute__((target("avx512f"))) void neighbourSumsOcta(const NeighbourGrid& g, const Vec2* p,
+                                                          const std::int32_t* ranges, int rows,
+                                                          double nr, double sr, std::int32_t* noted,
+                                                          LaneSums& out) {
+  const __m512d px = _mm512_set_pd(p[7].x, p[6].x, p[5].x, p[4].x, p[3].x, p[2].x, p[1].x, p[0].x);
+  const __m512d py = _mm512_set_pd(p[7].y, p[6].y, p[5].y, p[4].y, p[3].y, p[2].y, p[1].y, p[0].y);
+  const __m512d nr2 = _mm512_set1_pd(nr * nr), srv = _mm512_set1_pd(sr);
+  const __m512d sr2 = _mm512_set1_pd(sr * sr), one = _mm512_set1_pd(1.0);
+  const __m512d tiny = _mm512_set1_pd(1e-18);
+  __m512d count = _mm512_setzero_pd(), vx = _mm512_setzero_pd(), vy = _mm512_setzero_pd();
+  __m512d rx = _mm512_setzero_pd(), ry = _mm512_setzero_pd(), sx = _mm512_setzero_pd();
+  __m512d sy = _mm512_setzero_pd(), coin = _mm512_setzero_pd();
+  const double *xs = g.xs(), *ys = g.ys(), *vxs = g.vxs(), *vys = g.vys();
+  int close = 0;
+  for (int r = 0; r < rows; ++r) {
+    for (std::int32_t k = ranges[2 * r]; k < ranges[2 * r + 1]; ++k) {
+      __m512d dx = _mm512_sub_pd(_mm512_set1_pd(xs[k]), px);
+      __m512d dy = _mm512_sub_pd(_mm512_set1_pd(ys[k]), py);
+      __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+      __mmask8 in = _mm512_cmp_pd_mask(d2, nr2, _CMP_LT_OQ);
+      count = _mm512_mask_add_pd(count, in, count, one);
+      vx = _mm512_mask_add_pd(vx, in, vx, _mm512_set1_pd(vxs[k]));
+      vy = _mm512_mask_add_pd(vy, in, vy, _mm512_set1_pd(vys[k]));
+      rx = _mm512_mask_add_pd(rx, in, rx, dx);
+      ry = _mm512_mask_add_pd(ry, in, ry, dy);
+      __mmask8 near = _mm512_cmp_pd_mask(d2, sr2, _CMP_LT_OQ);
+      __mmask8 zero = _mm512_mask_cmp_pd_mask(near, d2, tiny, _CMP_LE_OQ);
+      coin = _mm512_mask_add_pd(coin, zero, coin, one);
+      noted[close] = k;
+      close += (near & ~zero & 0xff) != 0;
+    }
+  }
+  for (int c = 0; c < close; ++c) {
+    const std::int32_t k = noted[c];
+    __m512d dx = _mm512_sub_pd(_mm512_set1_pd(xs[k]), px);
+    __m512d dy = _mm512_sub_pd(_mm512_set1_pd(ys[k]), py);
+    __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+    __mmask8 near = _mm512_cmp_pd_mask(d2, sr2, _CMP_LT_OQ);
+    __mmask8 push = _mm512_mask_cmp_pd_mask(near, d2, tiny, _CMP_GT_OQ);
+    __m512d d = _mm512_mask_sqrt_pd(one, push, d2);  // 1 in the other lanes: no sqrt(0) / 0
+    __m512d w = _mm512_div_pd(_mm512_sub_pd(_mm512_div_pd(srv, d), one), d);
+    // Subtracting dx * w: the sum of the negated terms, as in the other loops.
+    sx = _mm512_mask_sub_pd(sx, push, sx, _mm512_mul_pd(dx, w));
+    sy = _mm512_mask_sub_pd(sy, push, sy, _mm512_mul_pd(dy, w));
+  }
+  _mm512_storeu_pd(out.count, count);
+  _mm512_storeu_pd(out.vx, vx);
+  _mm512_storeu_pd(out.vy, vy);
+  _mm512_storeu_pd(out.rx, rx);
+  _mm512_storeu_pd(out.ry, ry);
+  _mm512_storeu_pd(out.sx, sx);
+  _mm512_storeu_pd(out.sy, sy);
+  _mm512_storeu_pd(out.coincident, coin);
 }
 #endif
 
@@ -265,19 +337,20 @@ void neighbourSumsPair(const NeighbourGrid& g, Vec2 p, Vec2 q, double nr, double
 }
 
 // The steering acceleration of `self` from its neighbour sums.
-Vec2 steeringFrom(const FlockSettings& s, const NeighbourGrid& grid, NeighbourSums n,
+Vec2 steeringFrom(const FlockSettings& s, const NeighbourGrid& grid, const NeighbourSums& n,
                   const GridEntry& self, Vec2 goal, bool hasGoal) {
+  Vec2 sep = n.sep;
   if (n.coincident > 1) {
     // Exact overlaps besides the agent itself (rare): split them along x by id so that the
     // push is deterministic.
     grid.forEachNear(self.pos, s.neighbourRadius, [&](const GridEntry& o) {
       if (o.id != self.id && lengthSq(o.pos - self.pos) <= 1e-18)
-        n.sep.x += self.id < o.id ? -1e3 : 1e3;
+        sep.x += self.id < o.id ? -1e3 : 1e3;
     });
   }
   // Take out the agent itself: counted once, with its own velocity; its offset is zero.
   int count = int(n.count) - 1;
-  Vec2 acc = n.sep * s.separationWeight;
+  Vec2 acc = sep * s.separationWeight;
   if (count > 0) {
     double inv = 1.0 / count;
     acc += ((n.vel - self.vel) * inv - self.vel) * s.alignmentWeight;
@@ -293,7 +366,9 @@ int Flock::useLanes(int lanes) {
   lanes_ = lanes >= 2 ? 2 : 1;
 #if defined(ZONESIM_FLOCK_AVX)
   static const bool kAvx = __builtin_cpu_supports("avx");
+  static const bool kAvx512 = __builtin_cpu_supports("avx512f");
   if (lanes >= 4 && kAvx) lanes_ = 4;
+  if (lanes >= 8 && kAvx512) lanes_ = 8;
 #endif
   return lanes_;
 }
@@ -328,36 +403,51 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
     advance(a, steeringFrom(s, grid_, sa, a, goalOf(a), hasGoal));
     advance(b, steeringFrom(s, grid_, sb, b, goalOf(b), hasGoal));
   };
-  // Four (AVX) or two (SSE2) agents per pass over the union of their neighbourhoods.
-  auto steerQuad = [&](const GridEntry* const* q) {
+  // Up to eight (AVX-512), four (AVX) or two (SSE2) agents per pass over the union of their
+  // neighbourhoods; `q[0 .. held)` lie in one row of cells.
+  auto steerGroup = [&](const GridEntry* const* q, int held) {
 #if defined(ZONESIM_FLOCK_AVX)
-    if (lanes_ == 4) {
-      const Vec2 p[4] = {q[0]->pos, q[1]->pos, q[2]->pos, q[3]->pos};
-      std::int32_t ranges[2 * kQuadRows];
-      int rows = grid_.rowRangesNearAll(p, 4, s.neighbourRadius, ranges, kQuadRows);
+    if (lanes_ >= 4) {
+      // Unused lanes repeat the last agent: the union of the discs stays the same.
+      Vec2 p[8];
+      for (int l = 0; l < lanes_; ++l) p[l] = q[l < held ? l : held - 1]->pos;
+      std::int32_t ranges[2 * kGroupRows];
+      int rows = grid_.rowRangesNearBox(p, lanes_, s.neighbourRadius, ranges, kGroupRows);
       if (rows >= 0) {
-        QuadSums sums;
-        neighbourSumsQuad(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius, sums);
-        for (int l = 0; l < 4; ++l) {
+        std::size_t candidates = 0;
+        for (int r = 0; r < rows; ++r) candidates += std::size_t(ranges[2 * r + 1] - ranges[2 * r]);
+        if (noted_.size() < candidates) noted_.resize(candidates);
+        LaneSums sums;
+        if (lanes_ == 8)
+          neighbourSumsOcta(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius,
+                            noted_.data(), sums);
+        else
+          neighbourSumsQuad(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius,
+                            noted_.data(), sums);
+        for (int l = 0; l < held; ++l) {
           NeighbourSums n;
           n.count = sums.count[l];
           n.vel = Vec2{sums.vx[l], sums.vy[l]};
           n.rel = Vec2{sums.rx[l], sums.ry[l]};
           n.sep = Vec2{sums.sx[l], sums.sy[l]};
-          n.coincident = sums.coincident[l];
+          n.coincident = int(sums.coincident[l]);
           advance(*q[l], steeringFrom(s, grid_, n, *q[l], goalOf(*q[l]), hasGoal));
         }
         return;
       }
     }
 #endif
-    steerPair(*q[0], *q[1]);
-    steerPair(*q[2], *q[3]);
+    int l = 0;
+    for (; l + 2 <= held; l += 2) steerPair(*q[l], *q[l + 1]);
+    if (l < held) advance(*q[l], steering(*q[l], goalOf(*q[l]), hasGoal));
   };
   // Owned agents in cell order: consecutive agents share most of their neighbour cells, so
-  // the ones that steer go through the neighbour sums in groups.
-  const GridEntry* waiting[4];
+  // the ones that steer go through the neighbour sums in groups. A group ends with its row of
+  // cells: the union of discs on either side of a row's end would span the whole width.
+  const GridEntry* waiting[8];
   int held = 0;
+  std::int32_t heldRow = -1;
+  const int group = lanes_ == 1 ? 1 : (lanes_ == 2 ? 4 : lanes_);
   for (const GridEntry& e : grid_.entries()) {
     if (e.src < 0) continue;
     const double h = plan.empty() ? dt : plan.dt[e.src];
@@ -372,15 +462,23 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
       advance(e, steering(e, goalOf(e), hasGoal));
       continue;
     }
+    const std::int32_t row = grid_.rowOf(e.cell);
+    if (held > 0 && row != heldRow) {
+      steerGroup(waiting, held);
+      held = 0;
+    }
+    heldRow = row;
+    // The agent is written back after its group's sums: fetch its lines meanwhile (in random
+    // storage order each write is a cache miss, and they filled the store buffer).
+    __builtin_prefetch(&agents.pos[e.src], 1);
+    __builtin_prefetch(&agents.vel[e.src], 1);
     waiting[held++] = &e;
-    if (held == 4) {
-      steerQuad(waiting);
+    if (held == group) {
+      steerGroup(waiting, held);
       held = 0;
     }
   }
-  if (held >= 2) steerPair(*waiting[0], *waiting[1]);
-  if (held == 3) advance(*waiting[2], steering(*waiting[2], goalOf(*waiting[2]), hasGoal));
-  if (held == 1) advance(*waiting[0], steering(*waiting[0], goalOf(*waiting[0]), hasGoal));
+  if (held > 0) steerGroup(waiting, held);
 }
 
 }  // namespace zonesim::crowd

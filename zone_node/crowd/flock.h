@@ -5,7 +5,9 @@
 // start of the step and write the new one (a Jacobi update), and neighbour sums run in the
 // grid's canonical order, so the result is independent of storage order and of ownership.
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "zone_node/crowd/agents.h"
 #include "zone_node/crowd/neighbour_grid.h"
@@ -29,10 +31,11 @@ struct FlockSettings {
 class Flock {
  public:
   /// A flock stepper with the given settings.
-  explicit Flock(const FlockSettings& settings) : settings_(settings) { useLanes(4); }
+  explicit Flock(const FlockSettings& settings) : settings_(settings) { useLanes(8); }
 
-  /// Agents whose neighbour sums run in one pass: 1, 2 (SSE2) or 4 (AVX, where the CPU has
-  /// it; the default). Every width gives bitwise the same step; returns the width in use.
+  /// Agents whose neighbour sums run in one pass: 1, 2 (SSE2), 4 (AVX) or 8 (AVX-512; the
+  /// default, narrower where the CPU lacks it). Every width gives bitwise the same step;
+  /// returns the width in use.
   int useLanes(int lanes);
   /// Advances `agents` by `dt` (semi-implicit Euler). `ghosts` are seen, not moved.
   /// `goalVel`: empty, or a desired velocity per agent. `plan`: per-agent dt/detail (lod.h).
@@ -50,6 +53,7 @@ class Flock {
   FlockSettings settings_;
   NeighbourGrid grid_;
   int lanes_ = 1;
+  std::vector<std::int32_t> noted_;  // candidates close enough to separate, per group
 };
 
 }  // namespace zonesim::crowd

@@ -11,75 +11,110 @@ namespace {
 constexpr long long kMaxCells = 1LL << 24;
 }  // namespace
 
-void NeighbourGrid::add(std::uint64_t id, Vec2 p, Vec2 v, std::int32_t src) {
-  staged_.push_back(GridEntry{p, v, id, src, 0});
-}
-
 void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
                           std::span<const Vec2> vel, const GhostSpan& ghosts, double cellSize,
                           std::span<const std::uint8_t> skip) {
   if (!(cellSize > 0.0)) throw std::invalid_argument("NeighbourGrid: cell size must be > 0");
   cellSize_ = cellSize;
   invCell_ = 1.0 / cellSize;
-  staged_.clear();
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    if (skip.empty() || !skip[i]) add(ids[i], pos[i], vel[i], static_cast<std::int32_t>(i));
-  for (std::size_t i = 0; i < ghosts.size(); ++i)
-    add(ghosts.ids[i], ghosts.pos[i], ghosts.vel[i], -1 - static_cast<std::int32_t>(i));
-  entries_.resize(staged_.size());
-  if (staged_.empty()) {
-    width_ = height_ = 0;
-    return;
-  }
-
-  // Global cell coordinates: the same agent falls in the same cell on every rank.
+  // Input index i: owned agents first, then ghosts (i >= owned).
+  const std::size_t owned = ids.size(), total = owned + ghosts.size();
+  auto posOf = [&](std::size_t i) { return i < owned ? pos[i] : ghosts.pos[i - owned]; };
+  // Global cell coordinates (the same agent falls in the same cell on every rank), kept per
+  // input so that each is computed once; skipped agents get cell -1.
+  cellX_.resize(total);
+  cellY_.resize(total);
+  bool any = false;
   long long maxX = 0, maxY = 0;
   minX_ = minY_ = 0;
-  for (std::size_t k = 0; k < staged_.size(); ++k) {
-    long long cx = cellCoord(staged_[k].pos.x), cy = cellCoord(staged_[k].pos.y);
-    if (k == 0 || cx < minX_) minX_ = cx;
-    if (k == 0 || cy < minY_) minY_ = cy;
-    if (k == 0 || cx > maxX) maxX = cx;
-    if (k == 0 || cy > maxY) maxY = cy;
+  for (std::size_t i = 0; i < total; ++i) {
+    if (i < owned && !skip.empty() && skip[i]) continue;
+    Vec2 p = posOf(i);
+    long long cx = cellCoord(p.x), cy = cellCoord(p.y);
+    cellX_[i] = cx;
+    cellY_[i] = cy;
+    if (!any || cx < minX_) minX_ = cx;
+    if (!any || cy < minY_) minY_ = cy;
+    if (!any || cx > maxX) maxX = cx;
+    if (!any || cy > maxY) maxY = cy;
+    any = true;
+  }
+  if (!any) {
+    entries_.clear();
+    width_ = height_ = 0;
+    return;
   }
   width_ = maxX - minX_ + 1;
   height_ = maxY - minY_ + 1;
   if (width_ * height_ > kMaxCells)
     throw std::length_error("NeighbourGrid: agents spread over too many cells for the cell size");
 
-  // Counting sort: count per cell, prefix sums, stable scatter.
+  // Counting sort of input indices: count per cell, prefix sums, stable scatter.
   starts_.assign(static_cast<std::size_t>(width_ * height_ + 1), 0);
-  for (GridEntry& e : staged_) {
-    e.cell = static_cast<std::int32_t>((cellCoord(e.pos.y) - minY_) * width_ +
-                                       (cellCoord(e.pos.x) - minX_));
-    ++starts_[e.cell + 1];
+  cellOf_.resize(total);
+  for (std::size_t i = 0; i < total; ++i) {
+    if (i < owned && !skip.empty() && skip[i]) {
+      cellOf_[i] = -1;
+      continue;
+    }
+    cellOf_[i] = static_cast<std::int32_t>((cellY_[i] - minY_) * width_ + (cellX_[i] - minX_));
+    ++starts_[cellOf_[i] + 1];
   }
   for (std::size_t c = 1; c < starts_.size(); ++c) starts_[c] += starts_[c - 1];
+  const std::size_t n = static_cast<std::size_t>(starts_.back());
+  order_.resize(n);
+  sortIds_.resize(n);
   // Scatter with a moving cursor per cell; starts_ is restored afterwards by shifting.
-  for (const GridEntry& e : staged_) entries_[starts_[e.cell]++] = e;
+  for (std::size_t i = 0; i < total; ++i) {
+    if (cellOf_[i] < 0) continue;
+    std::int32_t k = starts_[cellOf_[i]]++;
+    order_[k] = static_cast<std::int32_t>(i);
+    sortIds_[k] = i < owned ? ids[i] : ghosts.ids[i - owned];
+  }
   for (std::size_t c = starts_.size() - 1; c > 0; --c) starts_[c] = starts_[c - 1];
   starts_[0] = 0;
 
   // Ids order each cell: cells hold a handful of agents, so insertion sort is the fast choice.
-  const std::size_t n = entries_.size();
-  for (std::size_t k = 1; k < n; ++k) {
-    GridEntry e = entries_[k];
-    std::size_t j = k;
-    while (j > 0 && entries_[j - 1].cell == e.cell && entries_[j - 1].id > e.id) {
-      entries_[j] = entries_[j - 1];
-      --j;
+  // It runs on (id, input index) pairs; the entries are then gathered once, in order.
+  for (std::size_t c = 0; c + 1 < starts_.size(); ++c) {
+    const std::size_t lo = static_cast<std::size_t>(starts_[c]);
+    const std::size_t hi = static_cast<std::size_t>(starts_[c + 1]);
+    for (std::size_t k = lo + 1; k < hi; ++k) {
+      std::uint64_t id = sortIds_[k];
+      std::int32_t at = order_[k];
+      std::size_t j = k;
+      while (j > lo && sortIds_[j - 1] > id) {
+        sortIds_[j] = sortIds_[j - 1];
+        order_[j] = order_[j - 1];
+        --j;
+      }
+      sortIds_[j] = id;
+      order_[j] = at;
     }
-    entries_[j] = e;
   }
+  entries_.resize(n);
   xs_.resize(n);
   ys_.resize(n);
   vxs_.resize(n);
   vys_.resize(n);
+  constexpr std::size_t kAhead = 16;  // gathers from storage order miss the cache: prefetch
   for (std::size_t k = 0; k < n; ++k) {
-    xs_[k] = entries_[k].pos.x;
-    ys_[k] = entries_[k].pos.y;
-    vxs_[k] = entries_[k].vel.x;
-    vys_[k] = entries_[k].vel.y;
+    if (k + kAhead < n) {
+      const std::size_t a = static_cast<std::size_t>(order_[k + kAhead]);
+      __builtin_prefetch(a < owned ? &pos[a] : &ghosts.pos[a - owned]);
+      __builtin_prefetch(a < owned ? &vel[a] : &ghosts.vel[a - owned]);
+    }
+    const std::size_t i = static_cast<std::size_t>(order_[k]);
+    const bool own = i < owned;
+    const Vec2 p = own ? pos[i] : ghosts.pos[i - owned];
+    const Vec2 v = own ? vel[i] : ghosts.vel[i - owned];
+    const std::int32_t src =
+        own ? static_cast<std::int32_t>(i) : -1 - static_cast<std::int32_t>(i - owned);
+    entries_[k] = GridEntry{p, v, sortIds_[k], src, cellOf_[i]};
+    xs_[k] = p.x;
+    ys_[k] = p.y;
+    vxs_[k] = v.x;
+    vys_[k] = v.y;
   }
 }
 

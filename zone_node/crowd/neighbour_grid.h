@@ -122,6 +122,40 @@ class NeighbourGrid {
     return count <= cap ? count : -1;
   }
 
+  /// As rowRangesNearAll, but each row's range is the cells from the leftmost disc's left
+  /// edge to the rightmost disc's right edge at the row's nearest point to any of the discs:
+  /// a superset of the union of the chords (the extra cells lie outside every disc), found
+  /// with one square root per row. For groups of nearby discs, whose loops filter by distance.
+  int rowRangesNearBox(const Vec2* p, int n, double radius, std::int32_t* out, int cap) const {
+    if (entries_.empty()) return 0;
+    double xLo = p[0].x, xHi = p[0].x, yLo = p[0].y, yHi = p[0].y;
+    for (int i = 1; i < n; ++i) {
+      xLo = std::min(xLo, p[i].x);
+      xHi = std::max(xHi, p[i].x);
+      yLo = std::min(yLo, p[i].y);
+      yHi = std::max(yHi, p[i].y);
+    }
+    long long cy0 = std::max(cellCoord(yLo - radius) - minY_, 0LL);
+    long long cy1 = std::min(cellCoord(yHi + radius) - minY_, height_ - 1);
+    int count = 0;
+    for (long long cy = cy0; cy <= cy1; ++cy) {
+      double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
+      // The smallest gap between the row and a disc centre bounds every chord in the row.
+      double gap = yHi < rowLo ? rowLo - yHi : (yLo > rowHi ? yLo - rowHi : 0.0);
+      double half = std::sqrt(std::max(0.0, radius * radius - gap * gap));
+      long long cx0 = std::max(cellCoord(xLo - half) - minX_, 0LL);
+      long long cx1 = std::min(cellCoord(xHi + half) - minX_, width_ - 1);
+      if (cx0 > cx1) continue;
+      const std::int32_t* row = starts_.data() + cy * width_;
+      if (row[cx0] == row[cx1 + 1]) continue;
+      if (count == cap) return -1;
+      out[2 * count] = row[cx0];
+      out[2 * count + 1] = row[cx1 + 1];
+      ++count;
+    }
+    return count;
+  }
+
   /// x of every entry, in cell order (structure of arrays for vectorised neighbour loops).
   const double* xs() const { return xs_.data(); }
   /// y of every entry.
@@ -130,6 +164,9 @@ class NeighbourGrid {
   const double* vxs() const { return vxs_.data(); }
   /// Velocity y of every entry.
   const double* vys() const { return vys_.data(); }
+
+  /// Row of a dense cell index (entries of one row are contiguous).
+  std::int32_t rowOf(std::int32_t cell) const { return static_cast<std::int32_t>(cell / width_); }
 
   /// Side of the cells.
   double cellSize() const { return cellSize_; }
@@ -142,7 +179,6 @@ class NeighbourGrid {
     long long t = static_cast<long long>(s);
     return t - (s < static_cast<double>(t));
   }
-  void add(std::uint64_t id, Vec2 p, Vec2 v, std::int32_t src);
   // Cells [x0, x1] of row cy (relative to the box) that the disc's chord crosses, unclipped;
   // x0 > x1 when the row lies outside the disc's rows.
   void chord(Vec2 p, double radius, long long cy, long long& x0, long long& x1) const {
@@ -163,7 +199,10 @@ class NeighbourGrid {
   long long minX_ = 0, minY_ = 0;
   long long width_ = 0, height_ = 0;
   std::vector<std::int32_t> starts_;         // width_*height_ + 1 prefix sums
-  std::vector<GridEntry> staged_;            // input order, with the cell computed
+  std::vector<long long> cellX_, cellY_;     // input order (owned, then ghosts): coordinates
+  std::vector<std::int32_t> cellOf_;         // input order: dense cell, -1 when skipped
+  std::vector<std::int32_t> order_;          // cell order: input index
+  std::vector<std::uint64_t> sortIds_;       // cell order: id
   std::vector<GridEntry> entries_;           // cell order
   std::vector<double> xs_, ys_, vxs_, vys_;  // entries_ as structure of arrays
 };
