@@ -100,12 +100,22 @@ struct RigidBodyPopulation {
   SceneBox region;                ///< where they start on x-z (defaults to the world)
 };
 
+/// A unit quaternion (w, x, y, z); the identity by default.
+struct SceneQuat {
+  double w = 1, x = 0, y = 0, z = 0;
+};
+
 /// A named rigid body placed by hand (physics.bodies), for joints and set pieces.
 struct SceneBody {
   enum class Shape { Sphere, Box, Capsule };
+  /// Dynamic bodies are entities; static and kinematic ones are scene geometry that every zone
+  /// places itself (a kinematic body's pose is a closed form of time).
+  enum class Motion { Dynamic, Static, Kinematic };
   std::string name;
   Shape shape = Shape::Sphere;
+  Motion motion = Motion::Dynamic;
   SceneVec3 position;
+  SceneQuat orientation;    ///< at the start
   SceneVec3 size{1, 1, 1};  ///< box: full edge lengths (m)
   double radius = 0.5;      ///< sphere and capsule (m)
   double length = 1.0;      ///< capsule: inner segment along local y (m)

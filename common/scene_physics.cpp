@@ -45,18 +45,31 @@ void requireOneZone(const SceneNode& node, const Scene& scene, const char* what)
             "their bodies and particles are not carried across zone borders");
 }
 
+/// rotation: {axis: [x, y, z], degrees: a} as a unit quaternion.
+SceneQuat readRotation(const SceneNode& node) {
+  SceneMap m = node.map({"axis", "degrees"});
+  const SceneVec3 axis = direction(m.required("axis"));
+  double degrees = 0;
+  m.read("degrees", degrees, Limit::between(-360, 360));
+  const double half = 0.5 * degrees * M_PI / 180.0, s = std::sin(half);
+  return {std::cos(half), axis.x * s, axis.y * s, axis.z * s};
+}
+
 SceneBody readBody(const SceneNode& node, const Scene& scene,
                    const std::vector<SceneBody>& earlier) {
-  SceneMap m = node.map({"name", "shape", "position", "size", "radius", "length", "velocity",
-                         "angular_velocity", "mass", "friction", "restitution"});
+  SceneMap m =
+      node.map({"name", "motion", "shape", "position", "rotation", "size", "radius", "length",
+                "velocity", "angular_velocity", "mass", "friction", "restitution"});
   SceneBody b;
   SceneNode name = m.required("name");
   b.name = name.text();
   if (b.name.empty()) name.fail("must not be empty");
   for (const SceneBody& e : earlier)
     if (e.name == b.name) name.fail("another body is already called '" + b.name + "'");
+  b.motion = SceneBody::Motion(m.choice("motion", {"dynamic", "static", "kinematic"}, 0));
   b.shape = SceneBody::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
   b.position = pointInWorld(m.required("position"), scene.world);
+  if (auto r = m.optional("rotation")) b.orientation = readRotation(*r);
   if (auto size = m.optional("size")) {
     if (b.shape != SceneBody::Shape::Box) m.failAt("size", "only boxes have a size");
     b.size = size->vec3();
@@ -66,6 +79,11 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
   m.read("length", b.length, Limit::above(0));
   if (auto v = m.optional("velocity")) b.velocity = v->vec3();
   if (auto w = m.optional("angular_velocity")) b.angular_velocity = w->vec3();
+  if (b.motion != SceneBody::Motion::Dynamic && m.optional("mass"))
+    m.failAt("mass", "only dynamic bodies have a mass");
+  if (b.motion == SceneBody::Motion::Static)
+    for (const char* key : {"velocity", "angular_velocity"})
+      if (m.optional(key)) m.failAt(key, "a static body does not move");
   m.read("mass", b.mass, Limit::above(0));
   m.read("friction", b.friction, Limit::atLeast(0));
   m.read("restitution", b.restitution, Limit::between(0, 1));
@@ -90,6 +108,9 @@ SceneJoint readJoint(const SceneNode& node, const Scene& scene) {
     j.b = bodyIndex(*b, bodies);
     if (j.b == j.a) b->fail("a joint needs two different bodies");
   }
+  const bool a_fixed = bodies[j.a].motion != SceneBody::Motion::Dynamic;
+  if (a_fixed && (j.b < 0 || bodies[j.b].motion != SceneBody::Motion::Dynamic))
+    node.fail("a joint needs a dynamic body: static and kinematic bodies cannot be moved by it");
   auto only = [&](const char* key, bool allowed, const char* types) {
     if (!allowed && m.optional(key)) m.failAt(key, std::string("only ") + types + " have it");
   };

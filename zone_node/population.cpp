@@ -133,10 +133,14 @@ void forEachInitialEntity(const Scene& scene,
       keep(r);
     }
   }
-  // Named bodies come last, so adding them leaves every other entity's id as it was.
+  // Named bodies come last, so adding them leaves every other entity's id as it was. Static
+  // and kinematic ones are scene geometry, not entities, but keep their ids reserved so that
+  // namedBodyId() holds for every body.
   for (const SceneBody& b : scene.physics.bodies) {
     auto [r, rng] = nextSceneEntity(scene, EntityKind::RigidBody, counter);
+    if (b.motion != SceneBody::Motion::Dynamic) continue;
     r.pos = Vec3(b.position.x, b.position.y, b.position.z);
+    r.rot = Quat(b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z);
     r.vel = Vec3(b.velocity.x, b.velocity.y, b.velocity.z);
     r.body.angular_velocity =
         Vec3(b.angular_velocity.x, b.angular_velocity.y, b.angular_velocity.z);

@@ -30,7 +30,7 @@ TEST_P(ShippedScene, LoadsWithItsNameAndPath) {
   EXPECT_EQ(scene.name, GetParam());
   EXPECT_EQ(scene.source_path, path);
   EXPECT_GT(scene.npcs.size() + scene.rigid_bodies.size() + scene.emitters.size() +
-                scene.agents.populations.size(),
+                scene.agents.populations.size() + scene.physics.bodies.size(),
             0u);
 }
 

@@ -63,6 +63,10 @@ Vec3 vec(const SceneVec3& v) {
   return Vec3(v.x, v.y, v.z);
 }
 
+Quat startOrientation(const SceneBody& b) {
+  return Quat(b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z);
+}
+
 physics::Cloth makeCloth(const SceneCloth& c) {
   physics::ClothDesc d;
   d.columns = c.columns;
@@ -106,7 +110,10 @@ static_assert(int(physics::Falloff::Quadratic) == int(SceneExplosion::Falloff::Q
 static_assert(int(BodyData::Capsule) == int(SceneBody::Shape::Capsule));
 
 RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
-    : scene_(scene), rank_(rank), cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
+    : scene_(scene),
+      rank_(rank),
+      set_pieces_(scene),
+      cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
   for (const SceneCloth& c : scene.physics.cloths) {
     cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));
     cloth_substeps_.push_back(clothSubsteps(c, scene.dt));
@@ -147,7 +154,8 @@ void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts
   world_->addBody(wall(Vec3(w.max.x, 0, 0), -Vec3::UnitX()));
   world_->addBody(wall(Vec3(0, 0, w.min.z), Vec3::UnitZ()));
   world_->addBody(wall(Vec3(0, 0, w.max.z), -Vec3::UnitZ()));
-  first_dynamic_ = 5;
+  set_pieces_.addTo(*world_);
+  first_dynamic_ = physics::BodyIndex(5 + set_pieces_.count());
   body_entity_.clear();
   members_ = {};
   // In id order, so the engine sees the same body order whichever rank holds them.
@@ -175,6 +183,7 @@ void RigidBodySystem::addJoints() {
   joints_added_ = 0;
   const std::vector<SceneBody>& named = scene_.physics.bodies;
   auto bodyOf = [&](int k) -> std::optional<physics::BodyIndex> {
+    if (auto piece = set_pieces_.indexOf(std::size_t(k))) return piece;
     EntityId id = namedBodyId(scene_, std::size_t(k));
     auto it = std::find(body_entity_.begin(), body_entity_.end(), id);
     if (it == body_entity_.end()) return std::nullopt;
@@ -184,17 +193,21 @@ void RigidBodySystem::addJoints() {
     std::optional<physics::BodyIndex> a = bodyOf(j.a);
     std::optional<physics::BodyIndex> b = j.b >= 0 ? bodyOf(j.b) : physics::kNoBody;
     if (!a || !b) continue;  // a body is gone (quarantined, or never here)
-    // Anchors in the bodies' frames at the scene's start poses (identity orientations), so a
-    // rebuild later in the run keeps the same joint.
+    // Anchors in the bodies' frames at the scene's start poses, so a rebuild later in the run
+    // keeps the same joint.
     const Vec3 pa = vec(named[j.a].position);
     const Vec3 pb = j.b >= 0 ? vec(named[j.b].position) : Vec3::Zero();
+    const Quat qa = startOrientation(named[j.a]);
+    const Quat qb = j.b >= 0 ? startOrientation(named[j.b]) : Quat::Identity();
+    auto local_a = [&](const SceneVec3& p) -> Vec3 { return qa.conjugate() * (vec(p) - pa); };
+    auto local_b = [&](const SceneVec3& p) -> Vec3 { return qb.conjugate() * (vec(p) - pb); };
     switch (j.type) {
       case SceneJoint::Type::Distance: {
         physics::DistanceJoint d;
         d.a = *a;
         d.b = *b;
-        d.local_a = vec(j.anchor_a) - pa;
-        d.local_b = vec(j.anchor_b) - pb;
+        d.local_a = local_a(j.anchor_a);
+        d.local_b = local_b(j.anchor_b);
         d.length = j.length;
         world_->addDistanceJoint(d);
         break;
@@ -203,8 +216,8 @@ void RigidBodySystem::addJoints() {
         physics::BallJoint d;
         d.a = *a;
         d.b = *b;
-        d.local_a = vec(j.anchor) - pa;
-        d.local_b = vec(j.anchor) - pb;
+        d.local_a = local_a(j.anchor);
+        d.local_b = local_b(j.anchor);
         world_->addBallJoint(d);
         break;
       }
@@ -212,9 +225,10 @@ void RigidBodySystem::addJoints() {
         physics::HingeJoint d;
         d.a = *a;
         d.b = *b;
-        d.local_a = vec(j.anchor) - pa;
-        d.local_b = vec(j.anchor) - pb;
-        d.axis_a = d.axis_b = vec(j.axis);
+        d.local_a = local_a(j.anchor);
+        d.local_b = local_b(j.anchor);
+        d.axis_a = qa.conjugate() * vec(j.axis);
+        d.axis_b = qb.conjugate() * vec(j.axis);
         world_->addHingeJoint(d);
         break;
       }
@@ -302,14 +316,16 @@ std::size_t RigidBodySystem::step(EntityStore& store, const GhostStore* ghosts, 
       foreign_awake = true;
     }
   }
+  set_pieces_.pose(*world_, tick_index, dt);
   explode(tick_index, dt);
   // Sleeping bodies are not stepped at all; the statics count as asleep in the engine or not,
-  // so compare the dynamic bodies' state directly.
+  // so compare the dynamic bodies' state directly. A moving kinematic body may wake them.
   std::size_t awake = 0;
   for (std::size_t n = 0; n < bodies; ++n)
     awake += !world_->asleep(physics::BodyIndex(first_dynamic_ + n));
-  if (awake == 0 && !foreign_awake && cloths_.empty()) return 0;
-  if (awake > 0 || foreign_awake) {
+  const bool pushed = foreign_awake || set_pieces_.moving();
+  if (awake == 0 && !pushed && cloths_.empty()) return 0;
+  if (awake > 0 || pushed) {
     std::size_t frozen_before = world_->quarantined().size();
     world_->step(dt);
     quarantined_ += world_->quarantined().size() - frozen_before;

@@ -18,7 +18,8 @@
 // with them (and the ground and walls) both ways; explosions act on this zone's own bodies
 // only (never on ghosts, whose owners apply them), an impulse in the first tick starting at or
 // after its time, a blast as a per-tick impulse F f(r) dt for as long as it lasts. The loader
-// allows joints and cloths only on a single zone.
+// allows joints and cloths only on a single zone. Static and kinematic scene bodies are set
+// pieces (set_pieces.h) that every zone places in its world after the ground and walls.
 
 #include <cstdint>
 #include <memory>
@@ -30,6 +31,7 @@
 #include "common/scene.h"
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/set_pieces.h"
 
 namespace zonesim::physics {
 class World;
@@ -81,7 +83,8 @@ class RigidBodySystem {
   int rank_;
   std::unique_ptr<physics::World> world_;
   std::vector<EntityId> body_entity_;  // dynamic body index - first_dynamic_ -> entity
-  std::uint32_t first_dynamic_ = 0;    // the static ground and walls come first
+  std::uint32_t first_dynamic_ = 0;    // the static ground, walls and set pieces come first
+  SetPieces set_pieces_;
   IdSetDigest members_;
   std::vector<EntityId> foreign_entity_;  // foreign bodies, after the zone's own
   std::vector<GhostImpulse> ghost_impulses_;

@@ -1,0 +1,93 @@
+#include "zone_node/systems/set_pieces.h"
+
+#include <algorithm>
+
+#include "zone_node/physics/world.h"
+
+namespace zonesim::zone {
+
+namespace {
+
+Vec3 vec(const SceneVec3& v) {
+  return Vec3(v.x, v.y, v.z);
+}
+
+Quat quat(const SceneQuat& q) {
+  return Quat(q.w, q.x, q.y, q.z);
+}
+
+physics::Shape shapeOf(const SceneBody& b) {
+  switch (b.shape) {
+    case SceneBody::Shape::Box:
+      return physics::Shape::box(vec(b.size) * 0.5);
+    case SceneBody::Shape::Capsule:
+      return physics::Shape::capsule(b.radius, 0.5 * b.length);
+    default:
+      return physics::Shape::sphere(b.radius);
+  }
+}
+
+/// exp(w t) q0: the orientation after turning at the constant world angular velocity w.
+Quat turned(const SceneBody& b, double t) {
+  const Vec3 w = vec(b.angular_velocity);
+  const double rate = w.norm();
+  if (rate == 0.0) return quat(b.orientation);
+  return (Quat(Eigen::AngleAxisd(rate * t, w / rate)) * quat(b.orientation)).normalized();
+}
+
+}  // namespace
+
+SetPieces::SetPieces(const Scene& scene) : scene_(scene) {
+  const std::vector<SceneBody>& bodies = scene.physics.bodies;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (bodies[k].motion == SceneBody::Motion::Dynamic) continue;
+    scene_body_.push_back(k);
+    const bool still =
+        vec(bodies[k].velocity).isZero(0) && vec(bodies[k].angular_velocity).isZero(0);
+    moving_ = moving_ || (bodies[k].motion == SceneBody::Motion::Kinematic && !still);
+  }
+}
+
+void SetPieces::addTo(physics::World& world) {
+  index_.clear();
+  for (std::size_t k : scene_body_) {
+    const SceneBody& b = scene_.physics.bodies[k];
+    physics::BodyDesc d;
+    d.type = b.motion == SceneBody::Motion::Static ? physics::BodyType::Static
+                                                   : physics::BodyType::Kinematic;
+    d.shape = shapeOf(b);
+    d.position = vec(b.position);
+    d.orientation = quat(b.orientation);
+    if (d.type == physics::BodyType::Kinematic) {
+      d.linear_velocity = vec(b.velocity);
+      d.angular_velocity = vec(b.angular_velocity);
+    }
+    d.friction = b.friction;
+    d.restitution = b.restitution;
+    index_.push_back(world.addBody(d));
+  }
+}
+
+void SetPieces::pose(physics::World& world, std::uint64_t k, double dt) const {
+  physics::BodyStorage& s = world.bodies();
+  const double t = double(k) * dt;
+  for (std::size_t n = 0; n < scene_body_.size(); ++n) {
+    const SceneBody& b = scene_.physics.bodies[scene_body_[n]];
+    if (b.motion != SceneBody::Motion::Kinematic) continue;
+    const physics::BodyIndex i = index_[n];
+    s.position[i] = vec(b.position) + t * vec(b.velocity);
+    s.position_prev[i] = s.position[i];
+    s.orientation[i] = turned(b, t);
+    s.linear_velocity[i] = vec(b.velocity);
+    s.angular_velocity[i] = vec(b.angular_velocity);
+    if (!vec(b.velocity).isZero(0) || !vec(b.angular_velocity).isZero(0)) world.wake(i);
+  }
+}
+
+std::optional<physics::BodyIndex> SetPieces::indexOf(std::size_t k) const {
+  auto it = std::find(scene_body_.begin(), scene_body_.end(), k);
+  if (it == scene_body_.end() || index_.empty()) return std::nullopt;
+  return index_[std::size_t(it - scene_body_.begin())];
+}
+
+}  // namespace zonesim::zone
