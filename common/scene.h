@@ -63,6 +63,52 @@ struct NpcFlow {
   double slow_radius = 2.0;               ///< m: speed ramps down this close to the goal
 };
 
+/// A point on the ground plane given in the scene; `line` is where (for errors on loading).
+struct ScenePoint {
+  double x = 0, z = 0;
+  int line = 0;
+};
+
+/// A fixed group (zone_node/crowd/formation.h, docs/crowd.md): the population's NPCs hold
+/// slots around a centre that walks a route on the scene's map; a member cut off from the
+/// group plans A* back to it and rejoins (`populations[].formation`).
+struct NpcFormation {
+  bool enabled = false;             ///< the population is a formation instead of wanderers
+  std::vector<ScenePoint> route;    ///< the centre starts at the first; A* between points
+  int columns = 4;                  ///< slots per row across the heading; rows trail behind
+  double spacing = 1.5;             ///< m between neighbouring slots
+  double centre_speed = 1.5;        ///< m/s of the centre along its route
+  double max_speed = 2.5;           ///< m/s of a member (above the centre's, to catch up)
+  double max_force = 8.0;           ///< m/s^2, bound on a member's steering acceleration
+  double steer_rate = 4.0;          ///< 1/s: rate at which velocity follows the desired one
+  double slot_gain = 2.0;           ///< 1/s: desired velocity per metre of slot error
+  double slow_radius = 3.0;         ///< m: the centre slows down this close to its last point
+  double turn_rate = 3.0;           ///< 1/s: rate at which the heading follows the route
+  double cut_off = 5.0;             ///< m from its slot: a member is cut off
+  double rejoin = 1.0;              ///< m from a visible slot: a rejoining member rejoins
+  double replan = 2.0;              ///< m the centre moves before a rejoin path is re-planned
+  double separation_radius = 0.6;   ///< m: members closer than this push apart
+  double separation_weight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
+};
+
+/// An ant colony (docs/crowd.md): the population's NPCs are ants walking the scene's map cell
+/// by cell from a nest, sensing only the cells next to them, laying pheromone on their way back
+/// from the food; trails evaporate (`populations[].colony`).
+struct NpcColony {
+  bool enabled = false;             ///< the population is an ant colony
+  ScenePoint nest, food;            ///< where the ants start and what they look for
+  double food_until = -1;           ///< s of simulated time the food is taken away (<0: never)
+  double alpha = 1.0;               ///< weight of the pheromone in a step's choice
+  double beta = 2.0;                ///< weight of the heuristic desirability of a step
+  bool knows_food = true;           ///< eta uses the straight-line distance to the food
+  double evaporation = 0.05;        ///< fraction of every trail lost per second
+  double deposit = 1.0;             ///< Q: a returning ant lays Q / (route length) per cell
+  double exploitation = 0.0;        ///< q0: chance of taking the strongest step outright
+  double initial_pheromone = 0.01;  ///< trail on every cell at the start
+  double speed = 2.0;               ///< m/s of an ant
+  int max_steps = 0;                ///< cells before a searching ant gives up (0: 4 x open cells)
+};
+
 /// Walking NPCs wandering between random waypoints, or flocking (`flock`).
 struct NpcPopulation {
   int count = 0;
@@ -80,8 +126,10 @@ struct NpcPopulation {
   struct Gather {
     double x = 0, z = 0, radius = 0, start_s = 0, end_s = 0;
   } gather;
-  NpcFlock flock;  ///< flocking instead of waypoints when enabled
-  NpcFlow flow;    ///< flow-field crowd instead of waypoints when enabled
+  NpcFlock flock;          ///< flocking instead of waypoints when enabled
+  NpcFlow flow;            ///< flow-field crowd instead of waypoints when enabled
+  NpcFormation formation;  ///< a fixed group instead of waypoints when enabled
+  NpcColony colony;        ///< an ant colony instead of waypoints when enabled
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).

@@ -53,6 +53,14 @@ void readCrowdLod(const SceneMap& root, Scene& scene) {
   m.read("far_steers", l.far_steers);
 }
 
+ScenePoint readGroundPoint(const SceneNode& node, const Scene& scene) {
+  SceneVec3 at = node.vec3();  // [x, y, z] like every point in a scene; y is ignored
+  if (at.x < scene.world.min.x || at.x > scene.world.max.x || at.z < scene.world.min.z ||
+      at.z > scene.world.max.z)
+    node.fail("x, z (" + formatNumber(at.x) + ", " + formatNumber(at.z) + ") is outside the world");
+  return {at.x, at.z, node.line()};
+}
+
 void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p) {
   if (!population.optional("flow")) return;
   for (const char* other : {"separation", "gather", "flock"}) {

@@ -19,4 +19,13 @@ void readCrowdLod(const SceneMap& root, Scene& scene);
 /// Reads the optional `flow` block of an NPC population (after the map: a flow needs one).
 void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
+/// Reads the optional `formation` block of an NPC population (common/scene_formation.cpp).
+void readNpcFormation(const SceneMap& population, const Scene& scene, NpcPopulation& p);
+
+/// Reads the optional `colony` block of an NPC population (common/scene_colony.cpp).
+void readNpcColony(const SceneMap& population, const Scene& scene, NpcPopulation& p);
+
+/// A point [x, y, z] on the ground plane inside the world (y is ignored).
+ScenePoint readGroundPoint(const SceneNode& node, const Scene& scene);
+
 }  // namespace zonesim

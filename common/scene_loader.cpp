@@ -108,8 +108,9 @@ void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p)
 }
 
 void readNpcs(const SceneNode& node, Scene& scene) {
-  SceneMap m = node.map({"kind", "count", "speed", "acceleration", "waypoint_radius",
-                         "arrive_distance", "region", "separation", "gather", "flock", "flow"});
+  SceneMap m =
+      node.map({"kind", "count", "speed", "acceleration", "waypoint_radius", "arrive_distance",
+                "region", "separation", "gather", "flock", "flow", "formation", "colony"});
   NpcPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
@@ -141,6 +142,8 @@ void readNpcs(const SceneNode& node, Scene& scene) {
   }
   readFlock(m, scene, p);
   readNpcFlow(m, scene, p);
+  readNpcFormation(m, scene, p);
+  readNpcColony(m, scene, p);
   scene.npcs.push_back(p);
 }
 

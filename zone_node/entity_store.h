@@ -34,6 +34,14 @@ struct NpcData {
   /// Its population's index in Scene::npcs when a crowd system moves it (a flock or a flow
   /// crowd: the population says which), else -1 (a wanderer).
   std::int32_t flock = -1;
+  // A formation member's or an ant's own state (systems/formation_movement.h,
+  // systems/ant_movement.h), carried by migration like an agent's path.
+  std::int32_t crowd_mode = 0;           ///< formation: crowd::MemberMode; ant: AntMode
+  std::int32_t crowd_at = 0;             ///< index (in cells) of the next cell of crowd_path
+  double crowd_x = 0, crowd_z = 0;       ///< formation: centre a rejoin path was planned to;
+                                         ///< ant: x = length of the route found
+  std::vector<std::int32_t> crowd_path;  ///< cells as x, y pairs (rejoin path; ant's route)
+  std::vector<std::int32_t> crowd_seen;  ///< ant: dead ends of this trip, x, y pairs
 };
 
 /// A player's avatar, driven by inputs applied exactly once by sequence number.

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/rng.h"
+#include "zone_node/systems/formation_movement.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -98,6 +99,20 @@ void forEachInitialEntity(const Scene& scene,
       // A flow NPC starts at rest; the flow system moves it (the population index tells it
       // apart from wanderers, as for flocks).
       if (p.flow.enabled) r.npc.flock = std::int32_t(group);
+      // An ant starts at rest in its nest's cell centre, its route that one cell.
+      if (p.colony.enabled) {
+        r.npc.flock = std::int32_t(group);
+        ai::Cell nest = map->frame.cellOf({p.colony.nest.x, p.colony.nest.z});
+        crowd::Vec2 at = map->frame.centre(nest);
+        r.pos = Vec3(at.x, scene.world.min.y, at.y);
+        r.npc.crowd_path = {nest.x, nest.y};
+      }
+      // A formation member starts at rest at its slot (its index in the population).
+      if (p.formation.enabled) {
+        r.npc.flock = std::int32_t(group);
+        crowd::Vec2 at = formationStart(scene, *map, group, i);
+        r.pos = Vec3(at.x, scene.world.min.y, at.y);
+      }
       keep(r);
     }
   }

@@ -7,14 +7,17 @@
 #include "zone_node/cluster/conservation.h"
 #include "zone_node/cluster/offload_agreement.h"
 #include "zone_node/cluster/player_positions.h"
+#include "zone_node/cluster/trail_exchange.h"
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/zone_link.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
+#include "zone_node/systems/ant_movement.h"
 #include "zone_node/systems/avatar_movement.h"
 #include "zone_node/systems/emitters.h"
 #include "zone_node/systems/flock_movement.h"
 #include "zone_node/systems/flow_movement.h"
+#include "zone_node/systems/formation_movement.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
 #include "zone_node/world_map.h"
@@ -71,12 +74,14 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
   map_ = loadWorldMap(scene);
   flows_ = std::make_unique<FlowMovement>(scene, map_.get());
+  formations_ = std::make_unique<FormationMovement>(scene, map_.get());
+  ants_ = std::make_unique<AntMovement>(scene, map_.get());
   agents_ = std::make_unique<AgentSystem>(scene, map_ ? &map_->grid : nullptr,
                                           map_ ? map_->frame : crowd::MapFrame{});
   // Flocks and flow crowds read their neighbours across borders as ghosts too, and agents see
   // enemies there.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active() ||
-                 (agents_->active() && agents_->reach() > 0);
+                 formations_->active() || (agents_->active() && agents_->reach() > 0);
   forward_.resize(std::size_t(size_));
 
   auto keepIfMine = [&](const EntityRecordData& r) {
@@ -288,6 +293,14 @@ void ZoneNode::ai() {
     // Every rank takes part in the gather (the scene decides, so all agree).
     if (scene_.lod.enabled) players_ = gatherAvatarPositions(comm_, store_);
     flows_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
+  }
+  if (formations_->active()) formations_->step(store_, &halo_.ghosts(), scene_.dt, tick_);
+  if (ants_->active()) {
+    // Every rank's deposits of this tick, summed exactly on every rank (the scene decides that
+    // there are colonies, so all take part), then the trails evaporate alike everywhere.
+    ants_->step(store_, tick_, scene_.dt);
+    sumTrailDeltas(comm_, ants_->deltas());
+    ants_->applyTrails();
   }
   stepAvatars(scene_.world, store_, scene_.dt);
 }

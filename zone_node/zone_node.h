@@ -33,6 +33,8 @@ class EmitterSystem;
 class RigidBodySystem;
 class FlockMovement;
 class FlowMovement;
+class FormationMovement;
+class AntMovement;
 struct WorldMap;
 class AgentSystem;
 
@@ -134,12 +136,14 @@ class ZoneNode {
   std::unique_ptr<ZoneLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;
-  std::unique_ptr<RigidBodySystem> bodies_;  // created when the first body shows up
-  std::unique_ptr<FlockMovement> flocks_;    // flocking NPC populations of the scene
-  std::shared_ptr<const WorldMap> map_;      // the scene's walls; null without `map:`
-  std::unique_ptr<FlowMovement> flows_;      // flow-field NPC populations (need map_)
-  std::unique_ptr<AgentSystem> agents_;      // AI agents (scene key `agents`)
-  std::vector<crowd::Vec2> players_;         // every avatar of the cluster, for crowd LOD
+  std::unique_ptr<RigidBodySystem> bodies_;        // created when the first body shows up
+  std::unique_ptr<FlockMovement> flocks_;          // flocking NPC populations of the scene
+  std::shared_ptr<const WorldMap> map_;            // the scene's walls; null without `map:`
+  std::unique_ptr<FlowMovement> flows_;            // flow-field NPC populations (need map_)
+  std::unique_ptr<FormationMovement> formations_;  // fixed groups (need map_)
+  std::unique_ptr<AntMovement> ants_;              // ant colonies (need map_)
+  std::unique_ptr<AgentSystem> agents_;            // AI agents (scene key `agents`)
+  std::vector<crowd::Vec2> players_;               // every avatar of the cluster, for crowd LOD
 
   std::uint64_t tick_ = 0;
   std::string last_checkpoint_;

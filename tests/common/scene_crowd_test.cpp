@@ -156,3 +156,96 @@ TEST(SceneLod, AbsentMeansOffAndValuesComeThrough) {
 
 }  // namespace
 }  // namespace zonesim
+
+namespace zonesim {
+namespace {
+
+std::string groupScene(const std::string& key, const std::string& text,
+                       const std::string& map = kMap) {
+  return sceneWith(map + "populations:\n  - kind: npc\n    count: 6\n    " + key + ":\n" + text);
+}
+
+TEST(SceneFormation, RouteAndDefaultsComeThrough) {
+  Scene s = parseScene(groupScene("formation",
+                                  "      route: [[1, 0, 2], [30.5, 5, 40]]\n"
+                                  "      columns: 3\n"
+                                  "      separation: {radius: 0.8}\n"),
+                       kSceneName);
+  const NpcFormation& f = s.npcs[0].formation;
+  EXPECT_TRUE(f.enabled);
+  ASSERT_EQ(f.route.size(), 2u);
+  EXPECT_EQ(f.route[1].x, 30.5);
+  EXPECT_EQ(f.route[1].z, 40);
+  EXPECT_EQ(f.route[1].line, 10);
+  EXPECT_EQ(f.columns, 3);
+  EXPECT_EQ(f.separation_radius, 0.8);
+  EXPECT_EQ(f.spacing, NpcFormation{}.spacing);
+  EXPECT_EQ(f.cut_off, NpcFormation{}.cut_off);
+}
+
+TEST(SceneFormation, ErrorsNameLineAndField) {
+  auto error = [](const std::string& text) {
+    return sceneError([&] { parseScene(text, kSceneName); });
+  };
+  EXPECT_EQ(
+      error(groupScene("formation", "      route: [[1, 0, 2]]\n", "")),
+      kSceneName + ":9: populations[0].formation.route: a formation needs the scene's map: key");
+  EXPECT_EQ(error(groupScene("formation", "      route: []\n")),
+            kSceneName +
+                ":10: populations[0].formation.route: needs at least one point (where the "
+                "centre starts)");
+  EXPECT_EQ(
+      error(groupScene("formation", "      route: [[1, 0, 2], [500, 0, 2]]\n")),
+      kSceneName + ":10: populations[0].formation.route[1]: x, z (500, 2) is outside the world");
+  EXPECT_EQ(error(groupScene("formation", "      route: [[1, 0, 2]]\n      max_speed: 1\n")),
+            kSceneName +
+                ":11: populations[0].formation.max_speed: 1 m/s is not above centre_speed "
+                "(1.5 m/s)");
+  EXPECT_EQ(error(groupScene("formation", "      route: [[1, 0, 2]]\n      rejoin: 6\n")),
+            kSceneName + ":11: populations[0].formation.rejoin: 6 m is not below cut_off (5 m)");
+  EXPECT_EQ(error(groupScene("formation", "      route: [[1, 0, 2]]\n      columns: 0\n")),
+            kSceneName + ":11: populations[0].formation.columns: must be in [1, 64], got 0");
+  EXPECT_EQ(
+      error(groupScene("formation", "      route: [[1, 0, 2]]\n    gather: {point: [1, 0, 2]}\n")),
+      kSceneName +
+          ":11: populations[0].gather: a formation population holds its slots, not "
+          "this");
+}
+
+TEST(SceneColony, ValuesAndDefaultsComeThrough) {
+  Scene s = parseScene(groupScene("colony",
+                                  "      nest: [1, 0, 2]\n"
+                                  "      food: [30.5, 0, 40]\n"
+                                  "      evaporation: 0.1\n"
+                                  "      food_until: 60\n"),
+                       kSceneName);
+  const NpcColony& c = s.npcs[0].colony;
+  EXPECT_TRUE(c.enabled);
+  EXPECT_EQ(c.nest.x, 1);
+  EXPECT_EQ(c.food.z, 40);
+  EXPECT_EQ(c.food.line, 11);
+  EXPECT_EQ(c.evaporation, 0.1);
+  EXPECT_EQ(c.food_until, 60);
+  EXPECT_EQ(c.alpha, NpcColony{}.alpha);
+  EXPECT_EQ(c.beta, NpcColony{}.beta);
+}
+
+TEST(SceneColony, ErrorsNameLineAndField) {
+  auto error = [](const std::string& text) {
+    return sceneError([&] { parseScene(text, kSceneName); });
+  };
+  EXPECT_EQ(
+      error(groupScene("colony", "      nest: [1, 0, 2]\n      food: [3, 0, 4]\n", "")),
+      kSceneName + ":9: populations[0].colony.nest: an ant colony needs the scene's map: key");
+  EXPECT_EQ(error(groupScene("colony", "      nest: [1, 0, 2]\n")),
+            kSceneName + ":10: populations[0].colony.food: required field is missing");
+  EXPECT_EQ(error(groupScene("colony",
+                             "      nest: [1, 0, 2]\n      food: [3, 0, 4]\n"
+                             "      evaporation: 2\n")),
+            kSceneName + ":12: populations[0].colony.evaporation: must be in [0, 1], got 2");
+  EXPECT_EQ(error(groupScene("colony", "      nest: [1, 0, 2]\n      food: [3, 0, 400]\n")),
+            kSceneName + ":11: populations[0].colony.food: x, z (3, 400) is outside the world");
+}
+
+}  // namespace
+}  // namespace zonesim

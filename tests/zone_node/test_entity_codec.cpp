@@ -19,6 +19,12 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   npc.npc.waypoint = Vec3(9, 0, 8);
   npc.npc.max_speed = 1.75;
   npc.npc.flock = 2;
+  npc.npc.crowd_mode = 1;  // a rejoining formation member or a returning ant
+  npc.npc.crowd_at = 3;
+  npc.npc.crowd_x = 0.1;
+  npc.npc.crowd_z = -7.25;
+  npc.npc.crowd_path = {4, 5, 5, 6, 6, 6};
+  npc.npc.crowd_seen = {9, 1};
   EntityRecordData avatar;
   avatar.id = EntityId::make(2, 1);
   avatar.kind = EntityKind::Avatar;
@@ -40,6 +46,12 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   EXPECT_EQ(q.entities[0].npc.waypoint, npc.npc.waypoint);
   EXPECT_EQ(q.entities[0].npc.max_speed, 1.75);
   EXPECT_EQ(q.entities[0].npc.flock, 2);
+  EXPECT_EQ(q.entities[0].npc.crowd_mode, 1);
+  EXPECT_EQ(q.entities[0].npc.crowd_at, 3);
+  EXPECT_EQ(q.entities[0].npc.crowd_x, 0.1);
+  EXPECT_EQ(q.entities[0].npc.crowd_z, -7.25);
+  EXPECT_EQ(q.entities[0].npc.crowd_path, npc.npc.crowd_path);
+  EXPECT_EQ(q.entities[0].npc.crowd_seen, npc.npc.crowd_seen);
   EXPECT_EQ(q.entities[1].npc.flock, -1);  // the default when absent from the record
   EXPECT_EQ(q.entities[1].kind, EntityKind::Avatar);
   EXPECT_EQ(q.entities[1].avatar.player_id, 555u);

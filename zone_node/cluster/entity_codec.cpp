@@ -34,10 +34,14 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
     case EntityKind::Npc: {
       fb::Vec3d wp = toFb(r.npc.waypoint);
       fb::Vec3d gp = toFb(r.npc.gather_point);
-      npc = fb::CreateNpcState(b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius,
-                               r.npc.arrive_distance, r.npc.separation_radius,
-                               r.npc.separation_weight, &gp, r.npc.gather_radius,
-                               r.npc.gather_start, r.npc.gather_end, r.npc.gathering, r.npc.flock);
+      flatbuffers::Offset<flatbuffers::Vector<std::int32_t>> path, seen;
+      if (!r.npc.crowd_path.empty()) path = b.CreateVector(r.npc.crowd_path);
+      if (!r.npc.crowd_seen.empty()) seen = b.CreateVector(r.npc.crowd_seen);
+      npc = fb::CreateNpcState(
+          b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius, r.npc.arrive_distance,
+          r.npc.separation_radius, r.npc.separation_weight, &gp, r.npc.gather_radius,
+          r.npc.gather_start, r.npc.gather_end, r.npc.gathering, r.npc.flock, r.npc.crowd_mode,
+          r.npc.crowd_at, r.npc.crowd_x, r.npc.crowd_z, path, seen);
       break;
     }
     case EntityKind::Avatar:
@@ -140,6 +144,14 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
     r.npc.gather_end = n->gather_end();
     r.npc.gathering = n->gathering();
     r.npc.flock = n->flock();
+    r.npc.crowd_mode = n->crowd_mode();
+    r.npc.crowd_at = n->crowd_at();
+    r.npc.crowd_x = n->crowd_x();
+    r.npc.crowd_z = n->crowd_z();
+    if (const auto* p = n->crowd_path()) r.npc.crowd_path.assign(p->begin(), p->end());
+    if (const auto* p = n->crowd_seen()) r.npc.crowd_seen.assign(p->begin(), p->end());
+    if (r.npc.crowd_path.size() % 2 != 0 || r.npc.crowd_seen.size() % 2 != 0)
+      throw CodecError("npc record with an odd cell list");
   }
   if (const fb::AvatarState* a = e.avatar()) {
     r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(),

@@ -1,0 +1,300 @@
+#include "zone_node/systems/ant_movement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "zone_node/systems/steering.h"
+#include "zone_node/world_map.h"
+
+namespace zonesim::zone {
+
+namespace {
+
+constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+
+std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// Uniform in [0, 1) from (seed, ant, tick, draw) alone: no ant's draws depend on which other
+/// ants a rank holds, nor on the order it steps them.
+double counterUniform(std::uint64_t seed, std::uint64_t id, std::uint64_t tick, int draw) {
+  std::uint64_t z = mix(mix(mix(seed) ^ id) ^ (tick * 4 + std::uint64_t(draw)));
+  return double(z >> 11) * 0x1.0p-53;
+}
+
+std::string sceneFile(const Scene& scene) {
+  return scene.source_path.empty() ? scene.name : scene.source_path;
+}
+
+bool contains(const std::vector<std::int32_t>& cells, ai::Cell c) {
+  for (std::size_t k = 0; k + 1 < cells.size(); k += 2)
+    if (cells[k] == c.x && cells[k + 1] == c.y) return true;
+  return false;
+}
+
+ai::Cell cellAt(const std::vector<std::int32_t>& cells, std::int32_t k) {
+  return {cells[std::size_t(2 * k)], cells[std::size_t(2 * k + 1)]};
+}
+
+std::int32_t cellCount(const std::vector<std::int32_t>& cells) {
+  return std::int32_t(cells.size() / 2);
+}
+
+}  // namespace
+
+/// One colony: where its nest and food are, its trail grid and the figures of its ants.
+struct AntMovement::Colony {
+  Colony(std::int32_t p, const NpcColony& c, const WorldMap& m) : population(p), cfg(c), map(m) {}
+
+  bool stepAllowed(ai::Cell c, int k) const {
+    const ai::GridMap& g = map.grid;
+    int nx = c.x + kSteps[k][0], ny = c.y + kSteps[k][1];
+    if (!g.passable(nx, ny)) return false;
+    return k < 4 || (g.passable(nx, c.y) && g.passable(c.x, ny));  // no corner cutting
+  }
+  std::size_t index(ai::Cell c) const { return std::size_t(map.grid.index(c.x, c.y)); }
+  bool adjacent(ai::Cell a, ai::Cell b) const {
+    for (int k = 0; k < 8; ++k)
+      if (a.x + kSteps[k][0] == b.x && a.y + kSteps[k][1] == b.y) return stepAllowed(a, k);
+    return false;
+  }
+  /// Replaces `route` (x, y pairs, nest first) by the route home from its last cell that
+  /// always steps to the earliest route cell next to the current one.
+  void shorten(std::vector<std::int32_t>& route) const {
+    std::vector<std::int32_t> back;
+    std::int32_t at = cellCount(route) - 1;
+    back.insert(back.end(), {route[std::size_t(2 * at)], route[std::size_t(2 * at + 1)]});
+    while (at > 0) {
+      std::int32_t j = 0;
+      while (j < at - 1 && !adjacent(cellAt(route, at), cellAt(route, j))) ++j;
+      at = j;
+      back.insert(back.end(), {route[std::size_t(2 * at)], route[std::size_t(2 * at + 1)]});
+    }
+    route.clear();
+    for (std::size_t k = back.size(); k >= 2; k -= 2)
+      route.insert(route.end(), {back[k - 2], back[k - 1]});
+  }
+
+  std::int32_t population;
+  const NpcColony& cfg;
+  const WorldMap& map;
+  ai::Cell nest, food;
+  std::size_t offset = 0;           // first cell of this colony in deltas_
+  std::vector<std::int64_t> trail;  // fixed point, kTrailScale per unit
+  std::uint64_t keep = 0;           // fraction kept per tick, 32.32 fixed point
+  int max_steps = 0;
+  ColonyStats stats;
+};
+
+AntMovement::AntMovement(const Scene& scene, const WorldMap* map) : seed_(scene.seed) {
+  for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
+    const NpcColony& c = scene.npcs[p].colony;
+    if (!c.enabled) continue;
+    if (!map) throw SceneError(sceneFile(scene) + ":0: map: an ant colony needs a map");
+    auto col = std::make_unique<Colony>(std::int32_t(p), c, *map);
+    auto place = [&](const ScenePoint& at, const char* what) {
+      if (!map->walkable(at.x, at.z)) {
+        throw SceneError(sceneFile(scene) + ":" + std::to_string(at.line) + ": populations[" +
+                         std::to_string(p) + "].colony." + what +
+                         ": lies on a blocked cell of the map");
+      }
+      return map->frame.cellOf({at.x, at.z});
+    };
+    col->nest = place(c.nest, "nest");
+    col->food = place(c.food, "food");
+    if (col->nest == col->food) {
+      throw SceneError(sceneFile(scene) + ":" + std::to_string(c.food.line) + ": populations[" +
+                       std::to_string(p) + "].colony.food: lies in the nest's cell");
+    }
+    const std::size_t cells = std::size_t(map->grid.width()) * std::size_t(map->grid.height());
+    col->offset = deltas_.size();
+    deltas_.resize(deltas_.size() + cells, 0);
+    col->trail.assign(cells,
+                      std::max<std::int64_t>(1, std::llround(c.initial_pheromone * kTrailScale)));
+    // The same double on every rank, rounded once: evaporation is then integer arithmetic.
+    col->keep = std::uint64_t(std::llround(std::pow(1.0 - c.evaporation, scene.dt) * 0x1.0p32));
+    col->max_steps = c.max_steps > 0 ? c.max_steps : 4 * map->grid.passableCount();
+    colonies_.push_back(std::move(col));
+  }
+}
+
+AntMovement::~AntMovement() = default;
+
+std::int32_t AntMovement::population(std::size_t c) const {
+  return colonies_[c]->population;
+}
+
+const ColonyStats& AntMovement::stats(std::size_t c) const {
+  return colonies_[c]->stats;
+}
+
+double AntMovement::trail(std::size_t c, ai::Cell cell) const {
+  const Colony& col = *colonies_[c];
+  return double(col.trail[col.index(cell)]) / kTrailScale;
+}
+
+double AntMovement::totalTrail(std::size_t c) const {
+  std::int64_t sum = 0;
+  for (std::int64_t t : colonies_[c]->trail) sum += t;
+  return double(sum) / kTrailScale;
+}
+
+std::vector<ai::Cell> AntMovement::trailRoute(std::size_t c) const {
+  const Colony& col = *colonies_[c];
+  std::vector<std::uint8_t> visited(col.trail.size(), 0);
+  std::vector<ai::Cell> out{col.nest};
+  visited[col.index(col.nest)] = 1;
+  while (!(out.back() == col.food)) {
+    ai::Cell at = out.back();
+    int best = -1;
+    std::int64_t strongest = -1;
+    for (int k = 0; k < 8; ++k) {
+      if (!col.stepAllowed(at, k)) continue;
+      ai::Cell n{at.x + kSteps[k][0], at.y + kSteps[k][1]};
+      if (visited[col.index(n)]) continue;
+      if (col.trail[col.index(n)] > strongest) {
+        strongest = col.trail[col.index(n)];
+        best = k;
+      }
+    }
+    if (best < 0) return {};
+    ai::Cell n{at.x + kSteps[best][0], at.y + kSteps[best][1]};
+    visited[col.index(n)] = 1;
+    out.push_back(n);
+  }
+  return out;
+}
+
+void AntMovement::step(EntityStore& store, std::uint64_t tick, double dt) {
+  std::fill(deltas_.begin(), deltas_.end(), 0);
+  const double time = double(tick) * dt;
+  for (const std::unique_ptr<Colony>& cp : colonies_) {
+    Colony& col = *cp;
+    const crowd::MapFrame& frame = col.map.frame;
+    const bool food_there = col.cfg.food_until < 0 || time < col.cfg.food_until;
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      if (store.kind[i] != EntityKind::Npc || store.npc[i].flock != col.population) continue;
+      NpcData& ant = store.npc[i];
+      const std::uint64_t id = store.id[i].value;
+      if (ant.crowd_path.empty()) ant.crowd_path = {col.nest.x, col.nest.y};
+      auto target = [&] {
+        return ant.crowd_mode == std::int32_t(AntMode::Returning)
+                   ? cellAt(ant.crowd_path, ant.crowd_at)
+                   : cellAt(ant.crowd_path, cellCount(ant.crowd_path) - 1);
+      };
+      const crowd::Vec2 from{store.pos[i].x(), store.pos[i].z()};
+      crowd::Vec2 to = frame.centre(target()) - from;
+      const double reach = col.cfg.speed * dt, d = crowd::length(to);
+      crowd::Vec2 at = from;
+      if (d > reach) {
+        at = from + to * (reach / d);
+      } else {
+        at = from + to;
+        // At a cell centre: the ant decides where to go next (at most once per tick).
+        ai::Cell c = target();
+        if (ant.crowd_mode == std::int32_t(AntMode::Returning)) {
+          if (ant.crowd_x > 0) {
+            deltas_[col.offset + col.index(c)] += std::max<std::int64_t>(
+                1, std::llround(col.cfg.deposit / ant.crowd_x * kTrailScale));
+          }
+          if (ant.crowd_at > 0) {
+            --ant.crowd_at;
+          } else {  // home: count the trip, start a new one
+            if (ant.crowd_x > 0) {
+              ++col.stats.trips;
+              col.stats.length_sum += ant.crowd_x;
+              col.stats.last_length = ant.crowd_x;
+            }
+            ant.crowd_mode = std::int32_t(AntMode::Searching);
+            ant.crowd_path.assign({col.nest.x, col.nest.y});
+            ant.crowd_seen.clear();
+            ant.crowd_x = 0;
+            ant.crowd_at = 0;
+          }
+        } else if ((c == col.food && food_there) || cellCount(ant.crowd_path) > col.max_steps) {
+          // Found it (lay trail all the way home), or gave up (walk home laying nothing). The
+          // way home cuts the detours of the way out: from each cell it steps to the earliest
+          // cell of its route that lies next to it (it remembers the route and senses its
+          // neighbours), so it lays trail on a shorter route than it walked.
+          col.shorten(ant.crowd_path);
+          double length = 0;
+          for (std::int32_t k = 1; k < cellCount(ant.crowd_path); ++k)
+            length += ai::octileDistance(cellAt(ant.crowd_path, k - 1), cellAt(ant.crowd_path, k));
+          const bool found = c == col.food && food_there;
+          ant.crowd_mode = std::int32_t(AntMode::Returning);
+          ant.crowd_x = found ? length : 0;
+          ant.crowd_at = std::max(0, cellCount(ant.crowd_path) - 2);
+          if (found) {
+            deltas_[col.offset + col.index(c)] +=
+                std::max<std::int64_t>(1, std::llround(col.cfg.deposit / length * kTrailScale));
+          }
+        } else {
+          // Sense the eight cells around; weigh the open ones not yet walked on this trip.
+          double weight[8];
+          double total = 0, strongest = -1;
+          int best = -1;
+          for (int k = 0; k < 8; ++k) {
+            weight[k] = 0;
+            if (!col.stepAllowed(c, k)) continue;
+            ai::Cell n{c.x + kSteps[k][0], c.y + kSteps[k][1]};
+            if (contains(ant.crowd_path, n) || contains(ant.crowd_seen, n)) continue;
+            double tau = double(col.trail[col.index(n)]) / kTrailScale;
+            double step = k >= 4 ? ai::kDiagonalCost : 1.0;
+            double eta =
+                col.cfg.knows_food ? 1.0 / (step + ai::octileDistance(n, col.food)) : 1.0 / step;
+            weight[k] = std::pow(tau, col.cfg.alpha) * std::pow(eta, col.cfg.beta);
+            total += weight[k];
+            if (weight[k] > strongest) {
+              strongest = weight[k];
+              best = k;
+            }
+          }
+          if (best < 0) {
+            // Dead end: remember it and back off one cell (at the nest: start afresh).
+            if (cellCount(ant.crowd_path) > 1) {
+              ant.crowd_seen.push_back(c.x);
+              ant.crowd_seen.push_back(c.y);
+              ant.crowd_path.resize(ant.crowd_path.size() - 2);
+            } else {
+              ant.crowd_seen.clear();
+            }
+          } else {
+            int chosen = best;
+            if (counterUniform(seed_, id, tick, 0) >= col.cfg.exploitation) {
+              double pick = counterUniform(seed_, id, tick, 1) * total;
+              for (int k = 0; k < 8; ++k) {
+                if (weight[k] <= 0) continue;
+                chosen = k;
+                pick -= weight[k];
+                if (pick < 0) break;
+              }
+            }
+            ant.crowd_path.push_back(c.x + kSteps[chosen][0]);
+            ant.crowd_path.push_back(c.y + kSteps[chosen][1]);
+          }
+        }
+      }
+      store.pos[i] = Vec3(at.x, store.pos[i].y(), at.y);
+      store.vel[i] = Vec3((at.x - from.x) / dt, 0.0, (at.y - from.y) / dt);
+      store.rot[i] = facing(store.rot[i], store.vel[i]);
+    }
+  }
+}
+
+void AntMovement::applyTrails() {
+  for (const std::unique_ptr<Colony>& cp : colonies_) {
+    Colony& col = *cp;
+    const std::int64_t* delta = deltas_.data() + col.offset;
+    for (std::size_t k = 0; k < col.trail.size(); ++k) {
+      auto kept = std::int64_t((unsigned __int128)std::uint64_t(col.trail[k]) * col.keep >> 32);
+      col.trail[k] = std::max<std::int64_t>(1, kept) + delta[k];
+    }
+  }
+}
+
+}  // namespace zonesim::zone

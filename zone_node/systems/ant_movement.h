@@ -1,0 +1,89 @@
+#pragma once
+// Ant colonies in a zone: each NPC population with `colony` is a colony on the scene's map. Its
+// ants are entities walking from cell centre to cell centre; a searching ant senses only the
+// cells next to it (a wall is found by standing next to it), never re-enters a cell of its
+// trip, backs off from dead ends, and picks its next cell with probability proportional to
+// trail^alpha * eta^beta, or the best such cell outright with probability `exploitation` (the
+// ACS rule). An ant that reaches the food walks its route back to the nest, laying
+// deposit / (route length) on every cell; trails evaporate every tick.
+//
+// Decomposition: the trail grid is global state that ants on every rank read and lay. Trails
+// are fixed-point integers: each rank adds up its own ants' deposits of a tick (deltas()), the
+// zone sums the deltas of all ranks (one MPI_Allreduce, exact and order-free in integers:
+// cluster/trail_exchange.h), and applyTrails() evaporates and adds them with integer
+// arithmetic, alike on every rank. An ant's choice reads the trails as they stood at the start
+// of the tick and a random number keyed by (seed, ant id, tick), and its route rides in the
+// entity (NpcData::crowd_*), so a run ends bitwise equal on any number of ranks.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "common/scene.h"
+#include "zone_node/ai/octile.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::zone {
+
+struct WorldMap;
+
+/// What an ant is doing (NpcData::crowd_mode).
+enum class AntMode : std::int32_t {
+  Searching = 0,  ///< walking away from the nest, looking for the food
+  Returning = 1,  ///< walking its route back to the nest (laying trail if it found food)
+};
+
+/// Trail units per unit of pheromone (fixed point).
+inline constexpr double kTrailScale = double(1 << 20);
+
+/// Per-colony figures of this rank's ants.
+struct ColonyStats {
+  std::uint64_t trips = 0;  ///< ants back at the nest with food, since the start
+  double length_sum = 0;    ///< summed route length (m) of those trips
+  double last_length = 0;   ///< route length of the latest of them
+};
+
+/// Steps the ant colony NPC populations of a scene.
+class AntMovement {
+ public:
+  /// One colony per population of `scene` with `colony.enabled`, on `map` (must outlive this;
+  /// required when there is such a population). Throws SceneError when the nest or the food
+  /// lies on a blocked cell.
+  AntMovement(const Scene& scene, const WorldMap* map);
+  ~AntMovement();
+
+  /// Whether the scene has a colony at all.
+  bool active() const { return !colonies_.empty(); }
+
+  /// Moves every ant of `store` by one tick (`tick` from 0: time tick * dt) reading the trails
+  /// as they stand, and adds the ants' deposits to deltas() (cleared first).
+  void step(EntityStore& store, std::uint64_t tick, double dt);
+  /// This tick's deposits of the ants on this rank, every colony's cells one after another;
+  /// to be summed over all ranks before applyTrails().
+  std::span<std::int64_t> deltas() { return deltas_; }
+  /// Evaporates every trail by one tick and adds deltas() (summed over the ranks).
+  void applyTrails();
+
+  /// Number of colonies (in population order).
+  std::size_t count() const { return colonies_.size(); }
+  /// Population index of colony `c`.
+  std::int32_t population(std::size_t c) const;
+  /// Trail of colony `c` on cell (x, y), in pheromone units.
+  double trail(std::size_t c, ai::Cell cell) const;
+  /// Sum of colony `c`'s trail over the map, in pheromone units.
+  double totalTrail(std::size_t c) const;
+  /// Colony `c`'s preferred route: from the nest always the strongest unvisited neighbour;
+  /// empty when it dead-ends before the food.
+  std::vector<ai::Cell> trailRoute(std::size_t c) const;
+  /// Figures of colony `c`'s ants on this rank.
+  const ColonyStats& stats(std::size_t c) const;
+
+ private:
+  struct Colony;
+  std::vector<std::unique_ptr<Colony>> colonies_;
+  std::vector<std::int64_t> deltas_;
+  std::uint64_t seed_ = 0;
+};
+
+}  // namespace zonesim::zone

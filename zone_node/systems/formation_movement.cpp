@@ -1,0 +1,185 @@
+#include "zone_node/systems/formation_movement.h"
+
+#include <algorithm>
+#include <string>
+
+#include "zone_node/cluster/ghost_store.h"
+#include "zone_node/crowd/formation.h"
+#include "zone_node/systems/planar_crowd.h"
+#include "zone_node/world_map.h"
+
+namespace zonesim::zone {
+
+namespace {
+
+crowd::FormationSettings settingsOf(const NpcFormation& f) {
+  crowd::FormationSettings s;
+  s.centreSpeed = f.centre_speed;
+  s.memberMaxSpeed = f.max_speed;
+  s.maxForce = f.max_force;
+  s.steerRate = f.steer_rate;
+  s.slotGain = f.slot_gain;
+  s.slowRadius = f.slow_radius;
+  s.turnRate = f.turn_rate;
+  s.cutOffDistance = f.cut_off;
+  s.rejoinDistance = f.rejoin;
+  s.replanDistance = f.replan;
+  s.separationRadius = f.separation_radius;
+  s.separationWeight = f.separation_weight;
+  return s;
+}
+
+std::string sceneFile(const Scene& scene) {
+  return scene.source_path.empty() ? scene.name : scene.source_path;
+}
+
+/// The heading the formation starts with: toward the second route point.
+crowd::Vec2 startHeading(const NpcFormation& f) {
+  if (f.route.size() < 2) return {1.0, 0.0};
+  crowd::Vec2 d{f.route[1].x - f.route[0].x, f.route[1].z - f.route[0].z};
+  return crowd::lengthSq(d) > 1e-12 ? crowd::withLength(d, 1.0) : crowd::Vec2{1.0, 0.0};
+}
+
+/// Counter of the id of the first NPC of population `p` (scene ids count up from 1).
+std::uint64_t firstCounter(const Scene& scene, std::size_t p) {
+  std::uint64_t before = 0;
+  for (std::size_t q = 0; q < p; ++q) before += std::uint64_t(scene.npcs[q].count);
+  return before + 1;
+}
+
+}  // namespace
+
+crowd::Vec2 formationSlot(const NpcFormation& f, int count, int k) {
+  const int columns = std::min(f.columns, std::max(count, 1));
+  const int rows = (count + columns - 1) / columns;
+  const int row = k / columns, col = k % columns;
+  const int inRow = std::min(columns, count - row * columns);
+  return {(0.5 * (rows - 1) - row) * f.spacing, (0.5 * (inRow - 1) - col) * f.spacing};
+}
+
+crowd::Vec2 formationStart(const Scene& scene, const WorldMap& map, std::size_t p, int k) {
+  const NpcFormation& f = scene.npcs[p].formation;
+  crowd::FormationCentre centre(settingsOf(f), {f.route[0].x, f.route[0].z}, startHeading(f));
+  crowd::Vec2 at = centre.slotPosition(formationSlot(f, scene.npcs[p].count, k));
+  return map.walkable(at.x, at.y) ? at : centre.position();
+}
+
+/// One formation: its centre, the member stepper and the gather buffers.
+struct FormationMovement::Group {
+  Group(std::int32_t p, const WorldMap& map, const NpcFormation& f)
+      : view(p),
+        formation(f),
+        centre(settingsOf(f), {f.route[0].x, f.route[0].z}, startHeading(f)),
+        stepper(map.grid, map.frame, settingsOf(f)) {}
+  PlanarCrowd view;
+  const NpcFormation& formation;
+  std::uint64_t first = 0;  // id counter of member 0
+  int count = 0;
+  crowd::FormationCentre centre;
+  std::uint64_t steps = 0;  // centre steps taken (ticks done)
+  crowd::MemberStepper stepper;
+  std::vector<crowd::MemberNeighbour> members;  // owned and ghosts, ascending id
+  crowd::MemberState state;
+
+  int slotIndex(std::uint64_t id) const { return int(EntityId{id}.counter() - first); }
+};
+
+FormationMovement::FormationMovement(const Scene& scene, const WorldMap* map) : scene_(scene) {
+  for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
+    const NpcFormation& f = scene.npcs[p].formation;
+    if (!f.enabled) continue;
+    if (!map) throw SceneError(sceneFile(scene) + ":0: map: a formation needs a map");
+    auto g = std::make_unique<Group>(std::int32_t(p), *map, f);
+    g->first = firstCounter(scene, p);
+    g->count = scene.npcs[p].count;
+    std::vector<crowd::Vec2> points;
+    for (std::size_t k = 0; k < f.route.size(); ++k) {
+      const ScenePoint& at = f.route[k];
+      std::string where = sceneFile(scene) + ":" + std::to_string(at.line) + ": populations[" +
+                          std::to_string(p) + "].formation.route[" + std::to_string(k) + "]: ";
+      if (!map->walkable(at.x, at.z)) throw SceneError(where + "lies on a blocked cell of the map");
+      points.push_back({at.x, at.z});
+      ai::GridSearch search(map->grid);
+      std::vector<crowd::Vec2> leg;
+      if (k > 0 &&
+          !crowd::planRoute(search, map->frame, std::span<const crowd::Vec2>(points).last(2), leg))
+        throw SceneError(where + "cannot be reached from the point before");
+    }
+    ai::GridSearch search(map->grid);
+    std::vector<crowd::Vec2> route;
+    crowd::planRoute(search, map->frame, points, route);
+    g->centre.setRoute(std::move(route));
+    groups_.push_back(std::move(g));
+    reach_ = std::max(reach_, f.separation_radius);
+  }
+}
+
+FormationMovement::~FormationMovement() = default;
+
+FormationMovement::Group* FormationMovement::groupOf(std::int32_t population) const {
+  for (const auto& g : groups_)
+    if (g->view.population == population) return g.get();
+  return nullptr;
+}
+
+const crowd::FormationCentre& FormationMovement::centre(std::size_t g) const {
+  return groups_[g]->centre;
+}
+
+std::int32_t FormationMovement::population(std::size_t g) const {
+  return groups_[g]->view.population;
+}
+
+crowd::Vec2 FormationMovement::slotPosition(const EntityStore& store, std::size_t i) const {
+  Group* g = groupOf(store.npc[i].flock);
+  if (!g) return {store.pos[i].x(), store.pos[i].z()};
+  return g->centre.slotPosition(
+      formationSlot(g->formation, g->count, g->slotIndex(store.id[i].value)));
+}
+
+int FormationMovement::rejoinPlans() const {
+  int n = 0;
+  for (const auto& g : groups_) n += g->stepper.rejoinPlans();
+  return n;
+}
+
+void FormationMovement::step(EntityStore& store, const GhostStore* ghosts, double dt,
+                             std::uint64_t tick) {
+  for (const std::unique_ptr<Group>& gp : groups_) {
+    Group& g = *gp;
+    // Every rank takes the same centre steps from the scene's start: the same centre.
+    for (; g.steps <= tick; ++g.steps) g.centre.advance(dt);
+    g.view.gatherAgents(store);
+    g.view.gatherGhosts(ghosts);
+    // The members as they stood at the start of the step, in ascending id: the separation's
+    // sums then run in one order whichever rank holds which member.
+    g.members.clear();
+    for (std::size_t a = 0; a < g.view.ids.size(); ++a)
+      g.members.push_back({g.view.ids[a], g.view.pos[a]});
+    for (std::size_t a = 0; a < g.view.ghost_ids.size(); ++a)
+      g.members.push_back({g.view.ghost_ids[a], g.view.ghost_pos[a]});
+    std::sort(g.members.begin(), g.members.end(),
+              [](const crowd::MemberNeighbour& x, const crowd::MemberNeighbour& y) {
+                return x.id < y.id;
+              });
+    for (std::size_t a = 0; a < g.view.ids.size(); ++a) {
+      NpcData& npc = store.npc[g.view.index[a]];
+      crowd::MemberState& m = g.state;
+      m.mode = crowd::MemberMode(npc.crowd_mode);
+      m.at = npc.crowd_at;
+      m.plannedFor = {npc.crowd_x, npc.crowd_z};
+      m.path.swap(npc.crowd_path);
+      const std::uint64_t id = g.view.ids[a];
+      g.stepper.step(id, m, formationSlot(g.formation, g.count, g.slotIndex(id)), g.centre,
+                     g.members, g.view.pos[a], g.view.vel[a], dt);
+      npc.crowd_mode = std::int32_t(m.mode);
+      npc.crowd_at = m.at;
+      npc.crowd_x = m.plannedFor.x;
+      npc.crowd_z = m.plannedFor.y;
+      npc.crowd_path.swap(m.path);
+    }
+    g.view.writeBack(store);
+  }
+}
+
+}  // namespace zonesim::zone
