@@ -54,9 +54,10 @@ struct SolverSettings {
   SolverKind kind = SolverKind::GaussSeidel;
   int velocity_iterations = 10;
   int position_iterations = 2;
-  double split_beta = 0.2;             ///< Fraction of the overlap removed per step.
-  double slop = 0.005;                 ///< Overlap (m) left alone so contacts persist.
-  double restitution_threshold = 0.5;  ///< m/s: slower impacts do not bounce.
+  double split_beta = 0.2;  ///< Fraction of the overlap removed per step.
+  double slop = 0.005;      ///< Overlap (m) left alone so contacts persist.
+  /// m/s: slower impacts do not bounce (the world raises it to 2.5 g dt for resting contact).
+  double restitution_threshold = 0.5;
   bool warm_starting = true;
   double sor_omega = 1.3;  ///< SOR: over-relaxation factor (1 is plain Gauss-Seidel).
   /// Penalty: spring frequency as a fraction of the step rate; omega dt = 2 pi * 0.08 = 0.5
