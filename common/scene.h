@@ -42,6 +42,13 @@ struct NpcFlock {
   double cohesion_weight = 0.5;    ///< 1/s^2: pull toward the neighbours' centre
   double max_speed = 2.0;          ///< m/s
   double max_force = 8.0;          ///< m/s^2, bound on the steering acceleration
+  /// `goal`: a point the flock heads for; each flocker's goal velocity points at it at
+  /// `goal_speed`, ramping down within `goal_slow_radius`, followed at `goal_weight`.
+  bool has_goal = false;
+  double goal_x = 0, goal_z = 0;  ///< the point on the ground plane
+  double goal_weight = 1.0;       ///< 1/s: rate at which velocity follows the goal velocity
+  double goal_speed = 0;          ///< m/s toward the point (the loader sets max_speed if unset)
+  double goal_slow_radius = 5.0;  ///< m: the goal speed ramps down to 0 this close
 };
 
 /// A flow-field crowd (zone_node/crowd/flow_crowd.h, docs/crowd.md): each NPC heads for one
@@ -330,6 +337,9 @@ struct CrowdLod {
   int far_every = 8;        ///< ticks between updates beyond far_radius
   bool mid_steers = true;   ///< the middle band keeps its neighbour terms
   bool far_steers = false;  ///< the far band follows its field only
+  /// Fixed ground-plane points (x, z) that count as players (scripted observers: runs
+  /// without clients, tests, points of interest that keep full detail).
+  std::vector<std::pair<double, double>> observers;
 };
 
 /// A whole scene; the docs for every key are in docs/scene-format.md.

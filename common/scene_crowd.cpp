@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 namespace zonesim {
 
@@ -39,18 +41,49 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
   m.read("cell_size", map.cell_size, Limit::above(0));
 }
 
+namespace {
+
+// A point [x, y, z] inside the world's ground rectangle (y is ignored), as (x, z).
+std::pair<double, double> groundPoint(const SceneNode& node, const Scene& scene) {
+  SceneVec3 at = node.vec3();
+  if (at.x < scene.world.min.x || at.x > scene.world.max.x || at.z < scene.world.min.z ||
+      at.z > scene.world.max.z)
+    node.fail("x, z (" + formatNumber(at.x) + ", " + formatNumber(at.z) + ") is outside the world");
+  return {at.x, at.z};
+}
+
+}  // namespace
+
+void readFlockGoal(const SceneMap& flock, const Scene& scene, NpcFlock& f) {
+  f.goal_speed = f.max_speed;
+  if (!flock.optional("goal")) return;
+  SceneMap m = flock.section("goal", {"point", "weight", "speed", "slow_radius"});
+  f.has_goal = true;
+  std::tie(f.goal_x, f.goal_z) = groundPoint(m.required("point"), scene);
+  m.read("weight", f.goal_weight, Limit::atLeast(0));
+  m.read("speed", f.goal_speed, Limit::above(0));
+  m.read("slow_radius", f.goal_slow_radius, Limit::above(0));
+  if (f.goal_speed > f.max_speed) {
+    m.failAt("speed", formatNumber(f.goal_speed) + " m/s is above flock.max_speed (" +
+                          formatNumber(f.max_speed) + " m/s)");
+  }
+}
+
 void readCrowdLod(const SceneMap& root, Scene& scene) {
   if (!root.optional("lod")) return;
   CrowdLod& l = scene.lod;
   l.enabled = true;
-  SceneMap m = root.section(
-      "lod", {"near_radius", "far_radius", "mid_every", "far_every", "mid_steers", "far_steers"});
+  SceneMap m = root.section("lod", {"near_radius", "far_radius", "mid_every", "far_every",
+                                    "mid_steers", "far_steers", "observers"});
   m.read("near_radius", l.near_radius, Limit::atLeast(0));
   m.read("far_radius", l.far_radius, Limit::atLeast(l.near_radius));
   m.read("mid_every", l.mid_every, Limit::between(1, 64));
   m.read("far_every", l.far_every, Limit::between(1, 64));
   m.read("mid_steers", l.mid_steers);
   m.read("far_steers", l.far_steers);
+  if (std::optional<SceneNode> list = m.optional("observers")) {
+    for (const SceneNode& item : list->items()) l.observers.push_back(groundPoint(item, scene));
+  }
 }
 
 ScenePoint readGroundPoint(const SceneNode& node, const Scene& scene) {

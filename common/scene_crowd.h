@@ -13,6 +13,9 @@ namespace zonesim {
 /// resolved against its folder).
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene);
 
+/// Reads the optional `goal` of a population's `flock` mapping (after its max_speed).
+void readFlockGoal(const SceneMap& flock, const Scene& scene, NpcFlock& f);
+
 /// Reads the optional top-level `lod` key.
 void readCrowdLod(const SceneMap& root, Scene& scene);
 

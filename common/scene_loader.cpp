@@ -87,12 +87,13 @@ void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p)
   NpcFlock& f = p.flock;
   f.enabled = true;
   SceneMap m = population.section(
-      "flock", {"radius", "separation", "alignment", "cohesion", "max_speed", "max_force"});
+      "flock", {"radius", "separation", "alignment", "cohesion", "max_speed", "max_force", "goal"});
   m.read("radius", f.radius, Limit::above(0));
   m.read("alignment", f.alignment_weight, Limit::atLeast(0));
   m.read("cohesion", f.cohesion_weight, Limit::atLeast(0));
   m.read("max_speed", f.max_speed, Limit::above(0));
   m.read("max_force", f.max_force, Limit::above(0));
+  readFlockGoal(m, scene, f);
   SceneMap sep = m.section("separation", {"radius", "weight"});
   sep.read("radius", f.separation_radius, Limit::atLeast(0));
   sep.read("weight", f.separation_weight, Limit::atLeast(0));

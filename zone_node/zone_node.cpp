@@ -288,12 +288,13 @@ void ZoneNode::ai() {
     counters_.path_replans = a.paths.replans;
   }
   stepNpcs(scene_, store_, near_, double(tick_) * scene_.dt, scene_.dt);
-  if (flocks_->active()) flocks_->step(store_, &halo_.ghosts(), scene_.dt);
-  if (flows_->active()) {
-    // Every rank takes part in the gather (the scene decides, so all agree).
-    if (scene_.lod.enabled) players_ = gatherAvatarPositions(comm_, store_);
+  // Every rank takes part in the gather (the scene decides, so all agree).
+  if (scene_.lod.enabled && (flocks_->active() || flows_->active()))
+    players_ = lodPlayers(comm_, store_, scene_.lod);
+  if (flocks_->active())
+    flocks_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
+  if (flows_->active())
     flows_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
-  }
   if (formations_->active()) formations_->step(store_, &halo_.ghosts(), scene_.dt, tick_);
   if (ants_->active()) {
     // Every rank's deposits of this tick, summed exactly on every rank (the scene decides that

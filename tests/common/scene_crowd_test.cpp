@@ -154,6 +154,63 @@ TEST(SceneLod, AbsentMeansOffAndValuesComeThrough) {
             kSceneName + ":5: lod.mid_every: must be in [1, 64], got 0");
 }
 
+TEST(SceneLod, ObserversComeThroughAndMustLieInTheWorld) {
+  EXPECT_TRUE(parseScene(sceneWith("lod: {}\n"), kSceneName).lod.observers.empty());
+  Scene s = parseScene(sceneWith("lod:\n  observers: [[1, 0, 2], [30, 5, -4]]\n"), kSceneName);
+  ASSERT_EQ(s.lod.observers.size(), 2u);
+  EXPECT_EQ(s.lod.observers[0], (std::pair<double, double>{1, 2}));
+  EXPECT_EQ(s.lod.observers[1], (std::pair<double, double>{30, -4}));
+  EXPECT_EQ(sceneError([] {
+              parseScene(sceneWith("lod:\n  observers:\n    - [1, 0, 2]\n    - [1, 0, 200]\n"),
+                         kSceneName);
+            }),
+            kSceneName + ":8: lod.observers[1]: x, z (1, 200) is outside the world");
+}
+
+// A flocking population with `goal_text` under its flock key.
+std::string flockScene(const std::string& goal_text) {
+  return sceneWith(
+      "halo: {width: 10}\npopulations:\n  - kind: npc\n    count: 10\n    flock:\n"
+      "      max_speed: 3\n" +
+      goal_text);
+}
+
+TEST(SceneFlockGoal, AbsentMeansNoGoalAndValuesComeThrough) {
+  NpcFlock none = parseScene(flockScene(""), kSceneName).npcs[0].flock;
+  EXPECT_FALSE(none.has_goal);
+  NpcFlock f =
+      parseScene(flockScene("      goal: {point: [40, 0, 60], weight: 0.5, slow_radius: 8}\n"),
+                 kSceneName)
+          .npcs[0]
+          .flock;
+  EXPECT_TRUE(f.has_goal);
+  EXPECT_EQ(f.goal_x, 40);
+  EXPECT_EQ(f.goal_z, 60);
+  EXPECT_EQ(f.goal_weight, 0.5);
+  EXPECT_EQ(f.goal_speed, 3);  // max_speed unless given
+  EXPECT_EQ(f.goal_slow_radius, 8);
+  EXPECT_EQ(parseScene(flockScene("      goal: {point: [0, 0, 0], speed: 1.5}\n"), kSceneName)
+                .npcs[0]
+                .flock.goal_speed,
+            1.5);
+}
+
+TEST(SceneFlockGoal, ErrorsNameLineAndField) {
+  auto error = [](const std::string& text) {
+    return sceneError([&] { parseScene(text, kSceneName); });
+  };
+  EXPECT_EQ(error(flockScene("      goal: {weight: 1}\n")),
+            kSceneName + ":11: populations[0].flock.goal.point: required field is missing");
+  EXPECT_EQ(
+      error(flockScene("      goal:\n        point: [500, 0, 0]\n")),
+      kSceneName + ":12: populations[0].flock.goal.point: x, z (500, 0) is outside the world");
+  EXPECT_EQ(
+      error(flockScene("      goal: {point: [1, 0, 1], speed: 4}\n")),
+      kSceneName + ":11: populations[0].flock.goal.speed: 4 m/s is above flock.max_speed (3 m/s)");
+  EXPECT_EQ(error(flockScene("      goal: {point: [1, 0, 1], weight: -1}\n")),
+            kSceneName + ":11: populations[0].flock.goal.weight: must be >= 0, got -1");
+}
+
 }  // namespace
 }  // namespace zonesim
 

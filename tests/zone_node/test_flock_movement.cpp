@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
 #include "test_helpers.h"
 #include "zone_node/population.h"
@@ -96,6 +99,106 @@ TEST(FlockMovement, FlockersAlignAndWanderersKeepTheirOwnPath) {
   EXPECT_LT(before, 0.4);
   EXPECT_GT(after, 0.85);
   EXPECT_LT(unaligned, 0.6);
+}
+
+/// A flock of 300 starting in the south-west corner with random headings, heading for a goal
+/// in the north-east one (191 m away); optionally with LOD around a player at the start.
+Scene goalScene(bool lod, bool far_steers = false) {
+  Scene s = testing::npcScene(0);
+  s.halo_width = 3;
+  s.npcs[0].count = 300;
+  s.npcs[0].region = {{20, 0, 20}, {50, 0, 50}};
+  s.npcs[0].min_speed = 1.5;
+  s.npcs[0].max_speed = 2.0;
+  NpcFlock& f = s.npcs[0].flock;
+  f.enabled = true;
+  f.has_goal = true;
+  f.goal_x = 170;
+  f.goal_z = 170;
+  f.goal_speed = 2.0;
+  f.goal_slow_radius = 5;
+  f.goal_weight = 1.0;
+  s.lod.enabled = lod;
+  s.lod.near_radius = 20;
+  s.lod.far_radius = 60;
+  s.lod.far_steers = far_steers;
+  return s;
+}
+
+struct GoalRun {
+  double arrival = -1;   // s: first time the centroid is within 10 m of the goal
+  crowd::Vec2 centroid;  // at the end
+  double spread = 0;     // mean distance to the centroid at the end, m
+  double closest = 1e9;  // smallest distance between two flockers at the end, m
+  std::size_t updates = 0;
+};
+
+GoalRun runToGoal(const Scene& s, double seconds) {
+  EntityStore store;
+  forEachInitialEntity(s, [&](const EntityRecordData& r) { store.add(r); });
+  FlockMovement flock(s);
+  const std::vector<crowd::Vec2> players{{35, 35}};
+  GoalRun r;
+  auto centroid = [&] {
+    crowd::Vec2 c;
+    for (std::size_t i = 0; i < store.size(); ++i)
+      c += crowd::Vec2{store.pos[i].x(), store.pos[i].z()};
+    return c * (1.0 / double(store.size()));
+  };
+  for (int t = 0; t < int(seconds / s.dt); ++t) {
+    flock.step(store, nullptr, s.dt, players, t);
+    r.updates += flock.updates();
+    if (r.arrival < 0 && crowd::length(centroid() - crowd::Vec2{170, 170}) < 10)
+      r.arrival = (t + 1) * s.dt;
+  }
+  r.centroid = centroid();
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
+    r.spread += crowd::length(p - r.centroid) / double(store.size());
+    for (std::size_t j = i + 1; j < store.size(); ++j)
+      r.closest =
+          std::min(r.closest, crowd::length(p - crowd::Vec2{store.pos[j].x(), store.pos[j].z()}));
+  }
+  return r;
+}
+
+TEST(FlockMovement, GoalLeadsTheFlockAndLodReachesTheSameOutcome) {
+  // The centroid starts 191 m from the goal (35,35 to 170,170); at the goal speed of 2 m/s,
+  // reached after about 1/weight = 1 s of relaxation, it comes within 10 m after about
+  // (191 - 10) / 2 + 1 = 91.5 s. With LOD (a player at the start: 20 m full detail, every 2
+  // ticks to 60 m, every 8 ticks beyond) the flock must get there as well, at about the same
+  // time and place, for far fewer updates. Far flockers on their goal velocity alone (the
+  // default) lose separation and pile up on the goal; with far_steers they mostly keep it.
+  const double d0 = std::hypot(135.0, 135.0), expected = (d0 - 10) / 2 + 1;
+  GoalRun full = runToGoal(goalScene(false), 110);
+  std::printf(
+      "arrival (centroid within 10 m): expected %.1f s, full detail %.1f s; spread %.2f m, "
+      "closest pair %.2f m\n",
+      expected, full.arrival, full.spread, full.closest);
+  ASSERT_GT(full.arrival, 0);
+  EXPECT_NEAR(full.arrival, expected, 0.05 * expected);
+  EXPECT_LT(crowd::length(full.centroid - crowd::Vec2{170, 170}), 3.0);
+  EXPECT_GT(full.closest, 0.5);  // full detail keeps the separation at the goal
+  for (bool far_steers : {false, true}) {
+    GoalRun lod = runToGoal(goalScene(true, far_steers), 110);
+    std::printf(
+        "LOD far_steers %d: arrival %.1f s, end centroid moved %.2f m, spread %.2f m, closest "
+        "pair %.2f m, updates %zu against %zu (%.2fx fewer)\n",
+        int(far_steers), lod.arrival, crowd::length(full.centroid - lod.centroid), lod.spread,
+        lod.closest, lod.updates, full.updates, double(full.updates) / double(lod.updates));
+    ASSERT_GT(lod.arrival, 0);
+    EXPECT_NEAR(lod.arrival, full.arrival, 0.03 * full.arrival);
+    EXPECT_LT(crowd::length(full.centroid - lod.centroid), 3.0);
+    EXPECT_LT(lod.updates, full.updates / 3);
+    if (far_steers) {
+      // Steps of 8 ticks push apart explicitly and overshoot: the flock keeps its extent
+      // (within 30%) but not its full separation.
+      EXPECT_GT(lod.closest, 0.05);
+      EXPECT_NEAR(lod.spread, full.spread, 0.3 * full.spread);
+    } else {
+      EXPECT_LT(lod.spread, 0.1 * full.spread);  // what the documentation warns of
+    }
+  }
 }
 
 }  // namespace

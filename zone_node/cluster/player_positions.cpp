@@ -28,4 +28,10 @@ std::vector<crowd::Vec2> gatherAvatarPositions(MPI_Comm comm, const EntityStore&
   return players;
 }
 
+std::vector<crowd::Vec2> lodPlayers(MPI_Comm comm, const EntityStore& store, const CrowdLod& lod) {
+  std::vector<crowd::Vec2> players = gatherAvatarPositions(comm, store);
+  for (auto [x, z] : lod.observers) players.push_back({x, z});
+  return players;
+}
+
 }  // namespace zonesim::zone

@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "common/scene.h"
 #include "zone_node/crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
@@ -18,5 +19,9 @@ namespace zonesim::zone {
 /// then by store order (the order does not matter to a nearest-player distance). Collective:
 /// every rank of `comm` must call it.
 std::vector<crowd::Vec2> gatherAvatarPositions(MPI_Comm comm, const EntityStore& store);
+
+/// What the crowds' level of detail measures distances to: every avatar of the cluster
+/// (gatherAvatarPositions, collective) and then the scene's fixed `lod.observers`.
+std::vector<crowd::Vec2> lodPlayers(MPI_Comm comm, const EntityStore& store, const CrowdLod& lod);
 
 }  // namespace zonesim::zone

@@ -4,6 +4,7 @@
 
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/crowd/flock.h"
+#include "zone_node/crowd/lod.h"
 #include "zone_node/systems/flock_backend.h"
 #include "zone_node/systems/planar_crowd.h"
 
@@ -11,9 +12,16 @@ namespace zonesim::zone {
 
 /// One flocking population: its stepper and its ground-plane view.
 struct FlockMovement::Group {
-  Group(std::int32_t p, const crowd::FlockSettings& s, gpu::Backend b) : view(p), flock(s, b) {}
+  Group(std::int32_t p, const crowd::FlockSettings& s, gpu::Backend b, const crowd::LodSettings& l)
+      : view(p), flock(s, b), lod(l) {}
   PlanarCrowd view;
   FlockBackend flock;
+  crowd::LevelOfDetail lod;
+  bool hasGoal = false;
+  crowd::Vec2 goal;                  // the point the flock heads for
+  double goalSpeed = 0;              // m/s toward it
+  double goalSlowRadius = 1;         // m: speed ramps down to 0 this close
+  std::vector<crowd::Vec2> goalVel;  // per gathered NPC, kept warm
 };
 
 namespace {
@@ -27,6 +35,18 @@ crowd::FlockSettings settingsOf(const NpcFlock& f) {
   s.cohesionWeight = f.cohesion_weight;
   s.maxSpeed = f.max_speed;
   s.maxForce = f.max_force;
+  s.goalWeight = f.goal_weight;
+  return s;
+}
+
+crowd::LodSettings lodOf(const CrowdLod& l) {
+  crowd::LodSettings s;
+  s.nearRadius = l.near_radius;
+  s.farRadius = l.far_radius;
+  s.midEvery = l.mid_every;
+  s.farEvery = l.far_every;
+  s.midSteers = l.mid_steers;
+  s.farSteers = l.far_steers;
   return s;
 }
 
@@ -34,13 +54,18 @@ crowd::FlockSettings settingsOf(const NpcFlock& f) {
 
 FlockMovement::FlockMovement(const Scene& scene, const std::string& gpu_mode,
                              const gpu::OffloadThresholds& thresholds, int ranks)
-    : scene_(scene) {
+    : scene_(scene), lod_(scene.lod.enabled) {
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlock& f = scene.npcs[p].flock;
     if (!f.enabled) continue;
     const std::size_t share = std::size_t(scene.npcs[p].count) / std::size_t(std::max(1, ranks));
     gpu::Backend b = flockBackendFor(gpu_mode, share, thresholds);
-    groups_.push_back(std::make_unique<Group>(std::int32_t(p), settingsOf(f), b));
+    auto g = std::make_unique<Group>(std::int32_t(p), settingsOf(f), b, lodOf(scene.lod));
+    g->hasGoal = f.has_goal;
+    g->goal = {f.goal_x, f.goal_z};
+    g->goalSpeed = f.goal_speed > 0 ? f.goal_speed : f.max_speed;
+    g->goalSlowRadius = f.goal_slow_radius;
+    groups_.push_back(std::move(g));
     if (backend_ != "opencl") backend_ = gpu::backendName(b);
     reach_ = std::max(reach_, f.radius);
   }
@@ -48,14 +73,32 @@ FlockMovement::FlockMovement(const Scene& scene, const std::string& gpu_mode,
 
 FlockMovement::~FlockMovement() = default;
 
-std::size_t FlockMovement::step(EntityStore& store, const GhostStore* ghosts, double dt) {
+std::size_t FlockMovement::step(EntityStore& store, const GhostStore* ghosts, double dt,
+                                std::span<const crowd::Vec2> players, std::int64_t tick) {
   std::size_t stepped = 0;
+  updates_ = 0;
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
     g.view.gatherAgents(store);
     g.view.gatherGhosts(ghosts);
     if (g.view.ids.empty()) continue;
-    g.flock.step(g.view.agents(), g.view.ghostSpan(), dt);
+    // The goal velocity depends on the NPC's position alone, so every rank computes the same.
+    std::span<const crowd::Vec2> goalVel;
+    if (g.hasGoal) {
+      g.goalVel.resize(g.view.pos.size());
+      for (std::size_t a = 0; a < g.view.pos.size(); ++a) {
+        crowd::Vec2 to = g.goal - g.view.pos[a];
+        double speed = g.goalSpeed * std::min(1.0, crowd::length(to) / g.goalSlowRadius);
+        g.goalVel[a] = crowd::withLength(to, speed);
+      }
+      goalVel = g.goalVel;
+    }
+    // Far from every player a flocker steps less often (by the time it skipped), the farthest
+    // on its goal velocity only; the plan depends on ids, positions and the tick alone.
+    crowd::StepPlan plan;
+    if (lod_) plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt);
+    g.flock.step(g.view.agents(), g.view.ghostSpan(), dt, goalVel, plan);
+    updates_ += lod_ ? g.lod.updated() : g.view.ids.size();
     // The flock moves on the ground plane; the walls of the world stop it like any walker.
     g.view.writeBack(store, &scene_.world);
     stepped += g.view.index.size();

@@ -3,15 +3,20 @@
 // its NPCs are gathered into contiguous ground-plane arrays, the ghosts of the same population
 // (other ranks' flockers within the halo) are added as read-only neighbours, the flock steps and
 // the new state is written back. The flock's sums are in a canonical order (cells, then ids),
-// so the result does not depend on the store's order or on the decomposition.
+// so the result does not depend on the store's order or on the decomposition. A flock with a
+// `goal` steers toward its point through the flock's goal velocity; with the scene's `lod`,
+// flockers far from every player step less often (by the time they skipped), the farthest
+// following their goal velocity without the neighbour query (crowd::LevelOfDetail).
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "common/scene.h"
 #include "gpu/offload.h"
+#include "zone_node/crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::crowd {
@@ -39,9 +44,14 @@ class FlockMovement {
   /// Widest neighbour radius of the flocks (the halo must reach this far).
   double reach() const { return reach_; }
 
-  /// Advances every flocking NPC of `store` by `dt`, seeing same-population `ghosts`.
+  /// Advances every flocking NPC of `store` by `dt`, seeing same-population `ghosts`. With the
+  /// scene's `lod`, `players` (every player avatar of the cluster and the scene's observers,
+  /// x-z) and `tick` choose each NPC's update (the same plan for an NPC on every rank).
   /// Returns the number of NPCs stepped.
-  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt);
+  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt,
+                   std::span<const crowd::Vec2> players = {}, std::int64_t tick = 0);
+  /// NPC updates (agent steps) done by the last step() (every flocker without LOD).
+  std::size_t updates() const { return updates_; }
 
  private:
   struct Group;
@@ -49,6 +59,8 @@ class FlockMovement {
   std::vector<std::unique_ptr<Group>> groups_;  // one per flocking population
   double reach_ = 0;
   std::string backend_ = "none";
+  bool lod_ = false;  // the scene's lod key: plan updates by distance to the players
+  std::size_t updates_ = 0;
 };
 
 }  // namespace zonesim::zone
