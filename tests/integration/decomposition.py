@@ -4,7 +4,9 @@ exactly, and (scenes/crowd.yaml) walkers that keep apart read their neighbours a
 borders from ghosts that are bitwise the owners' state; (scenes/crowd_flock.yaml) flocking NPCs
 do the same through the crowd library's Flock, whose sums run in a canonical order;
 (scenes/courtyard_flow.yaml) a flow-field crowd on an obstacle map pushes apart across borders
-through ghosts and decides arrivals from positions alone;
+through ghosts and decides arrivals from positions alone; (scenes/flock_lod.yaml) a flock with
+a goal under level of detail, whose plan (from ids, positions, the tick and a scripted
+observer) is the same on every rank;
 (scenes/particles.yaml, --gpu off) fountains whose sprays cross zone borders end with the same
 live particles (positions and velocities, bit for bit); (crowd_flock with --gpu on) the same
 flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in cell-then-id
@@ -23,12 +25,14 @@ import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300,
-          "agents_paths": 600, "courtyard_formation": 700, "courtyard_ants": 1200}
+          "agents_paths": 600, "courtyard_formation": 700, "courtyard_ants": 1200,
+          "flock_lod": 300}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
-         "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"]}
+         "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
+         "flock_lod": ["--gpu", "off"]}
 GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents",
-                "courtyard_formation")
+                "courtyard_formation", "flock_lod")
 MIGRATION_SCENES = ("courtyard_ants",)  # no ghosts read; the trails are summed instead
 
 with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
