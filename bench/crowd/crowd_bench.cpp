@@ -1,8 +1,8 @@
-// crowd_bench [--agents 1000,10000,100000] [--lanes 1,2,4,8] [--steps N] [--only flock|flow|lod]
-//              [--lod-seconds S]
+// crowd_bench [--agents 1000,10000,100000] [--lanes 1,2,4,8] [--steps N]
+//              [--only flock|flow|lod|lod-flock] [--lod-seconds S]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
-// fields on one core, flow field build time, and (--only lod) AI time and outcome drift with
-// and without level of detail.
+// fields on one core, flow field build time, and (--only lod: flow crowds; --only lod-flock:
+// flocks) AI time and outcome drift with and without level of detail.
 
 #include <cstdio>
 #include <cstring>
@@ -233,6 +233,112 @@ void benchLod(const std::vector<int>& counts, double seconds) {
   }
 }
 
+struct FlockLodRun {
+  double msPerTick = 0;
+  std::size_t updates = 0;
+  std::vector<double> arrival;  // s until the agent has made `progress` m toward the goal
+  std::vector<Vec2> endPos;
+  double closest = 0;  // smallest distance between two agents at the end, m
+};
+
+// A flock of n at 0.5/m^2 in a square, heading for a point far beyond its north-east corner
+// (goal velocity 2 m/s, weight 1/s); players as in the flow case, scaled to the square.
+FlockLodRun runFlockLod(int n, int ticks, double progress, const LodSettings* lodSettings) {
+  const double side = std::sqrt(n / 0.5), dt = 1.0 / 30;
+  Agents a;
+  Pcg32 rng(3, 3);
+  for (int i = 0; i < n; ++i) {
+    a.ids.push_back(std::uint64_t(i) * 2654435761ULL);
+    a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
+    a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
+  }
+  const Vec2 goal{side + 1000, side + 1000};
+  const Vec2 dir = withLength(goal, 1.0);
+  std::vector<double> start(a.ids.size());
+  for (std::size_t i = 0; i < start.size(); ++i) start[i] = dot(a.pos[i], dir);
+  const std::vector<Vec2> players{{0.3 * side, 0.3 * side}, {0.7 * side, 0.6 * side}};
+  Flock flock{FlockSettings{}};
+  std::optional<LevelOfDetail> lod;
+  if (lodSettings) lod.emplace(*lodSettings);
+  std::vector<Vec2> goalVel(a.ids.size());
+  FlockLodRun r;
+  r.arrival.assign(a.ids.size(), -1);
+  double cpu = 0;
+  for (int t = 0; t < ticks; ++t) {
+    double t0 = Clock::now();
+    for (std::size_t i = 0; i < goalVel.size(); ++i) goalVel[i] = withLength(goal - a.pos[i], 2.0);
+    StepPlan plan;
+    if (lod) {
+      plan = lod->plan(a.ids, a.pos, players, t, dt);
+      r.updates += lod->updated();
+    } else {
+      r.updates += a.ids.size();
+    }
+    flock.step(a.span(), {}, dt, goalVel, plan);
+    cpu += msSince(t0);
+    for (std::size_t i = 0; i < a.ids.size(); ++i)
+      if (r.arrival[i] < 0 && dot(a.pos[i], dir) - start[i] >= progress)
+        r.arrival[i] = (t + 1) * dt;
+  }
+  r.msPerTick = cpu / ticks;
+  r.endPos = a.pos;
+  // Closest pair at the end, through the flock's own grid (3 m cells).
+  r.closest = 1e9;
+  flock.step(a.span(), {}, 0.0);  // a zero step rebuilds the grid at the end positions
+  for (const GridEntry& e : flock.grid().entries())
+    flock.grid().forEachNear(e.pos, 1.0, [&](const GridEntry& o) {
+      if (o.id != e.id) r.closest = std::min(r.closest, length(o.pos - e.pos));
+    });
+  return r;
+}
+
+void benchLodFlock(const std::vector<int>& counts, double seconds) {
+  const int ticks = int(seconds * 30);
+  const double progress = 40;
+  LodSettings cheap;
+  LodSettings steered = cheap;
+  steered.farSteers = true;
+  std::printf(
+      "\nLOD: flock at 0.5/m^2 heading north-east (goal velocity 2 m/s), 2 players at (0.3, "
+      "0.3) and (0.7, 0.6) of the square's side, %d ticks of 1/30 s; near %.0f m every tick, "
+      "mid to %.0f m every %d ticks, far every %d ticks; far-goal: far agents follow the goal "
+      "velocity only, far-steer: with the flock's terms. Arrival: time to make %.0f m toward "
+      "the goal; errors against the full-detail run of the same agents.\n\n",
+      ticks, cheap.nearRadius, cheap.farRadius, cheap.midEvery, cheap.farEvery, progress);
+  std::printf(
+      "| agents | variant | ms/tick | speed-up | updates ratio | arrived | arrival |dt| mean s "
+      "| max s | end pos error mean m | max m | closest pair m |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int n : counts) {
+    FlockLodRun full = runFlockLod(n, ticks, progress, nullptr);
+    int arrivedFull = 0;
+    for (double t : full.arrival) arrivedFull += t >= 0;
+    std::printf("| %d | full | %.3f | 1.00 | 1.00 | %d | | | | | %.2f |\n", n, full.msPerTick,
+                arrivedFull, full.closest);
+    for (const LodSettings* s : {&cheap, &steered}) {
+      FlockLodRun lod = runFlockLod(n, ticks, progress, s);
+      int arrived = 0, both = 0;
+      double sumDt = 0, maxDt = 0, sumErr = 0, maxErr = 0;
+      for (std::size_t i = 0; i < full.arrival.size(); ++i) {
+        arrived += lod.arrival[i] >= 0;
+        if (full.arrival[i] >= 0 && lod.arrival[i] >= 0) {
+          double d = std::abs(full.arrival[i] - lod.arrival[i]);
+          sumDt += d;
+          maxDt = std::max(maxDt, d);
+          ++both;
+        }
+        double e = length(full.endPos[i] - lod.endPos[i]);
+        sumErr += e;
+        maxErr = std::max(maxErr, e);
+      }
+      std::printf("| %d | %s | %.3f | %.2f | %.2f | %d | %.3f | %.2f | %.3f | %.2f | %.2f |\n", n,
+                  s->farSteers ? "far-steer" : "far-goal", lod.msPerTick,
+                  full.msPerTick / lod.msPerTick, double(full.updates) / double(lod.updates),
+                  arrived, both ? sumDt / both : 0.0, maxDt, sumErr / n, maxErr, lod.closest);
+    }
+  }
+}
+
 std::vector<int> parseList(const char* s) {
   std::vector<int> out;
   std::string str(s);
@@ -267,15 +373,15 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--lod-seconds") && i + 1 < argc)
       lodSeconds = std::stod(argv[++i]);
     else {
-      std::fprintf(
-          stderr,
-          "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N] [--only flock|flow|lod] "
-          "[--lod-seconds S]\n");
+      std::fprintf(stderr,
+                   "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N]\n"
+                   "                   [--only flock|flow|lod|lod-flock] [--lod-seconds S]\n");
       return 2;
     }
   }
   if (only.empty() || only == "flock") benchFlock(counts, lanes, steps);
   if (only.empty() || only == "flow") benchFlow(counts, steps);
   if (only == "lod") benchLod(counts, lodSeconds);
+  if (only == "lod-flock") benchLodFlock(counts, lodSeconds);
   return 0;
 }
