@@ -80,7 +80,20 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
   // Arrived agents have left the crowd: they are neither moved nor seen.
   grid_.build(agents.ids, agents.pos, agents.vel, ghosts,
               std::max(settings_.gridCell, settings_.separationRadius), arrived);
-  for (const GridEntry& e : grid_.entries()) {
+  const std::span<const GridEntry> entries = grid_.entries();
+  constexpr std::size_t kAhead = 8;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    // Agents come in cell order but are stored in the caller's order: fetch the lines of the
+    // agents a few entries ahead (each is a cache miss in random storage order).
+    if (k + kAhead < entries.size() && entries[k + kAhead].src >= 0) {
+      const std::size_t a = static_cast<std::size_t>(entries[k + kAhead].src);
+      __builtin_prefetch(&dest[a]);
+      __builtin_prefetch(&arrived[a], 1);
+      __builtin_prefetch(&agents.pos[a], 1);
+      __builtin_prefetch(&agents.vel[a], 1);
+      if (!plan.empty()) __builtin_prefetch(&plan.dt[a]);
+    }
+    const GridEntry& e = entries[k];
     if (e.src < 0) continue;
     const double h = plan.empty() ? dt : plan.dt[e.src];
     if (h <= 0.0) continue;
