@@ -76,6 +76,28 @@ struct ScenePoint {
   int line = 0;
 };
 
+/// A road network: NPCs travel between waypoints of a weighted graph along cheapest paths
+/// (zone_node/ai/waypoint_graph.h, zone_node/systems/road_movement.h).
+struct NpcRoads {
+  bool enabled = false;  ///< the population travels the graph instead of wandering
+  struct Edge {
+    int a = 0, b = 0;         ///< node indices
+    double cost = 0;          ///< > 0; the straight length unless the scene gives one
+    std::uint32_t flags = 0;  ///< bits of flag_names the edge needs (door, ladder...)
+    bool one_way = false;     ///< a -> b only
+  };
+  /// An edge shut from `from` until `until` (simulated seconds).
+  struct Closure {
+    int edge = 0;
+    double from = 0, until = 0;
+  };
+  std::vector<ScenePoint> nodes;
+  std::vector<Edge> edges;
+  std::vector<std::string> flag_names;  ///< bit i of a flag set is flag_names[i]
+  std::uint32_t may_use = 0;            ///< flags these NPCs may pass
+  std::vector<Closure> closures;
+};
+
 /// A fixed group (zone_node/crowd/formation.h, docs/crowd.md): the population's NPCs hold
 /// slots around a centre that walks a route on the scene's map; a member cut off from the
 /// group plans A* back to it and rejoins (`populations[].formation`).
@@ -137,6 +159,7 @@ struct NpcPopulation {
   NpcFlow flow;            ///< flow-field crowd instead of waypoints when enabled
   NpcFormation formation;  ///< a fixed group instead of waypoints when enabled
   NpcColony colony;        ///< an ant colony instead of waypoints when enabled
+  NpcRoads roads;          ///< travels a road network instead of wandering when enabled
 };
 
 /// Spheres falling under gravity and bouncing on the ground (the physics issue adds shapes).

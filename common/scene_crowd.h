@@ -28,6 +28,9 @@ void readNpcFormation(const SceneMap& population, const Scene& scene, NpcPopulat
 /// Reads the optional `colony` block of an NPC population (common/scene_colony.cpp).
 void readNpcColony(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
+/// Reads the optional `roads` block of an NPC population (common/scene_roads.cpp).
+void readNpcRoads(const SceneMap& population, const Scene& scene, NpcPopulation& p);
+
 /// A point [x, y, z] on the ground plane inside the world (y is ignored).
 ScenePoint readGroundPoint(const SceneNode& node, const Scene& scene);
 

@@ -111,7 +111,7 @@ void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p)
 void readNpcs(const SceneNode& node, Scene& scene) {
   SceneMap m =
       node.map({"kind", "count", "speed", "acceleration", "waypoint_radius", "arrive_distance",
-                "region", "separation", "gather", "flock", "flow", "formation", "colony"});
+                "region", "separation", "gather", "flock", "flow", "formation", "colony", "roads"});
   NpcPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   m.read("speed", p.min_speed, p.max_speed, Limit::atLeast(0));
@@ -145,6 +145,7 @@ void readNpcs(const SceneNode& node, Scene& scene) {
   readNpcFlow(m, scene, p);
   readNpcFormation(m, scene, p);
   readNpcColony(m, scene, p);
+  readNpcRoads(m, scene, p);
   scene.npcs.push_back(p);
 }
 

@@ -78,6 +78,8 @@ class SceneNode {
   const std::string& file() const { return *file_; }
   /// Whether the value is a scalar (a name or number, not a list or mapping).
   bool isScalar() const { return node_.IsScalar(); }
+  /// Whether the value is a list.
+  bool isSequence() const { return node_.IsSequence(); }
   /// An empty mapping standing in for an absent key, located at this node.
   SceneNode emptyChild(std::string_view key) const;
 

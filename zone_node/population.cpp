@@ -107,6 +107,16 @@ void forEachInitialEntity(const Scene& scene,
         r.pos = Vec3(at.x, scene.world.min.y, at.y);
         r.npc.crowd_path = {nest.x, nest.y};
       }
+      // A road NPC starts at rest on a node drawn from its stream, which is its first goal.
+      if (p.roads.enabled) {
+        r.npc.flock = std::int32_t(group);
+        Pcg32 more = Pcg32::fromState(r.rng_state, r.id.value);
+        const int start = int(more.next() % std::uint32_t(p.roads.nodes.size()));
+        r.pos = Vec3(p.roads.nodes[std::size_t(start)].x, scene.world.min.y,
+                     p.roads.nodes[std::size_t(start)].z);
+        r.npc.crowd_at = r.npc.crowd_mode = start;
+        r.rng_state = more.state();
+      }
       // A formation member starts at rest at its slot (its index in the population).
       if (p.formation.enabled) {
         r.npc.flock = std::int32_t(group);

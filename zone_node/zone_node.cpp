@@ -20,6 +20,7 @@
 #include "zone_node/systems/formation_movement.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
+#include "zone_node/systems/road_movement.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -75,6 +76,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   map_ = loadWorldMap(scene);
   flows_ = std::make_unique<FlowMovement>(scene, map_.get());
   formations_ = std::make_unique<FormationMovement>(scene, map_.get());
+  roads_ = std::make_unique<RoadMovement>(scene);
   ants_ = std::make_unique<AntMovement>(scene, map_.get());
   agents_ = std::make_unique<AgentSystem>(scene, map_ ? &map_->grid : nullptr,
                                           map_ ? map_->frame : crowd::MapFrame{});
@@ -296,6 +298,7 @@ void ZoneNode::ai() {
   if (flows_->active())
     flows_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
   if (formations_->active()) formations_->step(store_, &halo_.ghosts(), scene_.dt, tick_);
+  if (roads_->active()) roads_->step(store_, scene_.dt, tick_);
   if (ants_->active()) {
     // Every rank's deposits of this tick, summed exactly on every rank (the scene decides that
     // there are colonies, so all take part), then the trails evaporate alike everywhere.

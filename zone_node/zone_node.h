@@ -34,6 +34,7 @@ class RigidBodySystem;
 class FlockMovement;
 class FlowMovement;
 class FormationMovement;
+class RoadMovement;
 class AntMovement;
 struct WorldMap;
 class AgentSystem;
@@ -141,6 +142,7 @@ class ZoneNode {
   std::shared_ptr<const WorldMap> map_;            // the scene's walls; null without `map:`
   std::unique_ptr<FlowMovement> flows_;            // flow-field NPC populations (need map_)
   std::unique_ptr<FormationMovement> formations_;  // fixed groups (need map_)
+  std::unique_ptr<RoadMovement> roads_;            // road networks (waypoint graphs)
   std::unique_ptr<AntMovement> ants_;              // ant colonies (need map_)
   std::unique_ptr<AgentSystem> agents_;            // AI agents (scene key `agents`)
   std::vector<crowd::Vec2> players_;               // every avatar of the cluster, for crowd LOD

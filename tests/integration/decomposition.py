@@ -16,7 +16,9 @@ them when they migrate; (scenes/agents_paths.yaml) couriers whose A* paths migra
 and are re-planned when a door closes; (scenes/courtyard_formation.yaml) a formation whose
 centre every rank computes alike, whose members carry their rejoin paths when they migrate and
 push apart through ghosts; (scenes/courtyard_ants.yaml) ants that carry their routes across
-borders and lay trail on a grid summed over the ranks in integers every tick."""
+borders and lay trail on a grid summed over the ranks in integers every tick; (scenes/roads.yaml)
+NPCs on a waypoint graph whose next node and goal migrate with them, deciding at each node from
+the graph and its timed closure alone."""
 import json
 import tempfile
 from pathlib import Path
@@ -26,14 +28,15 @@ import harness as h
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300,
           "agents_paths": 600, "courtyard_formation": 700, "courtyard_ants": 1200,
-          "flock_lod": 300}
+          "flock_lod": 300, "roads": 1200}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
          "flock_lod": ["--gpu", "off"]}
 GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents",
                 "courtyard_formation", "flock_lod")
-MIGRATION_SCENES = ("courtyard_ants",)  # no ghosts read; the trails are summed instead
+# No ghosts read: the ants' trails are summed instead; road NPCs decide from the graph alone.
+MIGRATION_SCENES = ("courtyard_ants", "roads")
 
 with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
     out = Path(tmp)

@@ -1,0 +1,45 @@
+#pragma once
+// Road networks in a zone: each NPC population with `roads` travels a waypoint graph
+// (ai::WaypointGraph: weighted, flagged, one-way edges), walking straight from node to node at
+// its speed and, at each node, taking the first edge of a cheapest path to its goal over the
+// edges it may use that are open then; at the goal it draws the next goal from its own random
+// stream. An edge that closes (a timed closure) stops nobody already on it: decisions are
+// made at nodes only, and an NPC with no open way waits at its node and asks again each tick.
+// Its state is two integers that migrate with it (NpcData::crowd_at: the node it walks to,
+// crowd_mode: its goal); every rank holds the same graph and closures, so the same question
+// gets the same answer anywhere and a zone run ends bitwise equal on any number of ranks.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/scene.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim::zone {
+
+/// Steps the road-network NPC populations of a scene.
+class RoadMovement {
+ public:
+  explicit RoadMovement(const Scene& scene);
+  ~RoadMovement();
+
+  /// Whether the scene has a road population at all.
+  bool active() const { return !networks_.empty(); }
+
+  /// Moves the road NPCs of `store` through tick `tick` (closures as at its start, tick * dt).
+  void step(EntityStore& store, double dt, std::uint64_t tick);
+
+  /// The node after `from` on a cheapest path to `goal` for population `p` over the edges it
+  /// may use that are open at `time`; -1 when there is none (and `goal` itself at the goal).
+  int nextHop(std::size_t p, int from, int goal, double time);
+
+ private:
+  struct Network;
+  Network* networkOf(std::int32_t population);
+
+  const Scene& scene_;
+  std::vector<std::unique_ptr<Network>> networks_;
+};
+
+}  // namespace zonesim::zone
