@@ -134,7 +134,8 @@ const InlineCase kInlineCases[] = {
      "6: populations[0].count: required field is missing"},
     {"key_of_other_kind", withBase("populations:\n  - kind: npc\n    count: 1\n    rate: 5\n"),
      "8: populations[0].rate: unknown key (allowed: kind, count, speed, acceleration, "
-     "waypoint_radius, arrive_distance, region, separation, gather, flock, flow, formation, colony)"},
+     "waypoint_radius, arrive_distance, region, separation, gather, flock, flow, formation, "
+     "colony, roads)"},
     {"gather_outside_world",
      withBase("populations:\n  - kind: npc\n    count: 1\n    gather:\n      point: [500, 0, 5]\n"),
      "9: populations[0].gather.point: is outside the world"},
