@@ -111,7 +111,7 @@ struct AgentPathSettings {
   int cluster_size = 16;        ///< HPA* cluster side, cells
   int paths_per_tick = 8;       ///< planner calls per tick and zone
   int expansions_per_tick = 0;  ///< node expansions per tick and zone (0: no limit)
-  int cache = 0;                ///< cached paths (0: none, see docs/ai.md on invariance)
+  int cache = 1024;             ///< cached paths per zone (0: none; a hit equals a fresh plan)
 };
 
 /// Everything under the scene's `agents` key.

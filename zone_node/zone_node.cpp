@@ -8,6 +8,7 @@
 #include "zone_node/cluster/offload_agreement.h"
 #include "zone_node/cluster/player_positions.h"
 #include "zone_node/cluster/trail_exchange.h"
+#include "zone_node/cluster/value_gather.h"
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/zone_link.h"
 #include "zone_node/population.h"
@@ -80,6 +81,10 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   ants_ = std::make_unique<AntMovement>(scene, map_.get());
   agents_ = std::make_unique<AgentSystem>(scene, map_ ? &map_->grid : nullptr,
                                           map_ ? map_->frame : crowd::MapFrame{});
+  // The path budget is the cluster's: zones share their oldest requests' keys every tick.
+  if (size_ > 1)
+    agents_->setGather(
+        [this](const std::vector<std::uint64_t>& v) { return gatherValues(comm_, v); });
   // Flocks and flow crowds read their neighbours across borders as ghosts too, and agents see
   // enemies there.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active() ||

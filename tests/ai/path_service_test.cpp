@@ -164,6 +164,38 @@ TEST_P(PathServiceTest, ClosingADoorReplansOnlyThePathsThroughIt) {
   EXPECT_TRUE(isValidPath(m, service.path(cross).cells));
 }
 
+TEST_P(PathServiceTest, WithClearCacheOnCloseAHitIsWhatAFreshPlanGives) {
+  // Zones keep a cache each, so a hit must equal planning on the same map: same cells and the
+  // same expansion count charged to the budget, before and after a door closes.
+  GridMap m = twoDoors();
+  PathServiceConfig config;
+  config.planner = GetParam();
+  config.clearCacheOnClose = true;
+  PathService service(m, config);
+  GridPath first, hit;
+  int expandedFirst = 0, expandedHit = 0;
+  ASSERT_TRUE(service.solve({2, 30}, {38, 30}, first, expandedFirst));
+  ASSERT_TRUE(service.solve({2, 30}, {38, 30}, hit, expandedHit));
+  EXPECT_EQ(service.stats().planned, 1u);
+  EXPECT_EQ(service.stats().cacheHits, 1u);
+  EXPECT_EQ(hit.cells, first.cells);
+  EXPECT_EQ(expandedHit, expandedFirst);
+  EXPECT_GT(expandedFirst, 0);
+
+  service.setCell({10, 10}, false);  // not on the path, yet the cache is cleared
+  GridPath after;
+  int expandedAfter = 0;
+  ASSERT_TRUE(service.solve({2, 30}, {38, 30}, after, expandedAfter));
+  EXPECT_EQ(service.stats().planned, 2u);
+  GridMap same = m;
+  PathService fresh(same, config);
+  GridPath reference;
+  int expandedReference = 0;
+  ASSERT_TRUE(fresh.solve({2, 30}, {38, 30}, reference, expandedReference));
+  EXPECT_EQ(after.cells, reference.cells);
+  EXPECT_EQ(expandedAfter, expandedReference);
+}
+
 TEST_P(PathServiceTest, ReleasedHandlesGoStale) {
   GridMap m(16, 16);
   PathServiceConfig config;

@@ -13,12 +13,14 @@ flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in 
 order on global cells, so a rank's other agents change nothing); (scenes/agents.yaml) AI agents
 that see wanderers across borders through ghosts and carry their machine states and plans with
 them when they migrate; (scenes/agents_paths.yaml) couriers whose A* paths migrate with them
-and are re-planned when a door closes; (scenes/courtyard_formation.yaml) a formation whose
-centre every rank computes alike, whose members carry their rejoin paths when they migrate and
-push apart through ghosts; (scenes/courtyard_ants.yaml) ants that carry their routes across
-borders and lay trail on a grid summed over the ranks in integers every tick; (scenes/roads.yaml)
-NPCs on a waypoint graph whose next node and goal migrate with them, deciding at each node from
-the graph and its timed closure alone."""
+and are re-planned when a door closes; (scenes/agents_paths_budget.yaml) the same couriers under
+a path budget that binds, shared by the cluster, with HPA* and its path cache;
+(scenes/courtyard_formation.yaml) a formation whose centre every rank computes alike, whose
+members carry their rejoin paths when they migrate and push apart through ghosts;
+(scenes/courtyard_ants.yaml) ants that carry their routes across borders and lay trail on a grid
+summed over the ranks in integers every tick; (scenes/roads.yaml) NPCs on a waypoint graph whose
+next node and goal migrate with them, deciding at each node from the graph and its timed closure
+alone."""
 import json
 import tempfile
 from pathlib import Path
@@ -27,8 +29,8 @@ import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300,
-          "agents_paths": 600, "courtyard_formation": 700, "courtyard_ants": 1200,
-          "flock_lod": 300, "roads": 1200}
+          "agents_paths": 600, "agents_paths_budget": 600, "courtyard_formation": 700,
+          "courtyard_ants": 1200, "flock_lod": 300, "roads": 1200}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
@@ -59,6 +61,15 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
                 h.check(backends == {"opencl"}, f"{scene}: flocks on OpenCL ({sorted(backends)})")
             ghosts_sent[ranks] = sum(s.get("ghosts_sent", 0) for s in summaries)
             migrated[ranks] = sum(s.get("migrated_out", 0) for s in summaries)
+            if scene == "agents_paths_budget" and ranks == 4:
+                waiting = {}  # tick -> zones with requests still waiting after it
+                for p in metrics.glob("zone_*.jsonl"):
+                    for row in map(json.loads, p.read_text().splitlines()):
+                        if row.get("paths_queued", 0) > 0:
+                            waiting[row["tick"]] = waiting.get(row["tick"], 0) + 1
+                shared = sum(1 for n in waiting.values() if n >= 2)
+                h.check(shared > 10, f"{scene}: requests waited in several zones at once in "
+                        f"{shared} ticks (the budget is shared)")
         lines = dumps[1].count("\n")
         h.check(lines > 0, f"{scene}: the dump lists {lines} entities")
         if scene == "particles":

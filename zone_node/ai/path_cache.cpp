@@ -4,7 +4,7 @@
 
 namespace zonesim::ai {
 
-const GridPath* PathCache::find(Cell start, Cell goal) {
+const GridPath* PathCache::find(Cell start, Cell goal, int* expanded) {
   auto it = index_.find(key(start, goal));
   if (it == index_.end()) {
     ++misses_;
@@ -12,15 +12,17 @@ const GridPath* PathCache::find(Cell start, Cell goal) {
   }
   ++hits_;
   lru_.splice(lru_.begin(), lru_, it->second);
+  if (expanded) *expanded = it->second->expanded;
   return &it->second->path;
 }
 
-void PathCache::insert(Cell start, Cell goal, const GridPath& path) {
+void PathCache::insert(Cell start, Cell goal, const GridPath& path, int expanded) {
   if (capacity_ == 0) return;
   std::uint64_t k = key(start, goal);
   auto it = index_.find(k);
   if (it != index_.end()) {
     it->second->path = path;
+    it->second->expanded = expanded;
     lru_.splice(lru_.begin(), lru_, it->second);
     return;
   }
@@ -28,7 +30,7 @@ void PathCache::insert(Cell start, Cell goal, const GridPath& path) {
     index_.erase(lru_.back().key);
     lru_.pop_back();
   }
-  lru_.push_front(Entry{k, path});
+  lru_.push_front(Entry{k, path, expanded});
   index_[k] = lru_.begin();
 }
 

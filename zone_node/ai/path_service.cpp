@@ -92,11 +92,22 @@ void PathService::tick() {
     expansions += expanded;
     if (ok) {
       r.status = PathStatus::Ready;
-      cache_.insert(r.start, r.goal, r.path);
+      cache_.insert(r.start, r.goal, r.path, expanded);
     } else {
       r.status = PathStatus::NoPath;
     }
   }
+}
+
+bool PathService::solve(Cell start, Cell goal, GridPath& out, int& expanded) {
+  if (const GridPath* cached = cache_.find(start, goal, &expanded)) {
+    out = *cached;
+    ++stats_.cacheHits;
+    return true;
+  }
+  if (!plan(start, goal, out, expanded)) return false;
+  cache_.insert(start, goal, out, expanded);
+  return true;
 }
 
 PathStatus PathService::status(PathRequestId id) const {
@@ -126,7 +137,10 @@ void PathService::setCell(Cell c, bool open) {
     }
     return;
   }
-  cache_.cellClosed(c);
+  if (config_.clearCacheOnClose)
+    cache_.clear();
+  else
+    cache_.cellClosed(c);
   for (std::uint32_t slot = 0; slot < requests_.size(); ++slot) {
     Request& r = requests_[slot];
     if (r.status != PathStatus::Ready) continue;

@@ -28,6 +28,10 @@ struct PathServiceConfig {
   int pathsPerTick = 8;                    ///< planner calls allowed per tick
   int expansionsPerTick = 0;               ///< node expansions allowed per tick (0: no limit)
   std::size_t cacheCapacity = 1024;        ///< cached paths (0: no cache)
+  /// Closing a cell clears the cache too. A kept path stays optimal, but a fresh plan on the new
+  /// map may pick another path of the same length; set this where a hit must equal a fresh plan
+  /// (zones, whose caches differ from rank to rank).
+  bool clearCacheOnClose = false;
 };
 
 /// State of a request.
@@ -59,6 +63,11 @@ class PathService {
   void release(PathRequestId id);
   /// Plans queued requests in arrival order within the per-tick budget.
   void tick();
+  /// Plans one path now, outside the queue and its budget (for a caller that budgets itself):
+  /// from the cache when it holds the pair, else by the planner (then cached). `expanded` is
+  /// the planner's node count, on a hit the count stored with the path, so that with
+  /// clearCacheOnClose a hit gives the caller's budget and the agent exactly what planning would.
+  bool solve(Cell start, Cell goal, GridPath& out, int& expanded);
   /// State of a request (Unknown for a released or stale handle).
   PathStatus status(PathRequestId id) const;
   /// The path of a Ready request (empty otherwise).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace zonesim::zone {
@@ -40,6 +41,10 @@ AgentNavigation::AgentNavigation(const Scene& scene, const ai::GridMap* grid,
   c.pathsPerTick = p.paths_per_tick;
   c.expansionsPerTick = p.expansions_per_tick;
   c.cacheCapacity = std::size_t(p.cache);
+  // Caches differ between ranks, so a hit must be exactly what a fresh plan would give: the
+  // planners are deterministic for a given map (A* and HPA* break every tie by a fixed order),
+  // and any door, closing or opening, clears the cache.
+  c.clearCacheOnClose = true;
   service_ = std::make_unique<ai::PathService>(grid_, c);
 }
 
@@ -88,17 +93,15 @@ ai::Cell AgentNavigation::startCell(double x, double z) const {
   return best;
 }
 
-void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z, bool navigate) {
+void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z, bool navigate,
+                           std::int64_t tick) {
   AgentData& a = store.agent[i];
   bool moved_target = a.target_x != x || a.target_z != z;
   if (moved_target && a.nav != navOf(AgentNav::None)) {
     a.nav = navOf(AgentNav::None);
     a.path.clear();
   }
-  // An agent that arrived here waiting for a path its old zone was planning asks again.
-  if (a.nav == navOf(AgentNav::Waiting) && !pending_.count(store.id[i].value))
-    a.nav = navOf(AgentNav::None);
-  if (a.nav != navOf(AgentNav::None)) return;
+  if (a.nav != navOf(AgentNav::None)) return;  // a waiting request migrated with its agent
   a.target_x = x;
   a.target_z = z;
   a.origin_x = store.pos[i].x();
@@ -108,29 +111,87 @@ void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z
     a.nav = navOf(AgentNav::Moving);  // straight at the target
     return;
   }
+  // While waiting, `travelled` holds the tick the path was asked for: the request's age, which
+  // orders it in the cluster's queue. It migrates with the agent like the rest of the request
+  // (origin and target).
   a.nav = navOf(AgentNav::Waiting);
-  requests_.push_back({store.id[i], startCell(a.origin_x, a.origin_z), frame_.cellOf({x, z})});
+  a.travelled = double(tick);
 }
 
 void AgentNavigation::plan(EntityStore& store) {
   if (!service_) return;
-  // Queued in id order, so the budget serves agents in an order no store layout changes.
-  std::sort(requests_.begin(), requests_.end(),
-            [](const Request& l, const Request& r) { return l.id < r.id; });
-  for (const Request& r : requests_) pending_[r.id.value] = service_->request(r.from, r.to);
-  requests_.clear();
-  service_->tick();
+  const std::size_t budget = std::size_t(scene_.agents.paths.paths_per_tick);
+  const long expansion_budget = scene_.agents.paths.expansions_per_tick;
+  waiting_.clear();
   for (std::size_t i = 0; i < store.size(); ++i) {
-    AgentData& a = store.agent[i];
+    const AgentData& a = store.agent[i];
     if (a.type < 0 || a.nav != navOf(AgentNav::Waiting)) continue;
-    auto it = pending_.find(store.id[i].value);
-    if (it == pending_.end()) continue;
-    ai::PathStatus s = service_->status(it->second);
-    if (s == ai::PathStatus::Queued) continue;
-    if (s == ai::PathStatus::Ready) {
-      const ai::GridPath& p = service_->path(it->second);
-      a.path.clear();
-      for (const ai::Cell& c : p.cells) {
+    waiting_.push_back(Waiting{std::uint64_t(a.travelled), store.id[i].value, i});
+  }
+  auto byKey = [](const Waiting& l, const Waiting& r) {
+    return l.asked != r.asked ? l.asked < r.asked : l.id < r.id;
+  };
+  std::sort(waiting_.begin(), waiting_.end(), byKey);
+  // Only a zone's oldest `budget` requests can be among the cluster's oldest `budget`.
+  std::vector<std::uint64_t> keys;
+  for (std::size_t k = 0; k < waiting_.size() && k < budget; ++k) {
+    keys.push_back(waiting_[k].asked);
+    keys.push_back(waiting_[k].id);
+  }
+  std::vector<std::uint64_t> all = gather_ ? gather_(keys) : keys;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> window;
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2) window.emplace_back(all[k], all[k + 1]);
+  std::sort(window.begin(), window.end());
+  if (window.size() > budget) window.resize(budget);
+  // Plan this zone's requests of the window in the window's order. A zone stops once its own
+  // plans expanded the budget: every later request of the window has at least that much
+  // before it cluster-wide, so the cut below falls before it anyway.
+  long mine_expanded = 0;
+  std::size_t next = 0;  // waiting_ is in the window's order too
+  for (const auto& key : window) {
+    if (next >= waiting_.size() || waiting_[next].asked != key.first ||
+        waiting_[next].id != key.second)
+      continue;  // another zone's
+    Waiting& w = waiting_[next++];
+    if (expansion_budget > 0 && mine_expanded >= expansion_budget) continue;
+    const AgentData& a = store.agent[w.index];
+    ai::Cell to = frame_.cellOf({a.target_x, a.target_z});
+    w.found = service_->solve(startCell(a.origin_x, a.origin_z), to, w.path, w.expanded);
+    mine_expanded += w.expanded;
+  }
+  // How many requests of the window are served: all of them, or with an expansion budget those
+  // before the first whose predecessors expanded it (the first is always served).
+  std::size_t served = window.size();
+  if (expansion_budget > 0 && !window.empty()) {
+    std::vector<std::uint64_t> counts;
+    for (std::size_t k = 0; k < next; ++k) {
+      if (waiting_[k].expanded < 0) continue;
+      counts.push_back(waiting_[k].id);
+      counts.push_back(std::uint64_t(waiting_[k].expanded));
+    }
+    std::vector<std::uint64_t> gathered = gather_ ? gather_(counts) : counts;
+    std::unordered_map<std::uint64_t, std::uint64_t> expanded_by_id;
+    for (std::size_t k = 0; k + 1 < gathered.size(); k += 2)
+      expanded_by_id[gathered[k]] = gathered[k + 1];
+    long before = 0;
+    for (served = 0; served < window.size(); ++served) {
+      auto it = expanded_by_id.find(window[served].second);
+      if (before >= expansion_budget || it == expanded_by_id.end()) break;
+      before += long(it->second);
+    }
+  }
+  // Hand out the served paths; the rest keep waiting (a plan past the cut is dropped, though
+  // the cache may keep it).
+  std::size_t k = 0;
+  for (std::size_t j = 0; j < served && k < next; ++j) {
+    Waiting& w = waiting_[k];
+    if (w.asked != window[j].first || w.id != window[j].second) continue;
+    ++k;
+    AgentData& a = store.agent[w.index];
+    a.travelled = 0;
+    a.path.clear();
+    if (w.found) {
+      for (const ai::Cell& c : w.path.cells) {
         a.path.push_back(c.x);
         a.path.push_back(c.y);
       }
@@ -138,18 +199,7 @@ void AgentNavigation::plan(EntityStore& store) {
     } else {
       a.nav = navOf(AgentNav::NoPath);
     }
-    service_->release(it->second);
-    pending_.erase(it);
-  }
-  // Requests of agents that left the zone while waiting: the new owner asks again.
-  for (auto it = pending_.begin(); it != pending_.end();) {
-    std::optional<std::size_t> i = store.indexOf(EntityId{it->first});
-    if (i && store.agent[*i].nav == navOf(AgentNav::Waiting)) {
-      ++it;
-      continue;
-    }
-    service_->release(it->second);
-    it = pending_.erase(it);
+    ++served_;
   }
   for (auto it = splines_.begin(); it != splines_.end();)
     it = store.indexOf(EntityId{it->first}) ? std::next(it) : splines_.erase(it);
@@ -210,12 +260,9 @@ bool AgentNavigation::follow(EntityStore& store, std::size_t i, double speed, do
 
 AgentPathStats AgentNavigation::takeStats() {
   AgentPathStats s;
-  if (service_) {
-    ai::PathServiceStats now = service_->stats();
-    s.planned = now.planned - planned_before_;
-    planned_before_ = now.planned;
-    s.queued = service_->queued();
-  }
+  s.planned = served_;
+  served_ = 0;
+  s.queued = waiting_.size() - std::min(waiting_.size(), std::size_t(s.planned));
   s.replans = replans_;
   replans_ = 0;
   return s;

@@ -1,13 +1,22 @@
 #pragma once
 // How AI agents get somewhere: on a scene with an obstacle map, navigating types ask the zone's
-// PathService for an A* or HPA* path (queued under the scene's per-tick budget) and walk it along
-// a centripetal Catmull-Rom spline from their exact position to their exact target; doors that
-// close at a scene time cut paths, and the agents whose remaining path crossed the door ask
-// again from where they stand. Without a map, or for types that do not navigate, they steer
-// straight at the target. The path itself is AgentData (it migrates with the agent); the spline
-// is a local cache rebuilt from it, so it is the same on every rank.
+// PathService for an A* or HPA* path and walk it along a centripetal Catmull-Rom spline from their
+// exact position to their exact target; doors that close at a scene time cut paths, and the
+// agents whose remaining path crossed the door ask again from where they stand. Without a map, or
+// for types that do not navigate, they steer straight at the target. The path itself is
+// AgentData (it migrates with the agent); the spline is a local cache rebuilt from it, so it is
+// the same on every rank.
+//
+// The per-tick budget is the cluster's, not the zone's: a waiting request is keyed by (tick it was
+// asked, agent id), both in AgentData, so it migrates with its agent. Each tick every zone sends
+// the keys of its oldest `paths_per_tick` requests to all (ClusterGather), every zone sorts the
+// union the same way and plans those of its own agents among the first `paths_per_tick`. With an
+// expansion budget the zones then share what each of those plans expanded and all cut the list
+// at the same place (the first request whose predecessors expanded the budget), so which request
+// is served in which tick does not depend on the decomposition.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -25,9 +34,13 @@ namespace zonesim::zone {
 /// AgentData::nav values.
 enum class AgentNav : std::int32_t { None = 0, Waiting = 1, Moving = 2, Arrived = 3, NoPath = 4 };
 
+/// Concatenates one list of values from every zone of the cluster, in rank order: a collective
+/// that every zone calls in the same tick. A lone zone's gather returns its own list.
+using ClusterGather = std::function<std::vector<std::uint64_t>(const std::vector<std::uint64_t>&)>;
+
 /// Path-service figures of one tick.
 struct AgentPathStats {
-  std::uint64_t planned = 0;  ///< planner calls this tick
+  std::uint64_t planned = 0;  ///< requests served this tick (planned or from the cache)
   std::uint64_t queued = 0;   ///< requests still waiting after the tick
   std::uint64_t replans = 0;  ///< agents whose path a door cut this tick
 };
@@ -49,10 +62,15 @@ class AgentNavigation {
   /// Opens and closes the doors due by `time`; agents whose path crosses a closed door, and
   /// agents without a path when one opens, will ask again.
   void applyDoors(double time, EntityStore& store);
-  /// Agent i heads for (x, z) this tick: a navigating agent without a path to it asks for one.
-  void want(EntityStore& store, std::size_t i, double x, double z, bool navigate);
-  /// Plans queued requests within the budget and hands finished paths to their agents.
+  /// Agent i heads for (x, z) in tick `tick`: a navigating agent without a path to it asks for
+  /// one.
+  void want(EntityStore& store, std::size_t i, double x, double z, bool navigate,
+            std::int64_t tick);
+  /// Serves the waiting requests that fall within the cluster's budget this tick (collective
+  /// through the gather) and hands their paths to their agents.
   void plan(EntityStore& store);
+  /// How zones share request keys; the default serves a lone zone.
+  void setGather(ClusterGather gather) { gather_ = std::move(gather); }
   /// Moves agent i toward its target by `dt` at `speed`: along its spline when it has a path,
   /// else straight with braking (the caller's steering integrates `desired`). Returns true
   /// when the position was set directly (spline), false when `desired` holds a velocity.
@@ -71,19 +89,22 @@ class AgentNavigation {
   std::unique_ptr<ai::PathService> service_;
   std::size_t next_door_ = 0;
   std::uint64_t map_changes_ = 0;
-  struct Request {
-    EntityId id;
-    ai::Cell from, to;
+  ClusterGather gather_;
+  struct Waiting {
+    std::uint64_t asked, id;  // the request's key
+    std::size_t index;        // in the store
+    int expanded = -1;        // nodes its plan expanded this tick; -1: not planned
+    bool found = false;
+    ai::GridPath path;
   };
-  std::vector<Request> requests_;                                 // asked this tick
-  std::unordered_map<std::uint64_t, ai::PathRequestId> pending_;  // agent id -> request
+  std::vector<Waiting> waiting_;  // this zone's requests, oldest first
+  std::uint64_t served_ = 0;
   struct Spline {
     std::vector<std::int32_t> path;
     double ox = 0, oz = 0, tx = 0, tz = 0;
     std::unique_ptr<ai::SplinePath> spline;
   };
   std::unordered_map<std::uint64_t, Spline> splines_;  // looked up by agent id, never iterated
-  std::uint64_t planned_before_ = 0;
   std::uint64_t replans_ = 0;
 };
 

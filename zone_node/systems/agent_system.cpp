@@ -38,6 +38,7 @@ AgentSystem::~AgentSystem() = default;
 AgentTickStats AgentSystem::step(EntityStore& store, const GhostStore* ghosts, double time,
                                  double dt) {
   AgentTickStats stats;
+  const auto tick = std::int64_t(std::llround(time / dt));
   nav_.applyDoors(time, store);
   senseAgents(scene_.agents, store, ghosts, time, senses_);
   // Decide and name targets; paths are asked for here and planned below in one budgeted batch.
@@ -67,7 +68,7 @@ AgentTickStats AgentSystem::step(EntityStore& store, const GhostStore* ghosts, d
       a.action = int(AgentAction::Idle);
       continue;
     }
-    nav_.want(store, i, x, z, t.navigate);
+    nav_.want(store, i, x, z, t.navigate, tick);
   }
   nav_.plan(store);
   for (std::size_t i = 0; i < store.size(); ++i)

@@ -6,9 +6,10 @@
 // names where it is heading, the path service plans within its budget, then every agent moves.
 // An agent's result depends only on its own state (AgentData, which migrates with it), the
 // entities within its sight (the halo covers them) and the tick: the same on any decomposition
-// as long as the path budget does not bind (docs/ai.md).
+// provided every zone shares path request keys through setGather() (the budget is the cluster's).
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "common/scene.h"
@@ -43,7 +44,10 @@ class AgentSystem {
   bool active() const { return !scene_.agents.types.empty(); }
   /// Widest sight of a type: agents read ghosts this far across a border.
   double reach() const { return reach_; }
-  /// Advances every agent of `store` from simulated time `time` by `dt`.
+  /// How zones share path request keys (collective); without it the zone budgets alone.
+  void setGather(ClusterGather gather) { nav_.setGather(std::move(gather)); }
+  /// Advances every agent of `store` from simulated time `time` by `dt`; collective when a
+  /// gather is set and the scene has a map.
   AgentTickStats step(EntityStore& store, const GhostStore* ghosts, double time, double dt);
 
  private:

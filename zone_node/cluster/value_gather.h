@@ -1,0 +1,17 @@
+#pragma once
+// One list of 64-bit values from every rank, concatenated in rank order, for per-tick decisions
+// that every rank must take alike from everyone's small share: the cluster-wide path request
+// budget (zone_node/systems/agent_navigation.h) gathers the keys of each zone's oldest requests.
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace zonesim::zone {
+
+/// Every rank's `mine`, concatenated in rank order (MPI_Allgatherv). Collective: every rank of
+/// `comm` must call it.
+std::vector<std::uint64_t> gatherValues(MPI_Comm comm, const std::vector<std::uint64_t>& mine);
+
+}  // namespace zonesim::zone
