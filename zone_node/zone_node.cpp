@@ -300,8 +300,10 @@ void ZoneNode::ai() {
     players_ = lodPlayers(comm_, store_, scene_.lod);
   if (flocks_->active())
     flocks_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
-  if (flows_->active())
+  if (flows_->active()) {
+    flows_->applyDoors(double(tick_) * scene_.dt);
     flows_->step(store_, &halo_.ghosts(), scene_.dt, players_, std::int64_t(tick_));
+  }
   if (formations_->active()) formations_->step(store_, &halo_.ghosts(), scene_.dt, tick_);
   if (roads_->active()) roads_->step(store_, scene_.dt, tick_);
   if (ants_->active()) {

@@ -58,6 +58,57 @@ TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
   }
 }
 
+TEST(FlowMovement, TheCrowdGoesRoundADoorThatCloses) {
+  // The hall's north door (column 22, rows 10-12) shuts at 3 s, while NPCs are on their way
+  // through it: the fields are rebuilt, nobody steps into the doorway afterwards (those caught
+  // in it step out), nobody stands on a wall, and every NPC still arrives, by the south door.
+  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
+  for (int y = 10; y <= 12; ++y) {
+    AgentDoor d;
+    d.at_s = 3.0;
+    d.x = 22;
+    d.y = y;
+    scene.agents.doors.push_back(d);
+  }
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  FlowMovement flows(scene, map.get());
+  auto cellAt = [&](std::size_t i) {
+    return map->frame.cellOf({store.pos[i].x(), store.pos[i].z()});
+  };
+  auto inDoor = [&](std::size_t i) {
+    ai::Cell c = cellAt(i);
+    return c.x == 22 && c.y >= 10 && c.y <= 12;
+  };
+  const int max_ticks = int(std::ceil(2 * 130 / scene.npcs[0].flow.max_speed / scene.dt));
+  int tick = 0, rebuilt = 0, entered = 0, on_walls = 0, through_before = 0;
+  std::vector<char> was_in(store.size(), 0);
+  std::size_t walking = store.size();
+  for (; tick < max_ticks && walking > 0; ++tick) {
+    double time = tick * scene.dt;
+    rebuilt += flows.applyDoors(time);
+    walking = flows.step(store, nullptr, scene.dt);
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      bool in = inDoor(i);
+      if (time < 3.0) through_before += in && !was_in[i];
+      if (time >= 3.0 && in && !was_in[i]) ++entered;
+      was_in[i] = in;
+      ai::Cell c = cellAt(i);
+      if (!in && !flows.grid()->passable(c.x, c.y)) ++on_walls;
+    }
+  }
+  std::printf(
+      "door shut at 3 s: %d fields rebuilt, %d NPCs had entered it before, all arrived "
+      "after %.1f s\n",
+      rebuilt, through_before, tick * scene.dt);
+  EXPECT_EQ(rebuilt, 3);         // one field per destination
+  EXPECT_GT(through_before, 0);  // the door was in use when it shut
+  EXPECT_EQ(entered, 0);
+  EXPECT_EQ(on_walls, 0);
+  EXPECT_EQ(walking, 0u);
+}
+
 TEST(FlowMovement, DestinationsSpreadOverTheNpcs) {
   std::vector<int> count(3);
   for (std::uint64_t id = 1; id <= 3000; ++id) ++count[std::size_t(flowDestination(id, 3))];

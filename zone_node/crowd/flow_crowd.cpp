@@ -25,6 +25,26 @@ int FlowCrowd::refreshFields() {
   return rebuilt;
 }
 
+bool FlowCrowd::leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const {
+  // A cell that closed under the agent (a door) has no direction: step to the open neighbour
+  // from which the goal is nearest (fixed order on ties, so every rank picks the same).
+  double best = -1;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ai::Cell n{c.x + dx, c.y + dy};
+      if ((dx == 0 && dy == 0) || !map_.passable(n.x, n.y)) continue;
+      double d = f.distance(n);
+      if (d < 0) continue;
+      d += (dx != 0 && dy != 0) ? std::sqrt(2.0) : 1.0;
+      if (best < 0 || d < best) {
+        best = d;
+        next = n;
+      }
+    }
+  }
+  return best >= 0;
+}
+
 Vec2 FlowCrowd::desiredVelocity(Vec2 pos, int d) const {
   const FlowField& f = *fields_[d];
   ai::Cell c = frame_.cellOf(pos), next;
@@ -36,7 +56,7 @@ Vec2 FlowCrowd::desiredVelocity(Vec2 pos, int d) const {
     double speed = settings_.maxSpeed * std::min(1.0, dist / settings_.slowRadius);
     return withLength(to, speed);
   }
-  if (!f.next(c, next)) return {};
+  if (!f.next(c, next) && !(!map_.passable(c.x, c.y) && leaveClosedCell(f, c, next))) return {};
   Vec2 to = frame_.centre(next) - pos;
   double speed = settings_.maxSpeed;
   double remaining = f.distance(c) * frame_.cellSize;

@@ -71,6 +71,7 @@ class FlowCrowd {
 
  private:
   Vec2 separation(const GridEntry& self) const;
+  bool leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const;
 
   const ai::GridMap& map_;
   MapFrame frame_;

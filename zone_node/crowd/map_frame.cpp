@@ -11,8 +11,10 @@ bool walkable(const ai::GridMap& map, const MapFrame& frame, Vec2 p) {
 
 namespace {
 // A step between cells a and b (8-neighbours or equal) that does not enter a blocked cell
-// nor squeeze diagonally between two blocked ones.
+// nor squeeze diagonally between two blocked ones. Moving inside one cell is always allowed: an
+// agent on a cell that closed under it (a door) must be able to walk out.
 bool stepAllowed(const ai::GridMap& map, ai::Cell a, ai::Cell b) {
+  if (a == b) return true;
   if (!map.passable(b.x, b.y)) return false;
   if (a.x != b.x && a.y != b.y) return map.passable(b.x, a.y) && map.passable(a.x, b.y);
   return true;

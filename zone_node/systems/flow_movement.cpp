@@ -13,9 +13,9 @@ namespace zonesim::zone {
 
 /// One flow population: its crowd (fields shared by all its NPCs) and the gather buffers.
 struct FlowMovement::Group {
-  Group(std::int32_t p, const WorldMap& map, const crowd::FlowCrowdSettings& s,
-        const crowd::LodSettings& l)
-      : view(p), crowd(map.grid, map.frame, s), lod(l) {}
+  Group(std::int32_t p, const ai::GridMap& grid, const crowd::MapFrame& frame,
+        const crowd::FlowCrowdSettings& s, const crowd::LodSettings& l)
+      : view(p), crowd(grid, frame, s), lod(l) {}
   PlanarCrowd view;
   crowd::FlowCrowd crowd;
   crowd::LevelOfDetail lod;
@@ -64,12 +64,15 @@ std::string sceneFile(const Scene& scene) {
 
 }  // namespace
 
-FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map) : lod_(scene.lod.enabled) {
+FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map)
+    : lod_(scene.lod.enabled), doors_(scene.agents.doors) {
+  if (map) grid_ = map->grid;
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlow& f = scene.npcs[p].flow;
     if (!f.enabled) continue;
     if (!map) throw SceneError(sceneFile(scene) + ":0: map: a flow population needs a map");
-    auto g = std::make_unique<Group>(std::int32_t(p), *map, settingsOf(f), lodOf(scene.lod));
+    auto g = std::make_unique<Group>(std::int32_t(p), grid_, map->frame, settingsOf(f),
+                                     lodOf(scene.lod));
     for (std::size_t k = 0; k < f.destinations.size(); ++k) {
       const NpcFlow::Destination& d = f.destinations[k];
       if (!map->walkable(d.x, d.z)) {
@@ -85,6 +88,20 @@ FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map) : lod_(scene
 }
 
 FlowMovement::~FlowMovement() = default;
+
+int FlowMovement::applyDoors(double time) {
+  bool changed = false;
+  while (next_door_ < doors_.size() && doors_[next_door_].at_s <= time + 1e-9) {
+    const AgentDoor& d = doors_[next_door_++];
+    if (groups_.empty() || !grid_.inside(d.x, d.y) || grid_.passable(d.x, d.y) == d.open) continue;
+    grid_.setPassable(d.x, d.y, d.open);
+    changed = true;
+  }
+  int rebuilt = 0;
+  if (changed)
+    for (const auto& g : groups_) rebuilt += g->crowd.refreshFields();
+  return rebuilt;
+}
 
 FlowMovement::Group* FlowMovement::groupOf(std::int32_t population) const {
   for (const auto& g : groups_)

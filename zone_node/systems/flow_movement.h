@@ -6,7 +6,8 @@
 // arrival radius of its goal has arrived: it stands still and leaves the crowd (neither moved
 // nor seen), which every rank decides from the position alone. The separation sums run in the
 // crowd library's canonical order over owned NPCs and ghosts, so a zone run ends bitwise equal
-// on any number of ranks.
+// on any number of ranks. The scene's doors (agents.doors) open and close the crowds' copy of the
+// map at their time; the fields they change are rebuilt then, alike on every rank.
 
 #include <cstdint>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "common/scene.h"
+#include "zone_node/ai/grid_map.h"
 #include "zone_node/crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
@@ -38,6 +40,11 @@ class FlowMovement {
   bool active() const { return !groups_.empty(); }
   /// Widest separation radius of the crowds (the halo must reach this far).
   double reach() const { return reach_; }
+  /// Opens and closes the scene's doors due by simulated time `time` on the crowds' map and
+  /// rebuilds the fields that changed; returns the number of fields rebuilt.
+  int applyDoors(double time);
+  /// The crowds' map as the doors left it (null without a flow population).
+  const ai::GridMap* grid() const { return groups_.empty() ? nullptr : &grid_; }
 
   /// Advances every flow NPC of `store` by `dt`, seeing same-population `ghosts`. With the
   /// scene's `lod`, `players` (every player avatar of the cluster, x-z) and `tick` choose each
@@ -54,6 +61,9 @@ class FlowMovement {
  private:
   struct Group;
   Group* groupOf(std::int32_t population) const;
+  std::vector<AgentDoor> doors_;  // the scene's, in time order
+  std::size_t next_door_ = 0;
+  ai::GridMap grid_;                            // the scene's map; doors change this copy
   std::vector<std::unique_ptr<Group>> groups_;  // one per flow population
   double reach_ = 0;
   bool lod_ = false;  // the scene's lod key: plan updates by distance to the players
