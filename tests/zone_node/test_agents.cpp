@@ -3,12 +3,15 @@
 // trees and fuzzy machines act on what agents see, and scene mistakes name their line.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "common/scene.h"
 #include "test_helpers.h"
+#include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_node.h"
@@ -278,6 +281,83 @@ TEST(Agents, ThePathCacheChangesNoOutcomeUnderABindingBudget) {
   CourierRun on = runCouriers(2, 300, 700, 1024);
   EXPECT_GT(on.max_queued, 0u);
   EXPECT_EQ(on.end_state, off.end_state);
+}
+
+}  // namespace
+}  // namespace zonesim::zone
+
+namespace zonesim::zone {
+namespace {
+
+// One agent of a decision-tree type and one still wanderer (its enemy) on the courtyard map
+// (1 m cells), placed by hand; AgentSystem alone is stepped, so the enemy stays put.
+struct Pursuit {
+  double final_distance = 0;  // agent to enemy at the end
+  double min_distance = 1e9;
+  int ticks_on_blocked_cells = 0;
+  int steps_into_walls = 0;  // ticks the agent tried to move yet barely did
+};
+
+Pursuit runPursuit(const std::string& tree, double sight, double ax, double az, double ex,
+                   double ez, int ticks) {
+  std::string text =
+      "world: {min: [0, 0, 0], max: [64, 10, 64]}\ntick: {dt: 0.05}\nseed: 5\n"
+      "zones: {columns: 1, rows: 1}\nhalo: {width: 20}\n"
+      "populations:\n  - {kind: npc, count: 1, speed: [1, 1]}\n"
+      "map: {file: " +
+      source("scenes/maps/courtyard.map") +
+      ", origin: [0, 0, 0], cell_size: 1}\n"
+      "agents:\n  types:\n    - name: a\n      behaviour: tree\n      tree: " +
+      tree + "\n      speed: 3\n      sight: " + std::to_string(sight) +
+      "\n  populations:\n    - {type: a, count: 1, region: {min: [2, 2], max: [4, 4]}}\n";
+  Scene scene = parseScene(text, "pursuit");
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  std::shared_ptr<const WorldMap> map = loadWorldMap(scene);
+  AgentSystem system(scene, &map->grid, map->frame);
+  std::size_t agent = 0, enemy = 0;
+  for (std::size_t i = 0; i < store.size(); ++i) (store.agent[i].type >= 0 ? agent : enemy) = i;
+  store.pos[agent] = Vec3(ax, store.pos[agent].y(), az);
+  store.pos[enemy] = Vec3(ex, store.pos[enemy].y(), ez);
+  store.vel[agent] = store.vel[enemy] = Vec3::Zero();
+  Pursuit r;
+  for (int t = 0; t < ticks; ++t) {
+    Vec3 before = store.pos[agent];
+    system.step(store, nullptr, t * scene.dt, scene.dt);
+    const AgentData& a = store.agent[agent];
+    bool active = a.action == int(AgentAction::Chase) || a.action == int(AgentAction::Flee);
+    double moved = std::hypot(store.pos[agent].x() - before.x(), store.pos[agent].z() - before.z());
+    if (active && a.nav == std::int32_t(AgentNav::Moving) && moved < 0.5 * 3 * scene.dt)
+      ++r.steps_into_walls;
+    ai::Cell c = map->frame.cellOf({store.pos[agent].x(), store.pos[agent].z()});
+    if (!map->grid.passable(c.x, c.y)) ++r.ticks_on_blocked_cells;
+    double d = std::hypot(store.pos[agent].x() - ex, store.pos[agent].z() - ez);
+    r.min_distance = std::min(r.min_distance, d);
+    r.final_distance = d;
+  }
+  return r;
+}
+
+TEST(Agents, AChaserOnAMapGoesRoundTheWallToItsQuarry) {
+  // Hunter in the west hall, quarry 14 m east behind the hall's wall (column 22, rows 1-9):
+  // steering straight would press into the wall; the path leads through the door (rows 10-12).
+  Pursuit r = runPursuit("{if: enemy_distance < 1.5, then: attack, else: chase}", 20, 15.5, 4.5,
+                         29.5, 4.5, 300);
+  std::printf("chaser: closest %.2f m, at the end %.2f m\n", r.min_distance, r.final_distance);
+  EXPECT_LT(r.min_distance, 1.5);  // reached it and attacked
+  EXPECT_EQ(r.ticks_on_blocked_cells, 0);
+  EXPECT_EQ(r.steps_into_walls, 0);
+}
+
+TEST(Agents, AFleerOnAMapRunsToOpenGroundNotIntoTheCorner) {
+  // Fleer near the hall's north-west corner, threat between it and the hall: straight away from
+  // the threat is the corner (at most 7.8 m from it); the refuge is open ground out of sight.
+  Pursuit r =
+      runPursuit("{if: enemy_distance < 12, then: flee, else: idle}", 12, 3.5, 3.5, 6.5, 6.5, 300);
+  std::printf("fleer: at the end %.2f m from the threat\n", r.final_distance);
+  EXPECT_GT(r.final_distance, 11.0);
+  EXPECT_EQ(r.ticks_on_blocked_cells, 0);
+  EXPECT_EQ(r.steps_into_walls, 0);
 }
 
 }  // namespace

@@ -258,6 +258,30 @@ bool AgentNavigation::follow(EntityStore& store, std::size_t i, double speed, do
   return false;
 }
 
+crowd::Vec2 AgentNavigation::fleeTarget(double x, double z, double ex, double ez,
+                                        double radius) const {
+  const crowd::Vec2 from{x, z};
+  crowd::Vec2 best = frame_.centre(startCell(x, z));
+  double best_d = std::hypot(best.x - ex, best.y - ez);
+  const double step = 0.5 * frame_.cellSize;
+  const double kPi = 3.14159265358979323846;
+  for (int k = 0; k < 16; ++k) {
+    const double dx = std::cos(kPi * k / 8), dz = std::sin(kPi * k / 8);
+    // March out along the ray while the point stays in plain view of the agent.
+    for (double r = step; r <= radius + 1e-9; r += step) {
+      crowd::Vec2 p{x + dx * r, z + dz * r};
+      if (!crowd::walkable(grid_, frame_, p) || !crowd::lineOfSight(grid_, frame_, from, p)) break;
+      crowd::Vec2 c = frame_.centre(frame_.cellOf(p));
+      double d = std::hypot(c.x - ex, c.y - ez);
+      if (d > best_d) {
+        best_d = d;
+        best = c;
+      }
+    }
+  }
+  return best;
+}
+
 AgentPathStats AgentNavigation::takeStats() {
   AgentPathStats s;
   s.planned = served_;

@@ -76,6 +76,11 @@ class AgentNavigation {
   /// when the position was set directly (spline), false when `desired` holds a velocity.
   bool follow(EntityStore& store, std::size_t i, double speed, double accel, double arrive,
               double dt, Vec3& desired);
+  /// Where an agent at (x, z) fleeing a threat at (ex, ez) should run: of the points up to
+  /// `radius` away in 16 directions that it sees in a straight line (no wall between), the one
+  /// farthest from the threat (lowest direction on a tie), as the centre of its cell; reachable
+  /// by construction. The agent's own cell when walls surround it.
+  crowd::Vec2 fleeTarget(double x, double z, double ex, double ez, double radius) const;
   /// Figures since the last call.
   AgentPathStats takeStats();
 

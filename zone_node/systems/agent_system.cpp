@@ -50,6 +50,10 @@ AgentTickStats AgentSystem::step(EntityStore& store, const GhostStore* ghosts, d
     int before = a.transitions;
     decisions_->decide(a, senses_[i]);
     stats.transitions += std::uint64_t(a.transitions - before);
+    if (pursues(a, t, senses_[i])) {
+      pursue(store, i, senses_[i], tick);
+      continue;
+    }
     if (!isAction(a, AgentAction::Travel)) {
       // Leaving travel drops the path: travel resumes from wherever the agent is then.
       a.nav = std::int32_t(AgentNav::None);
@@ -75,6 +79,43 @@ AgentTickStats AgentSystem::step(EntityStore& store, const GhostStore* ghosts, d
     if (store.agent[i].type >= 0) move(store, i, senses_[i], dt);
   stats.paths = nav_.takeStats();
   return stats;
+}
+
+bool AgentSystem::pursues(const AgentData& a, const AgentType& t, const AgentSenses& s) const {
+  // Fuzzy agents blend chase and roam headings; they keep steering.
+  return nav_.hasMap() && s.enemy_seen && t.behaviour != AgentType::Behaviour::Fuzzy &&
+         (isAction(a, AgentAction::Chase) || isAction(a, AgentAction::Flee));
+}
+
+void AgentSystem::pursue(EntityStore& store, std::size_t i, const AgentSenses& s,
+                         std::int64_t tick) {
+  AgentData& a = store.agent[i];
+  const AgentType& t = scene_.agents.types[std::size_t(a.type)];
+  const double px = store.pos[i].x(), pz = store.pos[i].z();
+  const double ex = s.enemy.x(), ez = s.enemy.z();
+  const bool going =
+      a.nav == std::int32_t(AgentNav::Waiting) || a.nav == std::int32_t(AgentNav::Moving);
+  const bool arrived = a.nav == std::int32_t(AgentNav::Arrived);
+  const double target_to_enemy = std::hypot(a.target_x - ex, a.target_z - ez);
+  double x = a.target_x, z = a.target_z;
+  if (isAction(a, AgentAction::Chase)) {
+    // Re-plan once the quarry has moved away from the path's end by the threshold (or at all,
+    // once there).
+    if (!(going && target_to_enemy <= kPursuitReplanDistance) &&
+        !(arrived && target_to_enemy <= t.arrive_distance)) {
+      x = ex;
+      z = ez;
+    }
+  } else {
+    // A new refuge when none is set, reached, or once the threat is nearer to it than we are.
+    bool keep = going && target_to_enemy > std::hypot(a.target_x - px, a.target_z - pz);
+    if (!keep) {
+      crowd::Vec2 refuge = nav_.fleeTarget(px, pz, ex, ez, std::max(t.sight, 1.0));
+      x = refuge.x;
+      z = refuge.y;
+    }
+  }
+  nav_.want(store, i, x, z, true, tick);
 }
 
 void AgentSystem::move(EntityStore& store, std::size_t i, const AgentSenses& s, double dt) {
@@ -104,6 +145,11 @@ void AgentSystem::move(EntityStore& store, std::size_t i, const AgentSenses& s, 
     case AgentAction::Chase:
     case AgentAction::Flee: {
       if (!s.enemy_seen) break;
+      if (pursues(a, t, s)) {
+        // On a map: along the planned path (toward the quarry, or to the refuge).
+        placed = nav_.follow(store, i, speed, t.acceleration, t.arrive_distance, dt, desired);
+        break;
+      }
       Vec3 chase = toward(pos, s.enemy, 1.0);
       if (fuzzy) {
         // Blended: part toward (or away from) the enemy, the rest along the wander heading.

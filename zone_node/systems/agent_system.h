@@ -25,6 +25,9 @@ class GhostStore;
 class AgentDecisions;
 class AgentGoapPlans;
 
+/// A chaser on a map re-plans once its quarry is this far (m) from the end of its path.
+inline constexpr double kPursuitReplanDistance = 2.0;
+
 /// Agent figures of one tick.
 struct AgentTickStats {
   std::uint64_t agents = 0;       ///< agents stepped
@@ -52,6 +55,8 @@ class AgentSystem {
 
  private:
   void move(EntityStore& store, std::size_t i, const AgentSenses& senses, double dt);
+  bool pursues(const AgentData& a, const AgentType& t, const AgentSenses& s) const;
+  void pursue(EntityStore& store, std::size_t i, const AgentSenses& s, std::int64_t tick);
   void updateNeeds(AgentData& a, const AgentType& t, const AgentSenses& s, double speed,
                    double dt) const;
 
