@@ -43,7 +43,9 @@ int main(int argc, char** argv) {
   app.add_option("--port", port, "UDP port on 127.0.0.1 (0 = ephemeral)")
       ->check(CLI::Range(0, 65535));
   app.add_option("--port-file", port_file, "write the bound port to this file");
-  app.add_option("--dds-domain", cfg.dds_domain, "DDS domain id")->check(CLI::Range(0, 230));
+  app.add_option("--dds-domain", cfg.dds_domain,
+                 "DDS domain id (Cyclone's default ports allow 0-232)")
+      ->check(CLI::Range(0, 232));
   app.add_option("--gateway-id", cfg.gateway_id,
                  "gateway id, unique per gateway of a cluster (bits 32-47 of player ids)")
       ->check(CLI::Range(1u, 0xffffu));
