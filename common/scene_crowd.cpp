@@ -125,12 +125,15 @@ void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& 
   m.read("steer_rate", f.steer_rate, Limit::above(0));
   m.read("arrive_radius", f.arrive_radius, Limit::above(0));
   m.read("slow_radius", f.slow_radius, Limit::above(0));
+  readSeparation(m, scene, f.separation_radius, f.separation_weight);
+}
+
+void readSeparation(const SceneMap& m, const Scene& scene, double& radius, double& weight) {
   SceneMap sep = m.section("separation", {"radius", "weight"});
-  sep.read("radius", f.separation_radius, Limit::atLeast(0));
-  sep.read("weight", f.separation_weight, Limit::atLeast(0));
-  // Neighbours across a border are seen through the halo; it must reach as far as they push.
-  if (f.separation_radius > scene.halo_width) {
-    sep.failAt("radius", formatNumber(f.separation_radius) + " m is wider than halo.width (" +
+  sep.read("radius", radius, Limit::atLeast(0));
+  sep.read("weight", weight, Limit::atLeast(0));
+  if (radius > scene.halo_width) {
+    sep.failAt("radius", formatNumber(radius) + " m is wider than halo.width (" +
                              formatNumber(scene.halo_width) + " m)");
   }
 }

@@ -31,6 +31,11 @@ void readNpcColony(const SceneMap& population, const Scene& scene, NpcPopulation
 /// Reads the optional `roads` block of an NPC population (common/scene_roads.cpp).
 void readNpcRoads(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
+/// Reads `key`'s {radius, weight} section of `m` into the two values (defaults kept when
+/// absent); a radius wider than the halo fails, since neighbours across a border are seen only
+/// through it.
+void readSeparation(const SceneMap& m, const Scene& scene, double& radius, double& weight);
+
 /// A point [x, y, z] on the ground plane inside the world (y is ignored).
 ScenePoint readGroundPoint(const SceneNode& node, const Scene& scene);
 

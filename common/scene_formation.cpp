@@ -44,14 +44,7 @@ void readNpcFormation(const SceneMap& population, const Scene& scene, NpcPopulat
     m.failAt("rejoin", formatNumber(f.rejoin) + " m is not below cut_off (" +
                            formatNumber(f.cut_off) + " m)");
   }
-  SceneMap sep = m.section("separation", {"radius", "weight"});
-  sep.read("radius", f.separation_radius, Limit::atLeast(0));
-  sep.read("weight", f.separation_weight, Limit::atLeast(0));
-  // Members across a border are seen through the halo; it must reach as far as they push.
-  if (f.separation_radius > scene.halo_width) {
-    sep.failAt("radius", formatNumber(f.separation_radius) + " m is wider than halo.width (" +
-                             formatNumber(scene.halo_width) + " m)");
-  }
+  readSeparation(m, scene, f.separation_radius, f.separation_weight);
 }
 
 }  // namespace zonesim

@@ -119,9 +119,8 @@ void readNpcs(const SceneNode& node, Scene& scene) {
   m.read("waypoint_radius", p.waypoint_radius, Limit::above(0));
   m.read("arrive_distance", p.arrive_distance, Limit::above(0));
   p.region = readRegion(m, scene.world);
-  SceneMap sep = m.section("separation", {"radius", "weight"});
-  sep.read("radius", p.separation_radius, Limit::atLeast(0));
-  sep.read("weight", p.separation_weight, Limit::atLeast(0));
+  // Walkers across a border are seen through the halo; it must reach as far as they look.
+  readSeparation(m, scene, p.separation_radius, p.separation_weight);
   SceneMap gather = m.section("gather", {"point", "radius", "start_s", "end_s"});
   if (std::optional<SceneNode> point = gather.optional("point")) {
     SceneVec3 at = point->vec3();  // [x, y, z] like every point in a scene; y is ignored
@@ -135,11 +134,6 @@ void readNpcs(const SceneNode& node, Scene& scene) {
     gather.read("start_s", p.gather.start_s, Limit::atLeast(0));
     p.gather.end_s = p.gather.start_s + 60;
     gather.read("end_s", p.gather.end_s, Limit::atLeast(p.gather.start_s));
-  }
-  // Walkers across a border are seen through the halo; it must reach as far as they look.
-  if (p.separation_radius > scene.halo_width) {
-    sep.failAt("radius", formatNumber(p.separation_radius) + " m is wider than halo.width (" +
-                             formatNumber(scene.halo_width) + " m)");
   }
   readFlock(m, scene, p);
   readNpcFlow(m, scene, p);

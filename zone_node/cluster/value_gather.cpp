@@ -2,7 +2,10 @@
 
 namespace zonesim::zone {
 
-std::vector<std::uint64_t> gatherValues(MPI_Comm comm, const std::vector<std::uint64_t>& mine) {
+namespace {
+
+template <class T>
+std::vector<T> gather(MPI_Comm comm, const std::vector<T>& mine, MPI_Datatype type) {
   int size = 1;
   MPI_Comm_size(comm, &size);
   int count = int(mine.size());
@@ -13,10 +16,19 @@ std::vector<std::uint64_t> gatherValues(MPI_Comm comm, const std::vector<std::ui
     offsets[std::size_t(r)] = total;
     total += counts[std::size_t(r)];
   }
-  std::vector<std::uint64_t> all(static_cast<std::size_t>(total));
-  MPI_Allgatherv(mine.data(), count, MPI_UINT64_T, all.data(), counts.data(), offsets.data(),
-                 MPI_UINT64_T, comm);
+  std::vector<T> all(static_cast<std::size_t>(total));
+  MPI_Allgatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, comm);
   return all;
+}
+
+}  // namespace
+
+std::vector<std::uint64_t> gatherValues(MPI_Comm comm, const std::vector<std::uint64_t>& mine) {
+  return gather(comm, mine, MPI_UINT64_T);
+}
+
+std::vector<double> gatherValues(MPI_Comm comm, const std::vector<double>& mine) {
+  return gather(comm, mine, MPI_DOUBLE);
 }
 
 }  // namespace zonesim::zone

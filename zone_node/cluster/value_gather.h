@@ -1,7 +1,8 @@
 #pragma once
-// One list of 64-bit values from every rank, concatenated in rank order, for per-tick decisions
-// that every rank must take alike from everyone's small share: the cluster-wide path request
-// budget (zone_node/systems/agent_navigation.h) gathers the keys of each zone's oldest requests.
+// One list of values from every rank, concatenated in rank order, for per-tick decisions that
+// every rank must take alike from everyone's small share: the cluster-wide path request budget
+// (zone_node/systems/agent_navigation.h) gathers the keys of each zone's oldest requests, and
+// crowd level of detail (player_positions.h) every zone's avatar positions.
 
 #include <mpi.h>
 
@@ -13,5 +14,7 @@ namespace zonesim::zone {
 /// Every rank's `mine`, concatenated in rank order (MPI_Allgatherv). Collective: every rank of
 /// `comm` must call it.
 std::vector<std::uint64_t> gatherValues(MPI_Comm comm, const std::vector<std::uint64_t>& mine);
+/// As above for doubles.
+std::vector<double> gatherValues(MPI_Comm comm, const std::vector<double>& mine);
 
 }  // namespace zonesim::zone

@@ -4,7 +4,7 @@
 
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/crowd/flock.h"
-#include "zone_node/crowd/lod.h"
+#include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/flock_backend.h"
 #include "zone_node/systems/planar_crowd.h"
 
@@ -36,17 +36,6 @@ crowd::FlockSettings settingsOf(const NpcFlock& f) {
   s.maxSpeed = f.max_speed;
   s.maxForce = f.max_force;
   s.goalWeight = f.goal_weight;
-  return s;
-}
-
-crowd::LodSettings lodOf(const CrowdLod& l) {
-  crowd::LodSettings s;
-  s.nearRadius = l.near_radius;
-  s.farRadius = l.far_radius;
-  s.midEvery = l.mid_every;
-  s.farEvery = l.far_every;
-  s.midSteers = l.mid_steers;
-  s.farSteers = l.far_steers;
   return s;
 }
 

@@ -5,7 +5,7 @@
 
 #include "zone_node/cluster/ghost_store.h"
 #include "zone_node/crowd/flow_crowd.h"
-#include "zone_node/crowd/lod.h"
+#include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
 
@@ -44,17 +44,6 @@ crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
   s.arriveRadius = f.arrive_radius;
   s.slowRadius = f.slow_radius;
   s.gridCell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
-  return s;
-}
-
-crowd::LodSettings lodOf(const CrowdLod& l) {
-  crowd::LodSettings s;
-  s.nearRadius = l.near_radius;
-  s.farRadius = l.far_radius;
-  s.midEvery = l.mid_every;
-  s.farEvery = l.far_every;
-  s.midSteers = l.mid_steers;
-  s.farSteers = l.far_steers;
   return s;
 }
 
