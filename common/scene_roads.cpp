@@ -59,18 +59,18 @@ NpcRoads::Edge readEdge(const SceneNode& node, NpcRoads& roads) {
 /// Nodes reachable from node 0 over edges an NPC may use, forwards or (`reverse`) backwards.
 std::vector<bool> reachable(const NpcRoads& roads, bool reverse) {
   std::vector<bool> seen(roads.nodes.size(), false);
-  std::vector<int> todo{0};
+  std::vector<int> frontier{0};
   seen[0] = true;
-  while (!todo.empty()) {
-    int n = todo.back();
-    todo.pop_back();
+  while (!frontier.empty()) {
+    int n = frontier.back();
+    frontier.pop_back();
     for (const NpcRoads::Edge& e : roads.edges) {
       if ((e.flags & ~roads.may_use) != 0) continue;
       int from = reverse ? e.b : e.a, to = reverse ? e.a : e.b;
       for (int pass = 0; pass < (e.one_way ? 1 : 2); ++pass) {
         if (from == n && !seen[std::size_t(to)]) {
           seen[std::size_t(to)] = true;
-          todo.push_back(to);
+          frontier.push_back(to);
         }
         std::swap(from, to);
       }

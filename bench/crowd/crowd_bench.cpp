@@ -153,6 +153,32 @@ struct LodRun {
   std::vector<Vec2> endPos;
 };
 
+/// How far a LOD run's outcome moved from the full-detail run of the same agents: arrivals
+/// (counted, and compared where both arrived, in seconds: `seconds` per arrival unit) and end
+/// positions (all agents).
+struct OutcomeDrift {
+  int arrived = 0, both = 0;
+  double sumDt = 0, maxDt = 0, sumErr = 0, maxErr = 0;
+};
+
+template <class Run>
+OutcomeDrift outcomeDrift(const Run& full, const Run& lod, double seconds) {
+  OutcomeDrift d;
+  for (std::size_t i = 0; i < full.arrival.size(); ++i) {
+    d.arrived += lod.arrival[i] >= 0;
+    if (full.arrival[i] >= 0 && lod.arrival[i] >= 0) {
+      const double dt = std::abs(double(full.arrival[i] - lod.arrival[i])) * seconds;
+      d.sumDt += dt;
+      d.maxDt = std::max(d.maxDt, dt);
+      ++d.both;
+    }
+    const double e = length(full.endPos[i] - lod.endPos[i]);
+    d.sumErr += e;
+    d.maxErr = std::max(d.maxErr, e);
+  }
+  return d;
+}
+
 LodRun runLod(const ai::GridMap& map, int n, int ticks, const LodSettings* lodSettings) {
   FlowCrowd crowd(map, MapFrame{}, FlowCrowdSettings{});
   for (ai::Cell g : cornerGoals(map)) crowd.addDestination(g);
@@ -211,24 +237,11 @@ void benchLod(const std::vector<int>& counts, double seconds) {
                 arrivedFull);
     for (const LodSettings* s : {&cheap, &steered}) {
       LodRun lod = runLod(map, n, ticks, s);
-      int arrived = 0, both = 0;
-      double sumDt = 0, maxDt = 0, sumErr = 0, maxErr = 0;
-      for (std::size_t i = 0; i < full.arrival.size(); ++i) {
-        arrived += lod.arrival[i] >= 0;
-        if (full.arrival[i] >= 0 && lod.arrival[i] >= 0) {
-          double d = std::abs(full.arrival[i] - lod.arrival[i]) / 20.0;
-          sumDt += d;
-          maxDt = std::max(maxDt, d);
-          ++both;
-        }
-        double e = length(full.endPos[i] - lod.endPos[i]);
-        sumErr += e;
-        maxErr = std::max(maxErr, e);
-      }
+      const OutcomeDrift d = outcomeDrift(full, lod, 1.0 / 20.0);  // arrival in 1/20 s ticks
       std::printf("| %d | %s | %.3f | %.2f | %.2f | %d | %.3f | %.2f | %.3f | %.2f |\n", n,
                   s->farSteers ? "far-steer" : "far-field", lod.msPerTick,
                   full.msPerTick / lod.msPerTick, double(full.updates) / double(lod.updates),
-                  arrived, both ? sumDt / both : 0.0, maxDt, sumErr / n, maxErr);
+                  d.arrived, d.both ? d.sumDt / d.both : 0.0, d.maxDt, d.sumErr / n, d.maxErr);
     }
   }
 }
@@ -317,24 +330,12 @@ void benchLodFlock(const std::vector<int>& counts, double seconds) {
                 arrivedFull, full.closest);
     for (const LodSettings* s : {&cheap, &steered}) {
       FlockLodRun lod = runFlockLod(n, ticks, progress, s);
-      int arrived = 0, both = 0;
-      double sumDt = 0, maxDt = 0, sumErr = 0, maxErr = 0;
-      for (std::size_t i = 0; i < full.arrival.size(); ++i) {
-        arrived += lod.arrival[i] >= 0;
-        if (full.arrival[i] >= 0 && lod.arrival[i] >= 0) {
-          double d = std::abs(full.arrival[i] - lod.arrival[i]);
-          sumDt += d;
-          maxDt = std::max(maxDt, d);
-          ++both;
-        }
-        double e = length(full.endPos[i] - lod.endPos[i]);
-        sumErr += e;
-        maxErr = std::max(maxErr, e);
-      }
+      const OutcomeDrift d = outcomeDrift(full, lod, 1.0);  // arrival already in s
       std::printf("| %d | %s | %.3f | %.2f | %.2f | %d | %.3f | %.2f | %.3f | %.2f | %.2f |\n", n,
                   s->farSteers ? "far-steer" : "far-goal", lod.msPerTick,
                   full.msPerTick / lod.msPerTick, double(full.updates) / double(lod.updates),
-                  arrived, both ? sumDt / both : 0.0, maxDt, sumErr / n, maxErr, lod.closest);
+                  d.arrived, d.both ? d.sumDt / d.both : 0.0, d.maxDt, d.sumErr / n, d.maxErr,
+                  lod.closest);
     }
   }
 }

@@ -1,6 +1,10 @@
 #pragma once
 // Small scenes built in code for zone tests (no files needed), and the options to run them.
 
+#include <gtest/gtest.h>
+
+#include <string>
+
 #include "common/scene.h"
 #include "zone_node/zone_node.h"
 
@@ -34,6 +38,23 @@ inline zone::ZoneOptions localZone(int check_every) {
   o.check_every = check_every;
   o.gpu = "off";
   return o;
+}
+
+/// A small scene for error tests: a 1-zone world (lines 1-4), then `rest` (from line 5).
+inline std::string withSmallWorld(const std::string& rest) {
+  return "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.02}\nseed: 1\n"
+         "zones: {columns: 1, rows: 1}\n" +
+         rest;
+}
+
+/// Expects parsing `text` (as file "t.yaml") to fail with a message containing `expect`.
+inline void expectSceneError(const std::string& text, const std::string& expect) {
+  try {
+    parseScene(text, "t.yaml");
+    ADD_FAILURE() << "accepted:\n" << text;
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace zonesim::testing

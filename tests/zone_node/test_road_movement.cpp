@@ -13,6 +13,7 @@
 #include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/road_movement.h"
+#include "test_helpers.h"
 
 namespace zonesim::zone {
 namespace {
@@ -131,17 +132,10 @@ TEST(RoadMovement, NpcsTakeOnlyOpenAllowedEdgesAndCheapestPaths) {
 
 TEST(RoadMovement, SceneMistakesNameTheirLine) {
   auto fails = [](const std::string& roads, const std::string& expect) {
-    const std::string text =
-        "world: {min: [0, 0, 0], max: [100, 10, 100]}\ntick: {dt: 0.02}\nseed: 1\n"
-        "zones: {columns: 1, rows: 1}\npopulations:\n  - kind: npc\n    count: 2\n"
-        "    roads: " +
-        roads + "\n";
-    try {
-      parseScene(text, "t.yaml");
-      ADD_FAILURE() << "accepted " << roads;
-    } catch (const std::exception& e) {
-      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
-    }
+    testing::expectSceneError(
+        testing::withSmallWorld("populations:\n  - kind: npc\n    count: 2\n    roads: " + roads +
+                                "\n"),
+        expect);
   };
   const std::string two = "nodes: [[10, 0, 10], [20, 0, 10]]";
   fails("{" + two + ", edges: [[0, 0]]}",

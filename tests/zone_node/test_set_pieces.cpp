@@ -11,6 +11,7 @@
 #include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/rigid_bodies.h"
+#include "test_helpers.h"
 
 namespace zonesim::zone {
 namespace {
@@ -112,17 +113,8 @@ TEST_F(SetPieces, APlatformCarriesItsBoxAndATurntableTurnsItsBox) {
 
 TEST_F(SetPieces, SceneMistakesNameTheirLine) {
   auto fails = [](const std::string& body, const std::string& expect) {
-    const std::string text =
-        "world: {min: [0, 0, 0], max: [10, 10, 10]}\ntick: {dt: 0.02}\nseed: 1\n"
-        "zones: {columns: 1, rows: 1}\n"
-        "physics:\n  bodies:\n    - " +
-        body + "\n";
-    try {
-      parseScene(text, "t.yaml");
-      ADD_FAILURE() << "accepted " << body;
-    } catch (const std::exception& e) {
-      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
-    }
+    testing::expectSceneError(testing::withSmallWorld("physics:\n  bodies:\n    - " + body + "\n"),
+                              expect);
   };
   fails("{name: a, motion: static, position: [1, 1, 1], velocity: [1, 0, 0]}",
         "t.yaml:7: physics.bodies[0].velocity: a static body does not move");
