@@ -106,6 +106,7 @@ struct AgentData {
   double origin_x = 0, origin_z = 0;  ///< where the current path starts (its first point)
   double target_x = 0, target_z = 0;  ///< where it ends
   double travelled = 0;               ///< arc length walked along the path's spline
+  std::uint64_t asked_tick = 0;       ///< tick the waiting path request was made (its age)
   std::int32_t replans = 0;           ///< paths requested again after a door cut them
   std::int32_t arrivals = 0;          ///< goals reached
   std::vector<std::int32_t> path;     ///< cells as x, y pairs; empty when not moving

@@ -25,6 +25,11 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   npc.npc.crowd_z = -7.25;
   npc.npc.crowd_path = {4, 5, 5, 6, 6, 6};
   npc.npc.crowd_seen = {9, 1};
+  npc.agent.type = 1;  // an agent whose path request waits in the cluster's queue
+  npc.agent.nav = 1;
+  npc.agent.asked_tick = 123456789012ULL;
+  npc.agent.travelled = 2.5;
+  npc.agent.path = {7, 8};
   EntityRecordData avatar;
   avatar.id = EntityId::make(2, 1);
   avatar.kind = EntityKind::Avatar;
@@ -52,6 +57,11 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   EXPECT_EQ(q.entities[0].npc.crowd_z, -7.25);
   EXPECT_EQ(q.entities[0].npc.crowd_path, npc.npc.crowd_path);
   EXPECT_EQ(q.entities[0].npc.crowd_seen, npc.npc.crowd_seen);
+  EXPECT_EQ(q.entities[0].agent.type, 1);
+  EXPECT_EQ(q.entities[0].agent.nav, 1);
+  EXPECT_EQ(q.entities[0].agent.asked_tick, 123456789012ULL);
+  EXPECT_EQ(q.entities[0].agent.travelled, 2.5);
+  EXPECT_EQ(q.entities[0].agent.path, npc.agent.path);
   EXPECT_EQ(q.entities[1].npc.flock, -1);  // the default when absent from the record
   EXPECT_EQ(q.entities[1].kind, EntityKind::Avatar);
   EXPECT_EQ(q.entities[1].avatar.player_id, 555u);

@@ -72,7 +72,7 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
                                  a.health, a.energy, a.speed_factor, a.approach, a.facts, plan,
                                  a.plan_length, a.plan_step, a.action_time, a.plan_cost, a.goal,
                                  a.nav, a.dwell, a.origin_x, a.origin_z, a.target_x, a.target_z,
-                                 a.travelled, a.replans, a.arrivals, path);
+                                 a.travelled, a.replans, a.arrivals, path, a.asked_tick);
   }
   fb::Vec3d pos = toFb(r.pos), vel = toFb(r.vel);
   fb::Quatd rot = toFb(r.rot);
@@ -113,6 +113,7 @@ void decodeAgent(const fb::AgentState& g, AgentData& a) {
   a.target_x = g.target_x();
   a.target_z = g.target_z();
   a.travelled = g.travelled();
+  a.asked_tick = g.asked_tick();
   a.replans = g.replans();
   a.arrivals = g.arrivals();
   a.path.clear();

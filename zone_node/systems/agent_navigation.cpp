@@ -111,11 +111,10 @@ void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z
     a.nav = navOf(AgentNav::Moving);  // straight at the target
     return;
   }
-  // While waiting, `travelled` holds the tick the path was asked for: the request's age, which
-  // orders it in the cluster's queue. It migrates with the agent like the rest of the request
-  // (origin and target).
+  // The request's age orders it in the cluster's queue; it migrates with the agent like the
+  // rest of the request (origin and target).
   a.nav = navOf(AgentNav::Waiting);
-  a.travelled = double(tick);
+  a.asked_tick = std::uint64_t(tick);
 }
 
 void AgentNavigation::plan(EntityStore& store) {
@@ -126,7 +125,7 @@ void AgentNavigation::plan(EntityStore& store) {
   for (std::size_t i = 0; i < store.size(); ++i) {
     const AgentData& a = store.agent[i];
     if (a.type < 0 || a.nav != navOf(AgentNav::Waiting)) continue;
-    waiting_.push_back(Waiting{std::uint64_t(a.travelled), store.id[i].value, i});
+    waiting_.push_back(Waiting{a.asked_tick, store.id[i].value, i});
   }
   auto byKey = [](const Waiting& l, const Waiting& r) {
     return l.asked != r.asked ? l.asked < r.asked : l.id < r.id;
