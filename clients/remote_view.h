@@ -1,6 +1,6 @@
 #pragma once
 // What one simulated player knows of the world: the entities the gateway spawned for it, each
-// with the dead-reckoning state it was last sent (the same model the zone runs, idl/dr_model.h),
+// with the dead-reckoning state it was last sent (the same model the zone runs, dr/dr_model.h),
 // and what the player is shown: that model extrapolated to the estimated server time, with
 // corrections either snapped or converged by projective velocity blending.
 
@@ -8,8 +8,8 @@
 #include <optional>
 #include <unordered_map>
 
-#include "idl/dr_model.h"
-#include "idl/state_codec.h"
+#include "dr/dr_model.h"
+#include "dr/state_codec.h"
 
 namespace zonesim::clients {
 

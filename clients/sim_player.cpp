@@ -4,7 +4,7 @@
 
 #include "common/entity_id.h"
 #include "common/timer.h"
-#include "idl/truth_sample.h"
+#include "dr/truth_sample.h"
 
 namespace zonesim::clients {
 

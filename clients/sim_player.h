@@ -14,12 +14,12 @@
 #include "clients/reservoir.h"
 #include "clients/wander.h"
 #include "common/scene.h"
-#include "gateway/ack_window.h"
-#include "gateway/impairment.h"
-#include "gateway/udp_socket.h"
-#include "gateway/wire_encode.h"
-#include "gateway/wire_verify.h"
-#include "idl/state_codec.h"
+#include "dr/state_codec.h"
+#include "wire/ack_window.h"
+#include "wire/impairment.h"
+#include "wire/udp_socket.h"
+#include "wire/wire_encode.h"
+#include "wire/wire_verify.h"
 
 namespace zonesim::clients {
 
@@ -47,7 +47,7 @@ struct PlayerConfig {
   double max_lead_s = 0.25;
 };
 
-/// Where a player showed a sampled entity (idl/truth_sample.h) at a server tick.
+/// Where a player showed a sampled entity (dr/truth_sample.h) at a server tick.
 struct DisplaySample {
   std::uint64_t tick = 0, id = 0;
   dr::Order order = dr::Order::First;

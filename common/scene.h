@@ -32,7 +32,7 @@ struct ZoneLayout {
   int rows = 1;     ///< zones along z
 };
 
-/// Reynolds flocking for an NPC population (zone_node/crowd/flock.h, docs/crowd.md).
+/// Reynolds flocking for an NPC population (crowd/flock.h, docs/crowd.md).
 struct NpcFlock {
   bool enabled = false;            ///< the population flocks instead of wandering
   double radius = 3.0;             ///< m: alignment and cohesion see neighbours this close
@@ -51,7 +51,7 @@ struct NpcFlock {
   double goal_slow_radius = 5.0;  ///< m: the goal speed ramps down to 0 this close
 };
 
-/// A flow-field crowd (zone_node/crowd/flow_crowd.h, docs/crowd.md): each NPC heads for one
+/// A flow-field crowd (crowd/flow_crowd.h, docs/crowd.md): each NPC heads for one
 /// of a few destinations on the scene's map, along a field computed once per destination.
 struct NpcFlow {
   bool enabled = false;  ///< the population follows flow fields instead of wandering
@@ -77,7 +77,7 @@ struct ScenePoint {
 };
 
 /// A road network: NPCs travel between waypoints of a weighted graph along cheapest paths
-/// (zone_node/ai/waypoint_graph.h, zone_node/systems/road_movement.h).
+/// (ai/waypoint_graph.h, zone_node/systems/road_movement.h).
 struct NpcRoads {
   bool enabled = false;  ///< the population travels the graph instead of wandering
   struct Edge {
@@ -98,7 +98,7 @@ struct NpcRoads {
   std::vector<Closure> closures;
 };
 
-/// A fixed group (zone_node/crowd/formation.h, docs/crowd.md): the population's NPCs hold
+/// A fixed group (crowd/formation.h, docs/crowd.md): the population's NPCs hold
 /// slots around a centre that walks a route on the scene's map; a member cut off from the
 /// group plans A* back to it and rejoins (`populations[].formation`).
 struct NpcFormation {
@@ -246,7 +246,7 @@ struct SceneExplosion {
   Falloff falloff = Falloff::Linear;
 };
 
-/// The rigid-body engine's approximations (zone_node/physics).
+/// The rigid-body engine's approximations (physics/).
 struct PhysicsSettings {
   enum class Integrator {
     ExplicitEuler,
@@ -350,7 +350,7 @@ struct ObstacleMap {
   bool present() const { return !file.empty(); }
 };
 
-/// Level of detail for crowds (zone_node/crowd/lod.h): NPCs far from every player are updated
+/// Level of detail for crowds (crowd/lod.h): NPCs far from every player are updated
 /// less often, the farthest without steering (`lod:` key; absent: every NPC every tick).
 struct CrowdLod {
   bool enabled = false;     ///< the scene has a `lod` key

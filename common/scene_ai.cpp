@@ -1,5 +1,5 @@
 // The scene's `agents` key (docs/scene-format.md): agent types, their populations, the path
-// service's budget and doors. Machine files named here are read by the zone (zone_node/ai
+// service's budget and doors. Machine files named here are read by the zone (ai/
 // parses them with their own file:line errors); everything in the scene itself is checked here.
 
 #include <algorithm>

@@ -11,8 +11,8 @@
 #include "common/rng.h"
 #include "common/scene.h"
 #include "gateway/session_table.h"
-#include "gateway/wire_encode.h"
-#include "gateway/wire_verify.h"
+#include "wire/wire_encode.h"
+#include "wire/wire_verify.h"
 
 namespace zonesim::gateway {
 

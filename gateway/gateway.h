@@ -15,13 +15,13 @@
 #include "common/scene.h"
 #include "gateway/datagram_handler.h"
 #include "gateway/gateway_metrics.h"
-#include "gateway/impairment.h"
 #include "gateway/interest_manager.h"
 #include "gateway/session_table.h"
-#include "gateway/udp_socket.h"
 #include "gateway/world_cache.h"
 #include "gateway/zone_clock.h"
 #include "gateway/zone_link.h"
+#include "wire/impairment.h"
+#include "wire/udp_socket.h"
 
 namespace zonesim::gateway {
 

@@ -8,7 +8,7 @@
 
 #include "common/metrics.h"
 #include "gateway/session_table.h"
-#include "gateway/wire_verify.h"
+#include "wire/wire_verify.h"
 
 namespace zonesim::gateway {
 

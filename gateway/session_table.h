@@ -9,10 +9,10 @@
 #include <unordered_map>
 
 #include "common/generational_pool.h"
-#include "gateway/ack_window.h"
 #include "gateway/client_view.h"
-#include "gateway/udp_socket.h"
-#include "gateway/wire_encode.h"
+#include "wire/ack_window.h"
+#include "wire/udp_socket.h"
+#include "wire/wire_encode.h"
 
 namespace zonesim::gateway {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "gateway/wire_verify.h"
 #include "idl/dr_sample.h"
+#include "wire/wire_verify.h"
 
 namespace zonesim::gateway {
 

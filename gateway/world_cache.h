@@ -11,8 +11,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "idl/dr_model.h"
-#include "idl/state_codec.h"
+#include "dr/dr_model.h"
+#include "dr/state_codec.h"
 #include "zonesim.h"
 
 namespace zonesim::gateway {

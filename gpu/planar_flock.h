@@ -1,6 +1,6 @@
 #pragma once
 // Flocking on the ground plane on an OpenCL device, with read-only ghosts: the rules of the
-// crowd library's flock (zone_node/crowd/flock.h: separation, alignment, cohesion, an optional
+// crowd library's flock (crowd/flock.h: separation, alignment, cohesion, an optional
 // goal velocity, bounded force and speed, per-agent dt and detail) in float, for zone flocks too
 // large for the CPU. The crowd library's double flock is the reference (tests/gpu). Unlike
 // gpu::Flock (3-D rules of its own, state kept on the device, grid sorted there), a zone's
@@ -24,7 +24,7 @@ struct Vec2d {
   double y = 0;  ///< world z
 };
 
-/// The crowd flock's settings (zone_node/crowd/flock.h's FlockSettings, same meaning and units).
+/// The crowd flock's settings (crowd/flock.h's FlockSettings, same meaning and units).
 struct PlanarFlockParams {
   double neighbour_radius = 3.0;    ///< m: alignment and cohesion see agents this close
   double separation_radius = 1.0;   ///< m: separation pushes apart agents closer than this

@@ -4,8 +4,8 @@
 
 #include <cstdint>
 
-#include "idl/dr_model.h"
-#include "idl/state_codec.h"
+#include "dr/dr_model.h"
+#include "dr/state_codec.h"
 #include "zonesim.h"
 
 namespace zonesim::dds {

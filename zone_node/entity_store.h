@@ -11,7 +11,7 @@
 
 #include "common/entity_id.h"
 #include "common/math.h"
-#include "idl/dr_model.h"
+#include "dr/dr_model.h"
 
 namespace zonesim::zone {
 
@@ -53,7 +53,7 @@ struct AvatarData {
   bool announced = false;  ///< its owner told the gateways (creation announced)
 };
 
-/// A rigid body simulated by zone_node/physics.
+/// A rigid body simulated by physics/.
 struct BodyData {
   enum Shape : std::uint8_t { Sphere = 0, Box = 1, Capsule = 2 };
   double radius = 0.5;  ///< sphere and capsule

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "idl/truth_sample.h"
+#include "dr/truth_sample.h"
 
 namespace zonesim::zone {
 

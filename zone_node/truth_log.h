@@ -1,5 +1,5 @@
 #pragma once
-// The true trajectory of sampled entities (idl/truth_sample.h), one CSV line per entity and
+// The true trajectory of sampled entities (dr/truth_sample.h), one CSV line per entity and
 // tick as the publish phase saw it: deploy/truth_error.py joins it with what clients showed.
 
 #include <cstdint>

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include "ai/parse_error.h"
 #include "common/scene.h"
-#include "zone_node/ai/parse_error.h"
 
 namespace zonesim::zone {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <memory>
 
+#include "ai/grid_map.h"
 #include "common/scene.h"
-#include "zone_node/ai/grid_map.h"
-#include "zone_node/crowd/map_frame.h"
+#include "crowd/map_frame.h"
 
 namespace zonesim::zone {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "ai/grid_search.h"
+#include "ai/hpa_planner.h"
+#include "ai/scenario.h"
 #include "common/timer.h"
-#include "zone_node/ai/grid_search.h"
-#include "zone_node/ai/hpa_planner.h"
-#include "zone_node/ai/scenario.h"
 
 namespace {
 

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "ai/grid_map.h"
 #include "common/rng.h"
-#include "zone_node/ai/grid_map.h"
-#include "zone_node/crowd/flock.h"
-#include "zone_node/crowd/flow_crowd.h"
-#include "zone_node/crowd/lod.h"
+#include "crowd/flock.h"
+#include "crowd/flow_crowd.h"
+#include "crowd/lod.h"
 
 using namespace zonesim;
 using namespace zonesim::crowd;

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "common/rng.h"
+#include "crowd/flock.h"
 #include "gpu/planar_flock.h"
-#include "zone_node/crowd/flock.h"
 
 namespace {
 

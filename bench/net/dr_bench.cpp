@@ -18,7 +18,7 @@
 #include "clients/wander.h"
 #include "common/interest_grid.h"
 #include "common/rng.h"
-#include "gateway/wire_encode.h"
+#include "wire/wire_encode.h"
 #include "zone_node/net/dead_reckoning.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
@@ -40,7 +40,7 @@ struct Config {
   double orientation_deg = 3;
   bool blend = true;
   double loss = 0;
-  /// Resend-until-acknowledged (gateway/ack_window.h): a lost update, or one whose ack was
+  /// Resend-until-acknowledged (wire/ack_window.h): a lost update, or one whose ack was
   /// lost, is sent again with the newest state after this timeout; 0 = never resent.
   double resend_rto_s = 0;
   double radius = 100;

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "physics/broadphase.h"
+#include "physics/world.h"
 #include "scenes.h"
-#include "zone_node/physics/broadphase.h"
-#include "zone_node/physics/world.h"
 
 namespace zp = zonesim::physics;
 using zonesim::Vec3;

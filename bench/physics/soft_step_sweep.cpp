@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "zone_node/physics/box_column.h"
-#include "zone_node/physics/world.h"
+#include "physics/box_column.h"
+#include "physics/world.h"
 
 namespace {
 

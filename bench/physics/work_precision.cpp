@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "zone_node/physics/box_column.h"
-#include "zone_node/physics/integrator.h"
-#include "zone_node/physics/world.h"
+#include "physics/box_column.h"
+#include "physics/integrator.h"
+#include "physics/world.h"
 
 namespace zp = zonesim::physics;
 using zonesim::Vec3;

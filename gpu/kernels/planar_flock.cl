@@ -1,5 +1,5 @@
 // Flocking on the ground plane with read-only ghosts, for gpu/planar_flock.cpp: the rules of the
-// crowd library's flock (zone_node/crowd/flock.cpp) in float, which is the double reference the
+// crowd library's flock (crowd/flock.cpp) in float, which is the double reference the
 // tests compare against (tests/zone_node/test_flock_backend.cpp). Keep the two in step.
 //
 // The host uploads owned agents and ghosts already in cell order (it passes over every entry

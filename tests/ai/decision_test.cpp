@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "zone_node/ai/decision/decision_tree.h"
-#include "zone_node/ai/decision/fuzzy_machine.h"
+#include "ai/decision/decision_tree.h"
+#include "ai/decision/fuzzy_machine.h"
 
 namespace zonesim::ai {
 namespace {

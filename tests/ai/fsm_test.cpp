@@ -5,10 +5,10 @@
 
 #include <algorithm>
 
+#include "ai/fsm/guard_machine.h"
+#include "ai/fsm/machine.h"
+#include "ai/parse_error.h"
 #include "common/rng.h"
-#include "zone_node/ai/fsm/guard_machine.h"
-#include "zone_node/ai/fsm/machine.h"
-#include "zone_node/ai/parse_error.h"
 
 namespace zonesim::ai {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <limits>
 
+#include "ai/goap/goap_planner.h"
 #include "common/rng.h"
-#include "zone_node/ai/goap/goap_planner.h"
 
 namespace zonesim::ai {
 namespace {

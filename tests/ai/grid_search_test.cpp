@@ -1,13 +1,13 @@
 // A*: the listed optimal lengths of the Moving AI scenarios, equality with Dijkstra on random
 // maps, corner cutting, bounds, and reuse of one searcher across queries.
 
-#include "zone_node/ai/grid_search.h"
+#include "ai/grid_search.h"
 
 #include <gtest/gtest.h>
 
+#include "ai/scenario.h"
 #include "tests/ai/reference_dijkstra.h"
 #include "tests/ai/test_data.h"
-#include "zone_node/ai/scenario.h"
 
 namespace zonesim::ai {
 namespace {

@@ -1,14 +1,14 @@
 // HPA*: complete and never shorter than optimal, overhead bounded on the shipped maps, and a
 // local repair after a door closes gives the same answers as rebuilding from scratch.
 
-#include "zone_node/ai/hpa_planner.h"
+#include "ai/hpa_planner.h"
 
 #include <gtest/gtest.h>
 
+#include "ai/grid_search.h"
+#include "ai/scenario.h"
 #include "tests/ai/reference_dijkstra.h"
 #include "tests/ai/test_data.h"
-#include "zone_node/ai/grid_search.h"
-#include "zone_node/ai/scenario.h"
 
 namespace zonesim::ai {
 namespace {

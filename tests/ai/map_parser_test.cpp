@@ -4,9 +4,9 @@
 
 #include <sstream>
 
+#include "ai/grid_map.h"
+#include "ai/parse_error.h"
 #include "tests/ai/test_data.h"
-#include "zone_node/ai/grid_map.h"
-#include "zone_node/ai/parse_error.h"
 
 namespace zonesim::ai {
 namespace {

@@ -1,6 +1,6 @@
 // The path cache, the per-tick request budget, and re-planning when a door closes.
 
-#include "zone_node/ai/path_service.h"
+#include "ai/path_service.h"
 
 #include <gtest/gtest.h>
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "ai/grid_map.h"
 #include "common/rng.h"
-#include "zone_node/ai/grid_map.h"
 
 namespace zonesim::ai::test {
 

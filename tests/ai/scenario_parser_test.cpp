@@ -4,9 +4,9 @@
 
 #include <sstream>
 
+#include "ai/parse_error.h"
+#include "ai/scenario.h"
 #include "tests/ai/test_data.h"
-#include "zone_node/ai/parse_error.h"
-#include "zone_node/ai/scenario.h"
 
 namespace zonesim::ai {
 namespace {

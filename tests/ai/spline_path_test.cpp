@@ -1,12 +1,12 @@
 // Catmull-Rom following: through every control point, constant speed, arrival at the end.
 
-#include "zone_node/ai/spline_path.h"
+#include "ai/spline_path.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "zone_node/ai/grid_search.h"
+#include "ai/grid_search.h"
 
 namespace zonesim::ai {
 namespace {

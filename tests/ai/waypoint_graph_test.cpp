@@ -1,7 +1,7 @@
 // Waypoint graphs: cheapest paths with weights, flags and shut doors, and A* equal to a
 // zero-heuristic search on random graphs whose weights undercut the straight-line distance.
 
-#include "zone_node/ai/waypoint_graph.h"
+#include "ai/waypoint_graph.h"
 
 #include <gtest/gtest.h>
 

@@ -2,12 +2,12 @@
 // colony's trail converges to a route close to the A* optimum, and evaporation is what lets
 // it: without it the trails of the first, long wandering routes never fade.
 
-#include "zone_node/crowd/ant_colony.h"
+#include "crowd/ant_colony.h"
 
 #include <gtest/gtest.h>
 
-#include "zone_node/ai/grid_path.h"
-#include "zone_node/ai/grid_search.h"
+#include "ai/grid_path.h"
+#include "ai/grid_search.h"
 
 namespace zonesim::crowd {
 namespace {

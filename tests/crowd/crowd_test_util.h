@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/rng.h"
-#include "zone_node/crowd/agents.h"
+#include "crowd/agents.h"
 
 namespace zonesim::crowd::test {
 

@@ -3,7 +3,7 @@
 // its centroid, while it settles into a common heading. Without the separation term the same
 // flock collapses below the bound (the measurement detects a violation).
 
-#include "zone_node/crowd/flock.h"
+#include "crowd/flock.h"
 
 #include <gtest/gtest.h>
 

@@ -9,11 +9,11 @@
 #include <map>
 #include <tuple>
 
+#include "ai/grid_path.h"
+#include "ai/grid_search.h"
 #include "common/rng.h"
+#include "crowd/flow_crowd.h"
 #include "crowd_test_util.h"
-#include "zone_node/ai/grid_path.h"
-#include "zone_node/ai/grid_search.h"
-#include "zone_node/crowd/flow_crowd.h"
 
 namespace zonesim::crowd {
 namespace {

@@ -2,7 +2,7 @@
 // (no member is ever taken for cut off), and a member standing behind a wall from the group
 // plans an A* path around the wall, follows it and takes its slot again.
 
-#include "zone_node/crowd/formation.h"
+#include "crowd/formation.h"
 
 #include <gtest/gtest.h>
 

@@ -3,16 +3,16 @@
 // a flow crowd planned with LOD still brings every agent to its destination, arriving close
 // to the full-detail times.
 
-#include "zone_node/crowd/lod.h"
+#include "crowd/lod.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "common/rng.h"
+#include "crowd/flock.h"
+#include "crowd/flow_crowd.h"
 #include "crowd_test_util.h"
-#include "zone_node/crowd/flock.h"
-#include "zone_node/crowd/flow_crowd.h"
 
 namespace zonesim::crowd {
 namespace {

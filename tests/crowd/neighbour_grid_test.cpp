@@ -2,7 +2,7 @@
 // (rows of cells, then ids), and flock steps are bitwise independent of storage order and of
 // how agents are split between owned and ghost sets (what decomposition across ranks needs).
 
-#include "zone_node/crowd/neighbour_grid.h"
+#include "crowd/neighbour_grid.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <numeric>
 #include <set>
 
+#include "crowd/flock.h"
 #include "crowd_test_util.h"
-#include "zone_node/crowd/flock.h"
 
 namespace zonesim::crowd {
 namespace {

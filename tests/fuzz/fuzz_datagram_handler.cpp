@@ -10,7 +10,7 @@
 
 #include "gateway/datagram_handler.h"
 #include "gateway/session_table.h"
-#include "gateway/wire_encode.h"
+#include "wire/wire_encode.h"
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include "gpu/cl_error.h"
 #include "gpu/cl_sort.h"
 #include "gpu/cpu_boids.h"
-#include "tests/gpu/test_device.h"
+#include "tests/gpu/device_fixture.h"
 
 namespace zonesim::gpu {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "gpu/cl_error.h"
 #include "gpu/kernel_sources.h"
-#include "tests/gpu/test_device.h"
+#include "tests/gpu/device_fixture.h"
 
 namespace zonesim::gpu {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gpu/offload_probe.h"
-#include "tests/gpu/test_device.h"
+#include "tests/gpu/device_fixture.h"
 
 namespace zonesim::gpu {
 namespace {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "tests/gpu/test_device.h"
+#include "tests/gpu/device_fixture.h"
 
 namespace zonesim::gpu {
 namespace {

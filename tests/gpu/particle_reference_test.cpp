@@ -8,7 +8,7 @@
 #include <iostream>
 #include <vector>
 
-#include "tests/gpu/test_device.h"
+#include "tests/gpu/device_fixture.h"
 
 namespace zonesim::gpu {
 namespace {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "tests/gpu/test_device.h"
+#include "tests/gpu/device_fixture.h"
 
 namespace zonesim::gpu {
 namespace {

@@ -1,4 +1,4 @@
-#include "zone_node/physics/broadphase.h"
+#include "physics/broadphase.h"
 
 #include <gtest/gtest.h>
 

@@ -2,15 +2,15 @@
 // a fixed sphere, box and capsule without entering them, and a cloth that hits a free body
 // conserves the momentum of cloth and body together (two-way coupling).
 
-#include "zone_node/physics/cloth_collision.h"
+#include "physics/cloth_collision.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "zone_node/physics/cloth.h"
-#include "zone_node/physics/world.h"
+#include "physics/cloth.h"
+#include "physics/world.h"
 
 namespace zonesim::physics {
 namespace {

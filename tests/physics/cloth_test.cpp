@@ -1,6 +1,6 @@
 // Cloth: static equilibrium against closed forms and conserved quantities, and tearing.
 
-#include "zone_node/physics/cloth.h"
+#include "physics/cloth.h"
 
 #include <gtest/gtest.h>
 

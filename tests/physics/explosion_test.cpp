@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "zone_node/physics/world.h"
+#include "physics/world.h"
 
 namespace zonesim::physics {
 namespace {

@@ -1,4 +1,4 @@
-#include "zone_node/physics/integrator.h"
+#include "physics/integrator.h"
 
 #include <gtest/gtest.h>
 

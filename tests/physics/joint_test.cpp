@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "zone_node/physics/world.h"
+#include "physics/world.h"
 
 namespace zonesim::physics {
 namespace {

@@ -1,4 +1,4 @@
-#include "zone_node/physics/mass_properties.h"
+#include "physics/mass_properties.h"
 
 #include <gtest/gtest.h>
 

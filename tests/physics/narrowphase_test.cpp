@@ -1,4 +1,4 @@
-#include "zone_node/physics/narrowphase.h"
+#include "physics/narrowphase.h"
 
 #include <gtest/gtest.h>
 

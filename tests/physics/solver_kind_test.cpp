@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "physics/box_column.h"
+#include "physics/world.h"
 #include "rebound.h"
-#include "zone_node/physics/box_column.h"
-#include "zone_node/physics/world.h"
 
 namespace zonesim::physics {
 namespace {

@@ -1,4 +1,4 @@
-#include "zone_node/physics/world.h"
+#include "physics/world.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <cstring>
 #include <numbers>
 
+#include "physics/box_column.h"
 #include "rebound.h"
-#include "zone_node/physics/box_column.h"
 
 namespace zonesim::physics {
 namespace {

@@ -13,8 +13,8 @@
 
 #include "common/entity_id.h"
 #include "zone_node/cluster/byte_exchange.h"
-#include "zone_node/cluster/ghost_store.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/zone_layout.h"
 
 namespace zonesim::zone {

@@ -10,20 +10,11 @@
 
 #include "zone_node/cluster/byte_exchange.h"
 #include "zone_node/cluster/entity_codec.h"
+#include "zone_node/departure.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/zone_layout.h"
 
 namespace zonesim::zone {
-
-/// An entity that left this rank during the exchange.
-struct Departure {
-  EntityId id;
-  EntityKind kind;
-  int to_rank;              ///< -1: destroyed rather than migrated
-  int last_cell;            ///< interest cell it was last published in here (-1: never)
-  std::uint64_t player_id;  ///< for avatars
-  bool announced_avatar;    ///< an avatar the gateways know: its move is a handoff
-};
 
 /// An entity that arrived during the exchange.
 struct Arrival {

@@ -12,7 +12,7 @@
 #include "common/scene.h"
 #include "idl/dds_entity.h"
 #include "idl/topics.h"
-#include "zone_node/cluster/migration.h"
+#include "zone_node/departure.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/net/dead_reckoning.h"
 #include "zonesim.h"

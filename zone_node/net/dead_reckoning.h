@@ -1,13 +1,13 @@
 #pragma once
-// Sender-side dead reckoning: the zone runs the receivers' model (idl/dr_model.h, the order and
+// Sender-side dead reckoning: the zone runs the receivers' model (dr/dr_model.h, the order and
 // orientation mode chosen per entity type in the scene) on the quantised state it last sent, and
 // sends an update only when the prediction is off by more than the position or orientation
 // threshold or the entity's heartbeat has expired.
 
 #include "common/math.h"
 #include "common/scene.h"
-#include "idl/dr_model.h"
-#include "idl/state_codec.h"
+#include "dr/dr_model.h"
+#include "dr/state_codec.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <string>
 
-#include "zone_node/ai/decision/decision_tree.h"
-#include "zone_node/ai/decision/fuzzy_machine.h"
-#include "zone_node/ai/fsm/guard_machine.h"
-#include "zone_node/ai/fsm/machine.h"
-#include "zone_node/ai/fsm/machine_def.h"
+#include "ai/decision/decision_tree.h"
+#include "ai/decision/fuzzy_machine.h"
+#include "ai/fsm/guard_machine.h"
+#include "ai/fsm/machine.h"
+#include "ai/fsm/machine_def.h"
 
 namespace zonesim::zone {
 

@@ -1,6 +1,6 @@
 #include "zone_node/systems/agent_goap.h"
 
-#include "zone_node/ai/goap/goap_planner.h"
+#include "ai/goap/goap_planner.h"
 
 namespace zonesim::zone {
 

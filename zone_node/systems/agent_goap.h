@@ -1,6 +1,6 @@
 #pragma once
 // Goal-oriented agents: each plans once, from the type's initial facts to its goal, the cheapest
-// sequence of the scene's actions (zone_node/ai/goap, A* over world states), then executes it:
+// sequence of the scene's actions (ai/goap, A* over world states), then executes it:
 // go to the action's place, spend its duration there, apply its effects, next. The plan is kept
 // in AgentData, so a migrating agent continues the same plan on its new zone.
 

@@ -21,12 +21,12 @@
 #include <unordered_map>
 #include <vector>
 
+#include "ai/grid_map.h"
+#include "ai/path_service.h"
+#include "ai/spline_path.h"
 #include "common/math.h"
 #include "common/scene.h"
-#include "zone_node/ai/grid_map.h"
-#include "zone_node/ai/path_service.h"
-#include "zone_node/ai/spline_path.h"
-#include "zone_node/crowd/map_frame.h"
+#include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {

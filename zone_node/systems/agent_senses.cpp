@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <unordered_map>
 
-#include "zone_node/cluster/ghost_store.h"
+#include "zone_node/ghost_store.h"
 
 namespace zonesim::zone {
 

@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "ai/grid_map.h"
 #include "common/scene.h"
-#include "zone_node/ai/grid_map.h"
-#include "zone_node/crowd/map_frame.h"
+#include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/agent_navigation.h"
 #include "zone_node/systems/agent_senses.h"

@@ -20,8 +20,8 @@
 #include <span>
 #include <vector>
 
+#include "ai/octile.h"
 #include "common/scene.h"
-#include "zone_node/ai/octile.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {

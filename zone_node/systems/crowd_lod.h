@@ -3,7 +3,7 @@
 // by the crowd systems that apply it (flocks and flow crowds).
 
 #include "common/scene.h"
-#include "zone_node/crowd/lod.h"
+#include "crowd/lod.h"
 
 namespace zonesim::zone {
 

@@ -10,9 +10,9 @@
 #include <string_view>
 #include <vector>
 
+#include "crowd/flock.h"
 #include "gpu/backend.h"
 #include "gpu/offload.h"
-#include "zone_node/crowd/flock.h"
 
 namespace zonesim::gpu {
 class PlanarFlock;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "zone_node/cluster/ghost_store.h"
-#include "zone_node/crowd/flock.h"
+#include "crowd/flock.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/flock_backend.h"
 #include "zone_node/systems/planar_crowd.h"

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "common/scene.h"
+#include "crowd/vec2.h"
 #include "gpu/offload.h"
-#include "zone_node/crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::crowd {

@@ -14,9 +14,9 @@
 #include <span>
 #include <vector>
 
+#include "ai/grid_map.h"
 #include "common/scene.h"
-#include "zone_node/ai/grid_map.h"
-#include "zone_node/crowd/vec2.h"
+#include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <string>
 
-#include "zone_node/cluster/ghost_store.h"
-#include "zone_node/crowd/formation.h"
+#include "crowd/formation.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/scene.h"
-#include "zone_node/crowd/vec2.h"
+#include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::crowd {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "zone_node/cluster/ghost_store.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 
 namespace zonesim::zone {
 

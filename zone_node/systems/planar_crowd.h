@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "common/scene.h"
-#include "zone_node/cluster/ghost_store.h"
-#include "zone_node/crowd/agents.h"
+#include "crowd/agents.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 
 namespace zonesim::zone {
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "zone_node/cluster/ghost_store.h"
-#include "zone_node/physics/cloth.h"
-#include "zone_node/physics/cloth_collision.h"
-#include "zone_node/physics/world.h"
+#include "physics/cloth.h"
+#include "physics/cloth_collision.h"
+#include "physics/world.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/population.h"
 
 namespace zonesim::zone {

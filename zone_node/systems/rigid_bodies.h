@@ -1,5 +1,5 @@
 #pragma once
-// The zone's rigid bodies on the physics engine (zone_node/physics): spheres, boxes and capsules
+// The zone's rigid bodies on the physics engine (physics/): spheres, boxes and capsules
 // on a static ground and inside the world's walls. The engine's world persists across ticks
 // (warm starting, islands, sleeping) and is rebuilt from the entity store only when the zone's
 // set of bodies changes (a body migrated in or out), which costs that tick its warm start.
@@ -29,8 +29,8 @@
 #include "common/entity_id.h"
 #include "common/math.h"
 #include "common/scene.h"
-#include "zone_node/cluster/ghost_store.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/set_pieces.h"
 
 namespace zonesim::physics {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "ai/waypoint_graph.h"
 #include "common/rng.h"
-#include "zone_node/ai/waypoint_graph.h"
 
 namespace zonesim::zone {
 

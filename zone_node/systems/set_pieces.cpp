@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "zone_node/physics/world.h"
+#include "physics/world.h"
 
 namespace zonesim::zone {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/scene.h"
-#include "zone_node/physics/body_storage.h"
+#include "physics/body_storage.h"
 
 namespace zonesim::physics {
 class World;

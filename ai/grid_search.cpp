@@ -1,0 +1,188 @@
+#include "ai/grid_search.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace zonesim::ai {
+
+namespace {
+
+// Strict "a comes out of the heap before b": lower f, then deeper g (fewer re-expansions of
+// equal-f plateaus), then lower index so that ties never depend on insertion order.
+template <typename E>
+bool before(const E& a, const E& b) {
+  if (a.f != b.f) return a.f < b.f;
+  if (a.g != b.g) return a.g > b.g;
+  return a.idx < b.idx;
+}
+
+constexpr std::int64_t kStraight = std::int64_t(1) << 40;
+constexpr std::int64_t kDiagonal = 1554944255988;  // sqrt(2) * 2^40, rounded
+
+std::int64_t octileFixed(int dx, int dy) {
+  dx = dx < 0 ? -dx : dx;
+  dy = dy < 0 ? -dy : dy;
+  int lo = dx < dy ? dx : dy, hi = dx < dy ? dy : dx;
+  return std::int64_t(hi - lo) * kStraight + std::int64_t(lo) * kDiagonal;
+}
+
+}  // namespace
+
+GridSearch::GridSearch(const GridMap& map)
+    : map_(map), nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0, -1, 0, -1}) {}
+
+void GridSearch::beginSearch() {
+  // Two stamps per search (open and closed); on wrap-around every record is reset once.
+  if (generation_ >= 0xFFFFFFF0u) {
+    for (Node& n : nodes_) n.stamp = 0;
+    generation_ = 0;
+  }
+  generation_ += 2;
+  heap_.clear();
+  stats_ = SearchStats{};
+}
+
+void GridSearch::siftUp(std::size_t i, const HeapEntry& e) {
+  while (i > 0) {
+    std::size_t parent = (i - 1) / 2;
+    if (!before(e, heap_[parent])) break;
+    heap_[i] = heap_[parent];
+    nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
+    i = parent;
+  }
+  heap_[i] = e;
+  nodes_[std::size_t(e.idx)].heapPos = std::int32_t(i);
+}
+
+void GridSearch::heapPush(const HeapEntry& e) {
+  heap_.push_back(e);
+  siftUp(heap_.size() - 1, e);
+  ++stats_.generated;
+}
+
+void GridSearch::heapDecrease(const HeapEntry& e) {
+  // A lower g for an open node lowers its f (same h) and only ever moves it up.
+  siftUp(std::size_t(nodes_[std::size_t(e.idx)].heapPos), e);
+}
+
+GridSearch::HeapEntry GridSearch::heapPop() {
+  HeapEntry top = heap_.front();
+  HeapEntry last = heap_.back();
+  heap_.pop_back();
+  std::size_t n = heap_.size();
+  if (n == 0) return top;
+  std::size_t i = 0;
+  for (;;) {
+    std::size_t child = 2 * i + 1;
+    if (child >= n) break;
+    if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
+    if (!before(heap_[child], last)) break;
+    heap_[i] = heap_[child];
+    nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
+    i = child;
+  }
+  heap_[i] = last;
+  nodes_[std::size_t(last.idx)].heapPos = std::int32_t(i);
+  return top;
+}
+
+bool GridSearch::run(int start, int goal, const CellRect& bounds) {
+  beginSearch();
+  const std::uint32_t open = generation_, closed = generation_ + 1;
+  const int w = map_.width();
+  const Cell goalCell = goal >= 0 ? map_.cellAt(goal) : Cell{};
+  auto heuristic = [&](int x, int y) {
+    return goal >= 0 ? octileFixed(x - goalCell.x, y - goalCell.y) : std::int64_t(0);
+  };
+  Cell s = map_.cellAt(start);
+  nodes_[start] = Node{0, -1, open, -1};
+  heapPush(HeapEntry{heuristic(s.x, s.y), 0, start});
+
+  while (!heap_.empty()) {
+    HeapEntry top = heapPop();
+    Node& cur = nodes_[top.idx];
+    cur.stamp = closed;
+    ++stats_.expanded;
+    if (top.idx == goal) return true;
+
+    const int x = top.idx % w, y = top.idx / w;
+    // Cardinal neighbours first; their openness also decides which diagonals are legal.
+    static constexpr int kDx[4] = {1, -1, 0, 0};
+    static constexpr int kDy[4] = {0, 0, 1, -1};
+    bool free[4];
+    auto relax = [&](int nx, int ny, std::int64_t cost) {
+      int ni = ny * w + nx;
+      Node& n = nodes_[ni];
+      std::int64_t g = cur.g + cost;
+      if (n.stamp == closed) return;
+      if (n.stamp == open) {
+        if (n.g <= g) return;
+        n.g = g;
+        n.parent = top.idx;
+        heapDecrease(HeapEntry{g + heuristic(nx, ny), g, ni});
+        return;
+      }
+      n = Node{g, top.idx, open, -1};
+      heapPush(HeapEntry{g + heuristic(nx, ny), g, ni});
+    };
+    for (int d = 0; d < 4; ++d) {
+      int nx = x + kDx[d], ny = y + kDy[d];
+      free[d] = bounds.contains(nx, ny) && map_.passableAt(ny * w + nx);
+      if (free[d]) relax(nx, ny, kStraight);
+    }
+    // A diagonal needs both cardinal cells beside it free (no corner cutting); those lie
+    // inside `bounds` whenever both ends do, so the bounds check above covers them.
+    for (int ix = 0; ix < 2; ++ix) {
+      for (int iy = 2; iy < 4; ++iy) {
+        if (!free[ix] || !free[iy]) continue;
+        int nx = x + kDx[ix], ny = y + kDy[iy];
+        if (map_.passableAt(ny * w + nx)) relax(nx, ny, kDiagonal);
+      }
+    }
+  }
+  return goal < 0;
+}
+
+bool GridSearch::findPath(Cell start, Cell goal, GridPath& out) {
+  return findPath(start, goal, CellRect{0, 0, map_.width(), map_.height()}, out);
+}
+
+bool GridSearch::findPath(Cell start, Cell goal, const CellRect& bounds, GridPath& out) {
+  out.clear();
+  if (!bounds.contains(start.x, start.y) || !bounds.contains(goal.x, goal.y)) return false;
+  if (!map_.passable(start.x, start.y) || !map_.passable(goal.x, goal.y)) return false;
+  int g = map_.index(goal.x, goal.y);
+  if (!run(map_.index(start.x, start.y), g, bounds)) return false;
+  tracePath(g, out);
+  return true;
+}
+
+void GridSearch::explore(Cell start, const CellRect& bounds) {
+  if (!bounds.contains(start.x, start.y) || !map_.passable(start.x, start.y)) {
+    beginSearch();  // nothing reached: distanceTo() answers "unreached" everywhere
+    return;
+  }
+  run(map_.index(start.x, start.y), -1, bounds);
+}
+
+double GridSearch::distanceTo(Cell c) const {
+  if (!map_.inside(c.x, c.y)) return -1.0;
+  const Node& n = nodes_[map_.index(c.x, c.y)];
+  return n.stamp == generation_ + 1 ? double(n.g) / double(kStraight) : -1.0;
+}
+
+void GridSearch::pathTo(Cell c, GridPath& out) const {
+  out.clear();
+  if (distanceTo(c) < 0) return;
+  tracePath(map_.index(c.x, c.y), out);
+}
+
+void GridSearch::tracePath(int goal, GridPath& out) const {
+  out.clear();
+  for (int i = goal; i >= 0; i = nodes_[i].parent) out.cells.push_back(map_.cellAt(i));
+  std::reverse(out.cells.begin(), out.cells.end());
+  out.length = pathLength(out.cells);
+}
+
+}  // namespace zonesim::ai

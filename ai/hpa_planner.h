@@ -1,0 +1,115 @@
+#pragma once
+// HPA* (Botea, Müller, Schaeffer 2004): the map is cut into square clusters; entrances on
+// cluster borders become abstract nodes, joined by inter-cluster steps and by intra-cluster
+// edges whose costs are optimal paths inside the cluster. A query links start and goal to their
+// clusters' nodes, searches the small abstract graph, then refines each abstract edge with a
+// search bounded to one cluster. Paths are near-optimal; the overhead is measured, not assumed.
+// Optional smoothing re-plans windows of a few abstract steps with A* bounded to the window's
+// bounding box, which can only shorten the path and keeps it on the 8-connected grid.
+
+#include <cstdint>
+#include <vector>
+
+#include "ai/grid_map.h"
+#include "ai/grid_path.h"
+#include "ai/grid_search.h"
+
+namespace zonesim::ai {
+
+/// Settings of the abstraction.
+struct HpaConfig {
+  int clusterSize = 16;  ///< cluster side in cells
+  int wideEntrance = 6;  ///< entrances at least this wide get a transition at each end
+  int smoothSpan = 0;    ///< re-optimise windows of this many abstract steps (0: raw HPA*)
+};
+
+/// Size of the abstraction, for reports.
+struct HpaStats {
+  int clusters = 0;      ///< number of clusters
+  int nodes = 0;         ///< abstract nodes (transition cells)
+  int edges = 0;         ///< directed abstract edges
+  int expanded = 0;      ///< abstract nodes expanded by the last query
+  int gridExpanded = 0;  ///< grid cells expanded by the last query (linking, refining, smoothing)
+};
+
+/// Hierarchical planner over a map that may change; repairs only the clusters a change touches.
+class HpaPlanner {
+ public:
+  /// Builds the abstraction of `map`, which must outlive the planner.
+  HpaPlanner(const GridMap& map, const HpaConfig& config);
+
+  /// A near-optimal path; false (and `out` empty) when start and goal are not connected.
+  bool findPath(Cell start, Cell goal, GridPath& out);
+  /// Repairs the clusters around a cell that was opened or closed (call after changing it).
+  void cellChanged(Cell c);
+  /// Rebuilds the whole abstraction (a query does this itself after unreported changes).
+  void rebuild();
+  /// Size of the abstraction and work of the last query.
+  HpaStats stats() const;
+
+ private:
+  struct Transition {
+    std::int32_t a;  // cell on the left/top side
+    std::int32_t b;  // cell on the right/bottom side
+  };
+  struct IntraEdge {
+    std::int32_t a;
+    std::int32_t b;
+    double cost;
+  };
+  struct Edge {
+    std::int32_t to;
+    double cost;
+  };
+  struct AbstractNode {
+    double g;
+    std::int32_t parent;
+    std::uint32_t stamp;
+  };
+  struct HeapEntry {
+    double f;
+    double g;
+    std::int32_t idx;
+  };
+
+  int clusterOf(int x, int y) const;
+  CellRect clusterRect(int cluster) const;
+  void scanBorder(int border);
+  void clusterNodeCells(int cluster, std::vector<std::int32_t>& out) const;
+  void computeIntraEdges(int cluster);
+  void assembleGraph();
+  bool searchAbstract(int startNode, int goalNode, Cell goal);
+  void smooth(GridPath& out);
+
+  const GridMap& map_;
+  HpaConfig config_;
+  int clustersX_ = 0, clustersY_ = 0;
+  // Borders: first the vertical ones (between (cx, cy) and (cx + 1, cy)), then horizontal.
+  std::vector<std::vector<Transition>> borders_;
+  std::vector<std::vector<IntraEdge>> intra_;
+  // Abstract graph in compressed rows; node i is cell nodeCell_[i].
+  std::vector<std::int32_t> nodeCell_;
+  std::vector<std::int32_t> cellNode_;
+  std::vector<std::int32_t> edgeStart_;
+  std::vector<Edge> edges_;
+  std::uint64_t builtVersion_ = 0;
+
+  // Per-query scratch, reused so that a warmed-up query allocates only for its path.
+  GridSearch search_;
+  std::vector<Edge> startEdges_;
+  std::vector<double> goalCost_;
+  std::vector<std::uint32_t> goalStamp_;
+  std::vector<AbstractNode> records_;
+  std::vector<HeapEntry> heap_;
+  std::vector<std::int32_t> abstractPath_;
+  std::vector<std::int32_t> scratchCells_;
+  GridPath piece_;
+  GridPath direct_;
+  std::vector<std::int32_t> waypoints_;  // positions in the refined path of abstract nodes
+  std::vector<Cell> smoothed_;
+  std::uint32_t generation_ = 0;
+  int expanded_ = 0;
+  int gridExpanded_ = 0;
+};
+
+}  // namespace zonesim::ai

@@ -1,0 +1,159 @@
+#include "ai/path_service.h"
+
+#include <algorithm>
+
+namespace zonesim::ai {
+
+PathService::PathService(GridMap& map, const PathServiceConfig& config)
+    : map_(map), config_(config), cache_(config.cacheCapacity) {
+  if (config_.planner == PlannerKind::AStar) {
+    astar_ = std::make_unique<GridSearch>(map_);
+  } else {
+    hpa_ = std::make_unique<HpaPlanner>(map_, config_.hpa);
+  }
+}
+
+PathRequestId PathService::request(Cell start, Cell goal) {
+  std::uint32_t slot;
+  if (!freeSlots_.empty()) {
+    slot = freeSlots_.back();
+    freeSlots_.pop_back();
+  } else {
+    slot = std::uint32_t(requests_.size());
+    requests_.emplace_back();
+  }
+  Request& r = requests_[slot];
+  r.start = start;
+  r.goal = goal;
+  r.status = PathStatus::Queued;
+  r.path.clear();
+  PathRequestId id{slot, r.generation};
+  queue_.push_back(id);
+  return id;
+}
+
+void PathService::release(PathRequestId id) {
+  if (!find(id)) return;
+  Request& r = requests_[id.slot];
+  r.status = PathStatus::Unknown;
+  r.path.clear();
+  ++r.generation;  // stale handles, including any left in the queue, no longer match
+  freeSlots_.push_back(id.slot);
+}
+
+const PathService::Request* PathService::find(PathRequestId id) const {
+  if (id.slot >= requests_.size()) return nullptr;
+  const Request& r = requests_[id.slot];
+  return r.generation == id.generation && r.status != PathStatus::Unknown ? &r : nullptr;
+}
+
+bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
+  ++stats_.planned;
+  bool found;
+  if (astar_) {
+    found = astar_->findPath(start, goal, out);
+    expanded = astar_->lastStats().expanded;
+  } else {
+    found = hpa_->findPath(start, goal, out);
+    expanded = hpa_->stats().expanded + hpa_->stats().gridExpanded;
+  }
+  stats_.expanded += std::uint64_t(expanded);
+  return found;
+}
+
+void PathService::tick() {
+  int budget = config_.pathsPerTick;
+  long expansions = 0;
+  bool plannedAny = false;
+  while (!queue_.empty()) {
+    PathRequestId id = queue_.front();
+    const Request* found = find(id);
+    if (!found || found->status != PathStatus::Queued) {
+      queue_.pop_front();  // released, or already served by an earlier entry
+      continue;
+    }
+    Request& r = requests_[id.slot];
+    if (const GridPath* cached = cache_.find(r.start, r.goal)) {
+      r.path = *cached;
+      r.status = PathStatus::Ready;
+      ++stats_.cacheHits;
+      queue_.pop_front();
+      continue;
+    }
+    if (budget == 0) break;
+    if (plannedAny && config_.expansionsPerTick > 0 && expansions >= config_.expansionsPerTick) {
+      break;
+    }
+    --budget;
+    plannedAny = true;
+    queue_.pop_front();
+    int expanded = 0;
+    bool ok = plan(r.start, r.goal, r.path, expanded);
+    expansions += expanded;
+    if (ok) {
+      r.status = PathStatus::Ready;
+      cache_.insert(r.start, r.goal, r.path, expanded);
+    } else {
+      r.status = PathStatus::NoPath;
+    }
+  }
+}
+
+bool PathService::solve(Cell start, Cell goal, GridPath& out, int& expanded) {
+  if (const GridPath* cached = cache_.find(start, goal, &expanded)) {
+    out = *cached;
+    ++stats_.cacheHits;
+    return true;
+  }
+  if (!plan(start, goal, out, expanded)) return false;
+  cache_.insert(start, goal, out, expanded);
+  return true;
+}
+
+PathStatus PathService::status(PathRequestId id) const {
+  const Request* r = find(id);
+  return r ? r->status : PathStatus::Unknown;
+}
+
+const GridPath& PathService::path(PathRequestId id) const {
+  const Request* r = find(id);
+  return r && r->status == PathStatus::Ready ? r->path : empty_;
+}
+
+void PathService::setCell(Cell c, bool open) {
+  if (!map_.inside(c.x, c.y) || map_.passable(c.x, c.y) == open) return;
+  map_.setPassable(c.x, c.y, open);
+  if (hpa_) hpa_->cellChanged(c);
+  if (open) {
+    // Existing paths stay walkable; only cached answers might now be beaten, and requests
+    // that had no path may now have one.
+    cache_.clear();
+    for (std::uint32_t slot = 0; slot < requests_.size(); ++slot) {
+      Request& r = requests_[slot];
+      if (r.status != PathStatus::NoPath) continue;
+      r.status = PathStatus::Queued;
+      queue_.push_back(PathRequestId{slot, r.generation});
+      ++stats_.replans;
+    }
+    return;
+  }
+  if (config_.clearCacheOnClose)
+    cache_.clear();
+  else
+    cache_.cellClosed(c);
+  for (std::uint32_t slot = 0; slot < requests_.size(); ++slot) {
+    Request& r = requests_[slot];
+    if (r.status != PathStatus::Ready) continue;
+    if (std::find(r.path.cells.begin(), r.path.cells.end(), c) == r.path.cells.end()) continue;
+    r.status = PathStatus::Queued;
+    r.path.clear();
+    queue_.push_back(PathRequestId{slot, r.generation});
+    ++stats_.replans;
+  }
+}
+
+PathServiceStats PathService::stats() const {
+  return stats_;
+}
+
+}  // namespace zonesim::ai

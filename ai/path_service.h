@@ -1,0 +1,106 @@
+#pragma once
+// Path requests for many agents under a per-tick budget: requests queue in arrival order, each
+// tick() plans at most `pathsPerTick` of them and stops once `expansionsPerTick` nodes were
+// expanded (cache hits are free; at least one plan per tick so the queue always moves), so a
+// burst of requests is spread over several ticks instead of blowing one. Map changes go through
+// setCell(), which repairs the planner, invalidates cached paths and re-queues every request whose
+// path it cut.
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "ai/grid_map.h"
+#include "ai/grid_search.h"
+#include "ai/hpa_planner.h"
+#include "ai/path_cache.h"
+
+namespace zonesim::ai {
+
+/// Which planner serves requests.
+enum class PlannerKind { AStar, Hpa };
+
+/// Settings of a PathService.
+struct PathServiceConfig {
+  PlannerKind planner = PlannerKind::Hpa;  ///< A* (optimal) or HPA* (faster on large maps)
+  HpaConfig hpa;                           ///< abstraction settings when planner is Hpa
+  int pathsPerTick = 8;                    ///< planner calls allowed per tick
+  int expansionsPerTick = 0;               ///< node expansions allowed per tick (0: no limit)
+  std::size_t cacheCapacity = 1024;        ///< cached paths (0: no cache)
+  /// Closing a cell clears the cache too. A kept path stays optimal, but a fresh plan on the new
+  /// map may pick another path of the same length; set this where a hit must equal a fresh plan
+  /// (zones, whose caches differ from rank to rank).
+  bool clearCacheOnClose = false;
+};
+
+/// State of a request.
+enum class PathStatus { Unknown, Queued, Ready, NoPath };
+
+/// Handle of a request: slot and a generation, so a released handle is never mistaken.
+struct PathRequestId {
+  std::uint32_t slot = 0;        ///< index into the request table
+  std::uint32_t generation = 0;  ///< bumped when the slot is reused
+};
+
+/// Counters for reports and tests.
+struct PathServiceStats {
+  std::uint64_t planned = 0;    ///< planner calls
+  std::uint64_t cacheHits = 0;  ///< requests served from the cache
+  std::uint64_t replans = 0;    ///< requests re-queued because the map cut their path
+  std::uint64_t expanded = 0;   ///< nodes expanded by all planner calls
+};
+
+/// Budgeted, cached path finding over one map that the service owns changes to.
+class PathService {
+ public:
+  /// Serves paths on `map`, which must outlive the service and change only through setCell().
+  PathService(GridMap& map, const PathServiceConfig& config);
+
+  /// Queues a request; its path is available after a later tick().
+  PathRequestId request(Cell start, Cell goal);
+  /// Forgets a request (its agent no longer needs the path).
+  void release(PathRequestId id);
+  /// Plans queued requests in arrival order within the per-tick budget.
+  void tick();
+  /// Plans one path now, outside the queue and its budget (for a caller that budgets itself):
+  /// from the cache when it holds the pair, else by the planner (then cached). `expanded` is
+  /// the planner's node count, on a hit the count stored with the path, so that with
+  /// clearCacheOnClose a hit gives the caller's budget and the agent exactly what planning would.
+  bool solve(Cell start, Cell goal, GridPath& out, int& expanded);
+  /// State of a request (Unknown for a released or stale handle).
+  PathStatus status(PathRequestId id) const;
+  /// The path of a Ready request (empty otherwise).
+  const GridPath& path(PathRequestId id) const;
+  /// Opens or closes a cell, repairs the planner, and re-queues requests whose path it cut.
+  void setCell(Cell c, bool open);
+  /// Requests waiting for a tick.
+  std::size_t queued() const { return queue_.size(); }
+  /// Counters.
+  PathServiceStats stats() const;
+
+ private:
+  struct Request {
+    Cell start;
+    Cell goal;
+    PathStatus status = PathStatus::Unknown;
+    std::uint32_t generation = 0;
+    GridPath path;
+  };
+
+  const Request* find(PathRequestId id) const;
+  bool plan(Cell start, Cell goal, GridPath& out, int& expanded);
+
+  GridMap& map_;
+  PathServiceConfig config_;
+  std::unique_ptr<GridSearch> astar_;
+  std::unique_ptr<HpaPlanner> hpa_;
+  PathCache cache_;
+  std::vector<Request> requests_;
+  std::vector<std::uint32_t> freeSlots_;
+  std::deque<PathRequestId> queue_;
+  PathServiceStats stats_;
+  GridPath empty_;
+};
+
+}  // namespace zonesim::ai

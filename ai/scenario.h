@@ -1,0 +1,30 @@
+#pragma once
+// Moving AI scenario files (.scen): one shortest-path problem per line with its optimal length.
+
+#include <istream>
+#include <string>
+#include <vector>
+
+#include "ai/octile.h"
+
+namespace zonesim::ai {
+
+/// One problem of a scenario file.
+struct ScenarioProblem {
+  int bucket = 0;        ///< difficulty bucket from the file
+  std::string mapPath;   ///< map named by the file (informational: callers choose the map)
+  int mapWidth = 0;      ///< map width the problem was generated for
+  int mapHeight = 0;     ///< map height the problem was generated for
+  Cell start;            ///< start cell
+  Cell goal;             ///< goal cell
+  double optimal = 0.0;  ///< listed optimal length (rounded in the file)
+  int line = 0;          ///< 1-based line in the file, for error messages
+};
+
+/// Parses a scenario; accepts tabs or spaces, `version 1` or `version 1.0`, blank lines and
+/// CRLF. Throws ParseError naming `file` and the line.
+std::vector<ScenarioProblem> parseScenario(std::istream& in, const std::string& file);
+/// Reads a scenario file; throws ParseError (line 0 when it cannot be opened).
+std::vector<ScenarioProblem> loadScenario(const std::string& path);
+
+}  // namespace zonesim::ai

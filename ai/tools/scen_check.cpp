@@ -1,0 +1,113 @@
+// scen_check MAP SCEN [--planner astar|hpa]: runs every problem of a Moving AI scenario on MAP
+// (the map path inside the scenario is ignored) and compares each length with the listed
+// optimum. Ends with `problems N mismatches M us_per_path X max_overhead Y`; exits 1 on a
+// mismatch (for HPA*, which is not optimal, a mismatch is a missing or too-short path), 2 on
+// bad input or usage.
+
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "ai/grid_map.h"
+#include "ai/grid_search.h"
+#include "ai/hpa_planner.h"
+#include "ai/parse_error.h"
+#include "ai/scenario.h"
+#include "common/timer.h"
+
+namespace {
+
+using zonesim::ai::Cell;
+using zonesim::ai::GridPath;
+
+int usage() {
+  std::fprintf(stderr, "usage: scen_check MAP SCEN [--planner astar|hpa]\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace zonesim::ai;
+  std::string mapPath, scenPath, planner = "astar";
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--planner" && i + 1 < argc) {
+      planner = argv[++i];
+    } else if (a.rfind("--planner=", 0) == 0) {
+      planner = a.substr(10);
+    } else if (!a.empty() && a[0] == '-') {
+      return usage();
+    } else if (mapPath.empty()) {
+      mapPath = a;
+    } else if (scenPath.empty()) {
+      scenPath = a;
+    } else {
+      return usage();
+    }
+  }
+  if (mapPath.empty() || scenPath.empty() || (planner != "astar" && planner != "hpa")) {
+    return usage();
+  }
+  const bool optimal = planner == "astar";
+
+  try {
+    GridMap map = loadMovingAiMap(mapPath);
+    auto problems = loadScenario(scenPath);
+    for (const auto& p : problems) {
+      if (p.mapWidth != map.width() || p.mapHeight != map.height()) {
+        throw ParseError(scenPath, p.line,
+                         "problem is for a " + std::to_string(p.mapWidth) + "x" +
+                             std::to_string(p.mapHeight) + " map, " + mapPath + " is " +
+                             std::to_string(map.width()) + "x" + std::to_string(map.height()));
+      }
+      if (!map.passable(p.start.x, p.start.y) || !map.passable(p.goal.x, p.goal.y)) {
+        throw ParseError(scenPath, p.line, "start or goal is blocked on " + mapPath);
+      }
+    }
+
+    std::function<bool(Cell, Cell, GridPath&)> plan;
+    std::unique_ptr<GridSearch> astar;
+    std::unique_ptr<HpaPlanner> hpa;
+    if (optimal) {
+      astar = std::make_unique<GridSearch>(map);
+      plan = [&](Cell s, Cell g, GridPath& out) { return astar->findPath(s, g, out); };
+    } else {
+      hpa = std::make_unique<HpaPlanner>(map, HpaConfig{});
+      plan = [&](Cell s, Cell g, GridPath& out) { return hpa->findPath(s, g, out); };
+    }
+
+    GridPath path;
+    int mismatches = 0;
+    double maxOverhead = 0.0;
+    zonesim::Stopwatch clock;
+    for (const auto& p : problems) {
+      bool found = plan(p.start, p.goal, path);
+      bool bad = !found;
+      double overhead = 0.0;
+      if (found) {
+        overhead = p.optimal > 0 ? path.length / p.optimal - 1.0 : path.length;
+        bad = optimal ? !lengthsAgree(path.length, p.optimal)
+                      : path.length < p.optimal * (1.0 - 1e-3) - 1e-3;
+        if (overhead > maxOverhead) maxOverhead = overhead;
+      }
+      if (bad) {
+        if (++mismatches <= 10) {
+          std::fprintf(stderr, "%s:%d: (%d,%d)->(%d,%d) expected %.8g, got %s\n", scenPath.c_str(),
+                       p.line, p.start.x, p.start.y, p.goal.x, p.goal.y, p.optimal,
+                       found ? std::to_string(path.length).c_str() : "no path");
+        }
+      }
+    }
+    double seconds = clock.elapsedSeconds();
+    double usPerPath = problems.empty() ? 0.0 : seconds * 1e6 / double(problems.size());
+    std::printf("problems %zu mismatches %d us_per_path %.2f max_overhead %.6f\n", problems.size(),
+                mismatches, usPerPath, maxOverhead);
+    return mismatches > 0 ? 1 : 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "scen_check: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,81 @@
+#pragma once
+// Ant colony optimisation for finding a route through terrain the ants do not know: each ant
+// walks from the nest sensing only the cells next to it (walls are discovered by bumping into
+// them), never revisiting a cell (a dead end makes it back off one step), and picks its next
+// step with probability proportional to pheromone^alpha * eta^beta, or, with probability
+// `exploitation`, the best such step outright (the ACS rule: exploitation against
+// exploration). eta may use where the food is (as the crow flies; the terrain in between
+// stays unknown) or nothing at all. Ants that find the food lay
+// Q / length on the steps of their route; every iteration all trails evaporate by a fraction
+// rho, so routes that stop being used fade and early detours do not pin the colony.
+
+#include <cstdint>
+#include <vector>
+
+#include "ai/grid_map.h"
+#include "common/rng.h"
+
+namespace zonesim::crowd {
+
+/// Colony parameters.
+struct AntColonySettings {
+  int ants = 20;                   ///< ants sent per iteration
+  double alpha = 1.0;              ///< weight of pheromone in the step choice
+  double beta = 2.0;               ///< weight of the heuristic desirability eta of a step
+  bool knowsFoodPosition = true;   ///< eta = 1 / (step + octile distance to the food); else
+                                   ///< eta = 1 / step: the ants know nothing but their cell
+  double evaporation = 0.1;        ///< rho: fraction of every trail lost per iteration
+  double deposit = 1.0;            ///< Q: an ant lays Q / (route length) on each of its steps
+  double exploitation = 0.0;       ///< q0: chance of taking the strongest step outright
+  double initialPheromone = 0.01;  ///< trail on every step before any ant walked
+  double minPheromone = 1e-6;      ///< floor, so that no step ever becomes impossible
+  bool eliteDeposit = true;        ///< the best route so far is reinforced every iteration
+  int maxSteps = 0;                ///< moves before an ant gives up (0: 4 x walkable cells)
+  std::uint64_t seed = 1;          ///< random stream of the colony
+};
+
+/// Summary of one iteration.
+struct AntIteration {
+  int found = 0;            ///< ants that reached the food
+  double meanLength = 0.0;  ///< mean route length of those ants
+  double bestLength = 0.0;  ///< best route length found so far (0 while none)
+};
+
+/// A colony exploring one map from a nest toward food it has not seen.
+class AntColony {
+ public:
+  /// A colony on `map` (which must outlive it) between two walkable cells.
+  AntColony(const ai::GridMap& map, ai::Cell nest, ai::Cell food,
+            const AntColonySettings& settings);
+
+  /// Sends one iteration of ants, then evaporates and deposits.
+  AntIteration iterate();
+  /// Best route found so far (empty while none), nest first.
+  const std::vector<ai::Cell>& bestRoute() const { return best_; }
+  /// Length of the best route (0 while none).
+  double bestLength() const { return bestLength_; }
+  /// The colony's current preferred route: from the nest, always the strongest unvisited
+  /// step; false when it dead-ends or loops without reaching the food.
+  bool trailRoute(std::vector<ai::Cell>& out) const;
+  /// Trail on the step from `c` in direction k (0..7).
+  double pheromone(ai::Cell c, int k) const {
+    return tau_[std::size_t(map_.index(c.x, c.y)) * 8 + k];
+  }
+
+ private:
+  bool walk(std::vector<ai::Cell>& route);
+  bool stepAllowed(int x, int y, int k) const;
+
+  const ai::GridMap& map_;
+  ai::Cell nest_, food_;
+  AntColonySettings settings_;
+  Pcg32 rng_;
+  std::vector<double> tau_;          // 8 directed steps per cell
+  std::vector<std::uint32_t> seen_;  // stamp per cell: visited by the current ant
+  std::uint32_t stamp_ = 0;
+  std::vector<ai::Cell> best_;
+  double bestLength_ = 0.0;
+  std::vector<std::vector<ai::Cell>> routes_;  // this iteration's successful routes
+};
+
+}  // namespace zonesim::crowd

@@ -1,0 +1,484 @@
+#include "crowd/flock.h"
+
+#include <stdexcept>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace zonesim::crowd {
+
+namespace {
+
+// Neighbour sums of one agent: the count and velocity sum of agents within the neighbour
+// radius, the sum of their offsets, and the separation push. Includes the agent itself (at
+// offset zero), which the caller takes out.
+struct NeighbourSums {
+  double count = 0;
+  Vec2 vel, rel, sep;
+  int coincident = 0;  // entries at distance zero (the agent itself and exact overlaps)
+};
+
+#if !defined(__SSE2__)
+// One candidate at a time (targets without SSE2).
+void accumulateScalar(const NeighbourGrid& g, std::int32_t begin, std::int32_t end, Vec2 p,
+                      double nr2, double sr, NeighbourSums& s) {
+  const double sr2 = sr * sr;
+  for (std::int32_t k = begin; k < end; ++k) {
+    Vec2 rel{g.xs()[k] - p.x, g.ys()[k] - p.y};
+    double d2 = lengthSq(rel);
+    double in = static_cast<double>(d2 < nr2);
+    s.count += in;
+    s.vel += Vec2{g.vxs()[k], g.vys()[k]} * in;
+    s.rel += rel * in;
+    if (d2 < sr2) {
+      if (d2 > 1e-18) {
+        double d = std::sqrt(d2);
+        // Unit vector away from the other, scaled by (sr / d - 1): zero at the radius,
+        // unbounded as the distance goes to zero.
+        s.sep += rel * (-(sr / d - 1.0) / d);
+      } else {
+        ++s.coincident;
+      }
+    }
+  }
+}
+
+#else
+// Two candidates per instruction (SSE2 is part of x86-64) for the distances and terms; the
+// terms are then added one lane after the other into scalar sums (the low lanes), so a sum is
+// the sequential sum over the in-range neighbours in canonical order. Out-of-range candidates
+// add exact zeros. Summing per lane instead would pair candidates by their position in the
+// row, which shifts when a cell holds agents out of range that another rank's halo leaves out
+// (a zone run then differs from a single rank in the last bit). In-range masks replace
+// branches: about a third of the candidates from the cells fall outside the radius.
+struct Lanes {
+  __m128d count = _mm_setzero_pd(), vx = _mm_setzero_pd(), vy = _mm_setzero_pd();
+  __m128d rx = _mm_setzero_pd(), ry = _mm_setzero_pd(), sx = _mm_setzero_pd();
+  __m128d sy = _mm_setzero_pd();
+  int coincident = 0;
+};
+
+// acc + c[0] + c[1], in that order, in the low lane.
+inline __m128d addInOrder(__m128d acc, __m128d c) {
+  return _mm_add_sd(_mm_add_sd(acc, c), _mm_unpackhi_pd(c, c));
+}
+
+inline void accumulatePair(__m128d x, __m128d y, __m128d vx, __m128d vy, __m128d lanes, __m128d px,
+                           __m128d py, __m128d nr2, __m128d sr, Lanes& a) {
+  const __m128d one = _mm_set1_pd(1.0);
+  __m128d dx = _mm_sub_pd(x, px), dy = _mm_sub_pd(y, py);
+  __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+  __m128d in = _mm_and_pd(_mm_cmplt_pd(d2, nr2), lanes);
+  a.count = addInOrder(a.count, _mm_and_pd(in, one));
+  a.vx = addInOrder(a.vx, _mm_and_pd(in, vx));
+  a.vy = addInOrder(a.vy, _mm_and_pd(in, vy));
+  a.rx = addInOrder(a.rx, _mm_and_pd(in, dx));
+  a.ry = addInOrder(a.ry, _mm_and_pd(in, dy));
+  __m128d close = _mm_and_pd(_mm_cmplt_pd(d2, _mm_mul_pd(sr, sr)), lanes);
+  if (_mm_movemask_pd(close)) {
+    __m128d zero = _mm_cmple_pd(d2, _mm_set1_pd(1e-18));
+    int m = _mm_movemask_pd(_mm_and_pd(close, zero));
+    a.coincident += (m & 1) + (m >> 1);  // baseline x86-64 has no popcnt instruction
+    __m128d push = _mm_andnot_pd(zero, close);
+    __m128d d = _mm_sqrt_pd(_mm_or_pd(d2, _mm_and_pd(zero, one)));  // no sqrt(0) / 0
+    __m128d w = _mm_div_pd(_mm_sub_pd(_mm_div_pd(sr, d), one), d);
+    w = _mm_and_pd(push, w);
+    // Subtracting dx * w: adding its negation (exact) in lane order.
+    const __m128d sign = _mm_set1_pd(-0.0);
+    a.sx = addInOrder(a.sx, _mm_xor_pd(_mm_mul_pd(dx, w), sign));
+    a.sy = addInOrder(a.sy, _mm_xor_pd(_mm_mul_pd(dy, w), sign));
+  }
+}
+
+double lowLane(__m128d v) {
+  return _mm_cvtsd_f64(v);  // the sums run in the low lane; the high one is unused
+}
+
+double highLane(__m128d v) {
+  return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v));
+}
+
+// Two agents at once, one per lane: each candidate is broadcast to both lanes and added to
+// each lane's sums, so each lane is the sequential sum over its agent's in-range neighbours in
+// canonical order (the candidates of the union of both agents' rows come in canonical order,
+// and the ones out of an agent's reach add exact zeros to its sums, which are never -0). The
+// lanes' sums are therefore bitwise those of the one-agent loop, at one add per term and
+// candidate for two agents instead of two adds per term and candidate pair for one.
+struct PairLanes {
+  __m128d count = _mm_setzero_pd(), vx = _mm_setzero_pd(), vy = _mm_setzero_pd();
+  __m128d rx = _mm_setzero_pd(), ry = _mm_setzero_pd(), sx = _mm_setzero_pd();
+  __m128d sy = _mm_setzero_pd();
+  int coincident[2] = {0, 0};
+};
+
+inline void accumulateBroadcast(const NeighbourGrid& g, std::int32_t k, __m128d px, __m128d py,
+                                __m128d nr2, __m128d sr, __m128d sr2, PairLanes& a) {
+  const __m128d one = _mm_set1_pd(1.0);
+  __m128d dx = _mm_sub_pd(_mm_load1_pd(g.xs() + k), px);
+  __m128d dy = _mm_sub_pd(_mm_load1_pd(g.ys() + k), py);
+  __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+  __m128d in = _mm_cmplt_pd(d2, nr2);
+  a.count = _mm_add_pd(a.count, _mm_and_pd(in, one));
+  a.vx = _mm_add_pd(a.vx, _mm_and_pd(in, _mm_load1_pd(g.vxs() + k)));
+  a.vy = _mm_add_pd(a.vy, _mm_and_pd(in, _mm_load1_pd(g.vys() + k)));
+  a.rx = _mm_add_pd(a.rx, _mm_and_pd(in, dx));
+  a.ry = _mm_add_pd(a.ry, _mm_and_pd(in, dy));
+  __m128d close = _mm_cmplt_pd(d2, sr2);
+  if (_mm_movemask_pd(close)) {
+    __m128d zero = _mm_cmple_pd(d2, _mm_set1_pd(1e-18));
+    int m = _mm_movemask_pd(_mm_and_pd(close, zero));
+    a.coincident[0] += m & 1;
+    a.coincident[1] += m >> 1;
+    __m128d push = _mm_andnot_pd(zero, close);
+    __m128d d = _mm_sqrt_pd(_mm_or_pd(d2, _mm_and_pd(zero, one)));  // no sqrt(0) / 0
+    __m128d w = _mm_and_pd(push, _mm_div_pd(_mm_sub_pd(_mm_div_pd(sr, d), one), d));
+    const __m128d sign = _mm_set1_pd(-0.0);
+    a.sx = _mm_add_pd(a.sx, _mm_xor_pd(_mm_mul_pd(dx, w), sign));
+    a.sy = _mm_add_pd(a.sy, _mm_xor_pd(_mm_mul_pd(dy, w), sign));
+  }
+}
+#endif
+
+NeighbourSums neighbourSums(const NeighbourGrid& g, Vec2 p, double nr, double sr) {
+  NeighbourSums s;
+  const double nr2 = nr * nr;
+#if defined(__SSE2__)
+  Lanes a;
+  const __m128d px = _mm_set1_pd(p.x), py = _mm_set1_pd(p.y), nr2v = _mm_set1_pd(nr2);
+  const __m128d srv = _mm_set1_pd(sr);
+  const __m128d both = _mm_castsi128_pd(_mm_set1_epi64x(-1));
+  const __m128d low = _mm_castsi128_pd(_mm_set_epi64x(0, -1));
+  g.forEachRowNear(p, nr, [&](std::int32_t begin, std::int32_t end) {
+    std::int32_t k = begin;
+    for (; k + 2 <= end; k += 2)
+      accumulatePair(_mm_loadu_pd(g.xs() + k), _mm_loadu_pd(g.ys() + k), _mm_loadu_pd(g.vxs() + k),
+                     _mm_loadu_pd(g.vys() + k), both, px, py, nr2v, srv, a);
+    if (k < end)
+      accumulatePair(_mm_load_sd(g.xs() + k), _mm_load_sd(g.ys() + k), _mm_load_sd(g.vxs() + k),
+                     _mm_load_sd(g.vys() + k), low, px, py, nr2v, srv, a);
+  });
+  s.count = lowLane(a.count);
+  s.vel = Vec2{lowLane(a.vx), lowLane(a.vy)};
+  s.rel = Vec2{lowLane(a.rx), lowLane(a.ry)};
+  s.sep = Vec2{lowLane(a.sx), lowLane(a.sy)};
+  s.coincident = a.coincident;
+#else
+  g.forEachRowNear(p, nr, [&](std::int32_t begin, std::int32_t end) {
+    accumulateScalar(g, begin, end, p, nr2, sr, s);
+  });
+#endif
+  return s;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ZONESIM_FLOCK_AVX 1
+
+// Four (AVX) or eight (AVX-512) agents at once, one per vector lane, on the same scheme as
+// PairLanes: each candidate of the union of the agents' rows is broadcast to every lane, so
+// each lane is the sequential sum over its agent's in-range neighbours in canonical order.
+// No FMA (the build is ISO C++, so GCC does not contract): every product is rounded before it
+// is added, exactly as in the SSE2 loops, so the lanes are bitwise the one-agent sums. Chosen
+// at run time; the target attributes keep the rest of the library baseline x86-64.
+//
+// Two passes over the candidates. The first adds the count, velocity and offset terms for
+// every candidate without a branch and notes, in canonical order, the candidates closer than
+// the separation radius to some lane (about one in five). The second adds the separation
+// terms (a square root and two divisions) of the noted ones only. A branch per candidate on
+// "close to any lane" was taken at random and cost more than the arithmetic it skipped.
+struct LaneSums {
+  double count[8], vx[8], vy[8], rx[8], ry[8], sx[8], sy[8], coincident[8];
+};
+
+// Rows of the union of the discs, at most this many (else the caller takes two pairs).
+constexpr int kGroupRows = 16;
+
+__attribute__((target("avx"))) void neighbourSumsQuad(const NeighbourGrid& g, const Vec2* p,
+                                                      const std::int32_t* ranges, int rows,
+                                                      double nr, double sr, std::int32_t* noted,
+                                                      LaneSums& out) {
+  const __m256d px = _mm256_set_pd(p[3].x, p[2].x, p[1].x, p[0].x);
+  const __m256d py = _mm256_set_pd(p[3].y, p[2].y, p[1].y, p[0].y);
+  const __m256d nr2 = _mm256_set1_pd(nr * nr), srv = _mm256_set1_pd(sr);
+  const __m256d sr2 = _mm256_set1_pd(sr * sr), one = _mm256_set1_pd(1.0);
+  const __m256d tiny = _mm256_set1_pd(1e-18), sign = _mm256_set1_pd(-0.0);
+  __m256d count = _mm256_setzero_pd(), vx = _mm256_setzero_pd(), vy = _mm256_setzero_pd();
+  __m256d rx = _mm256_setzero_pd(), ry = _mm256_setzero_pd(), sx = _mm256_setzero_pd();
+  __m256d sy = _mm256_setzero_pd(), coin = _mm256_setzero_pd();
+  const double *xs = g.xs(), *ys = g.ys(), *vxs = g.vxs(), *vys = g.vys();
+  int close = 0;
+  for (int r = 0; r < rows; ++r) {
+    for (std::int32_t k = ranges[2 * r]; k < ranges[2 * r + 1]; ++k) {
+      __m256d dx = _mm256_sub_pd(_mm256_broadcast_sd(xs + k), px);
+      __m256d dy = _mm256_sub_pd(_mm256_broadcast_sd(ys + k), py);
+      __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+      __m256d in = _mm256_cmp_pd(d2, nr2, _CMP_LT_OQ);
+      count = _mm256_add_pd(count, _mm256_and_pd(in, one));
+      vx = _mm256_add_pd(vx, _mm256_and_pd(in, _mm256_broadcast_sd(vxs + k)));
+      vy = _mm256_add_pd(vy, _mm256_and_pd(in, _mm256_broadcast_sd(vys + k)));
+      rx = _mm256_add_pd(rx, _mm256_and_pd(in, dx));
+      ry = _mm256_add_pd(ry, _mm256_and_pd(in, dy));
+      __m256d near = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
+      __m256d zero = _mm256_and_pd(near, _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ));
+      coin = _mm256_add_pd(coin, _mm256_and_pd(zero, one));
+      noted[close] = k;
+      close += _mm256_movemask_pd(_mm256_andnot_pd(zero, near)) != 0;
+    }
+  }
+  for (int c = 0; c < close; ++c) {
+    const std::int32_t k = noted[c];
+    __m256d dx = _mm256_sub_pd(_mm256_broadcast_sd(xs + k), px);
+    __m256d dy = _mm256_sub_pd(_mm256_broadcast_sd(ys + k), py);
+    __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    __m256d near = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
+    __m256d zero = _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ);
+    __m256d push = _mm256_andnot_pd(zero, near);
+    __m256d d = _mm256_sqrt_pd(_mm256_or_pd(d2, _mm256_and_pd(zero, one)));  // no sqrt(0) / 0
+    __m256d w = _mm256_and_pd(push, _mm256_div_pd(_mm256_sub_pd(_mm256_div_pd(srv, d), one), d));
+    sx = _mm256_add_pd(sx, _mm256_xor_pd(_mm256_mul_pd(dx, w), sign));
+    sy = _mm256_add_pd(sy, _mm256_xor_pd(_mm256_mul_pd(dy, w), sign));
+  }
+  _mm256_storeu_pd(out.count, count);
+  _mm256_storeu_pd(out.vx, vx);
+  _mm256_storeu_pd(out.vy, vy);
+  _mm256_storeu_pd(out.rx, rx);
+  _mm256_storeu_pd(out.ry, ry);
+  _mm256_storeu_pd(out.sx, sx);
+  _mm256_storeu_pd(out.sy, sy);
+  _mm256_storeu_pd(out.coincident, coin);
+}
+
+// The eight-lane version. Masked adds leave a lane's sum as it was where the AVX loop adds an
+// exact zero: the same value, since a sum that starts at +0 is never -0.
+__attribute__((target("avx512f"))) void neighbourSumsOcta(const NeighbourGrid& g, const Vec2* p,
+                                                          const std::int32_t* ranges, int rows,
+                                                          double nr, double sr, std::int32_t* noted,
+                                                          LaneSums& out) {
+  const __m512d px = _mm512_set_pd(p[7].x, p[6].x, p[5].x, p[4].x, p[3].x, p[2].x, p[1].x, p[0].x);
+  const __m512d py = _mm512_set_pd(p[7].y, p[6].y, p[5].y, p[4].y, p[3].y, p[2].y, p[1].y, p[0].y);
+  const __m512d nr2 = _mm512_set1_pd(nr * nr), srv = _mm512_set1_pd(sr);
+  const __m512d sr2 = _mm512_set1_pd(sr * sr), one = _mm512_set1_pd(1.0);
+  const __m512d tiny = _mm512_set1_pd(1e-18);
+  __m512d count = _mm512_setzero_pd(), vx = _mm512_setzero_pd(), vy = _mm512_setzero_pd();
+  __m512d rx = _mm512_setzero_pd(), ry = _mm512_setzero_pd(), sx = _mm512_setzero_pd();
+  __m512d sy = _mm512_setzero_pd(), coin = _mm512_setzero_pd();
+  const double *xs = g.xs(), *ys = g.ys(), *vxs = g.vxs(), *vys = g.vys();
+  int close = 0;
+  for (int r = 0; r < rows; ++r) {
+    for (std::int32_t k = ranges[2 * r]; k < ranges[2 * r + 1]; ++k) {
+      __m512d dx = _mm512_sub_pd(_mm512_set1_pd(xs[k]), px);
+      __m512d dy = _mm512_sub_pd(_mm512_set1_pd(ys[k]), py);
+      __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+      __mmask8 in = _mm512_cmp_pd_mask(d2, nr2, _CMP_LT_OQ);
+      count = _mm512_mask_add_pd(count, in, count, one);
+      vx = _mm512_mask_add_pd(vx, in, vx, _mm512_set1_pd(vxs[k]));
+      vy = _mm512_mask_add_pd(vy, in, vy, _mm512_set1_pd(vys[k]));
+      rx = _mm512_mask_add_pd(rx, in, rx, dx);
+      ry = _mm512_mask_add_pd(ry, in, ry, dy);
+      __mmask8 near = _mm512_cmp_pd_mask(d2, sr2, _CMP_LT_OQ);
+      __mmask8 zero = _mm512_mask_cmp_pd_mask(near, d2, tiny, _CMP_LE_OQ);
+      coin = _mm512_mask_add_pd(coin, zero, coin, one);
+      noted[close] = k;
+      close += (near & ~zero & 0xff) != 0;
+    }
+  }
+  for (int c = 0; c < close; ++c) {
+    const std::int32_t k = noted[c];
+    __m512d dx = _mm512_sub_pd(_mm512_set1_pd(xs[k]), px);
+    __m512d dy = _mm512_sub_pd(_mm512_set1_pd(ys[k]), py);
+    __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+    __mmask8 near = _mm512_cmp_pd_mask(d2, sr2, _CMP_LT_OQ);
+    __mmask8 push = _mm512_mask_cmp_pd_mask(near, d2, tiny, _CMP_GT_OQ);
+    __m512d d = _mm512_mask_sqrt_pd(one, push, d2);  // 1 in the other lanes: no sqrt(0) / 0
+    __m512d w = _mm512_div_pd(_mm512_sub_pd(_mm512_div_pd(srv, d), one), d);
+    // Subtracting dx * w: the sum of the negated terms, as in the other loops.
+    sx = _mm512_mask_sub_pd(sx, push, sx, _mm512_mul_pd(dx, w));
+    sy = _mm512_mask_sub_pd(sy, push, sy, _mm512_mul_pd(dy, w));
+  }
+  _mm512_storeu_pd(out.count, count);
+  _mm512_storeu_pd(out.vx, vx);
+  _mm512_storeu_pd(out.vy, vy);
+  _mm512_storeu_pd(out.rx, rx);
+  _mm512_storeu_pd(out.ry, ry);
+  _mm512_storeu_pd(out.sx, sx);
+  _mm512_storeu_pd(out.sy, sy);
+  _mm512_storeu_pd(out.coincident, coin);
+}
+#endif
+
+// The sums of two agents in one pass over the union of their rows (see PairLanes).
+void neighbourSumsPair(const NeighbourGrid& g, Vec2 p, Vec2 q, double nr, double sr,
+                       NeighbourSums& sp, NeighbourSums& sq) {
+#if defined(__SSE2__)
+  PairLanes a;
+  const __m128d px = _mm_set_pd(q.x, p.x), py = _mm_set_pd(q.y, p.y);
+  const __m128d nr2 = _mm_set1_pd(nr * nr), srv = _mm_set1_pd(sr), sr2 = _mm_set1_pd(sr * sr);
+  g.forEachRowNearEither(p, q, nr, [&](std::int32_t begin, std::int32_t end) {
+    for (std::int32_t k = begin; k < end; ++k) accumulateBroadcast(g, k, px, py, nr2, srv, sr2, a);
+  });
+  sp.count = lowLane(a.count);
+  sp.vel = Vec2{lowLane(a.vx), lowLane(a.vy)};
+  sp.rel = Vec2{lowLane(a.rx), lowLane(a.ry)};
+  sp.sep = Vec2{lowLane(a.sx), lowLane(a.sy)};
+  sp.coincident = a.coincident[0];
+  sq.count = highLane(a.count);
+  sq.vel = Vec2{highLane(a.vx), highLane(a.vy)};
+  sq.rel = Vec2{highLane(a.rx), highLane(a.ry)};
+  sq.sep = Vec2{highLane(a.sx), highLane(a.sy)};
+  sq.coincident = a.coincident[1];
+#else
+  sp = neighbourSums(g, p, nr, sr);
+  sq = neighbourSums(g, q, nr, sr);
+#endif
+}
+
+// The steering acceleration of `self` from its neighbour sums.
+Vec2 steeringFrom(const FlockSettings& s, const NeighbourGrid& grid, const NeighbourSums& n,
+                  const GridEntry& self, Vec2 goal, bool hasGoal) {
+  Vec2 sep = n.sep;
+  if (n.coincident > 1) {
+    // Exact overlaps besides the agent itself (rare): split them along x by id so that the
+    // push is deterministic.
+    grid.forEachNear(self.pos, s.neighbourRadius, [&](const GridEntry& o) {
+      if (o.id != self.id && lengthSq(o.pos - self.pos) <= 1e-18)
+        sep.x += self.id < o.id ? -1e3 : 1e3;
+    });
+  }
+  // Take out the agent itself: counted once, with its own velocity; its offset is zero.
+  int count = int(n.count) - 1;
+  Vec2 acc = sep * s.separationWeight;
+  if (count > 0) {
+    double inv = 1.0 / count;
+    acc += ((n.vel - self.vel) * inv - self.vel) * s.alignmentWeight;
+    acc += n.rel * (inv * s.cohesionWeight);
+  }
+  if (hasGoal) acc += (goal - self.vel) * s.goalWeight;
+  return clampLength(acc, s.maxForce);
+}
+
+}  // namespace
+
+int Flock::useLanes(int lanes) {
+  lanes_ = lanes >= 2 ? 2 : 1;
+#if defined(ZONESIM_FLOCK_AVX)
+  static const bool kAvx = __builtin_cpu_supports("avx");
+  static const bool kAvx512 = __builtin_cpu_supports("avx512f");
+  if (lanes >= 4 && kAvx) lanes_ = 4;
+  if (lanes >= 8 && kAvx512) lanes_ = 8;
+#endif
+  return lanes_;
+}
+
+Vec2 Flock::steering(const GridEntry& self, Vec2 goal, bool hasGoal) const {
+  const FlockSettings& s = settings_;
+  return steeringFrom(s, grid_,
+                      neighbourSums(grid_, self.pos, s.neighbourRadius, s.separationRadius), self,
+                      goal, hasGoal);
+}
+
+void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
+                 std::span<const Vec2> goalVel, const StepPlan& plan) {
+  const std::size_t n = agents.size();
+  if (agents.pos.size() != n || agents.vel.size() != n || ghosts.pos.size() != ghosts.size() ||
+      ghosts.vel.size() != ghosts.size() || (!goalVel.empty() && goalVel.size() != n) ||
+      (!plan.empty() && (plan.dt.size() != n || plan.steer.size() != n)))
+    throw std::invalid_argument("Flock::step: array sizes differ");
+  grid_.build(agents, ghosts, settings_.neighbourRadius);
+  const bool hasGoal = !goalVel.empty();
+  const FlockSettings& s = settings_;
+  auto advance = [&](const GridEntry& e, Vec2 acc) {
+    const double h = plan.empty() ? dt : plan.dt[e.src];
+    Vec2 v = clampLength(e.vel + acc * h, s.maxSpeed);
+    agents.vel[e.src] = v;
+    agents.pos[e.src] = e.pos + v * h;
+  };
+  auto goalOf = [&](const GridEntry& e) { return hasGoal ? goalVel[e.src] : Vec2{}; };
+  auto steerPair = [&](const GridEntry& a, const GridEntry& b) {
+    NeighbourSums sa, sb;
+    neighbourSumsPair(grid_, a.pos, b.pos, s.neighbourRadius, s.separationRadius, sa, sb);
+    advance(a, steeringFrom(s, grid_, sa, a, goalOf(a), hasGoal));
+    advance(b, steeringFrom(s, grid_, sb, b, goalOf(b), hasGoal));
+  };
+  // Up to eight (AVX-512), four (AVX) or two (SSE2) agents per pass over the union of their
+  // neighbourhoods; `q[0 .. held)` lie in one row of cells.
+  auto steerGroup = [&](const GridEntry* const* q, int held) {
+#if defined(ZONESIM_FLOCK_AVX)
+    if (lanes_ >= 4) {
+      // Unused lanes repeat the last agent: the union of the discs stays the same.
+      Vec2 p[8];
+      for (int l = 0; l < lanes_; ++l) p[l] = q[l < held ? l : held - 1]->pos;
+      std::int32_t ranges[2 * kGroupRows];
+      int rows = grid_.rowRangesNearBox(p, lanes_, s.neighbourRadius, ranges, kGroupRows);
+      if (rows >= 0) {
+        std::size_t candidates = 0;
+        for (int r = 0; r < rows; ++r) candidates += std::size_t(ranges[2 * r + 1] - ranges[2 * r]);
+        if (noted_.size() < candidates) noted_.resize(candidates);
+        LaneSums sums;
+        if (lanes_ == 8)
+          neighbourSumsOcta(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius,
+                            noted_.data(), sums);
+        else
+          neighbourSumsQuad(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius,
+                            noted_.data(), sums);
+        for (int l = 0; l < held; ++l) {
+          NeighbourSums n;
+          n.count = sums.count[l];
+          n.vel = Vec2{sums.vx[l], sums.vy[l]};
+          n.rel = Vec2{sums.rx[l], sums.ry[l]};
+          n.sep = Vec2{sums.sx[l], sums.sy[l]};
+          n.coincident = int(sums.coincident[l]);
+          advance(*q[l], steeringFrom(s, grid_, n, *q[l], goalOf(*q[l]), hasGoal));
+        }
+        return;
+      }
+    }
+#endif
+    int l = 0;
+    for (; l + 2 <= held; l += 2) steerPair(*q[l], *q[l + 1]);
+    if (l < held) advance(*q[l], steering(*q[l], goalOf(*q[l]), hasGoal));
+  };
+  // Owned agents in cell order: consecutive agents share most of their neighbour cells, so
+  // the ones that steer go through the neighbour sums in groups. A group ends with its row of
+  // cells: the union of discs on either side of a row's end would span the whole width.
+  const GridEntry* waiting[8];
+  int held = 0;
+  std::int32_t heldRow = -1;
+  const int group = lanes_ == 1 ? 1 : (lanes_ == 2 ? 4 : lanes_);
+  for (const GridEntry& e : grid_.entries()) {
+    if (e.src < 0) continue;
+    const double h = plan.empty() ? dt : plan.dt[e.src];
+    if (h <= 0.0) continue;
+    if (!plan.empty() && !plan.steer[e.src]) {
+      Vec2 acc;
+      if (hasGoal) acc = clampLength((goalVel[e.src] - e.vel) * s.goalWeight, s.maxForce);
+      advance(e, acc);
+      continue;
+    }
+    if (lanes_ == 1) {
+      advance(e, steering(e, goalOf(e), hasGoal));
+      continue;
+    }
+    const std::int32_t row = grid_.rowOf(e.cell);
+    if (held > 0 && row != heldRow) {
+      steerGroup(waiting, held);
+      held = 0;
+    }
+    heldRow = row;
+    // The agent is written back after its group's sums: fetch its lines meanwhile (in random
+    // storage order each write is a cache miss, and they filled the store buffer).
+    __builtin_prefetch(&agents.pos[e.src], 1);
+    __builtin_prefetch(&agents.vel[e.src], 1);
+    waiting[held++] = &e;
+    if (held == group) {
+      steerGroup(waiting, held);
+      held = 0;
+    }
+  }
+  if (held > 0) steerGroup(waiting, held);
+}
+
+}  // namespace zonesim::crowd

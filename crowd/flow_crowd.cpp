@@ -1,0 +1,142 @@
+#include "crowd/flow_crowd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace zonesim::crowd {
+
+FlowCrowd::FlowCrowd(const ai::GridMap& map, const MapFrame& frame,
+                     const FlowCrowdSettings& settings)
+    : map_(map), frame_(frame), settings_(settings) {}
+
+int FlowCrowd::addDestination(ai::Cell goal) {
+  fields_.push_back(std::make_unique<FlowField>(map_, goal));
+  return int(fields_.size()) - 1;
+}
+
+int FlowCrowd::refreshFields() {
+  int rebuilt = 0;
+  for (auto& f : fields_)
+    if (f->mapVersion() != map_.version()) {
+      f = std::make_unique<FlowField>(map_, f->goal());
+      ++rebuilt;
+    }
+  return rebuilt;
+}
+
+bool FlowCrowd::leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const {
+  // A cell that closed under the agent (a door) has no direction: step to the open neighbour
+  // from which the goal is nearest (fixed order on ties, so every rank picks the same).
+  double best = -1;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ai::Cell n{c.x + dx, c.y + dy};
+      if ((dx == 0 && dy == 0) || !map_.passable(n.x, n.y)) continue;
+      double d = f.distance(n);
+      if (d < 0) continue;
+      d += (dx != 0 && dy != 0) ? std::sqrt(2.0) : 1.0;
+      if (best < 0 || d < best) {
+        best = d;
+        next = n;
+      }
+    }
+  }
+  return best >= 0;
+}
+
+Vec2 FlowCrowd::desiredVelocity(Vec2 pos, int d) const {
+  const FlowField& f = *fields_[d];
+  ai::Cell c = frame_.cellOf(pos), next;
+  Vec2 goal = frame_.centre(f.goal());
+  if (c == f.goal()) {
+    // Arrive: speed proportional to the remaining distance inside the slow radius.
+    Vec2 to = goal - pos;
+    double dist = length(to);
+    double speed = settings_.maxSpeed * std::min(1.0, dist / settings_.slowRadius);
+    return withLength(to, speed);
+  }
+  if (!f.next(c, next) && !(!map_.passable(c.x, c.y) && leaveClosedCell(f, c, next))) return {};
+  Vec2 to = frame_.centre(next) - pos;
+  double speed = settings_.maxSpeed;
+  double remaining = f.distance(c) * frame_.cellSize;
+  if (remaining < settings_.slowRadius) speed *= std::max(0.25, remaining / settings_.slowRadius);
+  return withLength(to, speed);
+}
+
+bool FlowCrowd::hasArrived(Vec2 pos, int d) const {
+  Vec2 goal = frame_.centre(fields_[d]->goal());
+  return lengthSq(pos - goal) <= settings_.arriveRadius * settings_.arriveRadius;
+}
+
+Vec2 FlowCrowd::separation(const GridEntry& self) const {
+  const double r = settings_.separationRadius, r2 = r * r;
+  Vec2 sep;
+  grid_.forEachNear(self.pos, r, [&](const GridEntry& o) {
+    if (o.id == self.id) return;
+    Vec2 rel = o.pos - self.pos;
+    double d2 = lengthSq(rel);
+    if (d2 >= r2) return;
+    if (d2 > 1e-18) {
+      double d = std::sqrt(d2);
+      sep += rel * (-(r / d - 1.0) / d);
+    } else {
+      sep.x += self.id < o.id ? -1e3 : 1e3;
+    }
+  });
+  return sep * settings_.separationWeight;
+}
+
+void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> dest,
+                     std::span<std::uint8_t> arrived, const GhostSpan& ghosts, double dt,
+                     const StepPlan& plan) {
+  const std::size_t n = agents.size();
+  if (agents.pos.size() != n || agents.vel.size() != n || dest.size() != n || arrived.size() != n ||
+      ghosts.pos.size() != ghosts.size() || ghosts.vel.size() != ghosts.size() ||
+      (!plan.empty() && (plan.dt.size() != n || plan.steer.size() != n)))
+    throw std::invalid_argument("FlowCrowd::step: array sizes differ");
+  for (std::uint16_t d : dest)
+    if (d >= fields_.size()) throw std::out_of_range("FlowCrowd::step: unknown destination");
+  // Arrived agents have left the crowd: they are neither moved nor seen.
+  grid_.build(agents.ids, agents.pos, agents.vel, ghosts,
+              std::max(settings_.gridCell, settings_.separationRadius), arrived);
+  const std::span<const GridEntry> entries = grid_.entries();
+  constexpr std::size_t kAhead = 8;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    // Agents come in cell order but are stored in the caller's order: fetch the lines of the
+    // agents a few entries ahead (each is a cache miss in random storage order).
+    if (k + kAhead < entries.size() && entries[k + kAhead].src >= 0) {
+      const std::size_t a = static_cast<std::size_t>(entries[k + kAhead].src);
+      __builtin_prefetch(&dest[a]);
+      __builtin_prefetch(&arrived[a], 1);
+      __builtin_prefetch(&agents.pos[a], 1);
+      __builtin_prefetch(&agents.vel[a], 1);
+      if (!plan.empty()) __builtin_prefetch(&plan.dt[a]);
+    }
+    const GridEntry& e = entries[k];
+    if (e.src < 0) continue;
+    const double h = plan.empty() ? dt : plan.dt[e.src];
+    if (h <= 0.0) continue;
+    const int d = dest[e.src];
+    Vec2 desired = desiredVelocity(e.pos, d);
+    Vec2 v;
+    if (plan.empty() || plan.steer[e.src]) {
+      // Velocity relaxes toward the desired one by the exact factor 1 - exp(-rate h), not
+      // rate h: LOD steps of several ticks would overshoot (and beyond rate h = 2 diverge).
+      double relax = 1.0 - std::exp(-settings_.steerRate * h);
+      Vec2 dv = (desired - e.vel) * relax + separation(e) * h;
+      v = clampLength(e.vel + clampLength(dv, settings_.maxForce * h), settings_.maxSpeed);
+    } else {
+      v = desired;  // cheap update: ride the field, no neighbours, no inertia
+    }
+    Vec2 p = slideMove(map_, frame_, e.pos, e.pos + v * h, v);
+    agents.pos[e.src] = p;
+    agents.vel[e.src] = v;
+    if (hasArrived(p, d)) {
+      arrived[e.src] = 1;
+      agents.vel[e.src] = Vec2{};
+    }
+  }
+}
+
+}  // namespace zonesim::crowd

@@ -1,0 +1,83 @@
+#pragma once
+// Many agents heading to a few destinations over shared flow fields. Each agent aims at the
+// centre of the next cell its field gives for the cell it stands in (so agents drift to cell
+// centres and clear wall corners), slows down inside a radius of the goal, and is pushed
+// apart from close neighbours (owned and ghosts) by a separation term summed in the grid's
+// canonical order. Moves never enter blocked cells (they slide along walls).
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "ai/grid_map.h"
+#include "crowd/agents.h"
+#include "crowd/flow_field.h"
+#include "crowd/map_frame.h"
+#include "crowd/neighbour_grid.h"
+#include "crowd/step_plan.h"
+
+namespace zonesim::crowd {
+
+/// Flow-field following parameters; lengths in metres, times in seconds.
+struct FlowCrowdSettings {
+  double maxSpeed = 2.0;           ///< m/s
+  double maxForce = 10.0;          ///< m/s^2, bound on the steering acceleration
+  double steerRate = 4.0;          ///< 1/s: rate at which velocity follows the field
+  double separationRadius = 0.6;   ///< neighbours closer than this push apart
+  double separationWeight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
+  double arriveRadius = 0.75;      ///< an agent this close to its goal's centre has arrived
+  double slowRadius = 2.0;         ///< inside this distance of the goal, speed ramps down
+  /// Side of the neighbour grid's cells (at least the separation radius). Larger than the
+  /// radius because the grid's per-step cost grows with the cells of the occupied box, which
+  /// dominates for sparse crowds on big maps; every rank must use the same value (it fixes
+  /// the order of the separation sums).
+  double gridCell = 2.0;
+};
+
+/// Steps agents along shared flow fields on one map.
+class FlowCrowd {
+ public:
+  /// Agents on `map` placed at `frame` in the world; the map must outlive the crowd.
+  FlowCrowd(const ai::GridMap& map, const MapFrame& frame, const FlowCrowdSettings& settings);
+
+  /// Builds the field for a goal cell once; returns its destination index.
+  int addDestination(ai::Cell goal);
+  /// Rebuilds every field whose map version is stale (a door opened or closed).
+  int refreshFields();
+  /// Number of destinations.
+  int destinationCount() const { return int(fields_.size()); }
+  /// The field of destination `d`.
+  const FlowField& field(int d) const { return *fields_[d]; }
+
+  /// Advances the agents by `dt`. `dest[i]` is agent i's destination index; `arrived[i]` is
+  /// set to 1 when the agent reaches its goal; arrived agents have left the crowd: they are
+  /// neither moved nor seen by the others (the caller may remove them or give them a new
+  /// destination and clear the flag). `ghosts` push by separation but are not moved.
+  /// `plan`: per-agent dt and detail (lod.h); agents with steer 0 follow the field without
+  /// separation (no neighbour query).
+  void step(const AgentSpan& agents, std::span<const std::uint16_t> dest,
+            std::span<std::uint8_t> arrived, const GhostSpan& ghosts, double dt,
+            const StepPlan& plan = {});
+
+  /// The velocity the field asks for at `pos` toward destination `d` (zero where unreachable).
+  Vec2 desiredVelocity(Vec2 pos, int d) const;
+  /// True when `pos` is within the arrival radius of destination `d`.
+  bool hasArrived(Vec2 pos, int d) const;
+  /// The settings in use.
+  const FlowCrowdSettings& settings() const { return settings_; }
+  /// The map frame.
+  const MapFrame& frame() const { return frame_; }
+
+ private:
+  Vec2 separation(const GridEntry& self) const;
+  bool leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const;
+
+  const ai::GridMap& map_;
+  MapFrame frame_;
+  FlowCrowdSettings settings_;
+  std::vector<std::unique_ptr<FlowField>> fields_;
+  NeighbourGrid grid_;
+};
+
+}  // namespace zonesim::crowd

@@ -1,0 +1,68 @@
+#include "crowd/flow_field.h"
+
+#include <stdexcept>
+
+#include "ai/grid_search.h"
+
+namespace zonesim::crowd {
+
+namespace {
+// Neighbour order fixes the tie-break between equally short next steps.
+constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+}  // namespace
+
+FlowField::FlowField(const ai::GridMap& map, ai::Cell goal)
+    : width_(map.width()), height_(map.height()), goal_(goal), mapVersion_(map.version()) {
+  if (!map.passable(goal.x, goal.y)) throw std::invalid_argument("FlowField: goal is blocked");
+  ai::GridSearch search(map);
+  // The grid is undirected (the same move costs both ways), so distances from the goal are
+  // distances to it.
+  search.explore(goal, ai::CellRect{0, 0, width_, height_});
+  const std::size_t n = std::size_t(width_) * std::size_t(height_);
+  distance_.assign(n, -1.0f);
+  dir_.assign(n, -1);
+  std::vector<double> exact(n, -1.0);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) exact[map.index(x, y)] = search.distanceTo(ai::Cell{x, y});
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      int idx = map.index(x, y);
+      distance_[idx] = float(exact[idx]);
+      if (exact[idx] <= 0.0) continue;
+      // The neighbour through which the shortest path continues: argmin of its distance plus
+      // the step, over moves that neither enter a blocked cell nor cut a blocked corner.
+      double best = 1e300;
+      for (int k = 0; k < 8; ++k) {
+        int nx = x + kSteps[k][0], ny = y + kSteps[k][1];
+        if (!map.passable(nx, ny)) continue;
+        bool diagonal = k >= 4;
+        if (diagonal && (!map.passable(nx, y) || !map.passable(x, ny))) continue;
+        double d = exact[map.index(nx, ny)];
+        if (d < 0) continue;
+        double through = d + (diagonal ? ai::kDiagonalCost : 1.0);
+        if (through < best - 1e-9) {
+          best = through;
+          dir_[idx] = std::int8_t(k);
+        }
+      }
+    }
+}
+
+double FlowField::distance(ai::Cell c) const {
+  if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return -1.0;
+  return distance_[std::size_t(c.y) * width_ + c.x];
+}
+
+bool FlowField::next(ai::Cell c, ai::Cell& out) const {
+  if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return false;
+  int k = dir_[std::size_t(c.y) * width_ + c.x];
+  if (k < 0) return false;
+  out = ai::Cell{c.x + kSteps[k][0], c.y + kSteps[k][1]};
+  return true;
+}
+
+std::size_t FlowField::bytes() const {
+  return distance_.size() * sizeof(float) + dir_.size() * sizeof(std::int8_t);
+}
+
+}  // namespace zonesim::crowd

@@ -1,0 +1,40 @@
+#pragma once
+// A flow field toward one destination (the seed's "embedded map data"): the integration field
+// (exact 8-connected octile distance to the goal without corner cutting, by Dijkstra from the
+// goal with ai::GridSearch) and, per cell, the neighbour to step to next. Built once per
+// destination and shared read-only by every agent heading there; looking up an agent's next
+// cell is one array read, whatever the number of agents.
+
+#include <cstdint>
+#include <vector>
+
+#include "ai/grid_map.h"
+
+namespace zonesim::crowd {
+
+/// Integration and direction fields toward one goal cell of a map.
+class FlowField {
+ public:
+  /// Builds both fields for `goal` (a passable cell) on `map` as it is now.
+  FlowField(const ai::GridMap& map, ai::Cell goal);
+
+  /// The destination cell.
+  ai::Cell goal() const { return goal_; }
+  /// Octile path length from `c` to the goal; negative when unreachable or off the map.
+  double distance(ai::Cell c) const;
+  /// The next cell on a shortest path from `c`; false at the goal or where unreachable.
+  bool next(ai::Cell c, ai::Cell& out) const;
+  /// The map version the fields were built from (rebuild when the map's version differs).
+  std::uint64_t mapVersion() const { return mapVersion_; }
+  /// Memory held by the fields, in bytes.
+  std::size_t bytes() const;
+
+ private:
+  int width_ = 0, height_ = 0;
+  ai::Cell goal_;
+  std::uint64_t mapVersion_ = 0;
+  std::vector<float> distance_;   // float: 24 bits cover paths of millions of cells to 0.1
+  std::vector<std::int8_t> dir_;  // 0..7 into kNeighbourSteps, -1 at the goal or unreachable
+};
+
+}  // namespace zonesim::crowd

@@ -1,0 +1,63 @@
+#pragma once
+// Level of detail for crowd updates: agents near any player are updated every tick with full
+// steering; farther ones every Nth tick with N times the step (catching up the time they
+// skipped), and the farthest optionally without steering (they ride their field or path and
+// skip the neighbour query). Updates of one level are spread over the N ticks by a hash of
+// the id, so the cost per tick stays flat, and the schedule depends only on ids, positions and
+// the tick: every rank computes the same plan for the same agent.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "crowd/step_plan.h"
+#include "crowd/vec2.h"
+
+namespace zonesim::crowd {
+
+/// LOD radii and update periods (scene settings).
+struct LodSettings {
+  double nearRadius = 40.0;  ///< within this distance of a player: every tick, full steering
+  double farRadius = 120.0;  ///< from nearRadius to here: every midEvery ticks
+  int midEvery = 2;          ///< update period of the middle band (ticks)
+  int farEvery = 8;          ///< update period beyond farRadius (ticks)
+  bool midSteers = true;     ///< middle band keeps full steering
+  bool farSteers = false;    ///< far band: path/field following only, no neighbour query
+};
+
+/// Detail level of an agent.
+enum class LodLevel : std::uint8_t { Near = 0, Mid = 1, Far = 2 };
+
+/// Builds StepPlans for a set of agents each tick.
+class LevelOfDetail {
+ public:
+  /// A planner with the given radii and periods.
+  explicit LevelOfDetail(const LodSettings& settings);
+
+  /// Plans tick `tick` (step length `dt`) for agents at `pos` with `ids`, given the players'
+  /// positions. `lastTick`: per agent, the tick of its last update (read and written; the
+  /// caller keeps it with the agent, -1 for new agents); when empty, an update advances by
+  /// its period times dt, which loses or gains time only when an agent changes level.
+  StepPlan plan(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
+                std::span<const Vec2> players, std::int64_t tick, double dt,
+                std::span<std::int64_t> lastTick = {});
+
+  /// Level of agent i in the last plan.
+  LodLevel level(std::size_t i) const { return LodLevel(level_[i]); }
+  /// Agents per level in the last plan.
+  const std::size_t* levelCounts() const { return counts_; }
+  /// Agents updated in the last plan.
+  std::size_t updated() const { return updated_; }
+  /// The settings in use.
+  const LodSettings& settings() const { return settings_; }
+
+ private:
+  LodSettings settings_;
+  std::vector<double> dt_;
+  std::vector<std::uint8_t> steer_;
+  std::vector<std::uint8_t> level_;
+  std::size_t counts_[3] = {0, 0, 0};
+  std::size_t updated_ = 0;
+};
+
+}  // namespace zonesim::crowd

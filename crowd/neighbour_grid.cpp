@@ -1,0 +1,121 @@
+#include "crowd/neighbour_grid.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace zonesim::crowd {
+
+namespace {
+// The dense cell array covers the box around all entries; past this many cells (64 MiB of
+// offsets) the agents are too spread for the cell side and a hashed grid would be needed.
+constexpr long long kMaxCells = 1LL << 24;
+}  // namespace
+
+void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
+                          std::span<const Vec2> vel, const GhostSpan& ghosts, double cellSize,
+                          std::span<const std::uint8_t> skip) {
+  if (!(cellSize > 0.0)) throw std::invalid_argument("NeighbourGrid: cell size must be > 0");
+  cellSize_ = cellSize;
+  invCell_ = 1.0 / cellSize;
+  // Input index i: owned agents first, then ghosts (i >= owned).
+  const std::size_t owned = ids.size(), total = owned + ghosts.size();
+  auto posOf = [&](std::size_t i) { return i < owned ? pos[i] : ghosts.pos[i - owned]; };
+  // Global cell coordinates (the same agent falls in the same cell on every rank), kept per
+  // input so that each is computed once; skipped agents get cell -1.
+  cellX_.resize(total);
+  cellY_.resize(total);
+  bool any = false;
+  long long maxX = 0, maxY = 0;
+  minX_ = minY_ = 0;
+  for (std::size_t i = 0; i < total; ++i) {
+    if (i < owned && !skip.empty() && skip[i]) continue;
+    Vec2 p = posOf(i);
+    long long cx = cellCoord(p.x), cy = cellCoord(p.y);
+    cellX_[i] = cx;
+    cellY_[i] = cy;
+    if (!any || cx < minX_) minX_ = cx;
+    if (!any || cy < minY_) minY_ = cy;
+    if (!any || cx > maxX) maxX = cx;
+    if (!any || cy > maxY) maxY = cy;
+    any = true;
+  }
+  if (!any) {
+    entries_.clear();
+    width_ = height_ = 0;
+    return;
+  }
+  width_ = maxX - minX_ + 1;
+  height_ = maxY - minY_ + 1;
+  if (width_ * height_ > kMaxCells)
+    throw std::length_error("NeighbourGrid: agents spread over too many cells for the cell size");
+
+  // Counting sort of input indices: count per cell, prefix sums, stable scatter.
+  starts_.assign(static_cast<std::size_t>(width_ * height_ + 1), 0);
+  cellOf_.resize(total);
+  for (std::size_t i = 0; i < total; ++i) {
+    if (i < owned && !skip.empty() && skip[i]) {
+      cellOf_[i] = -1;
+      continue;
+    }
+    cellOf_[i] = static_cast<std::int32_t>((cellY_[i] - minY_) * width_ + (cellX_[i] - minX_));
+    ++starts_[cellOf_[i] + 1];
+  }
+  for (std::size_t c = 1; c < starts_.size(); ++c) starts_[c] += starts_[c - 1];
+  const std::size_t n = static_cast<std::size_t>(starts_.back());
+  order_.resize(n);
+  sortIds_.resize(n);
+  // Scatter with a moving cursor per cell; starts_ is restored afterwards by shifting.
+  for (std::size_t i = 0; i < total; ++i) {
+    if (cellOf_[i] < 0) continue;
+    std::int32_t k = starts_[cellOf_[i]]++;
+    order_[k] = static_cast<std::int32_t>(i);
+    sortIds_[k] = i < owned ? ids[i] : ghosts.ids[i - owned];
+  }
+  for (std::size_t c = starts_.size() - 1; c > 0; --c) starts_[c] = starts_[c - 1];
+  starts_[0] = 0;
+
+  // Ids order each cell: cells hold a handful of agents, so insertion sort is the fast choice.
+  // It runs on (id, input index) pairs; the entries are then gathered once, in order.
+  for (std::size_t c = 0; c + 1 < starts_.size(); ++c) {
+    const std::size_t lo = static_cast<std::size_t>(starts_[c]);
+    const std::size_t hi = static_cast<std::size_t>(starts_[c + 1]);
+    for (std::size_t k = lo + 1; k < hi; ++k) {
+      std::uint64_t id = sortIds_[k];
+      std::int32_t at = order_[k];
+      std::size_t j = k;
+      while (j > lo && sortIds_[j - 1] > id) {
+        sortIds_[j] = sortIds_[j - 1];
+        order_[j] = order_[j - 1];
+        --j;
+      }
+      sortIds_[j] = id;
+      order_[j] = at;
+    }
+  }
+  entries_.resize(n);
+  xs_.resize(n);
+  ys_.resize(n);
+  vxs_.resize(n);
+  vys_.resize(n);
+  constexpr std::size_t kAhead = 16;  // gathers from storage order miss the cache: prefetch
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k + kAhead < n) {
+      const std::size_t a = static_cast<std::size_t>(order_[k + kAhead]);
+      __builtin_prefetch(a < owned ? &pos[a] : &ghosts.pos[a - owned]);
+      __builtin_prefetch(a < owned ? &vel[a] : &ghosts.vel[a - owned]);
+    }
+    const std::size_t i = static_cast<std::size_t>(order_[k]);
+    const bool own = i < owned;
+    const Vec2 p = own ? pos[i] : ghosts.pos[i - owned];
+    const Vec2 v = own ? vel[i] : ghosts.vel[i - owned];
+    const std::int32_t src =
+        own ? static_cast<std::int32_t>(i) : -1 - static_cast<std::int32_t>(i - owned);
+    entries_[k] = GridEntry{p, v, sortIds_[k], src, cellOf_[i]};
+    xs_[k] = p.x;
+    ys_[k] = p.y;
+    vxs_[k] = v.x;
+    vys_[k] = v.y;
+  }
+}
+
+}  // namespace zonesim::crowd

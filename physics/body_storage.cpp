@@ -1,0 +1,50 @@
+#include "physics/body_storage.h"
+
+#include "physics/mass_properties.h"
+
+namespace zonesim::physics {
+
+BodyIndex BodyStorage::add(const BodyDesc& desc) {
+  const auto index = static_cast<BodyIndex>(size());
+  const bool moves_by_forces = desc.type == BodyType::Dynamic || desc.type == BodyType::Particle;
+  const MassProperties mp = computeMassProperties(desc.shape, desc.density);
+  double w = 0.0;
+  Vec3 inv_inertia = Vec3::Zero();
+  if (moves_by_forces && mp.mass > 0.0) {
+    w = 1.0 / mp.mass;
+    // Particles never rotate: infinite inertia.
+    if (desc.type == BodyType::Dynamic) inv_inertia = mp.inertia.cwiseInverse();
+  }
+  const bool still = desc.type == BodyType::Static;
+  type.push_back(desc.type);
+  shape.push_back(desc.shape);
+  position.push_back(desc.position);
+  orientation.push_back(desc.orientation.normalized());
+  linear_velocity.push_back(still ? Vec3::Zero() : desc.linear_velocity);
+  angular_velocity.push_back(still || desc.type == BodyType::Particle ? Vec3::Zero()
+                                                                      : desc.angular_velocity);
+  force.push_back(Vec3::Zero());
+  torque.push_back(Vec3::Zero());
+  inv_mass.push_back(w);
+  inv_inertia_local.push_back(inv_inertia);
+  inv_inertia_world.push_back(Eigen::Matrix3d::Zero());
+  friction.push_back(desc.friction);
+  restitution.push_back(desc.restitution);
+  linear_damping.push_back(desc.linear_damping);
+  angular_damping.push_back(desc.angular_damping);
+  position_prev.push_back(desc.position);
+  foreign.push_back(desc.foreign);
+  const Eigen::Matrix3d r = orientation.back().toRotationMatrix();
+  inv_inertia_world.back() = r * inv_inertia.asDiagonal() * r.transpose();
+  return index;
+}
+
+void BodyStorage::updateWorldInertia() {
+  const std::size_t n = size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Matrix3d r = orientation[i].toRotationMatrix();
+    inv_inertia_world[i] = r * inv_inertia_local[i].asDiagonal() * r.transpose();
+  }
+}
+
+}  // namespace zonesim::physics

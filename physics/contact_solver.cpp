@@ -1,0 +1,199 @@
+#include "physics/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace zonesim::physics {
+
+namespace {
+
+/// A unit vector orthogonal to n, chosen by a fixed rule so the basis is deterministic.
+Vec3 orthogonal(const Vec3& n) {
+  const Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
+  return n.cross(helper).normalized();
+}
+
+/// Relative velocity of B against A along a row's direction d.
+inline double relativeVelocity(const Vec3& d, const Vec3& va, const Vec3& wa, const Vec3& vb,
+                               const Vec3& wb, const auto& row) {
+  return d.dot(vb - va) + row.cb.dot(wb) - row.ca.dot(wa);
+}
+
+}  // namespace
+
+void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyContact> contacts,
+                            const SolverSettings& settings, double dt) {
+  settings_ = settings;
+  dt_ = dt;
+  constraints_.resize(contacts.size());
+  std::size_t points = 0;
+  for (const BodyContact& bc : contacts) points += bc.manifold.count;
+  normal_.resize(points);
+  row_count_.clear();
+  friction_.resize(points);
+  jn_.resize(points);
+  jt_.resize(points);
+  std::uint32_t next = 0;
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const BodyContact& bc = contacts[c];
+    Constraint& k = constraints_[c];
+    k.a = bc.a;
+    k.b = bc.b;
+    k.ma = bodies.inv_mass[k.a];
+    k.mb = bodies.inv_mass[k.b];
+    k.n = bc.manifold.normal;
+    k.t[0] = orthogonal(k.n);
+    k.t[1] = k.n.cross(k.t[0]);
+    k.friction = bc.friction;
+    k.restitution = bc.restitution;
+    k.first = next;
+    k.count = bc.manifold.count;
+    next += static_cast<std::uint32_t>(k.count);
+    const Eigen::Matrix3d& ia = bodies.inv_inertia_world[k.a];
+    const Eigen::Matrix3d& ib = bodies.inv_inertia_world[k.b];
+    for (int i = 0; i < k.count; ++i) {
+      const ContactPoint& cp = bc.manifold.points[i];
+      NormalPoint& np = normal_[k.first + i];
+      FrictionPoint& fp = friction_[k.first + i];
+      const Vec3 ra = cp.position - bodies.position[k.a];
+      const Vec3 rb = cp.position - bodies.position[k.b];
+      auto makeRow = [&](const Vec3& d, Row& row) {
+        row.ca = ra.cross(d);
+        row.cb = rb.cross(d);
+        row.wa = ia * row.ca;
+        row.wb = ib * row.cb;
+        const double inv = k.ma + k.mb + row.ca.dot(row.wa) + row.cb.dot(row.wb);
+        row.mass = inv > 0.0 ? 1.0 / inv : 0.0;
+      };
+      makeRow(k.n, np.row);
+      makeRow(k.t[0], fp.row[0]);
+      makeRow(k.t[1], fp.row[1]);
+      np.depth = cp.depth;
+      const double vn =
+          relativeVelocity(k.n, bodies.linear_velocity[k.a], bodies.angular_velocity[k.a],
+                           bodies.linear_velocity[k.b], bodies.angular_velocity[k.b], np.row);
+      // A gap may be closed at gap/dt this step (speculative contact); an impact that closes
+      // it within the step bounces by the restitution coefficient.
+      const bool impact = vn < -settings.restitution_threshold && -vn * dt >= -cp.depth;
+      if (impact && bc.restitution > 0.0) {
+        np.target = -bc.restitution * vn;
+      } else {
+        np.target = cp.depth < 0.0 ? cp.depth / dt : 0.0;
+      }
+      const bool warm = settings.warm_starting;
+      jn_[k.first + i] = warm ? bc.impulse[i][0] : 0.0;
+      jt_[k.first + i][0] = warm ? bc.impulse[i][1] : 0.0;
+      jt_[k.first + i][1] = warm ? bc.impulse[i][2] : 0.0;
+      np.jp = 0.0;
+      np.vn0 = vn;
+      np.max_jn = 0.0;
+    }
+  }
+}
+
+namespace {
+
+/// Applies impulse lambda along d through a row's angular parts.
+inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, double mb,
+                     const Vec3& d, const auto& row, double lambda) {
+  bodies.linear_velocity[a] -= (ma * lambda) * d;
+  bodies.angular_velocity[a] -= lambda * row.wa;
+  bodies.linear_velocity[b] += (mb * lambda) * d;
+  bodies.angular_velocity[b] += lambda * row.wb;
+}
+
+}  // namespace
+
+void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts) {
+  warmStart(bodies);
+  for (int it = 0; it < settings_.velocity_iterations; ++it) iterate(bodies);
+  storeImpulses(contacts);
+}
+
+void ContactSolver::warmStart(BodyStorage& bodies) {
+  auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
+    applyRow(bodies, k.a, k.b, k.ma, k.mb, d, row, lambda);
+  };
+  for (const Constraint& k : constraints_) {
+    for (int i = 0; i < k.count; ++i) {
+      const NormalPoint& np = normal_[k.first + i];
+      const FrictionPoint& fp = friction_[k.first + i];
+      apply(k, k.n, np.row, jn_[k.first + i]);
+      apply(k, k.t[0], fp.row[0], jt_[k.first + i][0]);
+      apply(k, k.t[1], fp.row[1], jt_[k.first + i][1]);
+    }
+  }
+}
+
+void ContactSolver::iterate(BodyStorage& bodies, double omega) {
+  auto& v = bodies.linear_velocity;
+  auto& w = bodies.angular_velocity;
+  auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
+    applyRow(bodies, k.a, k.b, k.ma, k.mb, d, row, lambda);
+  };
+  // All normals first, then all friction with the limits those normals set (as Bullet's
+  // sequential impulse solver does): the weight path down a stack converges faster when no
+  // friction solve disturbs it in between.
+  for (const Constraint& k : constraints_) {
+    for (int i = 0; i < k.count; ++i) {
+      NormalPoint& p = normal_[k.first + i];
+      const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
+      const double old = jn_[k.first + i];
+      jn_[k.first + i] = std::max(0.0, old - omega * p.row.mass * (vn - p.target));
+      apply(k, k.n, p.row, jn_[k.first + i] - old);
+    }
+  }
+  for (const Constraint& k : constraints_) {
+    for (int i = 0; i < k.count; ++i) {
+      FrictionPoint& p = friction_[k.first + i];
+      const double limit = k.friction * jn_[k.first + i];
+      // A point that carries no load and no friction stays at zero: clamping to [-0, 0] would
+      // give zero again, so skip the two rows (most side points in a pile).
+      if (limit == 0.0 && jt_[k.first + i][0] == 0.0 && jt_[k.first + i][1] == 0.0) continue;
+      for (int t = 0; t < 2; ++t) {
+        const Row& row = p.row[t];
+        const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
+        const double old = jt_[k.first + i][t];
+        jt_[k.first + i][t] = std::clamp(old - omega * row.mass * vt, -limit, limit);
+        apply(k, k.t[t], row, jt_[k.first + i][t] - old);
+      }
+    }
+  }
+}
+
+void ContactSolver::storeImpulses(std::span<BodyContact> contacts) const {
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    const Constraint& k = constraints_[c];
+    for (int i = 0; i < k.count; ++i) {
+      const FrictionPoint& fp = friction_[k.first + i];
+      contacts[c].impulse[i] = {jn_[k.first + i], jt_[k.first + i][0], jt_[k.first + i][1]};
+    }
+  }
+}
+
+void ContactSolver::solvePositions(const BodyStorage& bodies) {
+  const std::size_t n = bodies.size();
+  ps_v_.assign(n, Vec3::Zero());
+  ps_w_.assign(n, Vec3::Zero());
+  const double rate = settings_.split_beta / dt_;
+  for (int it = 0; it < settings_.position_iterations; ++it) {
+    for (const Constraint& k : constraints_) {
+      for (int i = 0; i < k.count; ++i) {
+        NormalPoint& p = normal_[k.first + i];
+        const double error = p.depth - settings_.slop;
+        if (error <= 0.0) continue;
+        const double vn =
+            relativeVelocity(k.n, ps_v_[k.a], ps_w_[k.a], ps_v_[k.b], ps_w_[k.b], p.row);
+        const double old = p.jp;
+        p.jp = std::max(0.0, old - p.row.mass * (vn - rate * error));
+        const double lambda = p.jp - old;
+        ps_v_[k.a] -= (k.ma * lambda) * k.n;
+        ps_w_[k.a] -= lambda * p.row.wa;
+        ps_v_[k.b] += (k.mb * lambda) * k.n;
+        ps_w_[k.b] += lambda * p.row.wb;
+      }
+    }
+  }
+}
+
+}  // namespace zonesim::physics

@@ -1,0 +1,184 @@
+#pragma once
+// Sequential impulses (projected Gauss-Seidel) on contact constraints: normal with restitution
+// and speculative gaps, two-tangent Coulomb friction bounded by the normal impulse, warm
+// starting from the previous step's impulses, and split-impulse position correction.
+//
+// Why split impulses rather than Baumgarte: a Baumgarte bias is added to the real velocity, so
+// pushing overlapping bodies apart injects kinetic energy (stacks jitter, resting bodies pop
+// and restitution tests overshoot). Split impulses solve the positional error on separate
+// pseudo-velocities that move positions this step and are then discarded: velocities, momenta
+// and energy are left exactly as the velocity solve made them.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/body_storage.h"
+#include "physics/contact.h"
+
+namespace zonesim::physics {
+
+/// How contacts are resolved (WorldSettings::solver.kind). See docs/physics.md.
+enum class SolverKind {
+  /// Box2D v3 soft step: the velocity iterations become sub-steps of the solve (TGS), each a
+  /// soft (spring-damper) biased pass and a rigid relax pass, with separations updated from
+  /// the bodies' motion inside the step. Holds tall stacks and mass ratios at one world step.
+  SoftStep,
+  /// Projected Gauss-Seidel sequential impulses with split-impulse position correction.
+  GaussSeidel,
+  /// Gauss-Seidel with successive over-relaxation: each impulse update is scaled by sor_omega.
+  Sor,
+  /// Projected Jacobi: every row is updated from the same velocities, then all are applied,
+  /// each scaled by 1 / (rows on the busier body) so that neighbours do not overshoot.
+  Jacobi,
+  /// Penalty: explicit spring-damper forces on the overlap, no iterations (soft by nature).
+  Penalty,
+  /// Projection (position based): overlaps are removed from the step's displacements by
+  /// velocity_iterations Gauss-Seidel position passes, and velocities are the displacement / dt.
+  Projection,
+};
+
+/// A soft constraint's spring as bias rate and scales for one sub-step (Box2D v3 form).
+struct Softness {
+  double bias_rate = 0.0;      ///< 1/s applied to the (negative) separation.
+  double mass_scale = 1.0;     ///< Scales the effective mass.
+  double impulse_scale = 0.0;  ///< Fraction of the accumulated impulse relaxed each pass.
+};
+
+/// Softness of a spring of `hertz` and `damping_ratio` integrated implicitly over h.
+Softness makeSoftness(double hertz, double damping_ratio, double h);
+
+/// Iteration counts and tolerances of the contact solver.
+struct SolverSettings {
+  SolverKind kind = SolverKind::GaussSeidel;
+  int velocity_iterations = 10;
+  int position_iterations = 2;
+  double split_beta = 0.2;  ///< Fraction of the overlap removed per step.
+  double slop = 0.005;      ///< Overlap (m) left alone so contacts persist.
+  /// m/s: slower impacts do not bounce (the world raises it to 2.5 g dt for resting contact).
+  double restitution_threshold = 0.5;
+  bool warm_starting = true;
+  double sor_omega = 1.3;  ///< SOR: over-relaxation factor (1 is plain Gauss-Seidel).
+  /// Penalty: spring frequency as a fraction of the step rate; omega dt = 2 pi * 0.08 = 0.5
+  /// keeps the explicit spring and its damper stable.
+  double penalty_rate_fraction = 0.08;
+  double penalty_damping_ratio = 0.7;  ///< Penalty: damping ratio of the contact spring.
+  /// Soft step: contact spring frequency, capped at contact_rate_fraction of the sub-step
+  /// rate (the default asks for the cap: 75 Hz at 1/60 s and 10 iterations).
+  double contact_hertz = 1000.0;
+  /// Soft step: the cap on body-body contact springs as a fraction of the sub-step rate.
+  /// Stiffer means less sag but a narrower stable margin (docs/physics.md, soft_step_sweep).
+  double contact_rate_fraction = 0.25;
+  /// Soft step: the same cap for contacts with a static or kinematic body.
+  double static_contact_rate_fraction = 0.25;
+  /// Soft step: contact spring damping ratio (heavily overdamped: no bounce from the spring).
+  double contact_damping_ratio = 10.0;
+  /// Soft step: the fastest the spring may push overlapping bodies apart (m/s).
+  double max_push_velocity = 3.0;
+};
+
+/// A manifold between two bodies, with the impulses solved for each point (for warm starts).
+struct BodyContact {
+  BodyIndex a = 0;
+  BodyIndex b = 0;
+  Manifold manifold;
+  double friction = 0.0;
+  double restitution = 0.0;
+  /// Normal and two tangent impulses per point, from the last solve.
+  std::array<std::array<double, 3>, 4> impulse{};
+};
+
+/// Solves one step's contacts in place on the bodies' velocities.
+class ContactSolver {
+ public:
+  /// Builds the constraints (effective masses, restitution and speculative targets).
+  void prepare(const BodyStorage& bodies, std::span<const BodyContact> contacts,
+               const SolverSettings& settings, double dt);
+  /// Applies last step's impulses.
+  void warmStart(BodyStorage& bodies);
+  /// One velocity iteration over all contacts (normals, then friction); omega scales each
+  /// impulse update (successive over-relaxation; 1 is Gauss-Seidel).
+  void iterate(BodyStorage& bodies, double omega = 1.0);
+  /// One projected Jacobi iteration (all rows from the same velocities, averaged per body).
+  void iterateJacobi(BodyStorage& bodies);
+  /// Penalty response: one explicit spring-damper impulse per point over dt, and Coulomb
+  /// friction capped by it.
+  void applyPenalty(BodyStorage& bodies);
+  /// Projection: one Gauss-Seidel pass removing overlap (and, up to the Coulomb bound, sliding
+  /// at the contact) from the displacements dp and small rotations dtheta of this step.
+  void projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta);
+  /// Writes the accumulated impulses back for next step's warm start.
+  void storeImpulses(std::span<BodyContact> contacts) const;
+  /// Warm start, settings().velocity_iterations iterations, then storeImpulses.
+  void solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts);
+  /// The settings given to the last prepare.
+  const SolverSettings& settings() const { return settings_; }
+  /// Runs the split-impulse iterations; the pseudo-velocities come back per body.
+  void solvePositions(const BodyStorage& bodies);
+  /// Zero pseudo-velocities for n bodies (responses without split impulses).
+  void clearPositionCorrection(std::size_t n) {
+    ps_v_.assign(n, Vec3::Zero());
+    ps_w_.assign(n, Vec3::Zero());
+  }
+  /// Pseudo linear velocity of body i from the last solvePositions.
+  const Vec3& pseudoLinear(std::size_t i) const { return ps_v_[i]; }
+  /// Soft step: one pass over every contact with the separations moved by each body's
+  /// displacement dp and small rotation dtheta since prepare. use_bias: soft spring pass
+  /// (pushes overlap out), else rigid relax pass (removes the push velocity).
+  /// soft_static is the spring of contacts with a body of zero inverse mass.
+  void solveSoft(BodyStorage& bodies, std::span<const Vec3> dp, std::span<const Vec3> dtheta,
+                 const Softness& soft, const Softness& soft_static, bool use_bias, double inv_h);
+  /// Soft step: applies the restitution targets once after the sub-steps.
+  void applyRestitution(BodyStorage& bodies);
+  /// Pseudo angular velocity of body i from the last solvePositions.
+  const Vec3& pseudoAngular(std::size_t i) const { return ps_w_[i]; }
+
+ private:
+  // One Jacobian row along a direction d: the angular parts r x d and their images under the
+  // world inverse inertia are computed once per step, so an iteration applies an impulse with
+  // additions only (no 3x3 products in the inner loop).
+  struct Row {
+    Vec3 ca, cb;  // ra x d, rb x d.
+    Vec3 wa, wb;  // I_a^-1 (ra x d), I_b^-1 (rb x d).
+    double mass;  // 1 / (effective inverse mass along d).
+  };
+  // Normal and friction data of the points live in separate flat arrays: each pass of an
+  // iteration streams only the rows it solves, which halves memory traffic on big scenes.
+  struct NormalPoint {
+    Row row;
+    double target;  // Normal velocity the solve aims for (bounce or allowed approach).
+    double depth;
+    double jp;      // Split impulse (the normal impulse lives in jn_).
+    double vn0;     // Relative normal velocity at prepare (restitution in the soft step).
+    double max_jn;  // Largest normal impulse of the soft step (restitution only if touched).
+  };
+  struct FrictionPoint {
+    Row row[2];  // The impulses live in jt_.
+  };
+  struct Constraint {
+    BodyIndex a, b;
+    double ma, mb;  // Inverse masses.
+    Vec3 n, t[2];
+    double friction;
+    double restitution;
+    std::uint32_t first;  // Index of the first point in the point arrays.
+    int count;
+  };
+
+  std::vector<Constraint> constraints_;
+  std::vector<NormalPoint> normal_;
+  std::vector<FrictionPoint> friction_;
+  // Accumulated normal and friction impulses per point, apart from the rows: the friction pass
+  // reads them for every point but the rows only of points that carry load, and a loaded
+  // pyramid's side points (most of them) then cost 24 bytes instead of two cache lines.
+  std::vector<double> jn_;
+  std::vector<std::array<double, 2>> jt_;
+  std::vector<Vec3> ps_v_, ps_w_;
+  std::vector<Vec3> jac_v_, jac_w_;       // Jacobi: velocities the iteration reads.
+  std::vector<std::uint16_t> row_count_;  // Jacobi: contact points touching each body.
+  SolverSettings settings_;
+  double dt_ = 0.0;
+};
+
+}  // namespace zonesim::physics

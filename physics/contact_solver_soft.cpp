@@ -1,0 +1,101 @@
+// The soft step (Box2D v3's solver): sub-stepped, soft-biased and relaxed contact passes.
+//
+// Why it holds stacks where plain PGS does not: each sub-step applies the gravity of only
+// dt/N, warm starts, solves once and moves the bodies, so a column's weight is carried by the
+// previous sub-step's impulses instead of waiting for ten Gauss-Seidel sweeps to carry it down.
+// Overlap is pushed out by a stiff, heavily damped spring (the bias) whose velocity the relax
+// pass then removes, so the push does not turn into kinetic energy (like split impulses).
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "physics/contact_solver.h"
+
+namespace zonesim::physics {
+
+Softness makeSoftness(double hertz, double damping_ratio, double h) {
+  if (hertz <= 0.0) return Softness{};
+  const double omega = 2.0 * std::numbers::pi * hertz;
+  const double a1 = 2.0 * damping_ratio + h * omega;
+  const double a2 = h * omega * a1;
+  const double a3 = 1.0 / (1.0 + a2);
+  return Softness{omega / a1, a2 * a3, a3};
+}
+
+namespace {
+
+inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, double mb,
+                     const Vec3& d, const auto& row, double lambda) {
+  bodies.linear_velocity[a] -= (ma * lambda) * d;
+  bodies.angular_velocity[a] -= lambda * row.wa;
+  bodies.linear_velocity[b] += (mb * lambda) * d;
+  bodies.angular_velocity[b] += lambda * row.wb;
+}
+
+}  // namespace
+
+void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
+                              std::span<const Vec3> dtheta, const Softness& soft,
+                              const Softness& soft_static, bool use_bias, double inv_h) {
+  auto& v = bodies.linear_velocity;
+  auto& w = bodies.angular_velocity;
+  const double max_push = settings_.max_push_velocity;
+  for (const Constraint& k : constraints_) {
+    // Separation moves with the relative displacement of the anchors (small-angle rotation).
+    const double moved = k.n.dot(dp[k.b] - dp[k.a]);
+    const Softness& spring = (k.ma == 0.0 || k.mb == 0.0) ? soft_static : soft;
+    for (int i = 0; i < k.count; ++i) {
+      NormalPoint& p = normal_[k.first + i];
+      const double s = -p.depth + moved + p.row.cb.dot(dtheta[k.b]) - p.row.ca.dot(dtheta[k.a]);
+      double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+      if (s > 0.0) {
+        bias = s * inv_h;  // Speculative: may close the gap within this sub-step.
+      } else if (use_bias) {
+        // No slop: the soft spring's own static deflection already keeps contacts alive.
+        bias = std::max(spring.bias_rate * s, -max_push);
+        mass_scale = spring.mass_scale;
+        impulse_scale = spring.impulse_scale;
+      }
+      const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
+      const double old = jn_[k.first + i];
+      const double delta = -p.row.mass * mass_scale * (vn + bias) - impulse_scale * old;
+      jn_[k.first + i] = std::max(0.0, old + delta);
+      p.max_jn = std::max(p.max_jn, jn_[k.first + i]);
+      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
+    }
+  }
+  for (const Constraint& k : constraints_) {
+    for (int i = 0; i < k.count; ++i) {
+      FrictionPoint& p = friction_[k.first + i];
+      const double limit = k.friction * jn_[k.first + i];
+      for (int t = 0; t < 2; ++t) {
+        const Row& row = p.row[t];
+        const double vt = k.t[t].dot(v[k.b] - v[k.a]) + row.cb.dot(w[k.b]) - row.ca.dot(w[k.a]);
+        const double old = jt_[k.first + i][t];
+        jt_[k.first + i][t] = std::clamp(old - row.mass * vt, -limit, limit);
+        applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], row, jt_[k.first + i][t] - old);
+      }
+    }
+  }
+}
+
+void ContactSolver::applyRestitution(BodyStorage& bodies) {
+  auto& v = bodies.linear_velocity;
+  auto& w = bodies.angular_velocity;
+  const double threshold = settings_.restitution_threshold;
+  for (const Constraint& k : constraints_) {
+    if (k.restitution == 0.0) continue;
+    for (int i = 0; i < k.count; ++i) {
+      NormalPoint& p = normal_[k.first + i];
+      // Only points that were approaching fast and actually pushed this step bounce.
+      if (p.vn0 > -threshold || p.max_jn == 0.0) continue;
+      const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
+      const double old = jn_[k.first + i];
+      jn_[k.first + i] = std::max(0.0, old - p.row.mass * (vn + k.restitution * p.vn0));
+      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
+    }
+  }
+}
+
+}  // namespace zonesim::physics

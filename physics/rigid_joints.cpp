@@ -1,0 +1,131 @@
+#include "physics/rigid_joints.h"
+
+#include <cmath>
+
+namespace zonesim::physics {
+
+std::uint32_t RigidJoints::addBall(const BallJoint& joint) {
+  balls_.push_back(joint);
+  return static_cast<std::uint32_t>(balls_.size() - 1);
+}
+
+std::uint32_t RigidJoints::addHinge(const HingeJoint& joint) {
+  HingeJoint h = joint;
+  h.axis_a.normalize();
+  h.axis_b.normalize();
+  hinges_.push_back(h);
+  return static_cast<std::uint32_t>(hinges_.size() - 1);
+}
+
+void RigidJoints::markBodies(std::span<std::uint8_t> touched) const {
+  auto mark = [&](BodyIndex a, BodyIndex b) {
+    touched[a] = 1;
+    if (b != kNoBody) touched[b] = 1;
+  };
+  for (const BallJoint& j : balls_) mark(j.a, j.b);
+  for (const HingeJoint& j : hinges_) mark(j.a, j.b);
+}
+
+void RigidJoints::addPointRows(const BodyStorage& bodies, const Anchor& anchor, double rate,
+                               std::size_t& next) {
+  const bool fixed = anchor.b == kNoBody;
+  const Vec3 ra = bodies.orientation[anchor.a] * anchor.local_a;
+  const Vec3 rb = fixed ? Vec3::Zero() : Vec3(bodies.orientation[anchor.b] * anchor.local_b);
+  const Vec3 pa = bodies.position[anchor.a] + ra;
+  const Vec3 pb = fixed ? anchor.local_b : Vec3(bodies.position[anchor.b] + rb);
+  // Rows along the lever arm and across it rather than along the world axes: for a round body
+  // these are the effective mass's eigenvectors, so the rows do not fight each other (along
+  // world axes a 2 m pendulum at dt 1/60 and 10 iterations kept a 2 cm gap).
+  const Vec3 arm = ra.squaredNorm() > 1e-18 ? ra : rb;
+  const Vec3 u = arm.squaredNorm() > 1e-18 ? Vec3(arm.normalized()) : Vec3::UnitX();
+  const Vec3 v = u.cross(std::abs(u.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY()).normalized();
+  const Vec3 basis[3] = {u, v, u.cross(v)};
+  for (int axis = 0; axis < 3; ++axis) {
+    Row& r = rows_[next++];
+    r.a = anchor.a;
+    r.b = anchor.b;
+    r.d = basis[axis];
+    r.ca = ra.cross(r.d);
+    r.cb = rb.cross(r.d);
+    r.wa = bodies.inv_inertia_world[r.a] * r.ca;
+    r.wb = fixed ? Vec3::Zero() : Vec3(bodies.inv_inertia_world[r.b] * r.cb);
+    r.ma = bodies.inv_mass[r.a];
+    r.mb = fixed ? 0.0 : bodies.inv_mass[r.b];
+    const double inv = r.ma + r.mb + r.ca.dot(r.wa) + r.cb.dot(r.wb);
+    r.mass = inv > 0.0 ? 1.0 / inv : 0.0;
+    r.bias = rate * (pb - pa).dot(r.d);
+  }
+}
+
+void RigidJoints::addAngularRow(const BodyStorage& bodies, BodyIndex a, BodyIndex b, const Vec3& u,
+                                double error, double rate, std::size_t& next) {
+  const bool fixed = b == kNoBody;
+  Row& r = rows_[next++];
+  r.a = a;
+  r.b = b;
+  r.d = Vec3::Zero();
+  r.ca = u;
+  r.cb = u;
+  r.wa = bodies.inv_inertia_world[a] * u;
+  r.wb = fixed ? Vec3::Zero() : Vec3(bodies.inv_inertia_world[b] * u);
+  r.ma = r.mb = 0.0;
+  const double inv = u.dot(r.wa) + (fixed ? 0.0 : u.dot(r.wb));
+  r.mass = inv > 0.0 ? 1.0 / inv : 0.0;
+  r.bias = rate * error;
+}
+
+void RigidJoints::prepare(const BodyStorage& bodies, double dt, double beta) {
+  // Last step's impulses, in row order (the joint list only grows, at the end).
+  stored_.resize(rows_.size());
+  for (std::size_t i = 0; i < rows_.size(); ++i) stored_[i] = rows_[i].impulse;
+  rows_.resize(3 * balls_.size() + 5 * hinges_.size());
+  const double rate = beta / dt;
+  std::size_t next = 0;
+  for (const BallJoint& j : balls_) {
+    addPointRows(bodies, Anchor{j.a, j.b, j.local_a, j.local_b}, rate, next);
+  }
+  for (const HingeJoint& j : hinges_) {
+    addPointRows(bodies, Anchor{j.a, j.b, j.local_a, j.local_b}, rate, next);
+    const Vec3 axis_a = bodies.orientation[j.a] * j.axis_a;
+    const Vec3 axis_b = j.b == kNoBody ? j.axis_b : Vec3(bodies.orientation[j.b] * j.axis_b);
+    // Two directions perpendicular to A's axis, by a fixed rule (deterministic basis).
+    const Vec3 helper = std::abs(axis_a.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
+    const Vec3 p = axis_a.cross(helper).normalized();
+    const Vec3 q = axis_a.cross(p);
+    // B is turned from A's axis by about a_A x a_B (small angles): its parts along p and q
+    // are the errors; the rows stop relative rotation about p and q.
+    const Vec3 tilt = axis_a.cross(axis_b);
+    addAngularRow(bodies, j.a, j.b, p, p.dot(tilt), rate, next);
+    addAngularRow(bodies, j.a, j.b, q, q.dot(tilt), rate, next);
+  }
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    rows_[i].impulse = i < stored_.size() ? stored_[i] : 0.0;
+  }
+}
+
+void RigidJoints::apply(BodyStorage& bodies, const Row& r, double lambda) const {
+  bodies.linear_velocity[r.a] -= (r.ma * lambda) * r.d;
+  bodies.angular_velocity[r.a] -= lambda * r.wa;
+  if (r.b == kNoBody) return;
+  bodies.linear_velocity[r.b] += (r.mb * lambda) * r.d;
+  bodies.angular_velocity[r.b] += lambda * r.wb;
+}
+
+void RigidJoints::warmStart(BodyStorage& bodies) {
+  for (const Row& r : rows_) apply(bodies, r, r.impulse);
+}
+
+void RigidJoints::iterate(BodyStorage& bodies) {
+  for (Row& r : rows_) {
+    const bool fixed = r.b == kNoBody;
+    const Vec3 vb = fixed ? Vec3::Zero() : bodies.linear_velocity[r.b];
+    const Vec3 wb = fixed ? Vec3::Zero() : bodies.angular_velocity[r.b];
+    const double cdot = r.d.dot(vb - bodies.linear_velocity[r.a]) + r.cb.dot(wb) -
+                        r.ca.dot(bodies.angular_velocity[r.a]);
+    const double lambda = -r.mass * (cdot + r.bias);
+    r.impulse += lambda;
+    apply(bodies, r, lambda);
+  }
+}
+
+}  // namespace zonesim::physics

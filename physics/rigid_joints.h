@@ -1,0 +1,81 @@
+#pragma once
+// Ball-and-socket and hinge joints, solved in the same Gauss-Seidel iterations as contacts and
+// distance joints, warm started, with a Baumgarte bias on the drift (as distance joints: the
+// errors stay small, and bilateral rows need no split-impulse bookkeeping).
+//
+// A ball joint keeps two anchor points together: three linear rows along the world axes. A
+// hinge adds two angular rows that stop relative rotation about the two directions
+// perpendicular to its axis; their error is the small-angle misalignment a_A x a_B.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/math.h"
+#include "physics/body_storage.h"
+#include "physics/distance_joints.h"
+
+namespace zonesim::physics {
+
+/// A ball-and-socket joint: anchors in each body's frame (a world point when b is kNoBody).
+struct BallJoint {
+  BodyIndex a = 0;
+  BodyIndex b = kNoBody;
+  Vec3 local_a = Vec3::Zero();
+  Vec3 local_b = Vec3::Zero();
+};
+
+/// A hinge: a ball joint plus an axis, given in each body's frame (world axis when b is
+/// kNoBody), that the two bodies keep aligned; rotation about it is free.
+struct HingeJoint {
+  BodyIndex a = 0;
+  BodyIndex b = kNoBody;
+  Vec3 local_a = Vec3::Zero();
+  Vec3 local_b = Vec3::Zero();
+  Vec3 axis_a = Vec3::UnitZ();
+  Vec3 axis_b = Vec3::UnitZ();
+};
+
+/// The ball and hinge joints of a world with their per-step rows.
+class RigidJoints {
+ public:
+  /// Adds a ball joint and returns its index among the ball joints.
+  std::uint32_t addBall(const BallJoint& joint);
+  /// Adds a hinge and returns its index among the hinges.
+  std::uint32_t addHinge(const HingeJoint& joint);
+  /// True when there is no joint (the world skips the calls).
+  bool empty() const { return balls_.empty() && hinges_.empty(); }
+  /// Bodies held by a joint get a 1 in touched (sized to the body count).
+  void markBodies(std::span<std::uint8_t> touched) const;
+  /// Builds the rows at the current positions; beta is the Baumgarte fraction per step.
+  void prepare(const BodyStorage& bodies, double dt, double beta);
+  /// Applies last step's impulses.
+  void warmStart(BodyStorage& bodies);
+  /// One Gauss-Seidel pass over every row.
+  void iterate(BodyStorage& bodies);
+
+ private:
+  // One bilateral row: linear direction d (zero for angular rows) and angular parts.
+  struct Row {
+    BodyIndex a, b;  // b may be kNoBody.
+    Vec3 d, ca, cb, wa, wb;
+    double ma, mb, mass, bias;
+    double impulse;
+  };
+  struct Anchor {
+    BodyIndex a, b;
+    Vec3 local_a, local_b;
+  };
+  void addPointRows(const BodyStorage& bodies, const Anchor& anchor, double rate,
+                    std::size_t& next);
+  void addAngularRow(const BodyStorage& bodies, BodyIndex a, BodyIndex b, const Vec3& u,
+                     double error, double rate, std::size_t& next);
+  void apply(BodyStorage& bodies, const Row& r, double lambda) const;
+
+  std::vector<BallJoint> balls_;
+  std::vector<HingeJoint> hinges_;
+  std::vector<Row> rows_;
+  std::vector<double> stored_;  // Row impulses of the last step, in row order.
+};
+
+}  // namespace zonesim::physics

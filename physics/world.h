@@ -1,0 +1,127 @@
+#pragma once
+// The physics world: bodies, forces and the step pipeline
+//   forces -> integrate velocities -> broadphase -> narrowphase -> contact solve (velocities,
+//   then split-impulse positions) -> integrate positions -> non-finite check.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/body_storage.h"
+#include "physics/broadphase.h"
+#include "physics/contact_solver.h"
+#include "physics/distance_joints.h"
+#include "physics/forces.h"
+#include "physics/integrator.h"
+#include "physics/islands.h"
+#include "physics/rigid_joints.h"
+
+namespace zonesim::physics {
+
+/// Every approximation of the world step, selectable per scene.
+struct WorldSettings {
+  Integrator integrator = Integrator::SemiImplicitEuler;
+  BroadphaseKind broadphase = BroadphaseKind::SweepAndPrune;
+  SolverSettings solver;
+  int substeps = 1;
+  double contact_margin = 0.02;  ///< m: contacts are kept this far before touching.
+  /// Baumgarte fraction of a joint's length error removed per step.
+  double joint_beta = 0.2;
+  /// Grow each body's contact search by its travel this step: speculative contacts stop fast
+  /// bodies at thin walls without continuous collision detection.
+  bool speculative = true;
+  /// Islands at rest fall asleep (off by default, as in the benchmark scenes).
+  SleepSettings sleep;
+};
+
+/// A set of bodies stepped together.
+class World {
+ public:
+  /// A world with the given settings and default forces (gravity -9.81 y).
+  explicit World(const WorldSettings& settings = {});
+
+  /// Adds a body and returns its index.
+  BodyIndex addBody(const BodyDesc& desc);
+  /// Advances by dt, split into settings().substeps equal substeps.
+  void step(double dt);
+
+  /// Adds a force through the centre of mass for the next step (wakes the body).
+  void applyForce(BodyIndex i, const Vec3& force) {
+    islands_.wake(i);
+    bodies_.force[i] += force;
+  }
+  /// Adds a torque for the next step (wakes the body).
+  void applyTorque(BodyIndex i, const Vec3& torque) {
+    islands_.wake(i);
+    bodies_.torque[i] += torque;
+  }
+  /// An instantaneous explosion: every dynamic body whose centre lies within radius gets the
+  /// impulse (N s, times the falloff) away from the centre through its centre of mass, and
+  /// wakes. For a blast that lasts, add a Blast to forces().blasts.
+  void applyExplosionImpulse(const Vec3& centre, double impulse, double radius, Falloff falloff);
+  /// Adds a distance joint (solved with the contacts) and returns its index.
+  std::uint32_t addDistanceJoint(const DistanceJoint& joint) { return joints_.add(joint); }
+  /// Adds a ball-and-socket joint and returns its index among the ball joints.
+  std::uint32_t addBallJoint(const BallJoint& joint) { return rigid_joints_.addBall(joint); }
+  /// Adds a hinge joint and returns its index among the hinges.
+  std::uint32_t addHingeJoint(const HingeJoint& joint) { return rigid_joints_.addHinge(joint); }
+  /// The distance joints with their last impulses.
+  std::span<const DistanceJoint> distanceJoints() const { return joints_.joints(); }
+  /// Wakes body i and the island it sleeps in; call after setting a velocity by hand.
+  void wake(BodyIndex i) { islands_.wake(i); }
+  /// True when body i sleeps.
+  bool asleep(BodyIndex i) const { return islands_.asleep(i); }
+  /// Number of sleeping bodies.
+  std::size_t sleepingCount() const { return islands_.sleepingCount(); }
+
+  /// Body state (read and write between steps).
+  BodyStorage& bodies() { return bodies_; }
+  /// Body state.
+  const BodyStorage& bodies() const { return bodies_; }
+  /// Gravity, drag and springs.
+  ForceModel& forces() { return forces_; }
+  /// The settings in use.
+  const WorldSettings& settings() const { return settings_; }
+  /// The contacts found and solved in the last substep, sorted by body pair.
+  std::span<const BodyContact> contacts() const { return contacts_; }
+  /// Bodies frozen because their state became non-finite, in the order found.
+  std::span<const BodyIndex> quarantined() const { return quarantined_; }
+
+ private:
+  void substep(double dt);
+  void integrateForces(double dt);
+  void findContacts(double dt);
+  void addContact(BodyIndex a, BodyIndex b, double margin);
+  void wakeTouched();
+  void warmStartFromPrevious();
+  void integratePositions(double dt);
+  void solveSoftStep(double dt);
+  void warmStartJoints();
+  void iterateJoints();
+  void solveIterative(double dt);
+  void solveProjection(double dt);
+  void quarantineNonFinite();
+
+  WorldSettings settings_;
+  BodyStorage bodies_;
+  ForceModel forces_;
+  LinearIntegrator integrator_;
+  Broadphase broadphase_;
+  ContactSolver solver_;
+  Islands islands_;
+  DistanceJoints joints_;
+  RigidJoints rigid_joints_;
+
+  // Per-step buffers, kept to avoid allocating in the step.
+  std::vector<Vec3> x_start_, v_start_, x_force_, v_force_;
+  std::vector<Vec3> soft_dp_, soft_dtheta_, soft_dv_;
+  std::vector<std::uint8_t> soft_touched_;
+  std::vector<Aabb> proxy_boxes_;
+  std::vector<std::uint8_t> proxy_moving_;
+  std::vector<BodyIndex> proxy_body_, planes_;
+  std::vector<ProxyPair> pairs_;
+  std::vector<BodyContact> contacts_, previous_;
+  std::vector<BodyIndex> quarantined_;
+};
+
+}  // namespace zonesim::physics

@@ -1,0 +1,99 @@
+// client_stub's fleet against a real Gateway and a test zone on a private DDS domain: every
+// player is welcomed, sees entities, and the summary and metrics come out in their shape.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "../gateway/gateway_fixture.h"
+#include "clients/fleet.h"
+#include "common/timer.h"
+#include "gateway/gateway.h"
+
+namespace zonesim::clients {
+namespace {
+
+// The zone: one avatar per spawn request, every avatar published in its cell each tick, until
+// done is set.
+void runZone(testing::ZoneEmulator& zone, const std::atomic<bool>& done) {
+  std::map<std::uint64_t, zonesim_dds_SpawnRequest> avatars;
+  std::uint64_t tick = 0, next_avatar = 0x1000000000001ULL;
+  while (!done) {
+    for (const auto& r : zone.takeSpawnRequests()) {
+      avatars[next_avatar] = r;
+      zone.publishOwnership(r.player_id, next_avatar++, -1, 0, tick, 0);
+    }
+    ++tick;
+    for (const auto& [id, r] : avatars)
+      zone.publishBatch(r.position.x, r.position.z, 0, tick, {},
+                        {testing::entity(id, 1, r.position.x, r.position.z, 0.5f, 0)});
+    zone.takeInputs(0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(33));  // the zone's tick pacing
+  }
+}
+
+void checkSummary(const nlohmann::json& summary, int players) {
+  EXPECT_EQ(summary["players"], players);
+  EXPECT_GT(summary["duration_s"].get<double>(), 2.0);
+  ASSERT_EQ(summary["clients"].size(), std::size_t(players));
+  for (const auto& c : summary["clients"]) {
+    EXPECT_NE(c["player_id"].get<std::uint64_t>(), 0u);
+    EXPECT_NE(c["avatar_id"].get<std::uint64_t>(), 0u);
+    EXPECT_GT(c["bytes_in_per_s"].get<double>(), 0);
+    EXPECT_GT(c["bytes_out_per_s"].get<double>(), 0);
+    EXPECT_GT(c["updates_per_s"].get<double>(), 0);
+    EXPECT_GE(c["visible_entities"].get<int>(), 1);
+    EXPECT_GT(c["rtt_ms_p50"].get<double>(), 0);
+    EXPECT_EQ(c["dropped"], 0);
+  }
+  EXPECT_TRUE(summary["totals"].contains("handoffs"));
+  EXPECT_EQ(summary["totals"]["welcomed"], players);
+}
+
+TEST(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
+  int domain = testing::privateDdsDomain();
+  Scene scene = testing::smallScene();
+  gateway::GatewayConfig gcfg;
+  gcfg.scene = scene;
+  gcfg.dds_domain = domain;
+  gcfg.gateway_id = testing::privateGatewayId();
+  gcfg.expected_zones = 1;
+  gateway::Gateway gw(gcfg);
+  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
+
+  std::string metrics = ::testing::TempDir() + "/clients_" + std::to_string(domain) + ".jsonl";
+  FleetConfig fcfg;
+  fcfg.player.gateway = gateway::Endpoint::loopback(gw.port());
+  fcfg.player.world = scene.world;
+  fcfg.players = 3;
+  fcfg.duration_s = 2.5;
+  fcfg.metrics_path = metrics;
+  ClientFleet fleet(fcfg);
+
+  std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
+  std::thread gateway_thread([&] { gw.run(stop_gateway); });
+  std::thread fleet_thread([&] {
+    fleet.run(stop_fleet);
+    fleet_done = true;
+  });
+  runZone(zone, fleet_done);
+  fleet_thread.join();
+  stop_gateway = true;
+  gateway_thread.join();
+
+  EXPECT_EQ(fleet.welcomed(), 3);
+  checkSummary(nlohmann::json::parse(fleet.summaryJson()), 3);
+  std::ifstream lines(metrics);
+  std::string line;
+  int n = 0;
+  for (; std::getline(lines, line); ++n)
+    EXPECT_TRUE(nlohmann::json::parse(line).contains("bytes_in_per_s"));
+  EXPECT_GE(n, 2);
+  EXPECT_GE(gw.counters().inputs_forwarded, 1u);
+}
+
+}  // namespace
+}  // namespace zonesim::clients

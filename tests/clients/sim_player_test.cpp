@@ -1,0 +1,278 @@
+// A simulated player against a UDP socket that plays the gateway with crafted datagrams:
+// the client verifies everything and counts what it drops.
+#include "clients/sim_player.h"
+
+#include <gtest/gtest.h>
+#include <poll.h>
+
+#include <cmath>
+#include <limits>
+
+#include "common/timer.h"
+
+namespace zonesim::clients {
+namespace {
+
+using gateway::Bytes;
+using gateway::DropReason;
+
+class SimPlayerTest : public ::testing::Test {
+ protected:
+  SimPlayerTest() {
+    PlayerConfig c;
+    c.gateway = Endpoint::loopback(gateway_.localPort());
+    c.world = {{0, 0, 0}, {100, 10, 100}};
+    player_ = std::make_unique<SimPlayer>(c, 0, nowNs());
+    player_addr_ = Endpoint::loopback(0);
+  }
+
+  // Waits for the next datagram the player sent to the "gateway".
+  const proto::Datagram* fromPlayer() {
+    pollfd p{gateway_.fd(), POLLIN, 0};
+    if (::poll(&p, 1, 2000) <= 0) return nullptr;
+    auto got = gateway_.receive(buf_);
+    if (!got) return nullptr;
+    player_addr_ = got->from;
+    auto v =
+        gateway::verifyDatagram(std::span(buf_.data(), got->size), gateway::Direction::ToGateway);
+    return v.datagram;
+  }
+
+  // Sends bytes to the player from `from` and lets it read them.
+  void toPlayer(const Bytes& b, gateway::UdpSocket& from) {
+    from.sendTo(player_addr_, b);
+    pollfd p{player_->fd(), POLLIN, 0};
+    ASSERT_EQ(::poll(&p, 1, 2000), 1);
+    player_->receive(nowNs());
+  }
+  void toPlayer(const Bytes& b) { toPlayer(b, gateway_); }
+
+  // Lets the player send its Hello and records the nonce.
+  void hello() {
+    player_->act(nowNs());
+    const proto::Datagram* d = fromPlayer();
+    ASSERT_TRUE(d && d->msg_type() == proto::Message::Hello);
+    nonce_ = d->msg_as_Hello()->client_nonce();
+  }
+
+  // Completes the handshake and returns the token.
+  std::uint64_t welcome() {
+    if (nonce_ == 0) hello();
+    gateway::WelcomeInfo w;
+    w.client_nonce = nonce_;
+    w.token = 0xabcdef;
+    w.player_id = (1ull << 32) | 1;
+    w.avatar_id = 77;
+    w.zone = 2;
+    w.world_max = proto::Vec3f(100, 10, 100);
+    toPlayer(gateway::encodeWelcome(w));
+    return w.token;
+  }
+
+  std::uint64_t dropped(DropReason r) const { return player_->counters().drops[r]; }
+
+  gateway::UdpSocket gateway_;
+  std::unique_ptr<SimPlayer> player_;
+  Endpoint player_addr_;
+  std::uint64_t nonce_ = 0;
+  std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(2048);
+};
+
+// The codec a default Welcome announces.
+const dr::StateCodec& codec() {
+  static const dr::StateCodec c{dr::CodecParams{}};
+  return c;
+}
+
+dr::WireEntity state(std::uint64_t id, float x) {
+  dr::WireEntity e;
+  e.id = id;
+  e.tick = 1;
+  e.state.pos = {x, 0, 5};
+  e.state.vel = {1, 0, 0};
+  return e;
+}
+
+Bytes spawnOf(std::uint64_t token, std::uint64_t tick, std::vector<dr::WireEntity> v) {
+  return gateway::encodeSpawnChunks(token, tick, codec(), v)[0];
+}
+
+Bytes updateOf(std::uint64_t token, std::uint64_t tick, std::vector<dr::WireEntity> v) {
+  return gateway::encodeStateChunks(token, tick, codec(), v)[0];
+}
+
+TEST_F(SimPlayerTest, HandshakeThenInputsAndPings) {
+  std::uint64_t token = welcome();
+  ASSERT_TRUE(player_->welcomed());
+  EXPECT_EQ(player_->avatarId(), 77u);
+  EXPECT_EQ(player_->zone(), 2);
+  player_->act(nowNs());
+  bool input = false, ping = false;
+  for (int i = 0; i < 2; ++i) {
+    const proto::Datagram* d = fromPlayer();
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->token(), token);
+    if (d->msg_type() == proto::Message::Input) {
+      input = true;
+      EXPECT_EQ(d->msg_as_Input()->seq(), 1u);
+    }
+    ping |= d->msg_type() == proto::Message::Ping;
+  }
+  EXPECT_TRUE(input && ping);
+}
+
+TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
+  hello();
+  std::vector<dr::WireEntity> one{state(5, 1)};
+  toPlayer(spawnOf(1, 1, one));  // before any Welcome
+  EXPECT_EQ(dropped(DropReason::NotReady), 1u);
+  gateway::WelcomeInfo w;
+  w.client_nonce = 12345;  // not our nonce
+  w.token = 9;
+  w.world_max = proto::Vec3f(1, 1, 1);
+  toPlayer(gateway::encodeWelcome(w));
+  EXPECT_EQ(dropped(DropReason::BadToken), 1u);
+  EXPECT_FALSE(player_->welcomed());
+
+  std::uint64_t token = welcome();
+  toPlayer(spawnOf(token + 1, 1, one));  // forged token
+  EXPECT_EQ(dropped(DropReason::BadToken), 2u);
+  gateway::UdpSocket stranger;
+  toPlayer(spawnOf(token, 1, one), stranger);  // not from the gateway
+  EXPECT_EQ(dropped(DropReason::WrongAddress), 1u);
+  toPlayer(Bytes{1, 2, 3});
+  EXPECT_EQ(dropped(DropReason::Truncated), 1u);
+  // A record 90 ticks old in a batch of tick 100, the batch tick rewritten to 50 after
+  // packing: the state would predate tick 0, and unpacking refuses it.
+  std::vector<dr::WireEntity> early{state(6, 1)};
+  early[0].tick = 10;
+  Bytes at2 = spawnOf(token, 100, early);
+  gateway::Verified pv = gateway::verifyDatagram(at2, gateway::Direction::ToClient);
+  ASSERT_TRUE(pv.ok());
+  flatbuffers::FlatBufferBuilder fbb;
+  const proto::Spawn* sp = pv.datagram->msg_as_Spawn();
+  auto v = fbb.CreateVector(sp->packed()->data(), sp->packed()->size());
+  proto::FinishDatagramBuffer(
+      fbb, proto::CreateDatagram(fbb, token, proto::Message::Spawn,
+                                 proto::CreateSpawn(fbb, 50, sp->count(), v).Union()));
+  toPlayer(Bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()));
+  EXPECT_EQ(dropped(DropReason::OutOfRange), 1u);
+  toPlayer(gateway::encodeInput(token, 1, 0, 0));  // a gateway-bound message
+  EXPECT_EQ(dropped(DropReason::UnexpectedType), 1u);
+  EXPECT_EQ(player_->view().size(), 0u) << "nothing dropped reached the view";
+}
+
+TEST_F(SimPlayerTest, SpawnUpdateDespawnAndHandoffAreCounted) {
+  std::uint64_t token = welcome();
+  std::vector<dr::WireEntity> two{state(5, 1), state(77, 2)};
+  toPlayer(spawnOf(token, 1, two));
+  EXPECT_EQ(player_->view().size(), 2u);
+  EXPECT_EQ(player_->counters().spawns, 2u);
+  std::vector<dr::WireEntity> upd{state(5, 3)};
+  upd[0].tick = 2;
+  toPlayer(updateOf(token, 2, upd));
+  EXPECT_EQ(player_->counters().updates, 1u);
+  EXPECT_EQ(player_->counters().dr_error_m.seen(), 1u);
+  std::vector<std::uint64_t> gone{5};
+  toPlayer(gateway::encodeDespawnChunks(token, 3, gone)[0]);
+  EXPECT_EQ(player_->view().size(), 1u);
+  EXPECT_EQ(player_->counters().despawns, 1u);
+  toPlayer(gateway::encodeHandoff(token, {77, 2, 3, 10, 4}));
+  EXPECT_EQ(player_->counters().handoffs, 1u);
+  EXPECT_EQ(player_->zone(), 3);
+  // The avatar is known now: inputs steer toward the wander target.
+  player_->act(nowNs());
+  const proto::Datagram* d = fromPlayer();
+  while (d && d->msg_type() != proto::Message::Input) d = fromPlayer();
+  ASSERT_NE(d, nullptr);
+  const proto::Input* in = d->msg_as_Input();
+  EXPECT_NEAR(std::hypot(in->move_x(), in->move_z()), 1.0, 1e-3);
+}
+
+// Numbered datagrams as a resending gateway sends them.
+std::uint32_t counter(void* n) {
+  return ++*static_cast<std::uint32_t*>(n);
+}
+
+TEST_F(SimPlayerTest, AResentHandoffIsAppliedOnceAndAnOlderOneNever) {
+  std::uint64_t token = welcome();
+  gateway::HandoffInfo h{77, 2, 3, 10, 4, 1};
+  toPlayer(gateway::encodeHandoff(token, h));
+  h.seq = 2;  // the gateway resends it under a new seq when the ack is late
+  toPlayer(gateway::encodeHandoff(token, h));
+  EXPECT_EQ(player_->counters().handoffs, 1u);
+  EXPECT_EQ(player_->counters().repeats, 1u);
+  EXPECT_EQ(player_->acks().ack(), 2u) << "both copies acknowledged";
+  // A later handoff, then the earlier one arriving late: the zone stays the later one's.
+  toPlayer(gateway::encodeHandoff(token, {77, 3, 1, 40, 9, 4}));
+  toPlayer(gateway::encodeHandoff(token, {77, 2, 3, 10, 4, 3}));
+  EXPECT_EQ(player_->counters().handoffs, 2u);
+  EXPECT_EQ(player_->zone(), 1);
+}
+
+TEST_F(SimPlayerTest, TheServerClockRunsAtMostMaxLeadPastTheNewestTick) {
+  std::uint64_t token = welcome();
+  std::int64_t t0 = nowNs();
+  Endpoint from = Endpoint::loopback(gateway_.localPort());
+  player_->handle(gateway::encodeClockTick(token, 300), from, t0);
+  EXPECT_NEAR(player_->serverTick(t0), 300, 1e-9);
+  // 0.1 s later: 3 ticks on at 30 Hz. 2 s later (the zones stalled): max_lead_s (0.25 s) on.
+  EXPECT_NEAR(player_->serverTick(t0 + 100'000'000), 303, 1e-6);
+  EXPECT_NEAR(player_->serverTick(t0 + 2'000'000'000), 300 + 0.25 * 30, 1e-6);
+  // The next tick heard moves the clock on again.
+  player_->handle(gateway::encodeClockTick(token, 330), from, t0 + 2'000'000'000);
+  EXPECT_NEAR(player_->serverTick(t0 + 2'000'000'000), 330, 1e-9);
+}
+
+TEST_F(SimPlayerTest, DuplicatesAndStaleLifecycleAreIgnoredAndAcked) {
+  std::uint64_t token = welcome();
+  std::uint32_t seq = 0;
+  gateway::ChunkSeq numbered{counter, &seq};
+  std::vector<dr::WireEntity> one{state(5, 1)};
+  Bytes spawn = gateway::encodeSpawnChunks(token, 1, codec(), one, numbered)[0];  // seq 1
+  std::vector<std::uint64_t> gone{5};
+  Bytes despawn = gateway::encodeDespawnChunks(token, 2, gone, numbered)[0];  // seq 2
+  toPlayer(spawn);
+  toPlayer(spawn);  // a duplicate
+  EXPECT_EQ(player_->counters().duplicates, 1u);
+  EXPECT_EQ(player_->counters().spawns, 1u);
+  toPlayer(despawn);
+  EXPECT_EQ(player_->view().size(), 0u);
+  // The spawn resent in a later datagram than the despawn, but built before it: stale.
+  seq = 0;
+  Bytes late = gateway::encodeSpawnChunks(token, 1, codec(), one, numbered)[0];  // seq 1 again
+  Bytes resent_old = late;
+  toPlayer(resent_old);
+  EXPECT_EQ(player_->view().size(), 0u) << "no ghost: the despawn (seq 2) is newer";
+  // A respawn (seq 3) brings it back; the old despawn replayed after it does not remove it.
+  seq = 2;
+  toPlayer(gateway::encodeSpawnChunks(token, 3, codec(), one, numbered)[0]);
+  EXPECT_EQ(player_->view().size(), 1u);
+  seq = 1;
+  toPlayer(gateway::encodeDespawnChunks(token, 2, gone, numbered)[0]);  // seq 2, duplicate
+  EXPECT_EQ(player_->view().size(), 1u);
+  EXPECT_EQ(player_->acks().ack(), 3u);
+  EXPECT_EQ(player_->acks().bits(), 0b11u);
+  // The acks ride on the next input.
+  player_->act(nowNs());
+  const proto::Datagram* d = fromPlayer();
+  while (d && d->msg_type() != proto::Message::Input) d = fromPlayer();
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->msg_as_Input()->ack(), 3u);
+  EXPECT_EQ(d->msg_as_Input()->ack_bits(), 0b11u);
+}
+
+TEST_F(SimPlayerTest, UpdatesOfAnUnspawnedEntityAreNoticed) {
+  std::uint64_t token = welcome();
+  std::uint32_t seq = 0;
+  gateway::ChunkSeq numbered{counter, &seq};
+  std::vector<dr::WireEntity> one{state(9, 1)};
+  toPlayer(gateway::encodeStateChunks(token, 1, codec(), one, numbered)[0]);
+  EXPECT_EQ(player_->view().size(), 0u);
+  toPlayer(gateway::encodeSpawnChunks(token, 2, codec(), one, numbered)[0]);
+  EXPECT_EQ(player_->view().size(), 1u);
+  EXPECT_EQ(player_->unspawned(), 0u) << "a spawn settles it";
+}
+
+}  // namespace
+}  // namespace zonesim::clients

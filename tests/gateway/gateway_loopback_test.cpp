@@ -1,0 +1,232 @@
+// A real Gateway (UDP + DDS) with a real UDP client socket and a test zone made of real DDS
+// writers and readers on a private domain: Welcome, Spawn, StateBatch, input routing, Handoff.
+#include <gtest/gtest.h>
+#include <poll.h>
+
+#include <atomic>
+#include <thread>
+
+#include "common/timer.h"
+#include "gateway/gateway.h"
+#include "gateway_fixture.h"
+
+namespace zonesim::gateway {
+namespace {
+
+using testing::entity;
+
+constexpr std::int64_t kTimeoutNs = 15'000'000'000;
+
+class GatewayLoopback : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    int domain = testing::privateDdsDomain();
+    GatewayConfig cfg;
+    cfg.scene = testing::smallScene();
+    cfg.dds_domain = domain;
+    cfg.gateway_id = testing::privateGatewayId();
+    cfg.expected_zones = 1;
+    gateway_ = std::make_unique<Gateway>(cfg);
+    zone_ = std::make_unique<testing::ZoneEmulator>(domain, cfg.scene, cfg.gateway_id);
+    gateway_addr_ = Endpoint::loopback(gateway_->port());
+  }
+  void TearDown() override {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  void startGateway() {
+    thread_ = std::thread([this] { gateway_->run(stop_); });
+  }
+
+  // Receives one verified datagram for the client within 20 ms, if any.
+  const proto::Datagram* receive() {
+    pollfd p{client_.fd(), POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0) return nullptr;
+    auto got = client_.receive(buf_);
+    if (!got || got->from != gateway_addr_) return nullptr;
+    Verified v = verifyDatagram(std::span(buf_.data(), got->size), Direction::ToClient);
+    EXPECT_TRUE(v.ok()) << dropReasonName(v.reason);
+    return v.datagram;
+  }
+
+  // Plays client and zone until the client has its Welcome, both entities and a StateBatch.
+  // The client acknowledges what it received, as client_stub does: until its spawns are
+  // acknowledged the gateway sends the entities' states as Spawns, not StateBatches.
+  std::uint64_t handshakeAndFirstState() {
+    std::uint64_t token = 0;
+    std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0, next_ack = 0;
+    while (nowNs() < deadline && !(token && spawned_avatar_ && spawned_npc_ && got_batch_)) {
+      if (token == 0 && nowNs() >= next_hello) {
+        client_.sendTo(gateway_addr_, encodeHello(99, "tester"));
+        next_hello = nowNs() + 500'000'000;
+      }
+      if (nowNs() >= next_tick) {
+        zoneTick();
+        next_tick = nowNs() + 33'000'000;
+      }
+      if (token != 0 && nowNs() >= next_ack) {
+        client_.sendTo(gateway_addr_, encodePing(token, 1, acks_.ack(), acks_.bits()));
+        next_ack = nowNs() + 50'000'000;
+      }
+      if (const proto::Datagram* d = receive()) observe(*d, token);
+    }
+    return token;
+  }
+
+  // The zone: answers spawn requests, then publishes the avatar and an NPC near it each tick.
+  void zoneTick() {
+    for (const auto& r : zone_->takeSpawnRequests()) {
+      player_ = r.player_id;
+      spawn_x_ = r.position.x, spawn_z_ = r.position.z;
+      zone_->publishOwnership(player_, kAvatar, -1, 0, tick_, 0);
+    }
+    if (player_ == 0) return;
+    ++tick_;
+    auto avatar = entity(kAvatar, 1, spawn_x_, spawn_z_, 1, 0);
+    auto npc = entity(kNpc, 0, spawn_x_ + 5, spawn_z_, 0, 1);
+    zone_->publishBatch(spawn_x_, spawn_z_, 0, tick_, {}, {avatar, npc});
+  }
+
+  void observe(const proto::Datagram& d, std::uint64_t& token) {
+    switch (d.msg_type()) {
+      case proto::Message::Welcome: {
+        const proto::Welcome* w = d.msg_as_Welcome();
+        EXPECT_EQ(w->client_nonce(), 99u);
+        EXPECT_EQ(w->avatar_id(), kAvatar);
+        EXPECT_EQ(w->player_id(), player_);
+        EXPECT_EQ(w->zone(), 0);
+        token = w->token();
+        codec_.emplace(fromProto(*w->codec()));
+        break;
+      }
+      case proto::Message::Spawn: {
+        const proto::Spawn* m = d.msg_as_Spawn();
+        acks_.receive(m->seq());
+        ASSERT_TRUE(codec_.has_value());
+        auto got = codec_->unpack(std::span(m->packed()->data(), m->packed()->size()), m->count(),
+                                  m->server_tick());
+        ASSERT_TRUE(got.has_value());
+        for (const dr::WireEntity& s : *got) {
+          spawned_avatar_ |= s.id == kAvatar;
+          spawned_npc_ |= s.id == kNpc;
+        }
+        break;
+      }
+      case proto::Message::StateBatch:
+        acks_.receive(d.msg_as_StateBatch()->seq());
+        got_batch_ = true;
+        break;
+      default:
+        break;
+    }
+  }
+
+  // Sends inputs until the zone reads some on partition z.<zone>.
+  std::vector<zonesim_dds_PlayerInput> inputsArrivingAt(int zone, std::uint64_t token) {
+    std::vector<zonesim_dds_PlayerInput> inputs;
+    std::int64_t deadline = nowNs() + kTimeoutNs;
+    while (inputs.empty() && nowNs() < deadline) {
+      client_.sendTo(gateway_addr_, encodeInput(token, ++seq_, 0.6f, 0.8f));
+      receive();
+      inputs = zone_->takeInputs(zone);
+    }
+    return inputs;
+  }
+
+  static constexpr std::uint64_t kAvatar = 0x1000000000001ULL, kNpc = 0x1000000000002ULL;
+  std::uint64_t player_ = 0, tick_ = 0;
+  std::uint32_t seq_ = 0;
+  float spawn_x_ = 0, spawn_z_ = 0;
+  bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
+  std::optional<dr::StateCodec> codec_;
+  AckWindow acks_;
+  std::unique_ptr<Gateway> gateway_;
+  std::unique_ptr<testing::ZoneEmulator> zone_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  UdpSocket client_;
+  Endpoint gateway_addr_;
+  std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(2048);
+};
+
+TEST_F(GatewayLoopback, WelcomeSpawnStateBatchInputsAndHandoff) {
+  startGateway();
+  std::uint64_t token = handshakeAndFirstState();
+  ASSERT_NE(token, 0u) << "no Welcome";
+  EXPECT_TRUE(spawned_avatar_);
+  EXPECT_TRUE(spawned_npc_);
+  EXPECT_TRUE(got_batch_);
+
+  // Inputs reach the owning zone's partition.
+  std::vector<zonesim_dds_PlayerInput> inputs = inputsArrivingAt(0, token);
+  ASSERT_FALSE(inputs.empty());
+  EXPECT_EQ(inputs[0].player_id, player_);
+  EXPECT_EQ(inputs[0].avatar_id, kAvatar);
+  EXPECT_FLOAT_EQ(inputs[0].move_x, 0.6f);
+
+  // Zone 1 takes the avatar over: the client hears of it, later inputs go to z.1.
+  zone_->publishOwnership(player_, kAvatar, 0, 1, tick_ + 1, seq_);
+  const proto::Handoff* handoff = nullptr;
+  std::int64_t deadline = nowNs() + kTimeoutNs;
+  while (handoff == nullptr && nowNs() < deadline) {
+    const proto::Datagram* d = receive();
+    if (d && d->msg_type() == proto::Message::Handoff) handoff = d->msg_as_Handoff();
+  }
+  ASSERT_NE(handoff, nullptr);
+  EXPECT_EQ(handoff->from_zone(), 0);
+  EXPECT_EQ(handoff->to_zone(), 1);
+  EXPECT_EQ(handoff->last_input_seq(), seq_);
+  std::uint32_t seq_at_handoff = seq_;
+  inputs = inputsArrivingAt(1, token);
+  ASSERT_FALSE(inputs.empty());
+  EXPECT_GT(inputs[0].seq, seq_at_handoff);
+}
+
+TEST_F(GatewayLoopback, AHandoffIsResentUntilAcknowledged) {
+  startGateway();
+  std::uint64_t token = handshakeAndFirstState();
+  ASSERT_NE(token, 0u) << "no Welcome";
+  zone_->publishOwnership(player_, kAvatar, 0, 1, tick_ + 1, seq_);
+  // The client acknowledges nothing of it: the same notice comes again under a new seq.
+  std::vector<std::uint32_t> seqs;
+  std::int64_t deadline = nowNs() + kTimeoutNs;
+  while (seqs.size() < 2 && nowNs() < deadline) {
+    const proto::Datagram* d = receive();
+    if (!d || d->msg_type() != proto::Message::Handoff) continue;
+    const proto::Handoff* h = d->msg_as_Handoff();
+    EXPECT_EQ(h->to_zone(), 1);
+    EXPECT_EQ(h->tick(), tick_ + 1);
+    seqs.push_back(h->seq());
+  }
+  ASSERT_EQ(seqs.size(), 2u);
+  EXPECT_GT(seqs[1], seqs[0]);
+}
+
+TEST_F(GatewayLoopback, ForgedTrafficIsCountedAndHarmless) {
+  client_.sendTo(gateway_addr_, Bytes{0xde, 0xad, 0xbe, 0xef, 1, 2, 3, 4, 5, 6});
+  client_.sendTo(gateway_addr_, encodeInput(12345, 1, 0, 1));
+  client_.sendTo(gateway_addr_, Bytes(kMaxDatagramBytes + 100, 0x5a));
+  // The datagrams wait in the socket; short runs on this thread read them, for as long as a
+  // loaded machine takes to schedule it (one fixed-length run may end before the first read).
+  std::int64_t deadline = nowNs() + kTimeoutNs;
+  while (gateway_->counters().datagrams_in < 3 && nowNs() < deadline) gateway_->run(stop_, 0.05);
+  EXPECT_EQ(gateway_->drops()[DropReason::BadIdentifier], 1u);
+  EXPECT_EQ(gateway_->drops()[DropReason::BadToken], 1u);
+  EXPECT_EQ(gateway_->drops()[DropReason::TooLarge], 1u);
+  EXPECT_EQ(gateway_->counters().datagrams_in, 3u);
+}
+
+// Cyclone announces each participant to every discovery port of its domain on 127.0.0.1: a test
+// socket that drew one of them would count RTPS datagrams as drops.
+TEST(PrivateDdsDomain, NoTestSocketCanDrawItsPorts) {
+  auto [lo, hi] = testing::detail::ephemeralPorts();
+  if (testing::detail::domainsClearOfEphemeralPorts().empty())
+    GTEST_SKIP() << "the ephemeral port range " << lo << "-" << hi << " spans every domain";
+  int d = testing::privateDdsDomain();
+  int first = testing::detail::kDdsPortBase + testing::detail::kDdsDomainGain * d;
+  int last = first + testing::detail::kDdsDomainGain - 1;
+  EXPECT_TRUE(last < lo || first > hi) << "domain " << d << " uses ports " << first << "-" << last;
+}
+
+}  // namespace
+}  // namespace zonesim::gateway

@@ -1,0 +1,146 @@
+// Interest: the per-player diff and the shared, refcounted cell set.
+#include <gtest/gtest.h>
+
+#include "../gateway/gateway_fixture.h"
+#include "gateway/client_view.h"
+#include "gateway/interest_manager.h"
+#include "gateway/world_cache.h"
+
+namespace zonesim::gateway {
+namespace {
+
+using testing::entity;
+using Ids = std::vector<std::uint64_t>;
+
+TEST(ClientView, SpawnsDespawnsAndUpdates) {
+  ClientView v;
+  ViewDiff d = v.diff({{3, 1}, {1, 1}, {2, 1}});
+  EXPECT_EQ(d.spawns, (Ids{1, 2, 3}));
+  EXPECT_TRUE(d.updates.empty());
+  EXPECT_TRUE(d.despawns.empty());
+  d = v.diff({{1, 1}, {2, 5}, {4, 1}});
+  EXPECT_EQ(d.spawns, (Ids{4}));
+  EXPECT_EQ(d.updates, (Ids{2}));
+  EXPECT_EQ(d.despawns, (Ids{3}));
+  d = v.diff({{1, 1}, {2, 5}, {4, 1}});
+  EXPECT_TRUE(d.empty()) << "nothing fresh, nothing to send";
+  EXPECT_EQ(v.size(), 3u);
+}
+
+TEST(SelectVisible, NimbusWithHysteresisAndTheAvatarAlways) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 25);
+  auto put = [&](std::uint64_t id, float x, float z) {
+    c.upsert(grid.cellOf(x, z), 0, 1.0, entity(id, 0, x, z));
+  };
+  put(1, 100, 100);  // the avatar
+  put(2, 130, 100);  // 30 m: inside
+  put(3, 142, 100);  // 42 m: between nimbus and keep
+  put(4, 190, 100);  // 90 m: outside
+  ViewPoint at;
+  at.x = 100, at.z = 100, at.nimbus = 40, at.keep = 44, at.self = 1, at.sim_now = 1.0;
+  ClientView view;
+  Ids seen;
+  for (auto& e : selectVisible(c, grid, at, view)) seen.push_back(e.id);
+  std::sort(seen.begin(), seen.end());
+  EXPECT_EQ(seen, (Ids{1, 2}));
+  // Once known, entity 3 would stay until beyond `keep`.
+  view.diff({{1, 1}, {2, 1}, {3, 1}});
+  seen.clear();
+  for (auto& e : selectVisible(c, grid, at, view)) seen.push_back(e.id);
+  std::sort(seen.begin(), seen.end());
+  EXPECT_EQ(seen, (Ids{1, 2, 3}));
+}
+
+TEST(AuraNimbus, BothRangesMustHold) {
+  // A sees B when A is inside B's aura and B inside A's nimbus.
+  EXPECT_TRUE(auraNimbusAllows(50, 80, 60));
+  EXPECT_FALSE(auraNimbusAllows(70, 80, 60)) << "outside A's nimbus";
+  EXPECT_FALSE(auraNimbusAllows(50, 40, 60)) << "A outside B's aura";
+  EXPECT_TRUE(auraNimbusAllows(60, 60, 60));
+  // The nimbus grows with speed, within its cap, never shrinking below the base.
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 0, 4, 150), 60);
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 5, 4, 150), 80);
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 50, 4, 150), 150);
+  EXPECT_DOUBLE_EQ(grownNimbus(60, 50, 4, 30), 60);
+}
+
+TEST(SelectVisible, AurasPerKindAndASpeedGrownNimbus) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 25);
+  auto put = [&](std::uint64_t id, std::uint8_t kind, float x) {
+    c.upsert(grid.cellOf(x, 100), 0, 1.0, entity(id, kind, x, 100));
+  };
+  put(1, 1, 100);  // the avatar
+  put(2, 0, 150);  // NPC at 50 m; NPC aura 60
+  put(3, 0, 170);  // NPC at 70 m: outside the NPC aura whatever the nimbus
+  put(4, 3, 170);  // emitter at 70 m; emitter aura 200
+  put(5, 3, 250);  // emitter at 150 m
+  ViewPoint at;
+  at.x = 100, at.z = 100, at.self = 1, at.sim_now = 1.0;
+  at.aura = {60, 150, 60, 200};
+  auto seen = [&](double nimbus) {
+    at.nimbus = nimbus;
+    at.keep = nimbus * 1.1;
+    Ids ids;
+    for (auto& e : selectVisible(c, grid, at, ClientView())) ids.push_back(e.id);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  // A walker (nimbus 60) sees the near NPC only; running at 10 m/s (nimbus 60 + 10 * 4 =
+  // 100) it also sees the emitter at 70 m, and a flyer's 160 m nimbus reaches the far
+  // emitter; the NPC at 70 m stays beyond its own aura for all of them.
+  EXPECT_EQ(seen(grownNimbus(60, 0, 4, 160)), (Ids{1, 2}));
+  EXPECT_EQ(seen(grownNimbus(60, 10, 4, 160)), (Ids{1, 2, 4}));
+  EXPECT_EQ(seen(grownNimbus(60, 40, 4, 160)), (Ids{1, 2, 4, 5}));
+}
+
+TEST(InterestManager, APlayersOwnRadiusWidensItsCells) {
+  InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 50);
+  InterestManager m(grid, 40, 10);
+  CellDelta d;
+  m.update(1, 200, 200, d);
+  std::size_t walker = m.cellsOf(1).size();
+  m.update(2, 200, 200, d, 140);
+  EXPECT_GT(m.cellsOf(2).size(), walker);
+  // The wider set contains the narrower one: one shared reader per cell.
+  for (int cell : m.cellsOf(1)) EXPECT_EQ(m.refcount(cell), 2);
+}
+
+TEST(InterestManager, SharedCellsAreRefcounted) {
+  InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 25);
+  InterestManager m(grid, 20, 5);
+  CellDelta d;
+  m.update(1, 50, 50, d);
+  std::vector<int> first = d.added;
+  EXPECT_FALSE(first.empty());
+  EXPECT_EQ(m.subscribedCells(), first.size());
+  CellDelta d2;
+  m.update(2, 50, 50, d2);
+  EXPECT_TRUE(d2.empty()) << "the second player reuses the same readers";
+  for (int c : first) EXPECT_EQ(m.refcount(c), 2);
+  CellDelta d3;
+  m.remove(1, d3);
+  EXPECT_TRUE(d3.empty());
+  m.remove(2, d3);
+  EXPECT_EQ(d3.removed.size(), first.size());
+  EXPECT_EQ(m.subscribedCells(), 0u);
+}
+
+TEST(InterestManager, MovingSwapsCellsWithHysteresis) {
+  InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 25);
+  InterestManager m(grid, 10, 5);
+  CellDelta d;
+  m.update(1, 37.5, 37.5, d);  // the centre of cell (1, 1): only that cell
+  EXPECT_EQ(d.added, std::vector<int>{grid.cellOf(37.5, 37.5)});
+  d = {};
+  m.update(1, 56, 37.5, d);  // 6 m into cell (2, 1); cell (1, 1) is 6 m away: still held
+  EXPECT_EQ(d.added, std::vector<int>{grid.cellOf(56, 37.5)});
+  EXPECT_TRUE(d.removed.empty());
+  d = {};
+  m.update(1, 66, 37.5, d);  // now 16 m from cell (1, 1): beyond radius + hysteresis
+  EXPECT_EQ(d.removed, std::vector<int>{grid.cellOf(37.5, 37.5)});
+}
+
+}  // namespace
+}  // namespace zonesim::gateway

@@ -1,0 +1,185 @@
+// Flow-field crowds in a zone (zone_node/systems/flow_movement.h) on the shipped courtyard
+// scene: every NPC reaches its destination without ever standing on a wall, destinations spread
+// over the NPCs, and a destination on a wall is a scene error.
+
+#include "zone_node/systems/flow_movement.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "crowd/vec2.h"
+#include "zone_node/population.h"
+#include "zone_node/world_map.h"
+
+namespace zonesim::zone {
+namespace {
+
+std::string source(const std::string& relative) {
+  return std::string(ZONESIM_SOURCE_DIR) + "/" + relative;
+}
+
+TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
+  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
+  auto map = loadWorldMap(scene);
+  ASSERT_NE(map, nullptr);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  ASSERT_EQ(store.size(), 400u);
+  FlowMovement flows(scene, map.get());
+  ASSERT_TRUE(flows.active());
+  const NpcFlow& f = scene.npcs[0].flow;
+  // Upper bound: the longest octile route on the 64 m courtyard is under 130 m, at 2 m/s,
+  // doubled for the queues at the doors.
+  const int max_ticks = int(std::ceil(2 * 130 / f.max_speed / scene.dt));
+  int tick = 0, on_walls = 0;
+  std::size_t walking = store.size();
+  for (; tick < max_ticks && walking > 0; ++tick) {
+    walking = flows.step(store, nullptr, scene.dt);
+    for (std::size_t i = 0; i < store.size(); ++i)
+      on_walls += map->walkable(store.pos[i].x(), store.pos[i].z()) ? 0 : 1;
+  }
+  std::printf("all %zu NPCs arrived after %.1f s (bound %.1f s)\n", store.size() - walking,
+              tick * scene.dt, max_ticks * scene.dt);
+  EXPECT_EQ(walking, 0u);
+  EXPECT_EQ(on_walls, 0);
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    ASSERT_TRUE(flows.arrived(store, i)) << i;
+    // Arrived means within the arrival radius of the centre of its destination's cell.
+    const NpcFlow::Destination& d =
+        f.destinations[std::size_t(flowDestination(store.id[i].value, 3))];
+    double cx = std::floor(d.x) + 0.5, cz = std::floor(d.z) + 0.5;
+    EXPECT_LE(std::hypot(store.pos[i].x() - cx, store.pos[i].z() - cz), f.arrive_radius);
+    EXPECT_EQ(store.vel[i].norm(), 0.0);
+  }
+}
+
+TEST(FlowMovement, TheCrowdGoesRoundADoorThatCloses) {
+  // The hall's north door (column 22, rows 10-12) shuts at 3 s, while NPCs are on their way
+  // through it: the fields are rebuilt, nobody steps into the doorway afterwards (those caught
+  // in it step out), nobody stands on a wall, and every NPC still arrives, by the south door.
+  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
+  for (int y = 10; y <= 12; ++y) {
+    AgentDoor d;
+    d.at_s = 3.0;
+    d.x = 22;
+    d.y = y;
+    scene.agents.doors.push_back(d);
+  }
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  FlowMovement flows(scene, map.get());
+  auto cellAt = [&](std::size_t i) {
+    return map->frame.cellOf({store.pos[i].x(), store.pos[i].z()});
+  };
+  auto inDoor = [&](std::size_t i) {
+    ai::Cell c = cellAt(i);
+    return c.x == 22 && c.y >= 10 && c.y <= 12;
+  };
+  const int max_ticks = int(std::ceil(2 * 130 / scene.npcs[0].flow.max_speed / scene.dt));
+  int tick = 0, rebuilt = 0, entered = 0, on_walls = 0, through_before = 0;
+  std::vector<char> was_in(store.size(), 0);
+  std::size_t walking = store.size();
+  for (; tick < max_ticks && walking > 0; ++tick) {
+    double time = tick * scene.dt;
+    rebuilt += flows.applyDoors(time);
+    walking = flows.step(store, nullptr, scene.dt);
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      bool in = inDoor(i);
+      if (time < 3.0) through_before += in && !was_in[i];
+      if (time >= 3.0 && in && !was_in[i]) ++entered;
+      was_in[i] = in;
+      ai::Cell c = cellAt(i);
+      if (!in && !flows.grid()->passable(c.x, c.y)) ++on_walls;
+    }
+  }
+  std::printf(
+      "door shut at 3 s: %d fields rebuilt, %d NPCs had entered it before, all arrived "
+      "after %.1f s\n",
+      rebuilt, through_before, tick * scene.dt);
+  EXPECT_EQ(rebuilt, 3);         // one field per destination
+  EXPECT_GT(through_before, 0);  // the door was in use when it shut
+  EXPECT_EQ(entered, 0);
+  EXPECT_EQ(on_walls, 0);
+  EXPECT_EQ(walking, 0u);
+}
+
+TEST(FlowMovement, DestinationsSpreadOverTheNpcs) {
+  std::vector<int> count(3);
+  for (std::uint64_t id = 1; id <= 3000; ++id) ++count[std::size_t(flowDestination(id, 3))];
+  for (int c : count) EXPECT_NEAR(c, 1000, 100);
+  for (std::uint64_t id = 1; id <= 100; ++id) EXPECT_EQ(flowDestination(id, 1), 0);
+}
+
+TEST(FlowMovement, ADestinationOnAWallIsASceneError) {
+  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
+  scene.npcs[0].flow.destinations[1] = {22.5, 20.5, 31};  // column 22 is a wall at row 20
+  auto map = loadWorldMap(scene);
+  try {
+    FlowMovement flows(scene, map.get());
+    ADD_FAILURE() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              scene.source_path +
+                  ":31: populations[0].flow.destinations[1]: lies on a blocked cell of the map");
+  }
+}
+
+// Runs the courtyard crowd to the end; per NPC (by id) the tick it arrived. Counts NPC updates.
+std::map<std::uint64_t, int> arrivalTicks(const Scene& scene, std::span<const crowd::Vec2> players,
+                                          std::size_t& updates) {
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  FlowMovement flows(scene, map.get());
+  std::map<std::uint64_t, int> arrived;
+  updates = 0;
+  for (int tick = 0; tick < 4000 && arrived.size() < store.size(); ++tick) {
+    flows.step(store, nullptr, scene.dt, players, tick);
+    updates += flows.updates();
+    for (std::size_t i = 0; i < store.size(); ++i)
+      if (flows.arrived(store, i)) arrived.emplace(store.id[i].value, tick + 1);
+  }
+  return arrived;
+}
+
+TEST(FlowMovement, LevelOfDetailReachesTheSameOutcome) {
+  // A player in the west hall: NPCs near it update every tick, the rest of the courtyard every
+  // 2 or 8 ticks (the far ones without separation). Every NPC still arrives, and its arrival
+  // time moves little (LOD steps catch up the time they skip, and arrival is checked each
+  // update, so an NPC arrives at most one period late).
+  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
+  std::vector<crowd::Vec2> players{{8.0, 40.0}};
+  std::size_t full_updates = 0, lod_updates = 0;
+  auto full = arrivalTicks(scene, players, full_updates);
+  scene.lod.enabled = true;
+  scene.lod.near_radius = 12;
+  scene.lod.far_radius = 30;
+  auto lod = arrivalTicks(scene, players, lod_updates);
+  ASSERT_EQ(full.size(), 400u);
+  ASSERT_EQ(lod.size(), 400u);
+  double sum = 0, worst = 0, mean_full = 0;
+  for (auto [id, t] : full) {
+    double d = std::abs(lod.at(id) - t) * scene.dt;
+    sum += d;
+    worst = std::max(worst, d);
+    mean_full += t * scene.dt;
+  }
+  mean_full /= full.size();
+  std::printf(
+      "updates %zu full, %zu with LOD (%.2fx fewer); arrival time moved %.2f s on "
+      "average (mean arrival %.1f s), %.1f s at worst\n",
+      full_updates, lod_updates, double(full_updates) / lod_updates, sum / full.size(), mean_full,
+      worst);
+  EXPECT_LT(lod_updates, full_updates / 2);
+  EXPECT_LT(sum / full.size(), 0.1 * mean_full);
+}
+
+}  // namespace
+}  // namespace zonesim::zone

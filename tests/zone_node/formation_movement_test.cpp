@@ -1,0 +1,140 @@
+// Formations in a zone (zone_node/systems/formation_movement.h) on the courtyard map: members
+// hold their slots while the centre crosses open ground; a member standing behind a wall plans
+// A* round it and takes its slot again; the shipped scene's group follows its whole route
+// through pillars and doors and ends in formation; route points on walls are scene errors.
+
+#include "zone_node/systems/formation_movement.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ai/grid_search.h"
+#include "crowd/formation.h"
+#include "zone_node/population.h"
+#include "zone_node/world_map.h"
+
+namespace zonesim::zone {
+namespace {
+
+std::string source(const std::string& relative) {
+  return std::string(ZONESIM_SOURCE_DIR) + "/" + relative;
+}
+
+struct FormationRun {
+  double worst_moving = 0;  // worst slot error of a member in formation while the centre moves
+  int on_walls = 0;         // member-ticks on a blocked cell
+  int ticks = 0;
+};
+
+// Steps the formation until its centre has arrived and every member stands within `settle` of
+// its slot in formation, or `max_ticks`.
+FormationRun runFormation(const Scene& scene, const WorldMap& map, EntityStore& store,
+                          FormationMovement& f, int max_ticks, double settle) {
+  FormationRun r;
+  for (; r.ticks < max_ticks; ++r.ticks) {
+    f.step(store, nullptr, scene.dt, std::uint64_t(r.ticks));
+    bool settled = f.centre(0).arrived();
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
+      double err = crowd::length(p - f.slotPosition(store, i));
+      bool in = store.npc[i].crowd_mode == int(crowd::MemberMode::InFormation);
+      if (!f.centre(0).arrived() && in) r.worst_moving = std::max(r.worst_moving, err);
+      settled = settled && in && err < settle;
+      r.on_walls += map.walkable(p.x, p.y) ? 0 : 1;
+    }
+    if (settled) break;
+  }
+  return r;
+}
+
+TEST(FormationMovement, MembersHoldTheirSlotsAcrossOpenGround) {
+  // The east yard is open: nobody is ever cut off, and the slots are held while moving.
+  Scene scene = loadScene(source("scenes/courtyard_formation.yaml"));
+  NpcFormation& f = scene.npcs[0].formation;
+  f.route = {{26.5, 4.5, 0}, {58.5, 26.5, 0}};
+  f.turn_rate = 1.0;  // the outer slots of a wide block swing fast when the heading turns
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  ASSERT_EQ(store.size(), 12u);
+  FormationMovement move(scene, map.get());
+  FormationRun r = runFormation(scene, *map, store, move, 4000, 0.1);
+  std::printf("settled after %.1f s; worst slot error while moving %.3f m; %d rejoin plans\n",
+              r.ticks * scene.dt, r.worst_moving, move.rejoinPlans());
+  EXPECT_TRUE(move.centre(0).arrived());
+  EXPECT_LT(r.ticks, 4000);          // every member ends within 0.1 m of its slot
+  EXPECT_LT(r.worst_moving, 1.0);    // the stated tolerance while the centre moves
+  EXPECT_EQ(move.rejoinPlans(), 0);  // open ground: nobody is cut off
+  EXPECT_EQ(r.on_walls, 0);
+}
+
+TEST(FormationMovement, AMemberBehindAWallPlansAStarBackAndRejoins) {
+  // The group waits in the west hall; member 0 starts in the east yard behind the hall's wall
+  // (x = 22): no line of sight, so it plans A* through the north door and takes its slot.
+  Scene scene = loadScene(source("scenes/courtyard_formation.yaml"));
+  NpcFormation& f = scene.npcs[0].formation;
+  f.route = {{12.5, 25.5, 0}, {12.5, 26.5, 0}};
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  const crowd::Vec2 start{30.5, 25.5};
+  store.pos[0] = Vec3(start.x, 0, start.y);
+  FormationMovement move(scene, map.get());
+  ai::GridSearch search(map->grid);
+  ai::GridPath around;
+  ASSERT_TRUE(search.findPath(map->frame.cellOf(start), map->frame.cellOf({12.5, 26.5}), around));
+  // Stated bound: the A* way round at the members' top speed, doubled.
+  const double bound = 2 * around.length / f.max_speed;
+  bool cut_off = false;
+  int ticks = 0;
+  for (; ticks < int(bound / scene.dt); ++ticks) {
+    move.step(store, nullptr, scene.dt, std::uint64_t(ticks));
+    cut_off = cut_off || store.npc[0].crowd_mode == int(crowd::MemberMode::Rejoining);
+    ASSERT_TRUE(map->walkable(store.pos[0].x(), store.pos[0].z())) << ticks;
+    crowd::Vec2 p{store.pos[0].x(), store.pos[0].z()};
+    if (store.npc[0].crowd_mode == int(crowd::MemberMode::InFormation) &&
+        crowd::length(p - move.slotPosition(store, 0)) < 0.1)
+      break;
+  }
+  std::printf("rejoined after %.1f s (bound %.1f s, A* round the wall %.1f m), %d plans\n",
+              ticks * scene.dt, bound, around.length, move.rejoinPlans());
+  EXPECT_TRUE(cut_off);
+  EXPECT_GE(move.rejoinPlans(), 1);
+  EXPECT_LT(ticks, int(bound / scene.dt));
+}
+
+TEST(FormationMovement, TheCourtyardGroupFollowsItsRouteAndEndsInFormation) {
+  // The shipped scene: pillars and door posts cut members off on the way; all rejoin.
+  Scene scene = loadScene(source("scenes/courtyard_formation.yaml"));
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  FormationMovement move(scene, map.get());
+  FormationRun r = runFormation(scene, *map, store, move, 6000, 0.25);
+  const ScenePoint& end = scene.npcs[0].formation.route.back();
+  std::printf("settled after %.1f s, %d rejoin plans on the way\n", r.ticks * scene.dt,
+              move.rejoinPlans());
+  EXPECT_LT(r.ticks, 6000);
+  EXPECT_EQ(r.on_walls, 0);
+  EXPECT_LT(crowd::length(move.centre(0).position() - crowd::Vec2{end.x, end.z}), 1e-9);
+}
+
+TEST(FormationMovement, ARoutePointOnAWallIsASceneError) {
+  Scene scene = loadScene(source("scenes/courtyard_formation.yaml"));
+  scene.npcs[0].formation.route[2] = {22.5, 20.5, 33};  // column 22 is a wall at row 20
+  auto map = loadWorldMap(scene);
+  try {
+    FormationMovement move(scene, map.get());
+    ADD_FAILURE() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              scene.source_path +
+                  ":33: populations[0].formation.route[2]: lies on a blocked cell of the map");
+  }
+}
+
+}  // namespace
+}  // namespace zonesim::zone

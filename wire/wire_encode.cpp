@@ -1,0 +1,160 @@
+#include "wire/wire_encode.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace zonesim::gateway {
+
+namespace {
+
+template <typename T>
+Bytes finish(flatbuffers::FlatBufferBuilder& fbb, std::uint64_t token, proto::Message type,
+             flatbuffers::Offset<T> msg) {
+  auto root = proto::CreateDatagram(fbb, token, type, msg.Union());
+  proto::FinishDatagramBuffer(fbb, root);
+  Bytes out(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  assert(out.size() <= kMaxDatagramBytes);
+  return out;
+}
+
+// Splits items into runs of at most per_chunk and encodes each run with make(fbb, run).
+template <typename Item, typename Make>
+std::vector<Bytes> chunked(std::span<const Item> items, std::size_t per_chunk, Make make) {
+  std::vector<Bytes> out;
+  out.reserve((items.size() + per_chunk - 1) / per_chunk);
+  flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
+  for (std::size_t begin = 0; begin < items.size(); begin += per_chunk) {
+    fbb.Clear();
+    std::size_t n = std::min(per_chunk, items.size() - begin);
+    out.push_back(make(fbb, items.subspan(begin, n)));
+  }
+  return out;
+}
+
+}  // namespace
+
+Bytes encodeHello(std::uint64_t client_nonce, std::string_view name) {
+  flatbuffers::FlatBufferBuilder fbb(128);
+  auto n = fbb.CreateString(name.data(), name.size());
+  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n));
+}
+
+Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
+                  std::uint32_t ack, std::uint32_t ack_bits) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  return finish(fbb, token, proto::Message::Input,
+                proto::CreateInput(fbb, seq, move_x, move_z, ack, ack_bits));
+}
+
+Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack,
+                 std::uint32_t ack_bits) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  return finish(fbb, token, proto::Message::Ping,
+                proto::CreatePing(fbb, client_time_us, ack, ack_bits));
+}
+
+Bytes encodeBye(std::uint64_t token) {
+  flatbuffers::FlatBufferBuilder fbb(64);
+  return finish(fbb, token, proto::Message::Bye, proto::CreateBye(fbb));
+}
+
+proto::CodecParams toProto(const dr::CodecParams& c) {
+  return proto::CodecParams(proto::Vec3f(c.world_min[0], c.world_min[1], c.world_min[2]),
+                            proto::Vec3f(c.world_max[0], c.world_max[1], c.world_max[2]),
+                            c.cell_size, c.position_resolution, c.max_speed, c.velocity_resolution,
+                            c.max_acceleration, c.acceleration_resolution, c.max_angular_velocity,
+                            c.angular_velocity_resolution, c.rotation_bits);
+}
+
+dr::CodecParams fromProto(const proto::CodecParams& c) {
+  dr::CodecParams p;
+  p.world_min[0] = c.world_min().x(), p.world_min[1] = c.world_min().y();
+  p.world_min[2] = c.world_min().z();
+  p.world_max[0] = c.world_max().x(), p.world_max[1] = c.world_max().y();
+  p.world_max[2] = c.world_max().z();
+  p.cell_size = c.cell_size();
+  p.position_resolution = c.position_resolution();
+  p.max_speed = c.max_speed();
+  p.velocity_resolution = c.velocity_resolution();
+  p.max_acceleration = c.max_acceleration();
+  p.acceleration_resolution = c.acceleration_resolution();
+  p.max_angular_velocity = c.max_angular_velocity();
+  p.angular_velocity_resolution = c.angular_velocity_resolution();
+  p.rotation_bits = c.rotation_bits();
+  return p;
+}
+
+Bytes encodeWelcome(const WelcomeInfo& w) {
+  flatbuffers::FlatBufferBuilder fbb(256);
+  proto::CodecParams codec = toProto(w.codec);
+  auto msg = proto::CreateWelcome(fbb, w.client_nonce, w.token, w.player_id, w.avatar_id, w.zone,
+                                  w.tick_rate, &w.world_min, &w.world_max, &codec, w.sim_dt);
+  return finish(fbb, w.token, proto::Message::Welcome, msg);
+}
+
+Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  return finish(fbb, token, proto::Message::Pong,
+                proto::CreatePong(fbb, client_time_us, gateway_time_us));
+}
+
+Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h) {
+  flatbuffers::FlatBufferBuilder fbb(128);
+  auto msg = proto::CreateHandoff(fbb, h.avatar_id, h.from_zone, h.to_zone, h.tick,
+                                  h.last_input_seq, h.seq);
+  return finish(fbb, token, proto::Message::Handoff, msg);
+}
+
+Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick) {
+  flatbuffers::FlatBufferBuilder fbb(96);
+  auto none = fbb.CreateVector(static_cast<const std::uint8_t*>(nullptr), 0);
+  return finish(fbb, token, proto::Message::StateBatch,
+                proto::CreateStateBatch(fbb, tick, 0, none, 0));
+}
+
+namespace {
+template <typename Create>
+std::vector<Bytes> packed(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
+                          std::span<const dr::WireEntity> states, proto::Message type,
+                          const ChunkSeq& seq, Create create) {
+  std::vector<Bytes> out;
+  flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
+  for (const dr::PackedChunk& c : codec.pack(states, tick, kPackedBytesPerDatagram)) {
+    fbb.Clear();
+    auto v = fbb.CreateVector(c.bytes.data(), c.bytes.size());
+    out.push_back(finish(fbb, token, type, create(fbb, std::uint16_t(c.count), v, seq.take())));
+    if (seq.counts != nullptr) seq.counts->push_back(c.count);
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq) {
+  return packed(token, tick, codec, states, proto::Message::StateBatch, seq,
+                [&](auto& fbb, std::uint16_t n, auto v, std::uint32_t q) {
+                  return proto::CreateStateBatch(fbb, tick, n, v, q);
+                });
+}
+
+std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq) {
+  return packed(token, tick, codec, states, proto::Message::Spawn, seq,
+                [&](auto& fbb, std::uint16_t n, auto v, std::uint32_t q) {
+                  return proto::CreateSpawn(fbb, tick, n, v, q);
+                });
+}
+
+std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
+                                       std::span<const std::uint64_t> ids, ChunkSeq seq) {
+  return chunked(ids, kIdsPerDatagram, [&](auto& fbb, auto run) {
+    auto v = fbb.CreateVector(run.data(), run.size());
+    if (seq.counts != nullptr) seq.counts->push_back(run.size());
+    return finish(fbb, token, proto::Message::Despawn,
+                  proto::CreateDespawn(fbb, tick, v, seq.take()));
+  });
+}
+
+}  // namespace zonesim::gateway

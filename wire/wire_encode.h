@@ -1,0 +1,91 @@
+#pragma once
+// Builds client-protocol datagrams. Lists of entities are split into chunks so that every
+// datagram stays within kMaxDatagramBytes and nothing is lost between chunks.
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "client_protocol_generated.h"
+#include "dr/state_codec.h"
+#include "wire/wire_verify.h"
+
+namespace zonesim::gateway {
+
+/// One encoded datagram.
+using Bytes = std::vector<std::uint8_t>;
+
+/// Room left for the Datagram and message tables, vtables and vector headers (measured < 100).
+inline constexpr std::size_t kChunkOverheadBytes = 128;
+/// Packed state bytes per StateBatch or Spawn datagram.
+inline constexpr std::size_t kPackedBytesPerDatagram = kMaxDatagramBytes - kChunkOverheadBytes;
+/// Ids per Despawn datagram.
+inline constexpr std::size_t kIdsPerDatagram =
+    (kMaxDatagramBytes - kChunkOverheadBytes) / sizeof(std::uint64_t);
+
+/// World bounds and rates announced in a Welcome.
+struct WelcomeInfo {
+  std::uint64_t client_nonce = 0;
+  std::uint64_t token = 0;
+  std::uint64_t player_id = 0;
+  std::uint64_t avatar_id = 0;
+  int zone = 0;
+  float tick_rate = 30;
+  proto::Vec3f world_min, world_max;
+  dr::CodecParams codec;
+  float sim_dt = 1.0f / 30;
+};
+
+/// The wire form of codec parameters, and back.
+proto::CodecParams toProto(const dr::CodecParams& c);
+dr::CodecParams fromProto(const proto::CodecParams& c);
+
+/// Handoff notice fields.
+struct HandoffInfo {
+  std::uint64_t avatar_id = 0;
+  int from_zone = -1;
+  int to_zone = 0;
+  std::uint64_t tick = 0;
+  std::uint32_t last_input_seq = 0;
+  std::uint32_t seq = 0;  ///< the session's datagram seq (0: unnumbered)
+};
+
+Bytes encodeHello(std::uint64_t client_nonce, std::string_view name);
+/// ack / ack_bits: the client's acknowledgement of gateway datagrams (wire/ack_window.h).
+Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
+                  std::uint32_t ack = 0, std::uint32_t ack_bits = 0);
+/// ack / ack_bits as in encodeInput.
+Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack = 0,
+                 std::uint32_t ack_bits = 0);
+Bytes encodeBye(std::uint64_t token);
+/// The Datagram's token is the new session token too, so the client can check it.
+Bytes encodeWelcome(const WelcomeInfo& w);
+Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
+Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
+/// A StateBatch with no states: tells a client whose view is quiet that the zones' clock moved
+/// on (unnumbered: nothing in it needs resending).
+Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick);
+
+/// Sequence numbering of a run of chunks: chunk i gets seq next() (0 = unnumbered), and
+/// counts (if given) receives how many entities each chunk holds.
+struct ChunkSeq {
+  std::uint32_t (*next)(void*) = nullptr;
+  void* ctx = nullptr;
+  std::vector<std::size_t>* counts = nullptr;
+  std::uint32_t take() const { return next != nullptr ? next(ctx) : 0; }
+};
+
+/// StateBatch datagrams carrying all states (ascending ids), packed by the codec, in order.
+std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq = {});
+/// Spawn datagrams carrying all states (ascending ids), packed by the codec, in order.
+std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::WireEntity> states, ChunkSeq seq = {});
+/// Despawn datagrams carrying all ids, kIdsPerDatagram per datagram, in order.
+std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
+                                       std::span<const std::uint64_t> ids, ChunkSeq seq = {});
+
+}  // namespace zonesim::gateway

@@ -1,0 +1,184 @@
+#include "wire/wire_verify.h"
+
+#include <cmath>
+
+namespace zonesim::gateway {
+
+namespace {
+
+// Datagram -> message table -> vector: anything deeper or with more tables is not ours.
+constexpr flatbuffers::uoffset_t kMaxDepth = 4;
+constexpr flatbuffers::uoffset_t kMaxTables = 8;
+
+bool finite(float v) {
+  return std::isfinite(v);
+}
+bool coordinate(float v) {
+  return finite(v) && std::fabs(v) <= kMaxCoordinate;
+}
+bool position(const proto::Vec3f& p) {
+  return coordinate(p.x()) && coordinate(p.y()) && coordinate(p.z());
+}
+
+/// Packed states: present, and not claiming more records than the bytes can hold (20 bits is
+/// the smallest record). The values are range-checked as they are unpacked. A StateBatch may
+/// be empty (a clock tick, encodeClockTick: nothing packed); a Spawn may not.
+bool validPacked(std::uint16_t count, const flatbuffers::Vector<std::uint8_t>* packed,
+                 bool may_be_empty) {
+  if (packed == nullptr) return false;
+  if (count == 0) return may_be_empty && packed->size() == 0;
+  return std::size_t(count) * 20 <= packed->size() * 8;
+}
+
+bool step(float v, float lo, float hi) {
+  return finite(v) && v >= lo && v <= hi;
+}
+
+bool checkToGateway(const proto::Datagram& d) {
+  switch (d.msg_type()) {
+    case proto::Message::Hello: {
+      const proto::Hello* h = d.msg_as_Hello();
+      return h->client_nonce() != 0 && (h->name() == nullptr || h->name()->size() <= kMaxNameBytes);
+    }
+    case proto::Message::Input: {
+      const proto::Input* in = d.msg_as_Input();
+      float x = in->move_x(), z = in->move_z();
+      return in->seq() != 0 && finite(x) && finite(z) &&
+             std::sqrt(double(x) * x + double(z) * z) <= 1.0 + kMoveEpsilon;
+    }
+    default:  // Ping and Bye carry nothing to range-check beyond the token
+      return true;
+  }
+}
+
+bool checkWelcome(const proto::Welcome& w) {
+  const proto::Vec3f *lo = w.world_min(), *hi = w.world_max();
+  if (lo == nullptr || hi == nullptr || !position(*lo) || !position(*hi)) return false;
+  if (w.codec() == nullptr || !validCodec(*w.codec())) return false;
+  if (!step(w.sim_dt(), 1e-4f, 1.0f)) return false;
+  return w.token() != 0 && w.zone() >= 0 && finite(w.tick_rate()) && w.tick_rate() > 0 &&
+         w.tick_rate() <= 1000 && lo->x() <= hi->x() && lo->y() <= hi->y() && lo->z() <= hi->z();
+}
+
+bool checkToClient(const proto::Datagram& d) {
+  switch (d.msg_type()) {
+    case proto::Message::Welcome:
+      return checkWelcome(*d.msg_as_Welcome());
+    case proto::Message::StateBatch:
+      return validPacked(d.msg_as_StateBatch()->count(), d.msg_as_StateBatch()->packed(), true);
+    case proto::Message::Spawn:
+      return validPacked(d.msg_as_Spawn()->count(), d.msg_as_Spawn()->packed(), false);
+    case proto::Message::Despawn:
+      return d.msg_as_Despawn()->ids() != nullptr;
+    case proto::Message::Handoff: {
+      const proto::Handoff* h = d.msg_as_Handoff();
+      return h->from_zone() >= -1 && h->to_zone() >= 0 && h->avatar_id() != 0;
+    }
+    default:  // Pong: timestamps are opaque to the check
+      return true;
+  }
+}
+
+bool allowed(proto::Message type, Direction direction) {
+  switch (type) {
+    case proto::Message::Hello:
+    case proto::Message::Input:
+    case proto::Message::Ping:
+    case proto::Message::Bye:
+      return direction == Direction::ToGateway;
+    case proto::Message::Welcome:
+    case proto::Message::StateBatch:
+    case proto::Message::Spawn:
+    case proto::Message::Despawn:
+    case proto::Message::Pong:
+    case proto::Message::Handoff:
+      return direction == Direction::ToClient;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+const char* dropReasonName(DropReason reason) {
+  switch (reason) {
+    case DropReason::TooLarge:
+      return "too_large";
+    case DropReason::Truncated:
+      return "truncated";
+    case DropReason::BadIdentifier:
+      return "bad_identifier";
+    case DropReason::Malformed:
+      return "malformed";
+    case DropReason::NoMessage:
+      return "no_message";
+    case DropReason::UnexpectedType:
+      return "unexpected_type";
+    case DropReason::OutOfRange:
+      return "out_of_range";
+    case DropReason::BadToken:
+      return "bad_token";
+    case DropReason::WrongAddress:
+      return "wrong_address";
+    case DropReason::NotReady:
+      return "not_ready";
+    case DropReason::StaleInput:
+      return "stale_input";
+    case DropReason::SessionLimit:
+      return "session_limit";
+    case DropReason::RateLimited:
+      return "rate_limited";
+    case DropReason::Count:
+      break;
+  }
+  return "unknown";
+}
+
+std::uint64_t DropCounters::total() const {
+  std::uint64_t t = 0;
+  for (std::uint64_t c : counts_) t += c;
+  return t;
+}
+
+bool validCodec(const proto::CodecParams& c) {
+  const proto::Vec3f &lo = c.world_min(), &hi = c.world_max();
+  if (!position(lo) || !position(hi) || !(lo.x() < hi.x() && lo.y() < hi.y() && lo.z() < hi.z()))
+    return false;
+  // The same limits as the scene keys, so every field stays well under 32 bits; at most 2^20
+  // interest cells.
+  if (!step(c.cell_size(), 1e-3f, kMaxCoordinate)) return false;
+  double columns = std::ceil((double(hi.x()) - lo.x()) / c.cell_size());
+  double rows = std::ceil((double(hi.z()) - lo.z()) / c.cell_size());
+  return columns * rows <= double(1 << 20) && step(c.position_resolution(), 1e-4f, 1) &&
+         step(c.max_speed(), 1, 1e4f) && step(c.velocity_resolution(), 1e-4f, 1) &&
+         step(c.max_acceleration(), 1, 1e4f) && step(c.acceleration_resolution(), 1e-4f, 1) &&
+         step(c.max_angular_velocity(), 1, 1e3f) &&
+         step(c.angular_velocity_resolution(), 1e-4f, 1) && c.rotation_bits() >= 4 &&
+         c.rotation_bits() <= 16 &&
+         (double(hi.y()) - lo.y()) / c.position_resolution() < double(1u << 30) &&
+         c.cell_size() / c.position_resolution() < float(1u << 30);
+}
+
+Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction) {
+  if (bytes.size() > kMaxDatagramBytes) return {nullptr, DropReason::TooLarge};
+  if (bytes.size() < kMinDatagramBytes) return {nullptr, DropReason::Truncated};
+  if (!proto::DatagramBufferHasIdentifier(bytes.data()))
+    return {nullptr, DropReason::BadIdentifier};
+  flatbuffers::Verifier::Options opts;
+  opts.max_depth = kMaxDepth;
+  opts.max_tables = kMaxTables;
+  opts.check_alignment = true;
+  flatbuffers::Verifier verifier(bytes.data(), bytes.size(), opts);
+  if (!proto::VerifyDatagramBuffer(verifier)) return {nullptr, DropReason::Malformed};
+  const proto::Datagram* d = proto::GetDatagram(bytes.data());
+  proto::Message type = d->msg_type();
+  // The Verifier accepts union types it does not know (forward compatibility): we do not.
+  if (type == proto::Message::NONE || type > proto::Message::MAX || d->msg() == nullptr)
+    return {nullptr, DropReason::NoMessage};
+  if (!allowed(type, direction)) return {nullptr, DropReason::UnexpectedType};
+  bool in_range = direction == Direction::ToGateway ? checkToGateway(*d) : checkToClient(*d);
+  if (!in_range) return {nullptr, DropReason::OutOfRange};
+  return {d, DropReason::Count};
+}
+
+}  // namespace zonesim::gateway
