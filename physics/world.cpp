@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/timer.h"
 #include "physics/narrowphase.h"
 
 namespace zonesim::physics {
@@ -22,6 +23,7 @@ BodyIndex World::addBody(const BodyDesc& desc) {
 }
 
 void World::step(double dt) {
+  profile_ = {};
   const int n = std::max(1, settings_.substeps);
   // A lasting blast wakes what it reaches (sleeping bodies are not integrated).
   for (const Blast& blast : forces_.blasts) {
@@ -53,35 +55,51 @@ void World::applyExplosionImpulse(const Vec3& centre, double impulse, double rad
 }
 
 void World::substep(double dt) {
-  bodies_.updateWorldInertia();
-  integrateForces(dt);
-  // Checked before the solve too: a NaN velocity in a contact would reach its partner.
-  quarantineNonFinite();
-  findContacts(dt);
-  wakeTouched();
-  warmStartFromPrevious();
-  // A body resting on a surface falls just past the contact margin, then gathers this tick's
-  // gravity too before the solver sees it: up to 2 g dt of approach, which must not count as
-  // an impact, or a bouncy body hops for ever (at 30 Hz: 0.65 m/s, a 1.1 cm hop every 3 ticks).
-  SolverSettings solver = settings_.solver;
-  solver.restitution_threshold =
-      std::max(solver.restitution_threshold, 2.5 * forces_.gravity.norm() * dt);
-  solver_.prepare(bodies_, contacts_, solver, dt);
-  // Contacts and joints share the Gauss-Seidel iterations, so each sees the other's impulses.
-  joints_.prepare(bodies_, dt, settings_.joint_beta);
-  rigid_joints_.prepare(bodies_, dt, settings_.joint_beta);
-  switch (settings_.solver.kind) {
-    case SolverKind::SoftStep:
-      solveSoftStep(dt);
-      break;
-    case SolverKind::Projection:
-      solveProjection(dt);
-      break;
-    default:
-      solveIterative(dt);
+  {
+    ScopedTimer t(profile_.integrate);
+    bodies_.updateWorldInertia();
+    integrateForces(dt);
+    // Checked before the solve too: a NaN velocity in a contact would reach its partner.
+    quarantineNonFinite();
   }
-  quarantineNonFinite();
-  if (settings_.sleep.enabled) islands_.update(bodies_, contacts_, settings_.sleep, dt);
+  findContacts(dt);
+  SolverSettings solver = settings_.solver;
+  {
+    ScopedTimer t(profile_.prepare);
+    wakeTouched();
+    warmStartFromPrevious();
+    // A body resting on a surface falls just past the contact margin, then gathers this tick's
+    // gravity too before the solver sees it: up to 2 g dt of approach, which must not count as
+    // an impact, or a bouncy body hops for ever (at 30 Hz: 0.65 m/s, a 1.1 cm hop every 3
+    // ticks).
+    solver.restitution_threshold =
+        std::max(solver.restitution_threshold, 2.5 * forces_.gravity.norm() * dt);
+    solver_.prepare(bodies_, contacts_, solver, dt);
+    // Contacts and joints share the Gauss-Seidel iterations, so each sees the other's impulses.
+    joints_.prepare(bodies_, dt, settings_.joint_beta);
+    rigid_joints_.prepare(bodies_, dt, settings_.joint_beta);
+  }
+  {
+    ScopedTimer t(profile_.solve);
+    switch (settings_.solver.kind) {
+      case SolverKind::SoftStep:
+        solveSoftStep(dt);
+        break;
+      case SolverKind::Projection:
+        solveProjection(dt);
+        break;
+      default:
+        solveIterative(dt);
+    }
+  }
+  {
+    ScopedTimer t(profile_.integrate);
+    quarantineNonFinite();
+  }
+  {
+    ScopedTimer t(profile_.islands);
+    if (settings_.sleep.enabled) islands_.update(bodies_, contacts_, settings_.sleep, dt);
+  }
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     bodies_.force[i].setZero();
     bodies_.torque[i].setZero();
@@ -125,6 +143,15 @@ void World::integrateForces(double dt) {
 }
 
 void World::findContacts(double dt) {
+  {
+    ScopedTimer t(profile_.broadphase);
+    findPairs(dt);
+  }
+  ScopedTimer t(profile_.narrowphase);
+  contactsOfPairs(dt);
+}
+
+void World::findPairs(double dt) {
   const std::size_t n = bodies_.size();
   proxy_boxes_.clear();
   proxy_moving_.clear();
@@ -146,6 +173,10 @@ void World::findContacts(double dt) {
     proxy_body_.push_back(static_cast<BodyIndex>(i));
   }
   broadphase_.findPairs(proxy_boxes_, proxy_moving_, pairs_);
+}
+
+void World::contactsOfPairs(double dt) {
+  const std::size_t n = bodies_.size();
   // Last step's contacts become the warm-start source; both buffers keep their capacity.
   previous_.swap(contacts_);
   contacts_.clear();

@@ -15,6 +15,7 @@
 #include "physics/integrator.h"
 #include "physics/islands.h"
 #include "physics/rigid_joints.h"
+#include "physics/step_profile.h"
 
 namespace zonesim::physics {
 
@@ -86,11 +87,16 @@ class World {
   std::span<const BodyContact> contacts() const { return contacts_; }
   /// Bodies frozen because their state became non-finite, in the order found.
   std::span<const BodyIndex> quarantined() const { return quarantined_; }
+  /// Time of each stage of the last step().
+  const StepProfile& profile() const { return profile_; }
 
  private:
   void substep(double dt);
   void integrateForces(double dt);
+  /// Broadphase then narrowphase, each timed.
   void findContacts(double dt);
+  void findPairs(double dt);
+  void contactsOfPairs(double dt);
   void addContact(BodyIndex a, BodyIndex b, double margin);
   void wakeTouched();
   void warmStartFromPrevious();
@@ -122,6 +128,7 @@ class World {
   std::vector<ProxyPair> pairs_;
   std::vector<BodyContact> contacts_, previous_;
   std::vector<BodyIndex> quarantined_;
+  StepProfile profile_;
 };
 
 }  // namespace zonesim::physics

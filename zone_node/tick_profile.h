@@ -8,12 +8,57 @@
 
 namespace zonesim::zone {
 
-enum class Phase { Input, Ai, Physics, Gpu, Migrate, Halo, Publish, Checks, Count };
+enum class Phase { Input, Ai, Avatars, Physics, Gpu, Migrate, Halo, Publish, Checks, Count };
 constexpr std::size_t kPhaseCount = std::size_t(Phase::Count);
 constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
-    "input", "ai", "physics", "gpu", "migrate", "halo", "publish", "checks"};
+    "input", "ai", "avatars", "physics", "gpu", "migrate", "halo", "publish", "checks"};
 
-using TickProfile = PhaseProfile<Phase, kPhaseCount>;
+/// Named steps inside the phases, as Box2D's b2Profile names its stages: the metrics write each
+/// as `<phase>.<step>_ms`, so a slow phase shows which system or stage grew.
+enum class Stage {
+  AiNeighbours,
+  AiLod,
+  AiAgents,
+  AiWander,
+  AiFlock,
+  AiFlow,
+  AiFormations,
+  AiRoads,
+  AiAnts,
+  PhysicsIntegrate,
+  PhysicsBroadphase,
+  PhysicsNarrowphase,
+  PhysicsPrepare,
+  PhysicsSolve,
+  PhysicsIslands,
+  PhysicsBorder,
+  Count
+};
+constexpr std::size_t kStageCount = std::size_t(Stage::Count);
+constexpr std::array<const char*, kStageCount> kStageNames = {"ai.neighbours",
+                                                              "ai.lod",
+                                                              "ai.agents",
+                                                              "ai.wander",
+                                                              "ai.flock",
+                                                              "ai.flow",
+                                                              "ai.formations",
+                                                              "ai.roads",
+                                                              "ai.ants",
+                                                              "physics.integrate",
+                                                              "physics.broadphase",
+                                                              "physics.narrowphase",
+                                                              "physics.prepare",
+                                                              "physics.solve",
+                                                              "physics.islands",
+                                                              "physics.border"};
+
+/// Seconds per phase of one tick, and per named step inside them.
+struct TickProfile : PhaseProfile<Phase, kPhaseCount> {
+  std::array<double, kStageCount> stage_seconds{};
+  using PhaseProfile::operator[];
+  double& operator[](Stage s) { return stage_seconds[std::size_t(s)]; }
+  double operator[](Stage s) const { return stage_seconds[std::size_t(s)]; }
+};
 
 /// Counters of one tick (reset at the start of each tick).
 struct TickCounters {

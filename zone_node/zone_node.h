@@ -9,8 +9,6 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 #include "common/entity_id.h"
@@ -21,7 +19,9 @@
 #include "zone_node/cluster/load_balancer.h"
 #include "zone_node/cluster/migration.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/players.h"
 #include "zone_node/systems/neighbourhood.h"
+#include "zone_node/systems/step_context.h"
 #include "zone_node/tick_profile.h"
 #include "zone_node/zone_layout.h"
 
@@ -36,8 +36,11 @@ class FlowMovement;
 class FormationMovement;
 class RoadMovement;
 class AntMovement;
+class WanderMovement;
 struct WorldMap;
 class AgentSystem;
+class ZoneSystem;
+struct StepContext;
 
 struct ZoneOptions {
   int dds_domain = 0;
@@ -83,7 +86,9 @@ class ZoneNode {
   const ConservationTally& conservation() const { return conservation_; }
   /// Handoffs completed this tick: ticks from the avatar's arrival at this zone (the tick it
   /// crossed the border) to the first input applied here.
-  const std::vector<std::uint64_t>& handoffLatencyTicks() const { return handoff_latency_ticks_; }
+  const std::vector<std::uint64_t>& handoffLatencyTicks() const {
+    return players_.handoffLatencyTicks();
+  }
   /// Position and velocity of every live particle of this zone's emitters.
   std::vector<std::array<double, 6>> liveParticles() const;
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
@@ -92,14 +97,13 @@ class ZoneNode {
   const WorldMap* worldMap() const { return map_.get(); }
   /// Which backend the flocking populations use ("cpu", "opencl" or "none").
   std::string flockBackend() const;
-  /// The last checkpoint folder written ("" if none).
-  const std::string& lastCheckpoint() const { return last_checkpoint_; }
 
  private:
   /// Runs one phase, timing it into the profile.
   void timed(Phase phase, void (ZoneNode::*run)());
   void input();
   void ai();
+  void avatars();
   void physics();
   void gpu();
   void migrate();
@@ -110,12 +114,10 @@ class ZoneNode {
   /// Readies the cell writers of this zone's rectangle (at start and when boundaries move).
   void coverZone();
 
-  void spawnAvatar(std::uint64_t player_id, double x, double z);
-  void applyInput(std::uint64_t player_id, std::uint32_t seq, float move_x, float move_z);
-  /// Applies held inputs whose turn has come, or whose gap has waited kInputHoldTicks.
-  void releaseHeldInputs();
-  void despawnAvatar(std::uint64_t player_id);
-  void destroyAt(std::size_t index);
+  /// What the player protocol changes in this zone this tick.
+  PlayerZone playerZone();
+  /// What the systems read and write this tick.
+  StepContext stepContext();
 
   const Scene& scene_;
   MPI_Comm comm_;
@@ -145,31 +147,21 @@ class ZoneNode {
   std::unique_ptr<RoadMovement> roads_;            // road networks (waypoint graphs)
   std::unique_ptr<AntMovement> ants_;              // ant colonies (need map_)
   std::unique_ptr<AgentSystem> agents_;            // AI agents (scene key `agents`)
-  std::vector<crowd::Vec2> players_;               // every avatar of the cluster, for crowd LOD
+  std::unique_ptr<WanderMovement> wanderers_;      // NPCs between random waypoints
+  /// The AI phase's systems in the order they step, each with its stage of the profile.
+  std::vector<std::pair<Stage, ZoneSystem*>> ai_systems_;
+  Collectives collectives_;               // what the systems may ask of the whole cluster
+  std::vector<crowd::Vec2> lod_players_;  // every avatar of the cluster, for crowd LOD
+  Players players_;                       // the player protocol
 
   std::uint64_t tick_ = 0;
-  std::string last_checkpoint_;
   std::uint64_t link_failures_seen_ = 0;
   std::map<std::uint32_t, std::uint64_t> inherited_counters_;  // id counters a restart read
   TickProfile profile_;
   TickCounters counters_;
   ConservationTally conservation_;
   MigrationResult last_migration_;
-  std::vector<EntityId> unannounced_;  // avatars created or received here, not yet announced
-  std::vector<Departure> leavers_;     // migrated away or destroyed this tick: publish says so
-  std::vector<std::vector<ForwardedInput>> forward_;         // per destination rank
-  std::vector<ForwardedInput> forwarded_in_;                 // to apply next input phase
-  std::unordered_map<std::uint64_t, int> departed_players_;  // player -> rank its avatar went to
-  std::unordered_set<std::uint64_t> known_players_;          // every spawn request seen
-  std::unordered_set<std::uint64_t> despawned_players_;      // every despawn request seen
-  struct HeldInput {
-    float move_x, move_z;
-    std::uint64_t since_tick;
-  };
-  static constexpr std::uint64_t kInputHoldTicks = 3;  // a forwarded input lags by one tick
-  std::map<std::uint64_t, std::map<std::uint32_t, HeldInput>> held_inputs_;  // player -> seq
-  std::unordered_map<std::uint64_t, std::uint64_t> handoff_started_;  // player -> arrival tick
-  std::vector<std::uint64_t> handoff_latency_ticks_;                  // completed this tick
+  std::vector<Departure> leavers_;  // migrated away or destroyed this tick: publish says so
 };
 
 }  // namespace zonesim::zone

@@ -10,6 +10,8 @@ void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWr
   tick_ms_.push_back(tick_seconds * 1e3);
   const TickProfile& p = zone.profile();
   for (std::size_t i = 0; i < kPhaseCount; ++i) phase_totals_.seconds[i] += p.seconds[i];
+  for (std::size_t i = 0; i < kStageCount; ++i)
+    phase_totals_.stage_seconds[i] += p.stage_seconds[i];
   for (std::uint64_t t : zone.handoffLatencyTicks())
     handoff_latency_ms_.push_back(double(t) * zone.tickSeconds() * 1e3);
   const TickCounters& c = zone.counters();
@@ -23,6 +25,8 @@ void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWr
   line.add("tick_ms", tick_seconds * 1e3);
   for (std::size_t i = 0; i < kPhaseCount; ++i)
     line.add(std::string(kPhaseNames[i]) + "_ms", p.seconds[i] * 1e3);
+  for (std::size_t i = 0; i < kStageCount; ++i)
+    line.add(std::string(kStageNames[i]) + "_ms", p.stage_seconds[i] * 1e3);
   for (const CounterField& f : kCounterFields) line.add(f.name, c.*f.field);
   metrics.write(line);
 }
@@ -40,6 +44,8 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   double n = tick_ms_.empty() ? 1.0 : double(tick_ms_.size());
   for (std::size_t i = 0; i < kPhaseCount; ++i)
     s.add(std::string(kPhaseNames[i]) + "_ms_mean", phase_totals_.seconds[i] * 1e3 / n);
+  for (std::size_t i = 0; i < kStageCount; ++i)
+    s.add(std::string(kStageNames[i]) + "_ms_mean", phase_totals_.stage_seconds[i] * 1e3 / n);
   for (const CounterField& f : kCounterFields) s.add(f.name, totals_.*f.field);
   s.add("conservation_checks", zone.conservation().checks);
   s.add("conservation_failures", zone.conservation().failures);

@@ -16,6 +16,7 @@
 #include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/world_map.h"
@@ -86,16 +87,17 @@ void run(const Case& c, int agents, int ticks, int paths_per_tick, bool hpa, con
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
   std::shared_ptr<const WorldMap> map = loadWorldMap(scene);
   AgentSystem system(scene, map ? &map->grid : nullptr, map ? map->frame : crowd::MapFrame{});
-  Neighbourhood near;  // wanderers do not separate: never queried
+  WanderMovement wander(scene);
+  LoneZone lone{scene.dt};  // wanderers do not separate: lone.near is never queried
   double seconds = 0;
   std::uint64_t planned = 0, updates = 0;
   for (int t = 0; t < ticks; ++t) {
     auto t0 = std::chrono::steady_clock::now();
-    AgentTickStats s = system.step(store, nullptr, t * scene.dt, scene.dt);
+    const TickCounters& s = lone.step(system, store, std::uint64_t(t));
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    planned += s.paths.planned;
+    planned += s.paths_planned;
     updates += s.agents;
-    stepNpcs(scene, store, near, t * scene.dt, scene.dt);
+    lone.step(wander, store, std::uint64_t(t));
   }
   std::printf("| %s | %d | %.0f | %.0f | %llu |\n", label, agents, seconds / ticks * 1e6,
               seconds / double(updates) * 1e9, (unsigned long long)planned);

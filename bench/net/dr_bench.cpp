@@ -22,6 +22,7 @@
 #include "zone_node/net/dead_reckoning.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 
@@ -136,6 +137,8 @@ Result run(const Config& c, double seconds) {
     resend_at[i] = c.resend_rto_s > 0 && (lost || ack_lost) ? tick + rto_ticks : -1;
   };
   std::vector<std::vector<char>> known(observers.size(), std::vector<char>(store.size(), 0));
+  zone::WanderMovement wander(scene);
+  zone::LoneZone lone{scene.dt};
   for (int tick = 0; tick < ticks; ++tick) {
     double t = tick * scene.dt;
     for (int a = 0; a < kAvatars; ++a) {
@@ -144,8 +147,7 @@ Result run(const Config& c, double seconds) {
       store.avatar[i].move_x = m.x;
       store.avatar[i].move_z = m.z;
     }
-    zone::stepNpcs(scene, store, zone::Neighbourhood{}, tick * scene.dt,
-                   scene.dt);  // no separation
+    lone.step(wander, store, std::uint64_t(tick));  // no separation
     zone::stepAvatars(scene.world, store, scene.dt);
     // The zone's publish decision, as CellPublisher makes it.
     sent.clear();

@@ -13,6 +13,7 @@
 #include "zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_node.h"
 
@@ -321,9 +322,10 @@ Pursuit runPursuit(const std::string& tree, double sight, double ax, double az, 
   store.pos[enemy] = Vec3(ex, store.pos[enemy].y(), ez);
   store.vel[agent] = store.vel[enemy] = Vec3::Zero();
   Pursuit r;
+  LoneZone lone{scene.dt};
   for (int t = 0; t < ticks; ++t) {
     Vec3 before = store.pos[agent];
-    system.step(store, nullptr, t * scene.dt, scene.dt);
+    lone.step(system, store, std::uint64_t(t));
     const AgentData& a = store.agent[agent];
     bool active = a.action == int(AgentAction::Chase) || a.action == int(AgentAction::Flee);
     double moved = std::hypot(store.pos[agent].x() - before.x(), store.pos[agent].z() - before.z());

@@ -14,6 +14,7 @@
 #include "ai/grid_path.h"
 #include "ai/grid_search.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -28,10 +29,8 @@ struct Colony {
     forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
   }
   void run(int ticks) {
-    for (int k = 0; k < ticks; ++k, ++tick) {
-      ants.step(store, tick, scene.dt);
-      ants.applyTrails();  // one rank: its deltas are the sum
-    }
+    LoneZone lone{scene.dt};  // one rank: its deltas are the sum
+    for (int k = 0; k < ticks; ++k, ++tick) lone.step(ants, store, tick);
   }
   const Scene& scene;
   std::shared_ptr<const WorldMap> map;
@@ -119,10 +118,10 @@ TEST(AntMovement, AnAntsWalkDoesNotDependOnTheOtherAntsItIsSteppedWith) {
   for (std::size_t i = sb.size(); i-- > 0;)
     if (i % 2 == 0) sb.removeAt(i);
   for (std::uint64_t t = 0; t < 1200; ++t) {
-    whole.ants.step(whole.store, t, scene.dt);
+    whole.ants.walk(whole.store, t, scene.dt);
     whole.ants.applyTrails();
-    a.ants.step(sa, t, scene.dt);
-    b.ants.step(sb, t, scene.dt);
+    a.ants.walk(sa, t, scene.dt);
+    b.ants.walk(sb, t, scene.dt);
     std::span<std::int64_t> da = a.ants.deltas(), db = b.ants.deltas();
     for (std::size_t k = 0; k < da.size(); ++k) da[k] = db[k] = da[k] + db[k];
     a.ants.applyTrails();

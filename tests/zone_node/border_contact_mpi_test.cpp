@@ -6,6 +6,7 @@
 
 #include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/migration.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/rigid_bodies.h"
 
 namespace zonesim::zone {
@@ -68,7 +69,8 @@ TEST(BorderContact, MomentumIsConservedAndMatchesOneWorld) {
   one.add(sphere(0, 48.0, kSpeed, kA));
   one.add(sphere(1, 52.0, -kSpeed, kB));
   RigidBodySystem single(scene, 0);
-  for (int t = 0; t < kTicks; ++t) single.step(one, nullptr, scene.dt);
+  LoneZone lone{scene.dt};
+  for (int t = 0; t < kTicks; ++t) lone.step(single, one, std::uint64_t(t));
 
   // Two zones: each owns one body and sees the other as a ghost.
   ZoneLayout layout(scene.world, 2, 1);
@@ -82,7 +84,7 @@ TEST(BorderContact, MomentumIsConservedAndMatchesOneWorld) {
   const Totals before = totals(store, MPI_COMM_WORLD);
   std::size_t pushes = 0;
   for (int t = 0; t < kTicks; ++t) {
-    bodies.step(store, &halo.ghosts(), scene.dt);
+    lone.step(bodies, store, std::uint64_t(t), &halo.ghosts());
     std::vector<GhostImpulse> in = halo.reverse(bodies.ghostImpulses());
     pushes += in.size();
     bodies.applyImpulses(store, in);

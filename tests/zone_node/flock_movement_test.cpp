@@ -9,6 +9,7 @@
 
 #include "zone_fixture.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 
@@ -54,14 +55,16 @@ double localOrder(const EntityStore& store, double radius) {
   return total / double(who.size());
 }
 
-/// Runs the scene's NPCs for `seconds`: wanderers by stepNpcs, flockers by FlockMovement.
+/// Runs the scene's NPCs for `seconds`: wanderers by WanderMovement, flockers by FlockMovement.
 EntityStore run(const Scene& s, double seconds, bool flocks) {
   EntityStore store;
   forEachInitialEntity(s, [&](const EntityRecordData& r) { store.add(r); });
   FlockMovement flock(s);
-  for (int t = 0; t < int(seconds / s.dt); ++t) {
-    stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
-    if (flocks) flock.step(store, nullptr, s.dt);
+  WanderMovement wander(s);
+  LoneZone lone{s.dt};
+  for (std::uint64_t t = 0; t < std::uint64_t(seconds / s.dt); ++t) {
+    lone.step(wander, store, t);
+    if (flocks) lone.step(flock, store, t);
     for (std::size_t i = 0; i < store.size(); ++i) {
       EXPECT_GE(store.pos[i].x(), s.world.min.x);
       EXPECT_LE(store.pos[i].x(), s.world.max.x);
@@ -138,7 +141,8 @@ GoalRun runToGoal(const Scene& s, double seconds) {
   EntityStore store;
   forEachInitialEntity(s, [&](const EntityRecordData& r) { store.add(r); });
   FlockMovement flock(s);
-  const std::vector<crowd::Vec2> players{{35, 35}};
+  LoneZone lone{s.dt};
+  lone.players = {{35, 35}};
   GoalRun r;
   auto centroid = [&] {
     crowd::Vec2 c;
@@ -147,7 +151,7 @@ GoalRun runToGoal(const Scene& s, double seconds) {
     return c * (1.0 / double(store.size()));
   };
   for (int t = 0; t < int(seconds / s.dt); ++t) {
-    flock.step(store, nullptr, s.dt, players, t);
+    lone.step(flock, store, std::uint64_t(t));
     r.updates += flock.updates();
     if (r.arrival < 0 && crowd::length(centroid() - crowd::Vec2{170, 170}) < 10)
       r.arrival = (t + 1) * s.dt;

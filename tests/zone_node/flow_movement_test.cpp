@@ -15,6 +15,7 @@
 
 #include "crowd/vec2.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -39,8 +40,10 @@ TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
   const int max_ticks = int(std::ceil(2 * 130 / f.max_speed / scene.dt));
   int tick = 0, on_walls = 0;
   std::size_t walking = store.size();
+  LoneZone lone{scene.dt};
   for (; tick < max_ticks && walking > 0; ++tick) {
-    walking = flows.step(store, nullptr, scene.dt);
+    lone.step(flows, store, std::uint64_t(tick));
+    walking = flows.walking();
     for (std::size_t i = 0; i < store.size(); ++i)
       on_walls += map->walkable(store.pos[i].x(), store.pos[i].z()) ? 0 : 1;
   }
@@ -86,10 +89,12 @@ TEST(FlowMovement, TheCrowdGoesRoundADoorThatCloses) {
   int tick = 0, rebuilt = 0, entered = 0, on_walls = 0, through_before = 0;
   std::vector<char> was_in(store.size(), 0);
   std::size_t walking = store.size();
+  LoneZone lone{scene.dt};
   for (; tick < max_ticks && walking > 0; ++tick) {
     double time = tick * scene.dt;
-    rebuilt += flows.applyDoors(time);
-    walking = flows.step(store, nullptr, scene.dt);
+    rebuilt += flows.applyDoors(time);  // the step applies them too: counted here first
+    lone.step(flows, store, std::uint64_t(tick));
+    walking = flows.walking();
     for (std::size_t i = 0; i < store.size(); ++i) {
       bool in = inDoor(i);
       if (time < 3.0) through_before += in && !was_in[i];
@@ -140,8 +145,10 @@ std::map<std::uint64_t, int> arrivalTicks(const Scene& scene, std::span<const cr
   FlowMovement flows(scene, map.get());
   std::map<std::uint64_t, int> arrived;
   updates = 0;
+  LoneZone lone{scene.dt};
+  lone.players.assign(players.begin(), players.end());
   for (int tick = 0; tick < 4000 && arrived.size() < store.size(); ++tick) {
-    flows.step(store, nullptr, scene.dt, players, tick);
+    lone.step(flows, store, std::uint64_t(tick));
     updates += flows.updates();
     for (std::size_t i = 0; i < store.size(); ++i)
       if (flows.arrived(store, i)) arrived.emplace(store.id[i].value, tick + 1);

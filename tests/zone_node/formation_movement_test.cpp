@@ -14,6 +14,7 @@
 #include "ai/grid_search.h"
 #include "crowd/formation.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -35,7 +36,7 @@ FormationRun runFormation(const Scene& scene, const WorldMap& map, EntityStore& 
                           FormationMovement& f, int max_ticks, double settle) {
   FormationRun r;
   for (; r.ticks < max_ticks; ++r.ticks) {
-    f.step(store, nullptr, scene.dt, std::uint64_t(r.ticks));
+    LoneZone{scene.dt}.step(f, store, std::uint64_t(r.ticks));
     bool settled = f.centre(0).arrived();
     for (std::size_t i = 0; i < store.size(); ++i) {
       crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
@@ -91,7 +92,7 @@ TEST(FormationMovement, AMemberBehindAWallPlansAStarBackAndRejoins) {
   bool cut_off = false;
   int ticks = 0;
   for (; ticks < int(bound / scene.dt); ++ticks) {
-    move.step(store, nullptr, scene.dt, std::uint64_t(ticks));
+    LoneZone{scene.dt}.step(move, store, std::uint64_t(ticks));
     cut_off = cut_off || store.npc[0].crowd_mode == int(crowd::MemberMode::Rejoining);
     ASSERT_TRUE(map->walkable(store.pos[0].x(), store.pos[0].z())) << ticks;
     crowd::Vec2 p{store.pos[0].x(), store.pos[0].z()};

@@ -3,6 +3,7 @@
 #include "zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/rigid_bodies.h"
@@ -17,8 +18,10 @@ TEST(NpcMovement, NpcsWanderWithinTheWorldAtTheirOwnSpeedAndReachWaypoints) {
   std::vector<Vec3> first_waypoint;
   for (const NpcData& n : store.npc) first_waypoint.push_back(n.waypoint);
   double max_speed_seen = 0;
+  WanderMovement wander(s);
+  LoneZone lone{s.dt};
   for (int t = 0; t < 30 * 60; ++t) {
-    stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
+    lone.step(wander, store, std::uint64_t(t));
     for (std::size_t i = 0; i < store.size(); ++i) {
       ASSERT_GE(store.pos[i].x(), s.world.min.x - 1e-9);
       ASSERT_LE(store.pos[i].x(), s.world.max.x + 1e-9);
@@ -47,10 +50,11 @@ std::size_t closePairsAfterWalking(double separation_radius, double d) {
   s.npcs[0].acceleration = 4.0;
   EntityStore store;
   forEachInitialEntity(s, [&](const EntityRecordData& r) { store.add(r); });
-  Neighbourhood near;
+  WanderMovement wander(s);
+  LoneZone lone{s.dt};
   for (int t = 0; t < 30 * 20; ++t) {
-    near.build(store, nullptr, std::max(separation_radius, 1.0));
-    stepNpcs(s, store, near, t * s.dt, s.dt);
+    lone.near.build(store, nullptr, std::max(separation_radius, 1.0));
+    lone.step(wander, store, std::uint64_t(t));
   }
   std::size_t close = 0;
   for (std::size_t i = 0; i < store.size(); ++i)
@@ -83,10 +87,12 @@ TEST(NpcMovement, AGatheringConvergesThenDisperses) {
     return double(n) / double(store.size());
   };
   EXPECT_LT(fractionWithin(15), 0.05);
-  int t = 0;
-  for (; t < 30 * 80; ++t) stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
+  WanderMovement wander(s);
+  LoneZone lone{s.dt};
+  std::uint64_t t = 0;
+  for (; t < 30 * 80; ++t) lone.step(wander, store, t);
   EXPECT_GT(fractionWithin(15), 0.95) << "after 80 s of gathering";
-  for (; t < 30 * 110; ++t) stepNpcs(s, store, Neighbourhood{}, t * s.dt, s.dt);
+  for (; t < 30 * 110; ++t) lone.step(wander, store, t);
   EXPECT_LT(fractionWithin(15), 0.2) << "30 s after the gathering ended";
 }
 
@@ -133,10 +139,11 @@ TEST(RigidBodies, ADroppedSphereReboundsToRestitutionSquaredTimesItsHeight) {
   r.body.restitution = 0.6;
   store.add(r);
   RigidBodySystem bodies(s, 0);
+  LoneZone lone{s.dt};
   double apex = 0;
   bool bounced = false;
-  for (int t = 0; t < 60 * 6; ++t) {
-    bodies.step(store, nullptr, s.dt);
+  for (std::uint64_t t = 0; t < 60 * 6; ++t) {
+    lone.step(bodies, store, t);
     if (store.vel[0].y() > 0.1) bounced = true;
     if (bounced) apex = std::max(apex, store.pos[0].y() - 0.5);
     if (bounced && store.vel[0].y() < -0.1) break;
@@ -156,8 +163,9 @@ TEST(RigidBodies, BoxesAndCapsulesComeToRestOnTheGroundInsideTheWallsAndSleep) {
     store.add(body(++n, Vec3(2 + 4 * i, 3, 15), BodyData::Capsule));
   }
   RigidBodySystem bodies(s, 0);
-  std::size_t awake = store.size();
-  for (int t = 0; t < 60 * 20 && awake > 0; ++t) awake = bodies.step(store, nullptr, s.dt);
+  LoneZone lone{s.dt};
+  std::uint64_t awake = store.size(), t = 0;
+  for (; t < 60 * 20 && awake > 0; ++t) awake = lone.step(bodies, store, t).bodies_awake;
   EXPECT_EQ(awake, 0u) << "all bodies asleep within 20 s";
   for (std::size_t i = 0; i < store.size(); ++i) {
     const Vec3& p = store.pos[i];
@@ -174,7 +182,7 @@ TEST(RigidBodies, BoxesAndCapsulesComeToRestOnTheGroundInsideTheWallsAndSleep) {
   EXPECT_EQ(bodies.rebuilds(), 1u);
   // Once all sleep, a step costs nothing and changes nothing.
   Vec3 before = store.pos[0];
-  EXPECT_EQ(bodies.step(store, nullptr, s.dt), 0u);
+  EXPECT_EQ(lone.step(bodies, store, t).bodies_awake, 0u);
   EXPECT_EQ(store.pos[0], before);
 }
 
@@ -183,13 +191,15 @@ TEST(RigidBodies, TheEngineWorldIsRebuiltOnlyWhenBodiesComeOrGo) {
   EntityStore store;
   store.add(body(1, Vec3(5, 2, 5), BodyData::Sphere));
   RigidBodySystem bodies(s, 0);
-  for (int t = 0; t < 10; ++t) bodies.step(store, nullptr, s.dt);
+  LoneZone lone{s.dt};
+  std::uint64_t t = 0;
+  for (; t < 10; ++t) lone.step(bodies, store, t);
   EXPECT_EQ(bodies.rebuilds(), 1u);
   store.add(body(2, Vec3(15, 2, 15), BodyData::Box));  // arrived by migration
-  bodies.step(store, nullptr, s.dt);
+  lone.step(bodies, store, t++);
   EXPECT_EQ(bodies.rebuilds(), 2u);
   store.removeAt(*store.indexOf(EntityId::make(0, 1)));  // left
-  bodies.step(store, nullptr, s.dt);
+  lone.step(bodies, store, t++);
   EXPECT_EQ(bodies.rebuilds(), 3u);
   EXPECT_GT(store.vel[0].norm(), 0.0);
 }

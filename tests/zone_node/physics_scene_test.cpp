@@ -13,6 +13,7 @@
 #include "physics/cloth_collision.h"
 #include "physics/shape.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/rigid_bodies.h"
 
 namespace zonesim::zone {
@@ -44,7 +45,7 @@ class PhysicsScene : public ::testing::Test {
     return store_.pos[i] +
            store_.rot[i] * (start_point - vec(scene_.physics.bodies[named(name)].position));
   }
-  void step(std::uint64_t tick) { bodies_->step(store_, nullptr, scene_.dt, tick); }
+  void step(std::uint64_t tick) { LoneZone{scene_.dt}.step(*bodies_, store_, tick); }
 
   Scene scene_;
   EntityStore store_;

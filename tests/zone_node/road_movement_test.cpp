@@ -15,6 +15,7 @@
 #include "common/scene.h"
 #include "zone_fixture.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 
 namespace zonesim::zone {
 namespace {
@@ -81,7 +82,7 @@ TEST(RoadMovement, NpcsTakeOnlyOpenAllowedEdgesAndCheapestPaths) {
       before[i] = store.npc[i].crowd_at;
       goal_before[i] = store.npc[i].crowd_mode;
     }
-    roads.step(store, dt, tick);
+    LoneZone{dt}.step(roads, store, tick);
     for (std::size_t i = 0; i < store.size(); ++i) {
       const NpcData& npc = store.npc[i];
       const NpcRoads& r = scene.npcs[std::size_t(npc.flock)].roads;

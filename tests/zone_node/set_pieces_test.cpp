@@ -11,6 +11,7 @@
 #include "common/scene.h"
 #include "zone_fixture.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/rigid_bodies.h"
 
 namespace zonesim::zone {
@@ -33,7 +34,8 @@ class SetPieces : public ::testing::Test {
     return *store_.indexOf(namedBodyId(scene_, named(name)));
   }
   void run(std::uint64_t from, std::uint64_t to) {
-    for (std::uint64_t t = from; t < to; ++t) bodies_->step(store_, nullptr, scene_.dt, t);
+    LoneZone lone{scene_.dt};
+    for (std::uint64_t t = from; t < to; ++t) lone.step(*bodies_, store_, t);
   }
   double seconds(std::uint64_t ticks) const { return double(ticks) * scene_.dt; }
 

@@ -117,7 +117,7 @@ void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z
   a.asked_tick = std::uint64_t(tick);
 }
 
-void AgentNavigation::plan(EntityStore& store) {
+void AgentNavigation::plan(EntityStore& store, const ClusterGather& gather) {
   if (!service_) return;
   const std::size_t budget = std::size_t(scene_.agents.paths.paths_per_tick);
   const long expansion_budget = scene_.agents.paths.expansions_per_tick;
@@ -125,7 +125,7 @@ void AgentNavigation::plan(EntityStore& store) {
   for (std::size_t i = 0; i < store.size(); ++i) {
     const AgentData& a = store.agent[i];
     if (a.type < 0 || a.nav != navOf(AgentNav::Waiting)) continue;
-    waiting_.push_back(Waiting{a.asked_tick, store.id[i].value, i});
+    waiting_.push_back(Waiting{a.asked_tick, store.id[i].value, i, -1, false, {}});
   }
   auto byKey = [](const Waiting& l, const Waiting& r) {
     return l.asked != r.asked ? l.asked < r.asked : l.id < r.id;
@@ -137,7 +137,7 @@ void AgentNavigation::plan(EntityStore& store) {
     keys.push_back(waiting_[k].asked);
     keys.push_back(waiting_[k].id);
   }
-  std::vector<std::uint64_t> all = gather_ ? gather_(keys) : keys;
+  std::vector<std::uint64_t> all = gather ? gather(keys) : keys;
   std::vector<std::pair<std::uint64_t, std::uint64_t>> window;
   for (std::size_t k = 0; k + 1 < all.size(); k += 2) window.emplace_back(all[k], all[k + 1]);
   std::sort(window.begin(), window.end());
@@ -168,7 +168,7 @@ void AgentNavigation::plan(EntityStore& store) {
       counts.push_back(waiting_[k].id);
       counts.push_back(std::uint64_t(waiting_[k].expanded));
     }
-    std::vector<std::uint64_t> gathered = gather_ ? gather_(counts) : counts;
+    std::vector<std::uint64_t> gathered = gather ? gather(counts) : counts;
     std::unordered_map<std::uint64_t, std::uint64_t> expanded_by_id;
     for (std::size_t k = 0; k + 1 < gathered.size(); k += 2)
       expanded_by_id[gathered[k]] = gathered[k + 1];

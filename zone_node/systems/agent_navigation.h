@@ -28,15 +28,12 @@
 #include "common/scene.h"
 #include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::zone {
 
 /// AgentData::nav values.
 enum class AgentNav : std::int32_t { None = 0, Waiting = 1, Moving = 2, Arrived = 3, NoPath = 4 };
-
-/// Concatenates one list of values from every zone of the cluster, in rank order: a collective
-/// that every zone calls in the same tick. A lone zone's gather returns its own list.
-using ClusterGather = std::function<std::vector<std::uint64_t>(const std::vector<std::uint64_t>&)>;
 
 /// Path-service figures of one tick.
 struct AgentPathStats {
@@ -67,10 +64,9 @@ class AgentNavigation {
   void want(EntityStore& store, std::size_t i, double x, double z, bool navigate,
             std::int64_t tick);
   /// Serves the waiting requests that fall within the cluster's budget this tick (collective
-  /// through the gather) and hands their paths to their agents.
-  void plan(EntityStore& store);
-  /// How zones share request keys; the default serves a lone zone.
-  void setGather(ClusterGather gather) { gather_ = std::move(gather); }
+  /// through `gather`, which shares the zones' request keys; empty: a lone zone) and hands
+  /// their paths to their agents.
+  void plan(EntityStore& store, const ClusterGather& gather);
   /// Moves agent i toward its target by `dt` at `speed`: along its spline when it has a path,
   /// else straight with braking (the caller's steering integrates `desired`). Returns true
   /// when the position was set directly (spline), false when `desired` holds a velocity.
@@ -94,7 +90,6 @@ class AgentNavigation {
   std::unique_ptr<ai::PathService> service_;
   std::size_t next_door_ = 0;
   std::uint64_t map_changes_ = 0;
-  ClusterGather gather_;
   struct Waiting {
     std::uint64_t asked, id;  // the request's key
     std::size_t index;        // in the store

@@ -7,6 +7,7 @@
 #include "zone_node/systems/agent_decisions.h"
 #include "zone_node/systems/agent_goap.h"
 #include "zone_node/systems/steering.h"
+#include "zone_node/tick_profile.h"
 
 namespace zonesim::zone {
 
@@ -35,12 +36,13 @@ AgentSystem::AgentSystem(const Scene& scene, const ai::GridMap* grid, const crow
 
 AgentSystem::~AgentSystem() = default;
 
-AgentTickStats AgentSystem::step(EntityStore& store, const GhostStore* ghosts, double time,
-                                 double dt) {
+void AgentSystem::step(StepContext& ctx) {
+  EntityStore& store = ctx.store;
+  const double time = ctx.time, dt = ctx.dt;
+  const auto tick = std::int64_t(ctx.tick);
   AgentTickStats stats;
-  const auto tick = std::int64_t(std::llround(time / dt));
   nav_.applyDoors(time, store);
-  senseAgents(scene_.agents, store, ghosts, time, senses_);
+  senseAgents(scene_.agents, store, ctx.ghosts, time, senses_);
   // Decide and name targets; paths are asked for here and planned below in one budgeted batch.
   for (std::size_t i = 0; i < store.size(); ++i) {
     AgentData& a = store.agent[i];
@@ -74,11 +76,16 @@ AgentTickStats AgentSystem::step(EntityStore& store, const GhostStore* ghosts, d
     }
     nav_.want(store, i, x, z, t.navigate, tick);
   }
-  nav_.plan(store);
+  nav_.plan(store, ctx.cluster.gather);
   for (std::size_t i = 0; i < store.size(); ++i)
     if (store.agent[i].type >= 0) move(store, i, senses_[i], dt);
   stats.paths = nav_.takeStats();
-  return stats;
+  ctx.counters.agents = stats.agents;
+  ctx.counters.agent_transitions = stats.transitions;
+  ctx.counters.paths_planned = stats.paths.planned;
+  ctx.counters.paths_queued = stats.paths.queued;
+  ctx.counters.path_replans = stats.paths.replans;
+  last_ = stats;
 }
 
 bool AgentSystem::pursues(const AgentData& a, const AgentType& t, const AgentSenses& s) const {

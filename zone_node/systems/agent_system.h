@@ -6,7 +6,8 @@
 // names where it is heading, the path service plans within its budget, then every agent moves.
 // An agent's result depends only on its own state (AgentData, which migrates with it), the
 // entities within its sight (the halo covers them) and the tick: the same on any decomposition
-// provided every zone shares path request keys through setGather() (the budget is the cluster's).
+// provided every zone shares path request keys through the step's gather (the budget is the
+// cluster's).
 
 #include <memory>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/agent_navigation.h"
 #include "zone_node/systems/agent_senses.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::zone {
 
@@ -36,7 +38,7 @@ struct AgentTickStats {
 };
 
 /// Steps every AI agent of a zone.
-class AgentSystem {
+class AgentSystem : public ZoneSystem {
  public:
   /// Loads the scene's behaviours (throws SceneError or ai::ParseError naming the file and
   /// line); `grid` is the scene's map or null.
@@ -44,14 +46,14 @@ class AgentSystem {
   ~AgentSystem();
 
   /// Whether the scene has agent types at all.
-  bool active() const { return !scene_.agents.types.empty(); }
+  bool active() const override { return !scene_.agents.types.empty(); }
   /// Widest sight of a type: agents read ghosts this far across a border.
   double reach() const { return reach_; }
-  /// How zones share path request keys (collective); without it the zone budgets alone.
-  void setGather(ClusterGather gather) { nav_.setGather(std::move(gather)); }
-  /// Advances every agent of `store` from simulated time `time` by `dt`; collective when a
-  /// gather is set and the scene has a map.
-  AgentTickStats step(EntityStore& store, const GhostStore* ghosts, double time, double dt);
+  /// Advances every agent by one tick; collective through ctx.cluster.gather (the zones share
+  /// their path request keys) when the scene has a map. Adds the agent counters.
+  void step(StepContext& ctx) override;
+  /// What the last step did.
+  const AgentTickStats& lastStats() const { return last_; }
 
  private:
   void move(EntityStore& store, std::size_t i, const AgentSenses& senses, double dt);
@@ -66,6 +68,7 @@ class AgentSystem {
   std::unique_ptr<AgentGoapPlans> goap_;
   AgentNavigation nav_;
   std::vector<AgentSenses> senses_;
+  AgentTickStats last_;
 };
 
 }  // namespace zonesim::zone

@@ -170,7 +170,13 @@ std::vector<ai::Cell> AntMovement::trailRoute(std::size_t c) const {
   return out;
 }
 
-void AntMovement::step(EntityStore& store, std::uint64_t tick, double dt) {
+void AntMovement::step(StepContext& ctx) {
+  walk(ctx.store, ctx.tick, ctx.dt);
+  if (ctx.cluster.sum) ctx.cluster.sum(deltas_);
+  applyTrails();
+}
+
+void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
   std::fill(deltas_.begin(), deltas_.end(), 0);
   const double time = double(tick) * dt;
   for (const std::unique_ptr<Colony>& cp : colonies_) {

@@ -23,6 +23,7 @@
 #include "ai/octile.h"
 #include "common/scene.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::zone {
 
@@ -45,7 +46,7 @@ struct ColonyStats {
 };
 
 /// Steps the ant colony NPC populations of a scene.
-class AntMovement {
+class AntMovement : public ZoneSystem {
  public:
   /// One colony per population of `scene` with `colony.enabled`, on `map` (must outlive this;
   /// required when there is such a population). Throws SceneError when the nest or the food
@@ -54,11 +55,14 @@ class AntMovement {
   ~AntMovement();
 
   /// Whether the scene has a colony at all.
-  bool active() const { return !colonies_.empty(); }
+  bool active() const override { return !colonies_.empty(); }
 
+  /// One tick: walk(), the deposits summed over every rank (ctx.cluster.sum, collective), then
+  /// applyTrails(), so every rank's trails stay the same.
+  void step(StepContext& ctx) override;
   /// Moves every ant of `store` by one tick (`tick` from 0: time tick * dt) reading the trails
   /// as they stand, and adds the ants' deposits to deltas() (cleared first).
-  void step(EntityStore& store, std::uint64_t tick, double dt);
+  void walk(EntityStore& store, std::uint64_t tick, double dt);
   /// This tick's deposits of the ants on this rank, every colony's cells one after another;
   /// to be summed over all ranks before applyTrails().
   std::span<std::int64_t> deltas() { return deltas_; }

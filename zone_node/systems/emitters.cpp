@@ -5,6 +5,7 @@
 #include "common/rng.h"
 #include "gpu/backend.h"
 #include "gpu/particle_system.h"
+#include "zone_node/tick_profile.h"
 
 namespace zonesim::zone {
 
@@ -46,7 +47,11 @@ gpu::ParticleSystem& EmitterSystem::batchFor(const EmitterData& e) {
   return *batches_.emplace(key, std::move(system)).first->second;
 }
 
-std::uint64_t EmitterSystem::step(EntityStore& store, double dt) {
+void EmitterSystem::step(StepContext& ctx) {
+  ctx.counters.particles_alive = advance(ctx.store, ctx.dt);
+}
+
+std::uint64_t EmitterSystem::advance(EntityStore& store, double dt) {
   if (store.count(EntityKind::Emitter) == 0 && batches_.empty()) return 0;
   for (std::size_t i = 0; i < store.size(); ++i) {
     if (store.kind[i] != EntityKind::Emitter) continue;

@@ -16,6 +16,7 @@
 #include "common/scene.h"
 #include "gpu/offload.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::gpu {
 class ParticleSystem;
@@ -23,7 +24,7 @@ class ParticleSystem;
 
 namespace zonesim::zone {
 
-class EmitterSystem {
+class EmitterSystem : public ZoneSystem {
  public:
   /// gpu_mode is "on", "off" or "auto" (see gpu/backend.h); auto offloads from the particle
   /// threshold, which every rank must share (zone_node/cluster/offload_agreement.h).
@@ -31,8 +32,10 @@ class EmitterSystem {
                 const gpu::OffloadThresholds& thresholds);
   ~EmitterSystem();
 
-  /// Emits for every emitter in the store and integrates all particles; returns particles alive.
-  std::uint64_t step(EntityStore& store, double dt);
+  /// Emitters may migrate in at any tick: the step itself returns at once without any.
+  bool active() const override { return true; }
+  /// Emits for every emitter in the store and integrates all particles; counts those alive.
+  void step(StepContext& ctx) override;
   /// Position and velocity (x, y, z, vx, vy, vz) of every live particle, appended to out
   /// (reads back from the device on OpenCL).
   void liveParticles(std::vector<std::array<double, 6>>& out) const;
@@ -40,6 +43,9 @@ class EmitterSystem {
   std::string backendName() const;
 
  private:
+  /// Returns the particles alive.
+  std::uint64_t advance(EntityStore& store, double dt);
+
   using Medium = std::pair<double, double>;  // (drag, restitution) shared by a batch
 
   gpu::ParticleSystem& batchFor(const EmitterData& e);

@@ -62,8 +62,12 @@ FlockMovement::FlockMovement(const Scene& scene, const std::string& gpu_mode,
 
 FlockMovement::~FlockMovement() = default;
 
-std::size_t FlockMovement::step(EntityStore& store, const GhostStore* ghosts, double dt,
-                                std::span<const crowd::Vec2> players, std::int64_t tick) {
+void FlockMovement::step(StepContext& ctx) {
+  advance(ctx.store, ctx.ghosts, ctx.dt, ctx.players, std::int64_t(ctx.tick));
+}
+
+std::size_t FlockMovement::advance(EntityStore& store, const GhostStore* ghosts, double dt,
+                                   std::span<const crowd::Vec2> players, std::int64_t tick) {
   std::size_t stepped = 0;
   updates_ = 0;
   for (const std::unique_ptr<Group>& gp : groups_) {

@@ -18,6 +18,7 @@
 #include "crowd/vec2.h"
 #include "gpu/offload.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::crowd {
 class Flock;
@@ -28,7 +29,7 @@ namespace zonesim::zone {
 class GhostStore;
 
 /// Steps the flocking NPC populations of a scene.
-class FlockMovement {
+class FlockMovement : public ZoneSystem {
  public:
   /// One flock per population of `scene` with `flock.enabled`, each on the backend that
   /// `gpu_mode` ("off", "on", "auto") and the shared thresholds give its share of the
@@ -38,22 +39,24 @@ class FlockMovement {
   ~FlockMovement();
 
   /// Whether the scene has a flocking population at all.
-  bool active() const { return !groups_.empty(); }
+  bool active() const override { return !groups_.empty(); }
   /// "opencl" if some population steps on the device, else "cpu"; "none" without flocks.
   const std::string& backendName() const { return backend_; }
   /// Widest neighbour radius of the flocks (the halo must reach this far).
   double reach() const { return reach_; }
 
-  /// Advances every flocking NPC of `store` by `dt`, seeing same-population `ghosts`. With the
-  /// scene's `lod`, `players` (every player avatar of the cluster and the scene's observers,
-  /// x-z) and `tick` choose each NPC's update (the same plan for an NPC on every rank).
-  /// Returns the number of NPCs stepped.
-  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt,
-                   std::span<const crowd::Vec2> players = {}, std::int64_t tick = 0);
+  /// Advances every flocking NPC by one tick, seeing same-population ghosts. With the scene's
+  /// `lod`, ctx.players (every player avatar of the cluster and the scene's observers, x-z)
+  /// and the tick choose each NPC's update (the same plan for an NPC on every rank).
+  void step(StepContext& ctx) override;
   /// NPC updates (agent steps) done by the last step() (every flocker without LOD).
   std::size_t updates() const { return updates_; }
 
  private:
+  /// Returns the number of NPCs stepped.
+  std::size_t advance(EntityStore& store, const GhostStore* ghosts, double dt,
+                      std::span<const crowd::Vec2> players, std::int64_t tick);
+
   struct Group;
   const Scene& scene_;
   std::vector<std::unique_ptr<Group>> groups_;  // one per flocking population

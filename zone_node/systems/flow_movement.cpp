@@ -54,7 +54,7 @@ std::string sceneFile(const Scene& scene) {
 }  // namespace
 
 FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map)
-    : lod_(scene.lod.enabled), doors_(scene.agents.doors) {
+    : doors_(scene.agents.doors), lod_(scene.lod.enabled) {
   if (map) grid_ = map->grid;
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlow& f = scene.npcs[p].flow;
@@ -105,8 +105,13 @@ bool FlowMovement::arrived(const EntityStore& store, std::size_t i) const {
   return g->crowd.hasArrived({store.pos[i].x(), store.pos[i].z()}, d);
 }
 
-std::size_t FlowMovement::step(EntityStore& store, const GhostStore* ghosts, double dt,
-                               std::span<const crowd::Vec2> players, std::int64_t tick) {
+void FlowMovement::step(StepContext& ctx) {
+  applyDoors(ctx.time);
+  walking_ = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.players, std::int64_t(ctx.tick));
+}
+
+std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, double dt,
+                                  std::span<const crowd::Vec2> players, std::int64_t tick) {
   std::size_t walking = 0;
   updates_ = 0;
   for (const std::unique_ptr<Group>& gp : groups_) {

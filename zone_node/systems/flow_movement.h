@@ -18,6 +18,7 @@
 #include "common/scene.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::zone {
 
@@ -28,7 +29,7 @@ struct WorldMap;
 int flowDestination(std::uint64_t id, int count);
 
 /// Steps the flow-field NPC populations of a scene.
-class FlowMovement {
+class FlowMovement : public ZoneSystem {
  public:
   /// One crowd per population of `scene` with `flow.enabled`, on `map` (must outlive this;
   /// required when there is such a population). Throws SceneError when a destination lies on a
@@ -37,7 +38,7 @@ class FlowMovement {
   ~FlowMovement();
 
   /// Whether the scene has a flow-field population at all.
-  bool active() const { return !groups_.empty(); }
+  bool active() const override { return !groups_.empty(); }
   /// Widest separation radius of the crowds (the halo must reach this far).
   double reach() const { return reach_; }
   /// Opens and closes the scene's doors due by simulated time `time` on the crowds' map and
@@ -46,12 +47,13 @@ class FlowMovement {
   /// The crowds' map as the doors left it (null without a flow population).
   const ai::GridMap* grid() const { return groups_.empty() ? nullptr : &grid_; }
 
-  /// Advances every flow NPC of `store` by `dt`, seeing same-population `ghosts`. With the
-  /// scene's `lod`, `players` (every player avatar of the cluster, x-z) and `tick` choose each
-  /// NPC's update (crowd::LevelOfDetail: the same plan for an NPC on every rank). Returns the
-  /// number of NPCs still on their way (not arrived) after the step.
-  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt,
-                   std::span<const crowd::Vec2> players = {}, std::int64_t tick = 0);
+  /// Applies the doors due by the tick's start, then advances every flow NPC by one tick,
+  /// seeing same-population ghosts. With the scene's `lod`, ctx.players (every player avatar
+  /// of the cluster, x-z) and the tick choose each NPC's update (crowd::LevelOfDetail: the
+  /// same plan for an NPC on every rank).
+  void step(StepContext& ctx) override;
+  /// NPCs still on their way (not arrived) after the last step.
+  std::size_t walking() const { return walking_; }
   /// NPC updates (agent steps) done by the last step() (all NPCs on the way without LOD).
   std::size_t updates() const { return updates_; }
 
@@ -59,6 +61,9 @@ class FlowMovement {
   bool arrived(const EntityStore& store, std::size_t i) const;
 
  private:
+  std::size_t advance(EntityStore& store, const GhostStore* ghosts, double dt,
+                      std::span<const crowd::Vec2> players, std::int64_t tick);
+
   struct Group;
   Group* groupOf(std::int32_t population) const;
   std::vector<AgentDoor> doors_;  // the scene's, in time order
@@ -66,6 +71,7 @@ class FlowMovement {
   ai::GridMap grid_;                            // the scene's map; doors change this copy
   std::vector<std::unique_ptr<Group>> groups_;  // one per flow population
   double reach_ = 0;
+  std::size_t walking_ = 0;
   bool lod_ = false;  // the scene's lod key: plan updates by distance to the players
   std::size_t updates_ = 0;
 };

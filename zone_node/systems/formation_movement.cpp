@@ -143,8 +143,11 @@ int FormationMovement::rejoinPlans() const {
   return n;
 }
 
-void FormationMovement::step(EntityStore& store, const GhostStore* ghosts, double dt,
-                             std::uint64_t tick) {
+void FormationMovement::step(StepContext& ctx) {
+  EntityStore& store = ctx.store;
+  const GhostStore* ghosts = ctx.ghosts;
+  const double dt = ctx.dt;
+  const std::uint64_t tick = ctx.tick;
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
     // Every rank takes the same centre steps from the scene's start: the same centre.

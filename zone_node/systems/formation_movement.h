@@ -15,6 +15,7 @@
 #include "common/scene.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::crowd {
 class FormationCentre;
@@ -35,7 +36,7 @@ crowd::Vec2 formationSlot(const NpcFormation& f, int count, int k);
 crowd::Vec2 formationStart(const Scene& scene, const WorldMap& map, std::size_t p, int k);
 
 /// Steps the formation NPC populations of a scene.
-class FormationMovement {
+class FormationMovement : public ZoneSystem {
  public:
   /// One group per population of `scene` with `formation.enabled`, on `map` (must outlive
   /// this; required when there is such a population). Throws SceneError when a route point
@@ -44,14 +45,14 @@ class FormationMovement {
   ~FormationMovement();
 
   /// Whether the scene has a formation at all.
-  bool active() const { return !groups_.empty(); }
+  bool active() const override { return !groups_.empty(); }
   /// Widest separation radius of the formations (the halo must reach this far).
   double reach() const { return reach_; }
 
   /// Advances every formation to the end of tick `tick` (the centres take every step from tick
   /// 0 on, so a zone restarted at a later tick catches up) and steps the members of `store`,
-  /// seeing same-population `ghosts`.
-  void step(EntityStore& store, const GhostStore* ghosts, double dt, std::uint64_t tick);
+  /// seeing same-population ghosts.
+  void step(StepContext& ctx) override;
 
   /// Number of formations (in population order).
   std::size_t count() const { return groups_.size(); }

@@ -47,8 +47,15 @@ Vec3 wanderVelocity(const Scene& scene, EntityStore& store, std::size_t i, doubl
 
 }  // namespace
 
-void stepNpcs(const Scene& scene, EntityStore& store, const Neighbourhood& near, double time,
-              double dt) {
+WanderMovement::WanderMovement(const Scene& scene) : scene_(scene) {
+  for (const NpcPopulation& p : scene.npcs) active_ |= p.count > 0;
+}
+
+void WanderMovement::step(StepContext& ctx) {
+  const Scene& scene = scene_;
+  EntityStore& store = ctx.store;
+  const Neighbourhood& near = ctx.near;
+  const double time = ctx.time, dt = ctx.dt;
   if (store.count(EntityKind::Npc) == 0) return;
   // Pass 1 reads positions only: every NPC decides from the tick's starting state.
   std::vector<std::pair<std::size_t, Vec3>> desired;

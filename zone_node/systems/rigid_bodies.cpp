@@ -8,6 +8,7 @@
 #include "physics/world.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/population.h"
+#include "zone_node/tick_profile.h"
 
 namespace zonesim::zone {
 
@@ -278,10 +279,13 @@ void RigidBodySystem::stepCloths(double dt) {
   cloth_colliders_->applyReactions(*world_);
 }
 
-std::size_t RigidBodySystem::step(EntityStore& store, const GhostStore* ghosts, double dt,
-                                  std::optional<std::uint64_t> tick) {
-  const std::uint64_t tick_index = tick ? *tick : ticks_;
-  ticks_ = tick_index + 1;
+void RigidBodySystem::step(StepContext& ctx) {
+  profile_ = {};
+  ctx.counters.bodies_awake = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.tick);
+}
+
+std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghosts, double dt,
+                                     std::uint64_t tick_index) {
   ghost_impulses_.clear();
   IdSetDigest now;
   for (std::size_t i = 0; i < store.size(); ++i)
@@ -328,6 +332,7 @@ std::size_t RigidBodySystem::step(EntityStore& store, const GhostStore* ghosts, 
   if (awake > 0 || pushed) {
     std::size_t frozen_before = world_->quarantined().size();
     world_->step(dt);
+    profile_ = world_->profile();
     quarantined_ += world_->quarantined().size() - frozen_before;
   }
   stepCloths(dt);

@@ -29,9 +29,11 @@
 #include "common/entity_id.h"
 #include "common/math.h"
 #include "common/scene.h"
+#include "physics/step_profile.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/set_pieces.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::physics {
 class World;
@@ -41,17 +43,20 @@ class ClothColliders;
 
 namespace zonesim::zone {
 
-class RigidBodySystem {
+class RigidBodySystem : public ZoneSystem {
  public:
   /// `rank`: this zone's rank, which decides whose contacts across a border it resolves.
   RigidBodySystem(const Scene& scene, int rank);
   ~RigidBodySystem();
 
-  /// Steps the zone's bodies (and cloths) by dt, pushing the ghosts of higher ranks' bodies as
-  /// well, and writes their state back; returns how many are awake. `tick` is the number of
-  /// the tick being stepped (it times the explosions); absent: the count of earlier calls.
-  std::size_t step(EntityStore& store, const GhostStore* ghosts, double dt,
-                   std::optional<std::uint64_t> tick = std::nullopt);
+  /// Created when the zone first holds a body or the scene has cloths: active from then on.
+  bool active() const override { return true; }
+  /// Steps the zone's bodies (and cloths) by one tick, pushing the ghosts of higher ranks'
+  /// bodies as well, and writes their state back; counts the awake bodies. The tick times the
+  /// explosions and kinematic set pieces.
+  void step(StepContext& ctx) override;
+  /// Time of each engine stage in the last step (zero when the world did not step).
+  const physics::StepProfile& profile() const { return profile_; }
   /// The scene's cloths, in scene order.
   std::size_t clothCount() const { return cloths_.size(); }
   /// Cloth i as stepped so far.
@@ -68,6 +73,8 @@ class RigidBodySystem {
   std::uint64_t rebuilds() const { return rebuilds_; }
 
  private:
+  /// Returns how many bodies are awake.
+  std::size_t advance(EntityStore& store, const GhostStore* ghosts, double dt, std::uint64_t tick);
   void rebuild(const EntityStore& store, const GhostStore* ghosts,
                const std::vector<std::size_t>& foreign);
   /// Ghost indices of the bodies whose contacts with ours this zone resolves, in id order.
@@ -90,7 +97,7 @@ class RigidBodySystem {
   std::vector<GhostImpulse> ghost_impulses_;
   std::uint64_t quarantined_ = 0;
   std::uint64_t rebuilds_ = 0;
-  std::uint64_t ticks_ = 0;  // calls so far, the tick when none is given
+  physics::StepProfile profile_;
   std::size_t joints_added_ = 0;
   std::vector<std::unique_ptr<physics::Cloth>> cloths_;
   std::vector<int> cloth_substeps_;

@@ -72,8 +72,10 @@ int RoadMovement::nextHop(std::size_t p, int from, int goal, double time) {
   return hop;
 }
 
-void RoadMovement::step(EntityStore& store, double dt, std::uint64_t tick) {
-  const double time = double(tick) * dt;
+void RoadMovement::step(StepContext& ctx) {
+  EntityStore& store = ctx.store;
+  const double dt = ctx.dt;
+  const double time = double(ctx.tick) * dt;
   for (std::size_t i = 0; i < store.size(); ++i) {
     if (store.kind[i] != EntityKind::Npc || store.npc[i].flock < 0) continue;
     Network* n = networkOf(store.npc[i].flock);

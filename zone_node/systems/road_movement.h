@@ -15,20 +15,21 @@
 
 #include "common/scene.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/systems/step_context.h"
 
 namespace zonesim::zone {
 
 /// Steps the road-network NPC populations of a scene.
-class RoadMovement {
+class RoadMovement : public ZoneSystem {
  public:
   explicit RoadMovement(const Scene& scene);
   ~RoadMovement();
 
   /// Whether the scene has a road population at all.
-  bool active() const { return !networks_.empty(); }
+  bool active() const override { return !networks_.empty(); }
 
-  /// Moves the road NPCs of `store` through tick `tick` (closures as at its start, tick * dt).
-  void step(EntityStore& store, double dt, std::uint64_t tick);
+  /// Moves the road NPCs through the tick (closures as at its start, tick * dt).
+  void step(StepContext& ctx) override;
 
   /// The node after `from` on a cheapest path to `goal` for population `p` over the edges it
   /// may use that are open at `time`; -1 when there is none (and `goal` itself at the goal).

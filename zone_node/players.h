@@ -1,0 +1,91 @@
+#pragma once
+// The player protocol of a zone: avatars spawned and despawned at the gateways' request, inputs
+// applied in sequence order exactly once (held across a gap, forwarded to the new owner after a
+// handoff), owners announced to the gateways, and the time of each handoff from the border
+// crossing to the first input applied. The tick calls it in its input and migrate phases;
+// avatars move in a phase of their own (avatar_movement.h).
+
+#include <cstdint>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "common/entity_id.h"
+#include "zone_node/cluster/entity_codec.h"
+#include "zone_node/departure.h"
+#include "zone_node/entity_store.h"
+
+namespace zonesim {
+struct Scene;
+}
+
+namespace zonesim::zone {
+
+class ZoneLink;
+struct MigrationResult;
+struct TickCounters;
+
+/// What the protocol changes in its zone during a tick.
+struct PlayerZone {
+  EntityStore& store;
+  IdSetDigest& ledger;              ///< created here minus destroyed here
+  EntityIdAllocator& ids;           ///< ids of new avatars
+  std::vector<Departure>& leavers;  ///< avatars destroyed here (the publisher says so)
+  TickCounters& counters;
+  ZoneLink* link;  ///< the gateways (null: no DDS)
+  std::uint64_t tick;
+};
+
+/// The players of one zone.
+class Players {
+ public:
+  /// `rank` of `ranks` zones: a new avatar is created by rank player_id % ranks.
+  Players(const Scene& scene, int rank, int ranks);
+
+  /// The avatars a restart brought back to this zone: remembered as spawned, and their owner
+  /// announced, since the gateways must learn where they live now.
+  void restored(PlayerZone& zone);
+  /// Input phase: the inputs forwarded with the last migration, then the gateways' spawn,
+  /// despawn and input messages, then held inputs whose turn has come.
+  void input(PlayerZone& zone);
+  /// Migrate phase, after the exchange: handoffs out and in, avatars that arrived after their
+  /// despawn, new avatars' first announcement; keeps the inputs other zones forwarded.
+  void migrated(PlayerZone& zone, MigrationResult& result);
+
+  /// Inputs for rank r's avatars, to pass on with the next migration (one queue per rank).
+  std::vector<std::vector<ForwardedInput>>& forwardQueues() { return forward_; }
+  /// Handoffs completed this tick: ticks from the avatar's arrival at this zone to the first
+  /// input applied here.
+  const std::vector<std::uint64_t>& handoffLatencyTicks() const { return handoff_latency_ticks_; }
+  /// Forgets the last tick's handoff figures.
+  void startTick() { handoff_latency_ticks_.clear(); }
+
+ private:
+  void spawnAvatar(PlayerZone& zone, std::uint64_t player_id, double x, double z);
+  void applyInput(PlayerZone& zone, std::uint64_t player_id, std::uint32_t seq, float move_x,
+                  float move_z);
+  /// Applies held inputs whose turn has come, or whose gap has waited kInputHoldTicks.
+  void releaseHeldInputs(PlayerZone& zone);
+  void despawnAvatar(PlayerZone& zone, std::uint64_t player_id);
+  void destroyAt(PlayerZone& zone, std::size_t index);
+
+  const Scene& scene_;
+  int rank_, ranks_;
+  std::vector<EntityId> unannounced_;  // avatars created or received here, not yet announced
+  std::vector<std::vector<ForwardedInput>> forward_;         // per destination rank
+  std::vector<ForwardedInput> forwarded_in_;                 // to apply next input phase
+  std::unordered_map<std::uint64_t, int> departed_players_;  // player -> rank its avatar went to
+  std::unordered_set<std::uint64_t> known_players_;          // every spawn request seen
+  std::unordered_set<std::uint64_t> despawned_players_;      // every despawn request seen
+  struct HeldInput {
+    float move_x, move_z;
+    std::uint64_t since_tick;
+  };
+  static constexpr std::uint64_t kInputHoldTicks = 3;  // a forwarded input lags by one tick
+  std::map<std::uint64_t, std::map<std::uint32_t, HeldInput>> held_inputs_;  // player -> seq
+  std::unordered_map<std::uint64_t, std::uint64_t> handoff_started_;  // player -> arrival tick
+  std::vector<std::uint64_t> handoff_latency_ticks_;                  // completed this tick
+};
+
+}  // namespace zonesim::zone
