@@ -6,7 +6,7 @@
 #include "common/log.h"
 #include "common/scene.h"
 #include "zone_node/cluster/migration.h"
-#include "zone_node/net/zone_link.h"
+#include "zone_node/net/gateway_link.h"
 #include "zone_node/tick_profile.h"
 
 namespace zonesim::zone {

@@ -22,7 +22,7 @@ struct Scene;
 
 namespace zonesim::zone {
 
-class ZoneLink;
+class GatewayLink;
 struct MigrationResult;
 struct TickCounters;
 
@@ -33,7 +33,7 @@ struct PlayerZone {
   EntityIdAllocator& ids;           ///< ids of new avatars
   std::vector<Departure>& leavers;  ///< avatars destroyed here (the publisher says so)
   TickCounters& counters;
-  ZoneLink* link;  ///< the gateways (null: no DDS)
+  GatewayLink* link;  ///< the gateways (null: no DDS)
   std::uint64_t tick;
 };
 

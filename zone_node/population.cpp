@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "common/rng.h"
-#include "zone_node/systems/formation_movement.h"
+#include "zone_node/formation_start.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {

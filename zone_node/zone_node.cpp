@@ -10,7 +10,7 @@
 #include "zone_node/cluster/trail_exchange.h"
 #include "zone_node/cluster/value_gather.h"
 #include "zone_node/net/cell_publisher.h"
-#include "zone_node/net/zone_link.h"
+#include "zone_node/net/gateway_link.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/systems/ant_movement.h"
@@ -20,6 +20,7 @@
 #include "zone_node/systems/flow_movement.h"
 #include "zone_node/systems/formation_movement.h"
 #include "zone_node/systems/npc_movement.h"
+#include "zone_node/systems/offload_probe.h"
 #include "zone_node/systems/rigid_bodies.h"
 #include "zone_node/systems/road_movement.h"
 #include "zone_node/systems/step_context.h"
@@ -74,7 +75,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   for (const NpcPopulation& p : scene_.npcs) offloadable |= p.flock.enabled && p.count > 0;
   const bool probe = options_.gpu == "probe";
   const std::string gpu_mode = probe ? "auto" : options_.gpu;
-  const gpu::OffloadThresholds thresholds = agreedThresholds(comm_, probe && offloadable);
+  const gpu::OffloadThresholds thresholds =
+      agreedThresholds(comm_, probe && offloadable, probeZoneThresholds);
   flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
   map_ = loadWorldMap(scene);
   flows_ = std::make_unique<FlowMovement>(scene, map_.get());
@@ -120,7 +122,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
     forEachInitialEntity(scene_, keepIfMine);
   }
   if (options_.dds) {
-    link_ = std::make_unique<ZoneLink>(options_.dds_domain, rank_);
+    link_ = std::make_unique<GatewayLink>(options_.dds_domain, rank_);
     publisher_ = std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_,
                                                  rank_, scene_);
     coverZone();

@@ -27,7 +27,7 @@
 
 namespace zonesim::zone {
 
-class ZoneLink;
+class GatewayLink;
 class CellPublisher;
 class EmitterSystem;
 class RigidBodySystem;
@@ -136,7 +136,7 @@ class ZoneNode {
   double walker_reach_ = 0;       // widest radius at which walkers see each other
   Neighbourhood near_;            // walkers and their ghosts, rebuilt each AI phase
   std::uint64_t layout_version_ = 0;  // bumped whenever zone boundaries move
-  std::unique_ptr<ZoneLink> link_;
+  std::unique_ptr<GatewayLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;
   std::unique_ptr<RigidBodySystem> bodies_;        // created when the first body shows up

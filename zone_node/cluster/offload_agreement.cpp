@@ -7,10 +7,7 @@
 #include <thread>
 
 #include "common/log.h"
-#include "gpu/default_runtime.h"
 #include "gpu/gpu_error.h"
-#include "gpu/offload_probe.h"
-#include "zone_node/systems/flock_backend.h"
 
 namespace zonesim::zone {
 
@@ -26,24 +23,14 @@ void shareCpuDeviceAmongLocalRanks(MPI_Comm comm) {
   setenv("POCL_MAX_PTHREAD_COUNT", std::to_string(share).c_str(), 0);
 }
 
-gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe) {
+gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe, const ThresholdProbe& measure) {
   shareCpuDeviceAmongLocalRanks(comm);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   gpu::OffloadThresholds t = gpu::defaultThresholds();
   if (rank == 0 && probe && gpu::openClAvailable()) {
     try {
-      // Only what zone_node runs on a device: particles, and flocks, which step on the crowd
-      // flock or gpu::PlanarFlock (not gpu::Flock), so their own crossover is the boids
-      // threshold here. Nothing in a zone uses CrowdBatch: crowd keeps its default.
-      t.particles = gpu::crossover(
-          gpu::probeWorkload(gpu::Workload::Particles, gpu::defaultRuntime(), gpu::kProbeSizes));
-      t.boids = gpu::crossover(probeFlockBackends(gpu::kProbeSizes));
-      auto from = [](std::size_t n) {
-        return n == gpu::kNeverOffload ? std::string("never") : "from " + std::to_string(n);
-      };
-      ZS_INFO("offload probe on rank 0: particles %s, zone flocks %s", from(t.particles).c_str(),
-              from(t.boids).c_str());
+      measure(t);
     } catch (const gpu::GpuError& e) {
       ZS_WARN("offload probe failed (%s); using the default thresholds", e.what());
     }

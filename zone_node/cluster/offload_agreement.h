@@ -7,6 +7,8 @@
 
 #include <mpi.h>
 
+#include <functional>
+
 #include "gpu/offload.h"
 
 namespace zonesim::zone {
@@ -17,9 +19,13 @@ namespace zonesim::zone {
 /// of a few (docs/gpu.md). Collective; must run before the process opens OpenCL.
 void shareCpuDeviceAmongLocalRanks(MPI_Comm comm);
 
-/// The thresholds every rank uses: probed on rank 0 when `probe` (and a device exists there),
-/// else gpu::defaultThresholds(); collective. The boids threshold is the zone flocks' own
-/// (probeFlockBackends), not gpu::Flock's. Calls shareCpuDeviceAmongLocalRanks first.
-gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe);
+/// Refines default thresholds by timing kernels on this rank; may throw gpu::GpuError, which
+/// keeps what it had set by then.
+using ThresholdProbe = std::function<void(gpu::OffloadThresholds&)>;
+
+/// The thresholds every rank uses: gpu::defaultThresholds(), refined by `measure` on rank 0
+/// when `probe` (and a device exists there); collective. Calls shareCpuDeviceAmongLocalRanks
+/// first.
+gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe, const ThresholdProbe& measure);
 
 }  // namespace zonesim::zone

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "crowd/formation.h"
+#include "zone_node/formation_start.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
@@ -12,32 +13,8 @@ namespace zonesim::zone {
 
 namespace {
 
-crowd::FormationSettings settingsOf(const NpcFormation& f) {
-  crowd::FormationSettings s;
-  s.centreSpeed = f.centre_speed;
-  s.memberMaxSpeed = f.max_speed;
-  s.maxForce = f.max_force;
-  s.steerRate = f.steer_rate;
-  s.slotGain = f.slot_gain;
-  s.slowRadius = f.slow_radius;
-  s.turnRate = f.turn_rate;
-  s.cutOffDistance = f.cut_off;
-  s.rejoinDistance = f.rejoin;
-  s.replanDistance = f.replan;
-  s.separationRadius = f.separation_radius;
-  s.separationWeight = f.separation_weight;
-  return s;
-}
-
 std::string sceneFile(const Scene& scene) {
   return scene.source_path.empty() ? scene.name : scene.source_path;
-}
-
-/// The heading the formation starts with: toward the second route point.
-crowd::Vec2 startHeading(const NpcFormation& f) {
-  if (f.route.size() < 2) return {1.0, 0.0};
-  crowd::Vec2 d{f.route[1].x - f.route[0].x, f.route[1].z - f.route[0].z};
-  return crowd::lengthSq(d) > 1e-12 ? crowd::withLength(d, 1.0) : crowd::Vec2{1.0, 0.0};
 }
 
 /// Counter of the id of the first NPC of population `p` (scene ids count up from 1).
@@ -49,28 +26,13 @@ std::uint64_t firstCounter(const Scene& scene, std::size_t p) {
 
 }  // namespace
 
-crowd::Vec2 formationSlot(const NpcFormation& f, int count, int k) {
-  const int columns = std::min(f.columns, std::max(count, 1));
-  const int rows = (count + columns - 1) / columns;
-  const int row = k / columns, col = k % columns;
-  const int inRow = std::min(columns, count - row * columns);
-  return {(0.5 * (rows - 1) - row) * f.spacing, (0.5 * (inRow - 1) - col) * f.spacing};
-}
-
-crowd::Vec2 formationStart(const Scene& scene, const WorldMap& map, std::size_t p, int k) {
-  const NpcFormation& f = scene.npcs[p].formation;
-  crowd::FormationCentre centre(settingsOf(f), {f.route[0].x, f.route[0].z}, startHeading(f));
-  crowd::Vec2 at = centre.slotPosition(formationSlot(f, scene.npcs[p].count, k));
-  return map.walkable(at.x, at.y) ? at : centre.position();
-}
-
 /// One formation: its centre, the member stepper and the gather buffers.
 struct FormationMovement::Group {
   Group(std::int32_t p, const WorldMap& map, const NpcFormation& f)
       : view(p),
         formation(f),
-        centre(settingsOf(f), {f.route[0].x, f.route[0].z}, startHeading(f)),
-        stepper(map.grid, map.frame, settingsOf(f)) {}
+        centre(formationSettings(f), {f.route[0].x, f.route[0].z}, formationHeading(f)),
+        stepper(map.grid, map.frame, formationSettings(f)) {}
   PlanarCrowd view;
   const NpcFormation& formation;
   std::uint64_t first = 0;  // id counter of member 0

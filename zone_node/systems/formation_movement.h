@@ -26,15 +26,6 @@ namespace zonesim::zone {
 class GhostStore;
 struct WorldMap;
 
-/// Slot offset (formation frame: x ahead, y to the left) of member `k` of a formation of
-/// `count` members: rows of `columns` across the heading, `spacing` apart, centred on the
-/// formation's centre.
-crowd::Vec2 formationSlot(const NpcFormation& f, int count, int k);
-
-/// Where member `k` of population `p` starts: its slot around the first route point, the
-/// formation facing the second (the centre itself when the slot lies on a blocked cell).
-crowd::Vec2 formationStart(const Scene& scene, const WorldMap& map, std::size_t p, int k);
-
 /// Steps the formation NPC populations of a scene.
 class FormationMovement : public ZoneSystem {
  public:

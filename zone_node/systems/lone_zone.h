@@ -16,7 +16,9 @@ namespace zonesim::zone {
 /// A lone zone's step context: no other ranks (no gather, sums are its own), no ghosts unless
 /// given, `near` empty unless the caller builds it, and `players` for level of detail.
 struct LoneZone {
-  double dt = 1.0 / 30;
+  explicit LoneZone(double tick_dt) : dt(tick_dt) {}
+
+  double dt;
   Neighbourhood near;
   std::vector<crowd::Vec2> players;
   Collectives cluster;

@@ -1,4 +1,4 @@
-#include "zone_node/net/zone_link.h"
+#include "zone_node/net/gateway_link.h"
 
 #include "idl/dds_qos.h"
 #include "idl/dds_take.h"
@@ -6,7 +6,7 @@
 
 namespace zonesim::zone {
 
-ZoneLink::ZoneLink(int domain, int rank)
+GatewayLink::GatewayLink(int domain, int rank)
     : participant_(dds::makeParticipant(domain)), topics_(dds::makeTopics(participant_.get())) {
   dds::Qos q = dds::reliableKeepAllQos();
   inputs_ = dds::makePartitionReader(participant_.get(), topics_.player_input.get(),
@@ -17,7 +17,7 @@ ZoneLink::ZoneLink(int domain, int rank)
   ownership_ = dds::makePartitionWriter(participant_.get(), topics_.ownership.get(), "", q.get());
 }
 
-std::vector<PlayerInputMsg> ZoneLink::takeInputs() {
+std::vector<PlayerInputMsg> GatewayLink::takeInputs() {
   std::vector<PlayerInputMsg> out;
   dds::takeAll<zonesim_dds_PlayerInput>(
       inputs_.reader.get(), [&](const zonesim_dds_PlayerInput& s) {
@@ -26,7 +26,7 @@ std::vector<PlayerInputMsg> ZoneLink::takeInputs() {
   return out;
 }
 
-std::vector<SpawnRequestMsg> ZoneLink::takeSpawnRequests() {
+std::vector<SpawnRequestMsg> GatewayLink::takeSpawnRequests() {
   std::vector<SpawnRequestMsg> out;
   dds::takeAll<zonesim_dds_SpawnRequest>(
       spawns_.reader.get(), [&](const zonesim_dds_SpawnRequest& s) {
@@ -35,7 +35,7 @@ std::vector<SpawnRequestMsg> ZoneLink::takeSpawnRequests() {
   return out;
 }
 
-std::vector<std::uint64_t> ZoneLink::takeDespawnRequests() {
+std::vector<std::uint64_t> GatewayLink::takeDespawnRequests() {
   std::vector<std::uint64_t> out;
   dds::takeAll<zonesim_dds_DespawnRequest>(
       despawns_.reader.get(),
@@ -43,7 +43,7 @@ std::vector<std::uint64_t> ZoneLink::takeDespawnRequests() {
   return out;
 }
 
-void ZoneLink::announce(const OwnershipMsg& m) {
+void GatewayLink::announce(const OwnershipMsg& m) {
   zonesim_dds_OwnershipEvent s{};
   s.player_id = m.player_id;
   s.avatar_id = m.avatar_id;

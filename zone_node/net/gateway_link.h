@@ -34,10 +34,10 @@ struct OwnershipMsg {
   std::uint32_t last_input_seq = 0;
 };
 
-class ZoneLink {
+class GatewayLink {
  public:
   /// Joins the DDS domain as zone `rank`; throws dds::DdsError on failure.
-  ZoneLink(int domain, int rank);
+  GatewayLink(int domain, int rank);
 
   dds_entity_t participant() const { return participant_.get(); }
   const dds::Topics& topics() const { return topics_; }
