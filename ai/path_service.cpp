@@ -123,6 +123,10 @@ const GridPath& PathService::path(PathRequestId id) const {
 void PathService::setCell(Cell c, bool open) {
   if (!map_.inside(c.x, c.y) || map_.passable(c.x, c.y) == open) return;
   map_.setPassable(c.x, c.y, open);
+  cellChanged(c, open);
+}
+
+void PathService::cellChanged(Cell c, bool open) {
   if (hpa_) hpa_->cellChanged(c);
   if (open) {
     // Existing paths stay walkable; only cached answers might now be beaten, and requests

@@ -54,7 +54,8 @@ struct PathServiceStats {
 /// Budgeted, cached path finding over one map that the service owns changes to.
 class PathService {
  public:
-  /// Serves paths on `map`, which must outlive the service and change only through setCell().
+  /// Serves paths on `map`, which must outlive the service and change only through setCell(), or
+  /// by its owner followed by cellChanged().
   PathService(GridMap& map, const PathServiceConfig& config);
 
   /// Queues a request; its path is available after a later tick().
@@ -74,6 +75,8 @@ class PathService {
   const GridPath& path(PathRequestId id) const;
   /// Opens or closes a cell, repairs the planner, and re-queues requests whose path it cut.
   void setCell(Cell c, bool open);
+  /// The same repairs for a cell its owner has already opened or closed on the shared map.
+  void cellChanged(Cell c, bool open);
   /// Requests waiting for a tick.
   std::size_t queued() const { return queue_.size(); }
   /// Counters.

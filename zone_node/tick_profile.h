@@ -16,6 +16,7 @@ constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
 /// Named steps inside the phases, as Box2D's b2Profile names its stages: the metrics write each
 /// as `<phase>.<step>_ms`, so a slow phase shows which system or stage grew.
 enum class Stage {
+  AiDoors,
   AiNeighbours,
   AiLod,
   AiAgents,
@@ -35,7 +36,8 @@ enum class Stage {
   Count
 };
 constexpr std::size_t kStageCount = std::size_t(Stage::Count);
-constexpr std::array<const char*, kStageCount> kStageNames = {"ai.neighbours",
+constexpr std::array<const char*, kStageCount> kStageNames = {"ai.doors",
+                                                              "ai.neighbours",
                                                               "ai.lod",
                                                               "ai.agents",
                                                               "ai.wander",

@@ -25,6 +25,7 @@
 #include "zone_node/systems/road_movement.h"
 #include "zone_node/systems/step_context.h"
 #include "zone_node/world_map.h"
+#include "zone_node/zone_map.h"
 
 namespace zonesim::zone {
 
@@ -78,13 +79,13 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   const gpu::OffloadThresholds thresholds =
       agreedThresholds(comm_, probe && offloadable, probeZoneThresholds);
   flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
-  map_ = loadWorldMap(scene);
+  map_ = ZoneMap::load(scene);
+  const WorldMap* walls = map_ ? &map_->world() : nullptr;
   flows_ = std::make_unique<FlowMovement>(scene, map_.get());
-  formations_ = std::make_unique<FormationMovement>(scene, map_.get());
+  formations_ = std::make_unique<FormationMovement>(scene, walls);
   roads_ = std::make_unique<RoadMovement>(scene);
-  ants_ = std::make_unique<AntMovement>(scene, map_.get());
-  agents_ = std::make_unique<AgentSystem>(scene, map_ ? &map_->grid : nullptr,
-                                          map_ ? map_->frame : crowd::MapFrame{});
+  ants_ = std::make_unique<AntMovement>(scene, walls);
+  agents_ = std::make_unique<AgentSystem>(scene, map_.get());
   wanderers_ = std::make_unique<WanderMovement>(scene);
   // The path budget is the cluster's: zones share their oldest requests' keys every tick. The
   // ants' trail deposits are summed in integers, the same on every rank.
@@ -146,6 +147,10 @@ std::string ZoneNode::particleBackend() const {
   return emitters_->backendName();
 }
 
+const WorldMap* ZoneNode::worldMap() const {
+  return map_ ? &map_->world() : nullptr;
+}
+
 std::string ZoneNode::flockBackend() const {
   return flocks_->backendName();
 }
@@ -194,6 +199,11 @@ void ZoneNode::input() {
 }
 
 void ZoneNode::ai() {
+  // The doors change the one map every system reads, before any of them steps.
+  if (map_ && map_->hasDoors()) {
+    ScopedTimer t(profile_[Stage::AiDoors]);
+    map_->applyDoors(double(tick_) * scene_.dt);
+  }
   if (walker_reach_ > 0) {
     ScopedTimer t(profile_[Stage::AiNeighbours]);
     near_.build(store_, &halo_.ghosts(), walker_reach_);

@@ -38,6 +38,7 @@ class RoadMovement;
 class AntMovement;
 class WanderMovement;
 struct WorldMap;
+class ZoneMap;
 class AgentSystem;
 class ZoneSystem;
 struct StepContext;
@@ -94,7 +95,7 @@ class ZoneNode {
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
   std::string particleBackend() const;
   /// The scene's obstacle map (`map:` key), or null when it has none.
-  const WorldMap* worldMap() const { return map_.get(); }
+  const WorldMap* worldMap() const;
   /// Which backend the flocking populations use ("cpu", "opencl" or "none").
   std::string flockBackend() const;
 
@@ -139,9 +140,9 @@ class ZoneNode {
   std::unique_ptr<GatewayLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
   std::unique_ptr<EmitterSystem> emitters_;
-  std::unique_ptr<RigidBodySystem> bodies_;        // created when the first body shows up
-  std::unique_ptr<FlockMovement> flocks_;          // flocking NPC populations of the scene
-  std::shared_ptr<const WorldMap> map_;            // the scene's walls; null without `map:`
+  std::unique_ptr<RigidBodySystem> bodies_;  // created when the first body shows up
+  std::unique_ptr<FlockMovement> flocks_;    // flocking NPC populations of the scene
+  std::unique_ptr<ZoneMap> map_;  // the scene's walls as the doors leave them; null without `map:`
   std::unique_ptr<FlowMovement> flows_;            // flow-field NPC populations (need map_)
   std::unique_ptr<FormationMovement> formations_;  // fixed groups (need map_)
   std::unique_ptr<RoadMovement> roads_;            // road networks (waypoint graphs)

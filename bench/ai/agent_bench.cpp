@@ -20,6 +20,7 @@
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/world_map.h"
+#include "zone_node/zone_map.h"
 
 using namespace zonesim;
 using namespace zonesim::zone;
@@ -85,8 +86,8 @@ void run(const Case& c, int agents, int ticks, int paths_per_tick, bool hpa, con
   Scene scene = parseScene(sceneText(c, agents, paths_per_tick, hpa), "bench");
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
-  std::shared_ptr<const WorldMap> map = loadWorldMap(scene);
-  AgentSystem system(scene, map ? &map->grid : nullptr, map ? map->frame : crowd::MapFrame{});
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
+  AgentSystem system(scene, map.get());
   WanderMovement wander(scene);
   LoneZone lone{scene.dt};  // wanderers do not separate: lone.near is never queried
   double seconds = 0;

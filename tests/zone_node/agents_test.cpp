@@ -15,6 +15,7 @@
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
+#include "zone_node/zone_map.h"
 #include "zone_node/zone_node.h"
 
 namespace zonesim::zone {
@@ -314,8 +315,8 @@ Pursuit runPursuit(const std::string& tree, double sight, double ax, double az, 
   Scene scene = parseScene(text, "pursuit");
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
-  std::shared_ptr<const WorldMap> map = loadWorldMap(scene);
-  AgentSystem system(scene, &map->grid, map->frame);
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
+  AgentSystem system(scene, map.get());
   std::size_t agent = 0, enemy = 0;
   for (std::size_t i = 0; i < store.size(); ++i) (store.agent[i].type >= 0 ? agent : enemy) = i;
   store.pos[agent] = Vec3(ax, store.pos[agent].y(), az);
@@ -331,8 +332,8 @@ Pursuit runPursuit(const std::string& tree, double sight, double ax, double az, 
     double moved = std::hypot(store.pos[agent].x() - before.x(), store.pos[agent].z() - before.z());
     if (active && a.nav == std::int32_t(AgentNav::Moving) && moved < 0.5 * 3 * scene.dt)
       ++r.steps_into_walls;
-    ai::Cell c = map->frame.cellOf({store.pos[agent].x(), store.pos[agent].z()});
-    if (!map->grid.passable(c.x, c.y)) ++r.ticks_on_blocked_cells;
+    ai::Cell c = map->world().frame.cellOf({store.pos[agent].x(), store.pos[agent].z()});
+    if (!map->world().grid.passable(c.x, c.y)) ++r.ticks_on_blocked_cells;
     double d = std::hypot(store.pos[agent].x() - ex, store.pos[agent].z() - ez);
     r.min_distance = std::min(r.min_distance, d);
     r.final_distance = d;

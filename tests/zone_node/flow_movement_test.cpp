@@ -17,6 +17,7 @@
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
+#include "zone_node/zone_map.h"
 
 namespace zonesim::zone {
 namespace {
@@ -27,7 +28,7 @@ std::string source(const std::string& relative) {
 
 TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
   Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
-  auto map = loadWorldMap(scene);
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
   ASSERT_NE(map, nullptr);
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
@@ -45,7 +46,7 @@ TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
     lone.step(flows, store, std::uint64_t(tick));
     walking = flows.walking();
     for (std::size_t i = 0; i < store.size(); ++i)
-      on_walls += map->walkable(store.pos[i].x(), store.pos[i].z()) ? 0 : 1;
+      on_walls += map->world().walkable(store.pos[i].x(), store.pos[i].z()) ? 0 : 1;
   }
   std::printf("all %zu NPCs arrived after %.1f s (bound %.1f s)\n", store.size() - walking,
               tick * scene.dt, max_ticks * scene.dt);
@@ -74,12 +75,12 @@ TEST(FlowMovement, TheCrowdGoesRoundADoorThatCloses) {
     d.y = y;
     scene.agents.doors.push_back(d);
   }
-  auto map = loadWorldMap(scene);
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
   FlowMovement flows(scene, map.get());
   auto cellAt = [&](std::size_t i) {
-    return map->frame.cellOf({store.pos[i].x(), store.pos[i].z()});
+    return map->world().frame.cellOf({store.pos[i].x(), store.pos[i].z()});
   };
   auto inDoor = [&](std::size_t i) {
     ai::Cell c = cellAt(i);
@@ -92,8 +93,9 @@ TEST(FlowMovement, TheCrowdGoesRoundADoorThatCloses) {
   LoneZone lone{scene.dt};
   for (; tick < max_ticks && walking > 0; ++tick) {
     double time = tick * scene.dt;
-    rebuilt += flows.applyDoors(time);  // the step applies them too: counted here first
+    map->applyDoors(time);  // as the zone does at the start of its AI phase
     lone.step(flows, store, std::uint64_t(tick));
+    rebuilt += flows.fieldsRebuilt();
     walking = flows.walking();
     for (std::size_t i = 0; i < store.size(); ++i) {
       bool in = inDoor(i);
@@ -125,7 +127,7 @@ TEST(FlowMovement, DestinationsSpreadOverTheNpcs) {
 TEST(FlowMovement, ADestinationOnAWallIsASceneError) {
   Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
   scene.npcs[0].flow.destinations[1] = {22.5, 20.5, 31};  // column 22 is a wall at row 20
-  auto map = loadWorldMap(scene);
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
   try {
     FlowMovement flows(scene, map.get());
     ADD_FAILURE() << "no SceneError";
@@ -139,7 +141,7 @@ TEST(FlowMovement, ADestinationOnAWallIsASceneError) {
 // Runs the courtyard crowd to the end; per NPC (by id) the tick it arrived. Counts NPC updates.
 std::map<std::uint64_t, int> arrivalTicks(const Scene& scene, std::span<const crowd::Vec2> players,
                                           std::size_t& updates) {
-  auto map = loadWorldMap(scene);
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
   FlowMovement flows(scene, map.get());

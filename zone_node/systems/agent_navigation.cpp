@@ -23,17 +23,9 @@ bool pathCrosses(const AgentData& a, int x, int y) {
 
 }  // namespace
 
-AgentNavigation::AgentNavigation(const Scene& scene, const ai::GridMap* grid,
-                                 const crowd::MapFrame& frame)
-    : scene_(scene), frame_(frame) {
-  if (!grid) return;
-  grid_ = *grid;
-  for (const AgentDoor& d : scene.agents.doors)
-    if (!grid_.inside(d.x, d.y))
-      throw SceneError(d.file + ":" + std::to_string(d.line) + ": agents.doors: cell (" +
-                       std::to_string(d.x) + ", " + std::to_string(d.y) + ") is off the " +
-                       std::to_string(grid_.width()) + "x" + std::to_string(grid_.height()) +
-                       " map");
+AgentNavigation::AgentNavigation(const Scene& scene, ZoneMap* map)
+    : scene_(scene), map_(map), frame_(map ? map->world().frame : crowd::MapFrame{}) {
+  if (!map) return;
   ai::PathServiceConfig c;
   const AgentPathSettings& p = scene.agents.paths;
   c.planner = p.hpa ? ai::PlannerKind::Hpa : ai::PlannerKind::AStar;
@@ -45,17 +37,16 @@ AgentNavigation::AgentNavigation(const Scene& scene, const ai::GridMap* grid,
   // planners are deterministic for a given map (A* and HPA* break every tie by a fixed order),
   // and any door, closing or opening, clears the cache.
   c.clearCacheOnClose = true;
-  service_ = std::make_unique<ai::PathService>(grid_, c);
+  service_ = std::make_unique<ai::PathService>(map->serviceGrid(), c);
 }
 
 AgentNavigation::~AgentNavigation() = default;
 
-void AgentNavigation::applyDoors(double time, EntityStore& store) {
-  const std::vector<AgentDoor>& doors = scene_.agents.doors;
-  while (next_door_ < doors.size() && doors[next_door_].at_s <= time + 1e-9) {
-    const AgentDoor& d = doors[next_door_++];
-    if (!service_ || !grid_.inside(d.x, d.y)) continue;
-    service_->setCell(ai::Cell{d.x, d.y}, d.open);
+void AgentNavigation::followDoors(EntityStore& store) {
+  if (!service_) return;
+  for (const ZoneMap::DoorChange& change : map_->doorsNow()) {
+    const AgentDoor& d = *change.door;
+    if (change.changed) service_->cellChanged(ai::Cell{d.x, d.y}, d.open);
     ++map_changes_;
     for (std::size_t i = 0; i < store.size(); ++i) {
       AgentData& a = store.agent[i];
@@ -73,7 +64,7 @@ void AgentNavigation::applyDoors(double time, EntityStore& store) {
 
 ai::Cell AgentNavigation::startCell(double x, double z) const {
   ai::Cell c = frame_.cellOf({x, z});
-  if (grid_.passable(c.x, c.y)) return c;
+  if (map_->world().grid.passable(c.x, c.y)) return c;
   // Standing in a cell that closed (a door shut on the agent): start from the open neighbour
   // whose centre is nearest, so the path leads out of it.
   ai::Cell best = c;
@@ -81,7 +72,7 @@ ai::Cell AgentNavigation::startCell(double x, double z) const {
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       ai::Cell n{c.x + dx, c.y + dy};
-      if (!grid_.passable(n.x, n.y)) continue;
+      if (!map_->world().grid.passable(n.x, n.y)) continue;
       crowd::Vec2 m = frame_.centre(n);
       double d = std::hypot(m.x - x, m.y - z);
       if (d < best_d) {
@@ -269,7 +260,9 @@ crowd::Vec2 AgentNavigation::fleeTarget(double x, double z, double ex, double ez
     // March out along the ray while the point stays in plain view of the agent.
     for (double r = step; r <= radius + 1e-9; r += step) {
       crowd::Vec2 p{x + dx * r, z + dz * r};
-      if (!crowd::walkable(grid_, frame_, p) || !crowd::lineOfSight(grid_, frame_, from, p)) break;
+      if (!crowd::walkable(map_->world().grid, frame_, p) ||
+          !crowd::lineOfSight(map_->world().grid, frame_, from, p))
+        break;
       crowd::Vec2 c = frame_.centre(frame_.cellOf(p));
       double d = std::hypot(c.x - ex, c.y - ez);
       if (d > best_d) {

@@ -29,6 +29,7 @@
 #include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
+#include "zone_node/zone_map.h"
 
 namespace zonesim::zone {
 
@@ -45,20 +46,20 @@ struct AgentPathStats {
 /// Paths, doors and path following for a zone's agents.
 class AgentNavigation {
  public:
-  /// `grid` (copied: doors change the copy) may be null for a scene without a map.
-  AgentNavigation(const Scene& scene, const ai::GridMap* grid, const crowd::MapFrame& frame);
+  /// `map` (the zone's, which the doors change) may be null for a scene without a map.
+  AgentNavigation(const Scene& scene, ZoneMap* map);
   ~AgentNavigation();
 
   /// Whether the scene has a map to plan on.
   bool hasMap() const { return service_ != nullptr; }
   /// The map as the doors left it (null without a map).
-  const ai::GridMap* grid() const { return service_ ? &grid_ : nullptr; }
+  const ai::GridMap* grid() const { return map_ ? &map_->world().grid : nullptr; }
   /// Where the map lies.
   const crowd::MapFrame& frame() const { return frame_; }
 
-  /// Opens and closes the doors due by `time`; agents whose path crosses a closed door, and
-  /// agents without a path when one opens, will ask again.
-  void applyDoors(double time, EntityStore& store);
+  /// Follows the doors the zone applied this tick (ZoneMap::doorsNow): agents whose path
+  /// crosses a closed door, and agents without a path when one opens, will ask again.
+  void followDoors(EntityStore& store);
   /// Agent i heads for (x, z) in tick `tick`: a navigating agent without a path to it asks for
   /// one.
   void want(EntityStore& store, std::size_t i, double x, double z, bool navigate,
@@ -85,10 +86,9 @@ class AgentNavigation {
   const ai::SplinePath& splineOf(const EntityStore& store, std::size_t i);
 
   const Scene& scene_;
-  ai::GridMap grid_;
+  ZoneMap* map_ = nullptr;
   crowd::MapFrame frame_;
   std::unique_ptr<ai::PathService> service_;
-  std::size_t next_door_ = 0;
   std::uint64_t map_changes_ = 0;
   struct Waiting {
     std::uint64_t asked, id;  // the request's key

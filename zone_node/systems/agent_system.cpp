@@ -26,11 +26,11 @@ Vec3 toward(const Vec3& from, const Vec3& to, double speed) {
 
 }  // namespace
 
-AgentSystem::AgentSystem(const Scene& scene, const ai::GridMap* grid, const crowd::MapFrame& frame)
+AgentSystem::AgentSystem(const Scene& scene, ZoneMap* map)
     : scene_(scene),
       decisions_(std::make_unique<AgentDecisions>(scene)),
       goap_(std::make_unique<AgentGoapPlans>(scene)),
-      nav_(scene, grid, frame) {
+      nav_(scene, map) {
   for (const AgentType& t : scene.agents.types) reach_ = std::max(reach_, t.sight);
 }
 
@@ -41,7 +41,7 @@ void AgentSystem::step(StepContext& ctx) {
   const double time = ctx.time, dt = ctx.dt;
   const auto tick = std::int64_t(ctx.tick);
   AgentTickStats stats;
-  nav_.applyDoors(time, store);
+  nav_.followDoors(store);
   senseAgents(scene_.agents, store, ctx.ghosts, time, senses_);
   // Decide and name targets; paths are asked for here and planned below in one budgeted batch.
   for (std::size_t i = 0; i < store.size(); ++i) {

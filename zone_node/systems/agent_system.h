@@ -2,12 +2,12 @@
 // AI agents in the zone tick. Each agent type of the scene composes a decision behaviour
 // (agent_decisions.h, agent_goap.h), perception (agent_senses.h), needs (health and energy that
 // the senses report back) and locomotion (steering, or paths and splines: agent_navigation.h).
-// Per tick: doors due open or close, every agent senses the tick's starting state, decides,
-// names where it is heading, the path service plans within its budget, then every agent moves.
-// An agent's result depends only on its own state (AgentData, which migrates with it), the
-// entities within its sight (the halo covers them) and the tick: the same on any decomposition
-// provided every zone shares path request keys through the step's gather (the budget is the
-// cluster's).
+// Per tick: agents follow the doors the zone opened or closed, every agent senses the tick's
+// starting state, decides, names where it is heading, the path service plans within its budget,
+// then every agent moves. An agent's result depends only on its own state (AgentData, which
+// migrates with it), the entities within its sight (the halo covers them) and the tick: the same on
+// any decomposition provided every zone shares path request keys through the step's gather (the
+// budget is the cluster's).
 
 #include <memory>
 #include <utility>
@@ -41,8 +41,8 @@ struct AgentTickStats {
 class AgentSystem : public ZoneSystem {
  public:
   /// Loads the scene's behaviours (throws SceneError or ai::ParseError naming the file and
-  /// line); `grid` is the scene's map or null.
-  AgentSystem(const Scene& scene, const ai::GridMap* grid, const crowd::MapFrame& frame);
+  /// line); `map` is the zone's map (doors applied by the zone) or null.
+  AgentSystem(const Scene& scene, ZoneMap* map);
   ~AgentSystem();
 
   /// Whether the scene has agent types at all.

@@ -8,6 +8,7 @@
 #include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
+#include "zone_node/zone_map.h"
 
 namespace zonesim::zone {
 
@@ -53,14 +54,14 @@ std::string sceneFile(const Scene& scene) {
 
 }  // namespace
 
-FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map)
-    : doors_(scene.agents.doors), lod_(scene.lod.enabled) {
-  if (map) grid_ = map->grid;
+FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
+    : map_(zone_map), lod_(scene.lod.enabled) {
+  const WorldMap* map = zone_map ? &zone_map->world() : nullptr;
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlow& f = scene.npcs[p].flow;
     if (!f.enabled) continue;
     if (!map) throw SceneError(sceneFile(scene) + ":0: map: a flow population needs a map");
-    auto g = std::make_unique<Group>(std::int32_t(p), grid_, map->frame, settingsOf(f),
+    auto g = std::make_unique<Group>(std::int32_t(p), map->grid, map->frame, settingsOf(f),
                                      lodOf(scene.lod));
     for (std::size_t k = 0; k < f.destinations.size(); ++k) {
       const NpcFlow::Destination& d = f.destinations[k];
@@ -78,17 +79,15 @@ FlowMovement::FlowMovement(const Scene& scene, const WorldMap* map)
 
 FlowMovement::~FlowMovement() = default;
 
-int FlowMovement::applyDoors(double time) {
-  bool changed = false;
-  while (next_door_ < doors_.size() && doors_[next_door_].at_s <= time + 1e-9) {
-    const AgentDoor& d = doors_[next_door_++];
-    if (groups_.empty() || !grid_.inside(d.x, d.y) || grid_.passable(d.x, d.y) == d.open) continue;
-    grid_.setPassable(d.x, d.y, d.open);
-    changed = true;
-  }
+const ai::GridMap* FlowMovement::grid() const {
+  return groups_.empty() ? nullptr : &map_->world().grid;
+}
+
+int FlowMovement::followDoors() {
+  // Every rank's map changes alike, so every rank rebuilds the same fields.
+  if (groups_.empty() || !map_->changedNow()) return 0;
   int rebuilt = 0;
-  if (changed)
-    for (const auto& g : groups_) rebuilt += g->crowd.refreshFields();
+  for (const auto& g : groups_) rebuilt += g->crowd.refreshFields();
   return rebuilt;
 }
 
@@ -106,7 +105,7 @@ bool FlowMovement::arrived(const EntityStore& store, std::size_t i) const {
 }
 
 void FlowMovement::step(StepContext& ctx) {
-  applyDoors(ctx.time);
+  fields_rebuilt_ = followDoors();
   walking_ = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.players, std::int64_t(ctx.tick));
 }
 

@@ -23,7 +23,7 @@
 namespace zonesim::zone {
 
 class GhostStore;
-struct WorldMap;
+class ZoneMap;
 
 /// Destination index in [0, count) of the flow NPC with this id (a hash, fixed for its life).
 int flowDestination(std::uint64_t id, int count);
@@ -31,24 +31,23 @@ int flowDestination(std::uint64_t id, int count);
 /// Steps the flow-field NPC populations of a scene.
 class FlowMovement : public ZoneSystem {
  public:
-  /// One crowd per population of `scene` with `flow.enabled`, on `map` (must outlive this;
-  /// required when there is such a population). Throws SceneError when a destination lies on a
-  /// blocked cell.
-  FlowMovement(const Scene& scene, const WorldMap* map);
+  /// One crowd per population of `scene` with `flow.enabled`, on the zone's `map` (must outlive
+  /// this; required when there is such a population), whose doors it follows. Throws SceneError
+  /// when a destination lies on a blocked cell.
+  FlowMovement(const Scene& scene, const ZoneMap* map);
   ~FlowMovement();
 
   /// Whether the scene has a flow-field population at all.
   bool active() const override { return !groups_.empty(); }
   /// Widest separation radius of the crowds (the halo must reach this far).
   double reach() const { return reach_; }
-  /// Opens and closes the scene's doors due by simulated time `time` on the crowds' map and
-  /// rebuilds the fields that changed; returns the number of fields rebuilt.
-  int applyDoors(double time);
+  /// Fields rebuilt by the last step because the zone's doors changed the map.
+  int fieldsRebuilt() const { return fields_rebuilt_; }
   /// The crowds' map as the doors left it (null without a flow population).
-  const ai::GridMap* grid() const { return groups_.empty() ? nullptr : &grid_; }
+  const ai::GridMap* grid() const;
 
-  /// Applies the doors due by the tick's start, then advances every flow NPC by one tick,
-  /// seeing same-population ghosts. With the scene's `lod`, ctx.players (every player avatar
+  /// Rebuilds the fields the zone's doors changed this tick, then advances every flow NPC by one
+  /// tick, seeing same-population ghosts. With the scene's `lod`, ctx.players (every player avatar
   /// of the cluster, x-z) and the tick choose each NPC's update (crowd::LevelOfDetail: the
   /// same plan for an NPC on every rank).
   void step(StepContext& ctx) override;
@@ -66,9 +65,11 @@ class FlowMovement : public ZoneSystem {
 
   struct Group;
   Group* groupOf(std::int32_t population) const;
-  std::vector<AgentDoor> doors_;  // the scene's, in time order
-  std::size_t next_door_ = 0;
-  ai::GridMap grid_;                            // the scene's map; doors change this copy
+  /// Rebuilds the fields when the zone's doors changed the map this tick; returns how many.
+  int followDoors();
+
+  const ZoneMap* map_;  // the zone's, as its doors leave it
+  int fields_rebuilt_ = 0;
   std::vector<std::unique_ptr<Group>> groups_;  // one per flow population
   double reach_ = 0;
   std::size_t walking_ = 0;
