@@ -7,17 +7,7 @@ namespace zonesim::zone {
 std::size_t EntityStore::add(const EntityRecordData& r) {
   assert(!index_of_.count(r.id.value) && "entity added twice");
   std::size_t i = id.size();
-  id.push_back(r.id);
-  kind.push_back(r.kind);
-  pos.push_back(r.pos);
-  vel.push_back(r.vel);
-  rot.push_back(r.rot);
-  rng_state.push_back(r.rng_state);
-  npc.push_back(r.npc);
-  avatar.push_back(r.avatar);
-  body.push_back(r.body);
-  emitter.push_back(r.emitter);
-  agent.push_back(r.agent);
+  forEachEntityColumn([&](const auto& c) { (this->*c.store).push_back(r.*c.record); });
   dr.push_back({});
   index_of_[r.id.value] = i;
   if (r.kind == EntityKind::Avatar) avatar_of_player_[r.avatar.player_id] = i;
@@ -43,23 +33,14 @@ void EntityStore::removeAt(std::size_t i) {
     index_of_[id[last].value] = i;
     if (kind[last] == EntityKind::Avatar) avatar_of_player_[avatar[last].player_id] = i;
   }
-  swapPop(id, i);
-  swapPop(kind, i);
-  swapPop(pos, i);
-  swapPop(vel, i);
-  swapPop(rot, i);
-  swapPop(rng_state, i);
-  swapPop(npc, i);
-  swapPop(avatar, i);
-  swapPop(body, i);
-  swapPop(emitter, i);
-  swapPop(agent, i);
+  forEachEntityColumn([&](const auto& c) { swapPop(this->*c.store, i); });
   swapPop(dr, i);
 }
 
 EntityRecordData EntityStore::record(std::size_t i) const {
-  return {id[i],  kind[i],   pos[i],  vel[i],     rot[i],  rng_state[i],
-          npc[i], avatar[i], body[i], emitter[i], agent[i]};
+  EntityRecordData r;
+  forEachEntityColumn([&](const auto& c) { r.*c.record = (this->*c.store)[i]; });
+  return r;
 }
 
 std::optional<std::size_t> EntityStore::indexOf(EntityId e) const {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -175,5 +176,37 @@ class EntityStore {
   std::unordered_map<std::uint64_t, std::size_t> avatar_of_player_;
   std::size_t kind_count_[kEntityKindCount] = {};
 };
+
+/// One per-entity column: the store's array and the record's field it holds.
+template <typename T>
+struct EntityColumn {
+  const char* name;
+  std::vector<T> EntityStore::*store;
+  T EntityRecordData::*record;
+};
+
+/// Every column an entity record carries: add, remove and record iterate this one list (as
+/// kCounterFields drives the metrics), so a new per-entity field is one line here, plus its
+/// schema field in the migration codec. (`dr`, the publisher's memory of what it sent, is
+/// the store's own and never migrates.)
+inline constexpr auto kEntityColumns = std::tuple{
+    EntityColumn<EntityId>{"id", &EntityStore::id, &EntityRecordData::id},
+    EntityColumn<EntityKind>{"kind", &EntityStore::kind, &EntityRecordData::kind},
+    EntityColumn<Vec3>{"pos", &EntityStore::pos, &EntityRecordData::pos},
+    EntityColumn<Vec3>{"vel", &EntityStore::vel, &EntityRecordData::vel},
+    EntityColumn<Quat>{"rot", &EntityStore::rot, &EntityRecordData::rot},
+    EntityColumn<std::uint64_t>{"rng_state", &EntityStore::rng_state,
+                                &EntityRecordData::rng_state},
+    EntityColumn<NpcData>{"npc", &EntityStore::npc, &EntityRecordData::npc},
+    EntityColumn<AvatarData>{"avatar", &EntityStore::avatar, &EntityRecordData::avatar},
+    EntityColumn<BodyData>{"body", &EntityStore::body, &EntityRecordData::body},
+    EntityColumn<EmitterData>{"emitter", &EntityStore::emitter, &EntityRecordData::emitter},
+    EntityColumn<AgentData>{"agent", &EntityStore::agent, &EntityRecordData::agent}};
+
+/// Calls f(column) for every column of kEntityColumns, in order.
+template <typename F>
+void forEachEntityColumn(F&& f) {
+  std::apply([&](const auto&... column) { (f(column), ...); }, kEntityColumns);
+}
 
 }  // namespace zonesim::zone

@@ -49,5 +49,48 @@ TEST(EntityStore, RecordRoundTripsEveryComponent) {
   EXPECT_EQ(back.rng_state, 42u);
 }
 
+TEST(EntityStore, EveryColumnOfTheListIsStoredMovedOnRemovalAndCopiedOut) {
+  // Two entities whose every component differs: removing the first moves the second into its
+  // place column by column, and its record comes back whole.
+  EntityStore s;
+  EntityRecordData a = make(1, EntityKind::Npc), b = make(2, EntityKind::Avatar);
+  b.pos = Vec3(1, 2, 3);
+  b.vel = Vec3(4, 5, 6);
+  b.rot = Quat(0, 1, 0, 0);
+  b.rng_state = 77;
+  b.npc.max_speed = 3.5;
+  b.npc.crowd_path = {1, 2, 3, 4};
+  b.avatar.player_id = 9;
+  b.body.mass = 7;
+  b.emitter.rate = 11;
+  b.agent.type = 2;
+  b.agent.path = {5, 6};
+  s.add(a);
+  s.add(b);
+  s.removeAt(0);
+  ASSERT_EQ(s.size(), 1u);
+  std::size_t columns = 0;
+  forEachEntityColumn([&](const auto& c) {
+    ++columns;
+    EXPECT_EQ((s.*c.store).size(), 1u) << c.name;
+  });
+  EXPECT_EQ(columns, std::tuple_size_v<decltype(kEntityColumns)>);
+  EntityRecordData back = s.record(0);
+  EXPECT_EQ(back.id, b.id);
+  EXPECT_EQ(back.kind, EntityKind::Avatar);
+  EXPECT_EQ(back.pos, b.pos);
+  EXPECT_EQ(back.vel, b.vel);
+  EXPECT_EQ(back.rot.coeffs(), b.rot.coeffs());
+  EXPECT_EQ(back.rng_state, 77u);
+  EXPECT_EQ(back.npc.max_speed, 3.5);
+  EXPECT_EQ(back.npc.crowd_path, b.npc.crowd_path);
+  EXPECT_EQ(back.avatar.player_id, 9u);
+  EXPECT_EQ(back.body.mass, 7.0);
+  EXPECT_EQ(back.emitter.rate, 11.0);
+  EXPECT_EQ(back.agent.type, 2);
+  EXPECT_EQ(back.agent.path, b.agent.path);
+  EXPECT_EQ(s.avatarOf(9), std::optional<std::size_t>(0));
+}
+
 }  // namespace
 }  // namespace zonesim::zone
