@@ -131,6 +131,10 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   PlayerZone zone = playerZone();
   players_.restored(zone);
   emitters_ = std::make_unique<EmitterSystem>(scene_, gpu_mode, thresholds);
+  // What the active systems read on ghosts (the scene decides: every rank registers alike).
+  for (auto [stage, system] : ai_systems_)
+    if (system->active())
+      for (GhostColumn& c : system->ghostColumns()) halo_.addColumn(std::move(c));
   // The first tick's systems already read ghosts.
   halo();
 }

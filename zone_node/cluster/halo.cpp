@@ -18,17 +18,14 @@ struct GhostWire {
   double angular_velocity[3], half_extents[3];
   double radius, half_height, mass, friction, restitution;
   std::uint64_t shape_and_sleep;  // shape | sleeping << 8
-  std::int64_t flock;             // NPCs: flock population (-1: none), so flocks see only kin
-  std::int64_t agent;             // NPCs: AI agent type (-1: none), so agents tell foes apart
+  // followed by one std::int64_t per registered ghost column (GhostStore::columns)
 };
-static_assert(sizeof(GhostWire) == 8 * 26, "GhostWire must be packed doubles");
+static_assert(sizeof(GhostWire) == 8 * 24, "GhostWire must be packed doubles");
 
 GhostWire pack(const EntityStore& s, std::size_t i) {
   GhostWire w{};
   w.id = s.id[i].value;
   w.kind = std::uint64_t(s.kind[i]);
-  w.flock = s.kind[i] == EntityKind::Npc ? s.npc[i].flock : -1;
-  w.agent = s.kind[i] == EntityKind::Npc ? s.agent[i].type : -1;
   for (int k = 0; k < 3; ++k) {
     w.pos[k] = s.pos[i][k];
     w.vel[k] = s.vel[i][k];
@@ -111,12 +108,19 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
   for (int r = 0; r < size_; ++r) {
     std::vector<std::uint8_t>& out = bytes_.outgoing(r);
     const std::vector<EntityId>& list = send_[std::size_t(r)];
-    out.resize(list.size() * sizeof(GhostWire));
+    const std::vector<GhostColumn>& columns = ghosts_.columns();
+    const std::size_t record = sizeof(GhostWire) + columns.size() * sizeof(std::int64_t);
+    out.resize(list.size() * record);
     for (std::size_t k = 0; k < list.size(); ++k) {
       std::optional<std::size_t> i = store.indexOf(list[k]);
       if (!i) throw std::logic_error("halo send list names an entity this zone no longer has");
       GhostWire w = pack(store, *i);
-      std::memcpy(out.data() + k * sizeof(GhostWire), &w, sizeof w);
+      std::uint8_t* at = out.data() + k * record;
+      std::memcpy(at, &w, sizeof w);
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        std::int64_t v = columns[c].read(store, *i);
+        std::memcpy(at + sizeof w + c * sizeof v, &v, sizeof v);
+      }
     }
     stats.sent += list.size();
   }
@@ -124,12 +128,17 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
   stats.bytes_sent = bytes_.bytesSent();
 
   ghosts_.clear();
+  const std::size_t columns = ghosts_.columns().size();
+  const std::size_t record = sizeof(GhostWire) + columns * sizeof(std::int64_t);
+  std::vector<std::int64_t> values(columns);
   for (int r = 0; r < size_; ++r) {
     std::span<const std::uint8_t> in = bytes_.received(r);
-    if (in.size() % sizeof(GhostWire) != 0) throw std::runtime_error("halo payload size is odd");
-    for (std::size_t off = 0; off < in.size(); off += sizeof(GhostWire)) {
+    if (in.size() % record != 0) throw std::runtime_error("halo payload size is odd");
+    for (std::size_t off = 0; off < in.size(); off += record) {
       GhostWire w;
       std::memcpy(&w, in.data() + off, sizeof w);
+      if (columns > 0)
+        std::memcpy(values.data(), in.data() + off + sizeof w, columns * sizeof(std::int64_t));
       BodyData b;
       if (EntityKind(w.kind) == EntityKind::RigidBody) {
         b.angular_velocity =
@@ -145,7 +154,7 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
       }
       ghosts_.add(EntityId{w.id}, EntityKind(w.kind), Vec3(w.pos[0], w.pos[1], w.pos[2]),
                   Vec3(w.vel[0], w.vel[1], w.vel[2]), Quat(w.rot[0], w.rot[1], w.rot[2], w.rot[3]),
-                  b, r, std::int32_t(w.flock), std::int32_t(w.agent));
+                  b, r, values);
     }
   }
   stats.ghosts = ghosts_.size();

@@ -9,6 +9,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/entity_id.h"
@@ -41,6 +42,9 @@ class HaloExchange {
   /// entities, in (sender rank, order sent) order (collective; LAMMPS' reverse_comm).
   std::vector<GhostImpulse> reverse(const std::vector<GhostImpulse>& out);
   const GhostStore& ghosts() const { return ghosts_; }
+  /// Sends `column` with every ghost from now on (GhostStore::addColumn); every rank must
+  /// register the same columns in the same order, before the first refresh.
+  std::size_t addColumn(GhostColumn column) { return ghosts_.addColumn(std::move(column)); }
   double width() const { return width_; }
 
  private:

@@ -67,8 +67,9 @@ void senseAgents(const AgentSettings& settings, const EntityStore& store, const 
       if (isEnemy(store.kind[i], store.agent[i].type))
         grid.add({store.id[i], store.pos[i].x(), store.pos[i].z()});
     if (ghosts) {
+      const std::optional<std::size_t> type = ghosts->columnIndex(kAgentType);
       for (std::size_t i = 0; i < ghosts->size(); ++i)
-        if (isEnemy(ghosts->kind[i], ghosts->agent[i]))
+        if (isEnemy(ghosts->kind[i], type ? std::int32_t(ghosts->value(*type, i)) : -1))
           grid.add({ghosts->id[i], ghosts->pos[i].x(), ghosts->pos[i].z()});
     }
   }

@@ -17,6 +17,7 @@
 #include "common/scene.h"
 #include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/agent_navigation.h"
 #include "zone_node/systems/agent_senses.h"
 #include "zone_node/systems/step_context.h"
@@ -52,6 +53,8 @@ class AgentSystem : public ZoneSystem {
   /// Advances every agent by one tick; collective through ctx.cluster.gather (the zones share
   /// their path request keys) when the scene has a map. Adds the agent counters.
   void step(StepContext& ctx) override;
+  /// Ghosts carry the agent type, so that it sees only who is a foe across a border.
+  std::vector<GhostColumn> ghostColumns() const override { return {agentTypeColumn()}; }
   /// What the last step did.
   const AgentTickStats& lastStats() const { return last_; }
 

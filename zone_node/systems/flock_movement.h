@@ -18,6 +18,7 @@
 #include "crowd/vec2.h"
 #include "gpu/offload.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/step_context.h"
 
 namespace zonesim::crowd {
@@ -49,6 +50,9 @@ class FlockMovement : public ZoneSystem {
   /// `lod`, ctx.players (every player avatar of the cluster and the scene's observers, x-z)
   /// and the tick choose each NPC's update (the same plan for an NPC on every rank).
   void step(StepContext& ctx) override;
+  /// Ghosts carry the crowd population, so that it sees only its own population's NPCs across a
+  /// border.
+  std::vector<GhostColumn> ghostColumns() const override { return {crowdPopulationColumn()}; }
   /// NPC updates (agent steps) done by the last step() (every flocker without LOD).
   std::size_t updates() const { return updates_; }
 

@@ -18,6 +18,7 @@
 #include "common/scene.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/step_context.h"
 
 namespace zonesim::zone {
@@ -51,6 +52,9 @@ class FlowMovement : public ZoneSystem {
   /// of the cluster, x-z) and the tick choose each NPC's update (crowd::LevelOfDetail: the
   /// same plan for an NPC on every rank).
   void step(StepContext& ctx) override;
+  /// Ghosts carry the crowd population, so that it sees only its own population's NPCs across a
+  /// border.
+  std::vector<GhostColumn> ghostColumns() const override { return {crowdPopulationColumn()}; }
   /// NPCs still on their way (not arrived) after the last step.
   std::size_t walking() const { return walking_; }
   /// NPC updates (agent steps) done by the last step() (all NPCs on the way without LOD).

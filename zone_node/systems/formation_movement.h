@@ -15,6 +15,7 @@
 #include "common/scene.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 #include "zone_node/systems/step_context.h"
 
 namespace zonesim::crowd {
@@ -44,6 +45,9 @@ class FormationMovement : public ZoneSystem {
   /// 0 on, so a zone restarted at a later tick catches up) and steps the members of `store`,
   /// seeing same-population ghosts.
   void step(StepContext& ctx) override;
+  /// Ghosts carry the crowd population, so that it sees only its own population's NPCs across a
+  /// border.
+  std::vector<GhostColumn> ghostColumns() const override { return {crowdPopulationColumn()}; }
 
   /// Number of formations (in population order).
   std::size_t count() const { return groups_.size(); }

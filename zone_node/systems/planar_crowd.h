@@ -51,8 +51,11 @@ void PlanarCrowd::gatherGhosts(const GhostStore* ghosts, Keep keep) {
   ghost_pos.clear();
   ghost_vel.clear();
   if (!ghosts) return;
+  // Without the column no crowd registered it: no ghost is of this population.
+  const std::optional<std::size_t> column = ghosts->columnIndex(kCrowdPopulation);
+  if (!column) return;
   for (std::size_t k = 0; k < ghosts->size(); ++k) {
-    if (ghosts->kind[k] != EntityKind::Npc || ghosts->flock[k] != population) continue;
+    if (ghosts->kind[k] != EntityKind::Npc || ghosts->value(*column, k) != population) continue;
     crowd::Vec2 p{ghosts->pos[k].x(), ghosts->pos[k].z()};
     if (!keep(ghosts->id[k].value, p)) continue;
     ghost_ids.push_back(ghosts->id[k].value);

@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "crowd/vec2.h"
+#include "zone_node/entity_store.h"
+#include "zone_node/ghost_store.h"
 
 namespace zonesim::zone {
 
-class EntityStore;
-class GhostStore;
 class Neighbourhood;
 struct TickCounters;
 
@@ -53,6 +53,8 @@ class ZoneSystem {
   virtual bool active() const = 0;
   /// Advances what the system owns in `ctx.store` by one tick.
   virtual void step(StepContext& ctx) = 0;
+  /// The per-entity values it reads on ghosts (the halo sends them; ghost_store.h).
+  virtual std::vector<GhostColumn> ghostColumns() const { return {}; }
 };
 
 }  // namespace zonesim::zone
