@@ -3,23 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "physics/solver_row.h"
+
 namespace zonesim::physics {
 
-namespace {
-
-/// A unit vector orthogonal to n, chosen by a fixed rule so the basis is deterministic.
-Vec3 orthogonal(const Vec3& n) {
-  const Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
-  return n.cross(helper).normalized();
-}
-
-/// Relative velocity of B against A along a row's direction d.
-inline double relativeVelocity(const Vec3& d, const Vec3& va, const Vec3& wa, const Vec3& vb,
-                               const Vec3& wb, const auto& row) {
-  return d.dot(vb - va) + row.cb.dot(wb) - row.ca.dot(wa);
-}
-
-}  // namespace
+using solver_row::applyRow;
+using solver_row::orthogonal;
+using solver_row::relativeVelocity;
 
 void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyContact> contacts,
                             const SolverSettings& settings, double dt) {
@@ -91,19 +81,6 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
   }
 }
 
-namespace {
-
-/// Applies impulse lambda along d through a row's angular parts.
-inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, double mb,
-                     const Vec3& d, const auto& row, double lambda) {
-  bodies.linear_velocity[a] -= (ma * lambda) * d;
-  bodies.angular_velocity[a] -= lambda * row.wa;
-  bodies.linear_velocity[b] += (mb * lambda) * d;
-  bodies.angular_velocity[b] += lambda * row.wb;
-}
-
-}  // namespace
-
 void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts) {
   warmStart(bodies);
   for (int it = 0; it < settings_.velocity_iterations; ++it) iterate(bodies);
@@ -112,7 +89,7 @@ void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> 
 
 void ContactSolver::warmStart(BodyStorage& bodies) {
   auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
-    applyRow(bodies, k.a, k.b, k.ma, k.mb, d, row, lambda);
+    applyRow(bodies.linear_velocity, bodies.angular_velocity, k, d, row, lambda);
   };
   for (const Constraint& k : constraints_) {
     for (int i = 0; i < k.count; ++i) {
@@ -129,7 +106,7 @@ void ContactSolver::iterate(BodyStorage& bodies, double omega) {
   auto& v = bodies.linear_velocity;
   auto& w = bodies.angular_velocity;
   auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
-    applyRow(bodies, k.a, k.b, k.ma, k.mb, d, row, lambda);
+    applyRow(v, w, k, d, row, lambda);
   };
   // All normals first, then all friction with the limits those normals set (as Bullet's
   // sequential impulse solver does): the weight path down a stack converges faster when no
@@ -165,7 +142,6 @@ void ContactSolver::storeImpulses(std::span<BodyContact> contacts) const {
   for (std::size_t c = 0; c < constraints_.size(); ++c) {
     const Constraint& k = constraints_[c];
     for (int i = 0; i < k.count; ++i) {
-      const FrictionPoint& fp = friction_[k.first + i];
       contacts[c].impulse[i] = {jn_[k.first + i], jt_[k.first + i][0], jt_[k.first + i][1]};
     }
   }
@@ -186,11 +162,7 @@ void ContactSolver::solvePositions(const BodyStorage& bodies) {
             relativeVelocity(k.n, ps_v_[k.a], ps_w_[k.a], ps_v_[k.b], ps_w_[k.b], p.row);
         const double old = p.jp;
         p.jp = std::max(0.0, old - p.row.mass * (vn - rate * error));
-        const double lambda = p.jp - old;
-        ps_v_[k.a] -= (k.ma * lambda) * k.n;
-        ps_w_[k.a] -= lambda * p.row.wa;
-        ps_v_[k.b] += (k.mb * lambda) * k.n;
-        ps_w_[k.b] += lambda * p.row.wb;
+        applyRow(ps_v_, ps_w_, k, k.n, p.row, p.jp - old);
       }
     }
   }

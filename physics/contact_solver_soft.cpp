@@ -11,8 +11,12 @@
 #include <numbers>
 
 #include "physics/contact_solver.h"
+#include "physics/solver_row.h"
 
 namespace zonesim::physics {
+
+using solver_row::applyRow;
+using solver_row::relativeVelocity;
 
 Softness makeSoftness(double hertz, double damping_ratio, double h) {
   if (hertz <= 0.0) return Softness{};
@@ -22,18 +26,6 @@ Softness makeSoftness(double hertz, double damping_ratio, double h) {
   const double a3 = 1.0 / (1.0 + a2);
   return Softness{omega / a1, a2 * a3, a3};
 }
-
-namespace {
-
-inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, double mb,
-                     const Vec3& d, const auto& row, double lambda) {
-  bodies.linear_velocity[a] -= (ma * lambda) * d;
-  bodies.angular_velocity[a] -= lambda * row.wa;
-  bodies.linear_velocity[b] += (mb * lambda) * d;
-  bodies.angular_velocity[b] += lambda * row.wb;
-}
-
-}  // namespace
 
 void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
                               std::span<const Vec3> dtheta, const Softness& soft,
@@ -57,12 +49,12 @@ void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
         mass_scale = spring.mass_scale;
         impulse_scale = spring.impulse_scale;
       }
-      const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
+      const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
       const double old = jn_[k.first + i];
       const double delta = -p.row.mass * mass_scale * (vn + bias) - impulse_scale * old;
       jn_[k.first + i] = std::max(0.0, old + delta);
       p.max_jn = std::max(p.max_jn, jn_[k.first + i]);
-      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
+      applyRow(v, w, k, k.n, p.row, jn_[k.first + i] - old);
     }
   }
   for (const Constraint& k : constraints_) {
@@ -71,10 +63,10 @@ void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
       const double limit = k.friction * jn_[k.first + i];
       for (int t = 0; t < 2; ++t) {
         const Row& row = p.row[t];
-        const double vt = k.t[t].dot(v[k.b] - v[k.a]) + row.cb.dot(w[k.b]) - row.ca.dot(w[k.a]);
+        const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], row);
         const double old = jt_[k.first + i][t];
         jt_[k.first + i][t] = std::clamp(old - row.mass * vt, -limit, limit);
-        applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], row, jt_[k.first + i][t] - old);
+        applyRow(v, w, k, k.t[t], row, jt_[k.first + i][t] - old);
       }
     }
   }
@@ -90,10 +82,10 @@ void ContactSolver::applyRestitution(BodyStorage& bodies) {
       NormalPoint& p = normal_[k.first + i];
       // Only points that were approaching fast and actually pushed this step bounce.
       if (p.vn0 > -threshold || p.max_jn == 0.0) continue;
-      const double vn = k.n.dot(v[k.b] - v[k.a]) + p.row.cb.dot(w[k.b]) - p.row.ca.dot(w[k.a]);
+      const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
       const double old = jn_[k.first + i];
       jn_[k.first + i] = std::max(0.0, old - p.row.mass * (vn + k.restitution * p.vn0));
-      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
+      applyRow(v, w, k, k.n, p.row, jn_[k.first + i] - old);
     }
   }
 }

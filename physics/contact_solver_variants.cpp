@@ -7,27 +7,16 @@
 #include <numbers>
 
 #include "physics/contact_solver.h"
+#include "physics/solver_row.h"
 
 namespace zonesim::physics {
 
-namespace {
-
-inline void applyRow(BodyStorage& bodies, BodyIndex a, BodyIndex b, double ma, double mb,
-                     const Vec3& d, const auto& row, double lambda) {
-  bodies.linear_velocity[a] -= (ma * lambda) * d;
-  bodies.angular_velocity[a] -= lambda * row.wa;
-  bodies.linear_velocity[b] += (mb * lambda) * d;
-  bodies.angular_velocity[b] += lambda * row.wb;
-}
-
-inline double relative(const Vec3& d, const Vec3& va, const Vec3& wa, const Vec3& vb,
-                       const Vec3& wb, const auto& row) {
-  return d.dot(vb - va) + row.cb.dot(wb) - row.ca.dot(wa);
-}
-
-}  // namespace
+using solver_row::applyRow;
+using solver_row::relativeVelocity;
 
 void ContactSolver::iterateJacobi(BodyStorage& bodies) {
+  auto& v = bodies.linear_velocity;
+  auto& w = bodies.angular_velocity;
   const std::size_t n = bodies.size();
   if (row_count_.size() != n) {
     // Points per body, counted once per step (prepare resets the size to zero).
@@ -51,19 +40,19 @@ void ContactSolver::iterateJacobi(BodyStorage& bodies) {
         if (pass == 0) {
           NormalPoint& p = normal_[k.first + i];
           const double vn =
-              relative(k.n, jac_v_[k.a], jac_w_[k.a], jac_v_[k.b], jac_w_[k.b], p.row);
+              relativeVelocity(k.n, jac_v_[k.a], jac_w_[k.a], jac_v_[k.b], jac_w_[k.b], p.row);
           const double old = jn_[k.first + i];
           jn_[k.first + i] = std::max(0.0, old - f * p.row.mass * (vn - p.target));
-          applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i] - old);
+          applyRow(v, w, k, k.n, p.row, jn_[k.first + i] - old);
         } else {
           FrictionPoint& p = friction_[k.first + i];
           const double limit = k.friction * jn_[k.first + i];
           for (int t = 0; t < 2; ++t) {
-            const double vt =
-                relative(k.t[t], jac_v_[k.a], jac_w_[k.a], jac_v_[k.b], jac_w_[k.b], p.row[t]);
+            const double vt = relativeVelocity(k.t[t], jac_v_[k.a], jac_w_[k.a], jac_v_[k.b],
+                                               jac_w_[k.b], p.row[t]);
             const double old = jt_[k.first + i][t];
             jt_[k.first + i][t] = std::clamp(old - f * p.row[t].mass * vt, -limit, limit);
-            applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], p.row[t], jt_[k.first + i][t] - old);
+            applyRow(v, w, k, k.t[t], p.row[t], jt_[k.first + i][t] - old);
           }
         }
       }
@@ -79,15 +68,14 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
   for (const Constraint& k : constraints_) {
     for (int i = 0; i < k.count; ++i) {
       NormalPoint& p = normal_[k.first + i];
-      FrictionPoint& fp = friction_[k.first + i];
       jn_[k.first + i] = jt_[k.first + i][0] = jt_[k.first + i][1] =
           0.0;  // A penalty force has no memory.
       if (p.depth <= 0.0) continue;
       // Spring k = m omega^2 and damper c = 2 zeta m omega on the row's effective mass m.
-      const double vn = relative(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
+      const double vn = relativeVelocity(k.n, v[k.a], w[k.a], v[k.b], w[k.b], p.row);
       const double force = p.row.mass * (omega * omega * p.depth - 2.0 * zeta * omega * vn);
       jn_[k.first + i] = std::max(0.0, force) * dt_;
-      applyRow(bodies, k.a, k.b, k.ma, k.mb, k.n, p.row, jn_[k.first + i]);
+      applyRow(v, w, k, k.n, p.row, jn_[k.first + i]);
     }
   }
   // Friction: Coulomb rows bounded by mu times each spring's impulse, iterated like PGS
@@ -98,10 +86,10 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
         FrictionPoint& fp = friction_[k.first + i];
         const double limit = k.friction * jn_[k.first + i];
         for (int t = 0; t < 2; ++t) {
-          const double vt = relative(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], fp.row[t]);
+          const double vt = relativeVelocity(k.t[t], v[k.a], w[k.a], v[k.b], w[k.b], fp.row[t]);
           const double old = jt_[k.first + i][t];
           jt_[k.first + i][t] = std::clamp(old - fp.row[t].mass * vt, -limit, limit);
-          applyRow(bodies, k.a, k.b, k.ma, k.mb, k.t[t], fp.row[t], jt_[k.first + i][t] - old);
+          applyRow(v, w, k, k.t[t], fp.row[t], jt_[k.first + i][t] - old);
         }
       }
     }
@@ -110,16 +98,14 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
 
 void ContactSolver::projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta) {
   auto move = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
-    dp[k.a] -= (k.ma * lambda) * d;
-    dtheta[k.a] -= lambda * row.wa;
-    dp[k.b] += (k.mb * lambda) * d;
-    dtheta[k.b] += lambda * row.wb;
+    applyRow(dp, dtheta, k, d, row, lambda);
   };
   for (const Constraint& k : constraints_) {
     for (int i = 0; i < k.count; ++i) {
       NormalPoint& p = normal_[k.first + i];
       // Separation at the displaced anchors; jp accumulates the normal correction (m kg).
-      const double s = -p.depth + relative(k.n, dp[k.a], dtheta[k.a], dp[k.b], dtheta[k.b], p.row);
+      const double s =
+          -p.depth + relativeVelocity(k.n, dp[k.a], dtheta[k.a], dp[k.b], dtheta[k.b], p.row);
       const double old = p.jp;
       p.jp = std::max(0.0, old - p.row.mass * s);
       move(k, k.n, p.row, p.jp - old);
@@ -128,7 +114,8 @@ void ContactSolver::projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta)
       FrictionPoint& fp = friction_[k.first + i];
       const double limit = k.friction * p.jp;
       for (int t = 0; t < 2; ++t) {
-        const double slip = relative(k.t[t], dp[k.a], dtheta[k.a], dp[k.b], dtheta[k.b], fp.row[t]);
+        const double slip =
+            relativeVelocity(k.t[t], dp[k.a], dtheta[k.a], dp[k.b], dtheta[k.b], fp.row[t]);
         const double before = jt_[k.first + i][t];
         jt_[k.first + i][t] = std::clamp(before - fp.row[t].mass * slip, -limit, limit);
         move(k, k.t[t], fp.row[t], jt_[k.first + i][t] - before);
