@@ -81,12 +81,6 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
   }
 }
 
-void ContactSolver::solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts) {
-  warmStart(bodies);
-  for (int it = 0; it < settings_.velocity_iterations; ++it) iterate(bodies);
-  storeImpulses(contacts);
-}
-
 void ContactSolver::warmStart(BodyStorage& bodies) {
   auto apply = [&](const Constraint& k, const Vec3& d, const Row& row, double lambda) {
     applyRow(bodies.linear_velocity, bodies.angular_velocity, k, d, row, lambda);

@@ -110,8 +110,6 @@ class ContactSolver {
   void projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta);
   /// Writes the accumulated impulses back for next step's warm start.
   void storeImpulses(std::span<BodyContact> contacts) const;
-  /// Warm start, settings().velocity_iterations iterations, then storeImpulses.
-  void solveVelocities(BodyStorage& bodies, std::span<BodyContact> contacts);
   /// The settings given to the last prepare.
   const SolverSettings& settings() const { return settings_; }
   /// Runs the split-impulse iterations; the pseudo-velocities come back per body.
