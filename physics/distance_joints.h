@@ -5,17 +5,14 @@
 // the bias injects is negligible, and a bilateral row needs no split-impulse bookkeeping.
 
 #include <cstdint>
-#include <limits>
 #include <span>
 #include <vector>
 
 #include "common/math.h"
 #include "physics/body_storage.h"
+#include "physics/joint_row.h"
 
 namespace zonesim::physics {
-
-/// Marks a joint end fixed in the world rather than on a body.
-inline constexpr BodyIndex kNoBody = std::numeric_limits<BodyIndex>::max();
 
 /// A rigid distance constraint between anchor points given in each body's local frame.
 struct DistanceJoint {
@@ -42,11 +39,7 @@ class DistanceJoints {
   void iterate(BodyStorage& bodies);
 
  private:
-  struct Row {
-    Vec3 n, ca, cb, wa, wb;
-    double ma, mb, mass, bias;
-  };
-  void apply(BodyStorage& bodies, const DistanceJoint& j, const Row& r, double lambda) const;
+  using Row = JointRow;
 
   std::vector<DistanceJoint> joints_;
   std::vector<Row> rows_;

@@ -1,6 +1,6 @@
 #include "physics/rigid_joints.h"
 
-#include <cmath>
+#include "physics/solver_row.h"
 
 namespace zonesim::physics {
 
@@ -38,21 +38,13 @@ void RigidJoints::addPointRows(const BodyStorage& bodies, const Anchor& anchor, 
   // world axes a 2 m pendulum at dt 1/60 and 10 iterations kept a 2 cm gap).
   const Vec3 arm = ra.squaredNorm() > 1e-18 ? ra : rb;
   const Vec3 u = arm.squaredNorm() > 1e-18 ? Vec3(arm.normalized()) : Vec3::UnitX();
-  const Vec3 v = u.cross(std::abs(u.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY()).normalized();
+  const Vec3 v = solver_row::orthogonal(u);
   const Vec3 basis[3] = {u, v, u.cross(v)};
   for (int axis = 0; axis < 3; ++axis) {
     Row& r = rows_[next++];
     r.a = anchor.a;
     r.b = anchor.b;
-    r.d = basis[axis];
-    r.ca = ra.cross(r.d);
-    r.cb = rb.cross(r.d);
-    r.wa = bodies.inv_inertia_world[r.a] * r.ca;
-    r.wb = fixed ? Vec3::Zero() : Vec3(bodies.inv_inertia_world[r.b] * r.cb);
-    r.ma = bodies.inv_mass[r.a];
-    r.mb = fixed ? 0.0 : bodies.inv_mass[r.b];
-    const double inv = r.ma + r.mb + r.ca.dot(r.wa) + r.cb.dot(r.wb);
-    r.mass = inv > 0.0 ? 1.0 / inv : 0.0;
+    setLinearRow(r, bodies, r.a, r.b, ra, rb, basis[axis]);
     r.bias = rate * (pb - pa).dot(r.d);
   }
 }
@@ -89,8 +81,7 @@ void RigidJoints::prepare(const BodyStorage& bodies, double dt, double beta) {
     const Vec3 axis_a = bodies.orientation[j.a] * j.axis_a;
     const Vec3 axis_b = j.b == kNoBody ? j.axis_b : Vec3(bodies.orientation[j.b] * j.axis_b);
     // Two directions perpendicular to A's axis, by a fixed rule (deterministic basis).
-    const Vec3 helper = std::abs(axis_a.x()) < 0.57 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 p = axis_a.cross(helper).normalized();
+    const Vec3 p = solver_row::orthogonal(axis_a);
     const Vec3 q = axis_a.cross(p);
     // B is turned from A's axis by about a_A x a_B (small angles): its parts along p and q
     // are the errors; the rows stop relative rotation about p and q.
@@ -103,28 +94,16 @@ void RigidJoints::prepare(const BodyStorage& bodies, double dt, double beta) {
   }
 }
 
-void RigidJoints::apply(BodyStorage& bodies, const Row& r, double lambda) const {
-  bodies.linear_velocity[r.a] -= (r.ma * lambda) * r.d;
-  bodies.angular_velocity[r.a] -= lambda * r.wa;
-  if (r.b == kNoBody) return;
-  bodies.linear_velocity[r.b] += (r.mb * lambda) * r.d;
-  bodies.angular_velocity[r.b] += lambda * r.wb;
-}
-
 void RigidJoints::warmStart(BodyStorage& bodies) {
-  for (const Row& r : rows_) apply(bodies, r, r.impulse);
+  for (const Row& r : rows_) applyRow(r, bodies, r.a, r.b, r.impulse);
 }
 
 void RigidJoints::iterate(BodyStorage& bodies) {
   for (Row& r : rows_) {
-    const bool fixed = r.b == kNoBody;
-    const Vec3 vb = fixed ? Vec3::Zero() : bodies.linear_velocity[r.b];
-    const Vec3 wb = fixed ? Vec3::Zero() : bodies.angular_velocity[r.b];
-    const double cdot = r.d.dot(vb - bodies.linear_velocity[r.a]) + r.cb.dot(wb) -
-                        r.ca.dot(bodies.angular_velocity[r.a]);
+    const double cdot = rowVelocity(r, bodies, r.a, r.b);
     const double lambda = -r.mass * (cdot + r.bias);
     r.impulse += lambda;
-    apply(bodies, r, lambda);
+    applyRow(r, bodies, r.a, r.b, lambda);
   }
 }
 

@@ -14,6 +14,7 @@
 #include "common/math.h"
 #include "physics/body_storage.h"
 #include "physics/distance_joints.h"
+#include "physics/joint_row.h"
 
 namespace zonesim::physics {
 
@@ -55,11 +56,9 @@ class RigidJoints {
   void iterate(BodyStorage& bodies);
 
  private:
-  // One bilateral row: linear direction d (zero for angular rows) and angular parts.
-  struct Row {
+  // One bilateral row with the bodies it joins and its impulse (kept for the warm start).
+  struct Row : JointRow {
     BodyIndex a, b;  // b may be kNoBody.
-    Vec3 d, ca, cb, wa, wb;
-    double ma, mb, mass, bias;
     double impulse;
   };
   struct Anchor {
@@ -70,7 +69,6 @@ class RigidJoints {
                     std::size_t& next);
   void addAngularRow(const BodyStorage& bodies, BodyIndex a, BodyIndex b, const Vec3& u,
                      double error, double rate, std::size_t& next);
-  void apply(BodyStorage& bodies, const Row& r, double lambda) const;
 
   std::vector<BallJoint> balls_;
   std::vector<HingeJoint> hinges_;
