@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "common/entity_id.h"
+#include "common/splitmix.h"
 #include "common/timer.h"
 #include "dr/truth_sample.h"
 
@@ -21,7 +21,7 @@ constexpr std::size_t kMaxDisplaySamples = 100'000;
 SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns)
     : config_(config),
       // Nonces only match replies to requests; mixing in the port keeps two runs apart.
-      nonce_(mix64(config.seed ^ (std::uint64_t{index} << 32)) ^
+      nonce_(splitmix64(config.seed ^ (std::uint64_t{index} << 32)) ^
              std::uint64_t(socket_.localPort())),
       start_ns_(start_ns),
       next_hello_ns_(start_ns),

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/splitmix.h"
+
 namespace zonesim {
 
 /// A globally unique entity id; 0 is never issued and means "none".
@@ -37,14 +39,6 @@ class EntityIdAllocator {
   std::uint64_t counter_ = 0;
 };
 
-/// A mixing function (splitmix64 finaliser) used for order-independent id hashes.
-constexpr std::uint64_t mix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 /// Order-independent digest of a set of ids: sums of mixed ids wrap mod 2^64, so any
 /// partition of the set over ranks sums to the same value (checked with one allreduce).
 struct IdSetDigest {
@@ -52,11 +46,11 @@ struct IdSetDigest {
   std::uint64_t hash = 0;
   void add(EntityId id) {
     ++count;
-    hash += mix64(id.value);
+    hash += splitmix64(id.value);
   }
   void remove(EntityId id) {
     --count;
-    hash -= mix64(id.value);
+    hash -= splitmix64(id.value);
   }
   void merge(const IdSetDigest& o) {
     count += o.count;

@@ -2,17 +2,9 @@
 
 #include <stdexcept>
 
-namespace zonesim::crowd {
+#include "common/splitmix.h"
 
-namespace {
-// SplitMix64 finaliser: spreads consecutive ids over the update phases.
-std::uint64_t mixId(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
-}  // namespace
+namespace zonesim::crowd {
 
 LevelOfDetail::LevelOfDetail(const LodSettings& settings) : settings_(settings) {
   if (settings.midEvery < 1 || settings.farEvery < 1 || settings.nearRadius < 0 ||
@@ -40,7 +32,7 @@ StepPlan LevelOfDetail::plan(std::span<const std::uint64_t> ids, std::span<const
     level_[i] = std::uint8_t(lvl);
     ++counts_[lvl];
     const int every = lvl == 0 ? 1 : (lvl == 1 ? settings_.midEvery : settings_.farEvery);
-    const bool due = (std::uint64_t(tick) + mixId(ids[i])) % std::uint64_t(every) == 0;
+    const bool due = (std::uint64_t(tick) + splitmix64(ids[i])) % std::uint64_t(every) == 0;
     const bool fresh = !lastTick.empty() && lastTick[i] < 0;
     if (!due && !fresh) continue;
     if (lastTick.empty()) {

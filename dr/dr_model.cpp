@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/entity_id.h"
+#include "common/splitmix.h"
 
 namespace zonesim::dr {
 
@@ -91,7 +91,7 @@ Due updateDue(const State& sent, const Model& m, double elapsed, const V3& true_
 }
 
 double heartbeatPeriod(std::uint64_t id, double heartbeat_s) {
-  double u = double(mix64(id) >> 11) * 0x1.0p-53;
+  double u = double(splitmix64(id) >> 11) * 0x1.0p-53;
   return heartbeat_s * (0.75 + 0.25 * u);
 }
 

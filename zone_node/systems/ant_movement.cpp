@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/splitmix.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/world_map.h"
 
@@ -13,17 +14,11 @@ namespace {
 
 constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
 
-std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
 /// Uniform in [0, 1) from (seed, ant, tick, draw) alone: no ant's draws depend on which other
 /// ants a rank holds, nor on the order it steps them.
 double counterUniform(std::uint64_t seed, std::uint64_t id, std::uint64_t tick, int draw) {
-  std::uint64_t z = mix(mix(mix(seed) ^ id) ^ (tick * 4 + std::uint64_t(draw)));
+  std::uint64_t z =
+      splitmix64(splitmix64(splitmix64(seed) ^ id) ^ (tick * 4 + std::uint64_t(draw)));
   return double(z >> 11) * 0x1.0p-53;
 }
 

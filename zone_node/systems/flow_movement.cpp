@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "common/splitmix.h"
 #include "crowd/flow_crowd.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"
@@ -25,12 +26,8 @@ struct FlowMovement::Group {
 };
 
 int flowDestination(std::uint64_t id, int count) {
-  // splitmix64's finaliser: consecutive ids spread evenly over the destinations.
-  std::uint64_t z = id + 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return int(z % std::uint64_t(count));
+  // Mixed: consecutive ids spread evenly over the destinations.
+  return int(splitmix64(id) % std::uint64_t(count));
 }
 
 namespace {
