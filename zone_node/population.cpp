@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/rng.h"
+#include "common/scene_source.h"
 #include "zone_node/formation_start.h"
 #include "zone_node/world_map.h"
 
@@ -59,8 +60,7 @@ Vec3 openStart(Pcg32& rng, const NpcPopulation& p, const Scene& scene, const Wor
     Vec3 at = uniformIn(rng, p.region, scene.world.min.y);
     if (!map || map->walkable(at.x(), at.z())) return at;
   }
-  throw SceneError((scene.source_path.empty() ? scene.name : scene.source_path) +
-                   ":0: populations[" + std::to_string(group) +
+  throw SceneError(sceneFile(scene) + ":0: populations[" + std::to_string(group) +
                    "].region: " + std::to_string(kTries) + " draws found no open cell of the map");
 }
 

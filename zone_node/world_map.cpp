@@ -5,6 +5,7 @@
 
 #include "ai/parse_error.h"
 #include "common/scene.h"
+#include "common/scene_source.h"
 
 namespace zonesim::zone {
 namespace {
@@ -36,8 +37,7 @@ std::shared_ptr<const WorldMap> loadWorldMap(const Scene& scene) {
   // A small tolerance: a 1e-12 overshoot from a cell size like 0.1 is not a user mistake.
   double slack = 1e-9 * (1 + std::abs(max_x) + std::abs(max_z));
   if (max_x > scene.world.max.x + slack || max_z > scene.world.max.z + slack) {
-    std::string scene_file = scene.source_path.empty() ? scene.name : scene.source_path;
-    throw SceneError(scene_file + ":" + std::to_string(scene.map.line) +
+    throw SceneError(sceneFile(scene) + ":" + std::to_string(scene.map.line) +
                      ": map.file: " + std::to_string(map->grid.width()) + " x " +
                      std::to_string(map->grid.height()) + " cells of " +
                      number(scene.map.cell_size) + " m reach (" + number(max_x) + ", " +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/world_map.h"
@@ -20,10 +21,6 @@ double counterUniform(std::uint64_t seed, std::uint64_t id, std::uint64_t tick, 
   std::uint64_t z =
       splitmix64(splitmix64(splitmix64(seed) ^ id) ^ (tick * 4 + std::uint64_t(draw)));
   return double(z >> 11) * 0x1.0p-53;
-}
-
-std::string sceneFile(const Scene& scene) {
-  return scene.source_path.empty() ? scene.name : scene.source_path;
 }
 
 bool contains(const std::vector<std::int32_t>& cells, ai::Cell c) {

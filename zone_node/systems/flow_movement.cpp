@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "crowd/flow_crowd.h"
 #include "zone_node/ghost_store.h"
@@ -43,10 +44,6 @@ crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
   s.slowRadius = f.slow_radius;
   s.gridCell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
   return s;
-}
-
-std::string sceneFile(const Scene& scene) {
-  return scene.source_path.empty() ? scene.name : scene.source_path;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "common/scene_source.h"
 #include "crowd/formation.h"
 #include "zone_node/formation_start.h"
 #include "zone_node/ghost_store.h"
@@ -12,10 +13,6 @@
 namespace zonesim::zone {
 
 namespace {
-
-std::string sceneFile(const Scene& scene) {
-  return scene.source_path.empty() ? scene.name : scene.source_path;
-}
 
 /// Counter of the id of the first NPC of population `p` (scene ids count up from 1).
 std::uint64_t firstCounter(const Scene& scene, std::size_t p) {
