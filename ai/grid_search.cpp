@@ -4,18 +4,11 @@
 #include <cassert>
 #include <cmath>
 
+#include "ai/open_order.h"
+
 namespace zonesim::ai {
 
 namespace {
-
-// Strict "a comes out of the heap before b": lower f, then deeper g (fewer re-expansions of
-// equal-f plateaus), then lower index so that ties never depend on insertion order.
-template <typename E>
-bool before(const E& a, const E& b) {
-  if (a.f != b.f) return a.f < b.f;
-  if (a.g != b.g) return a.g > b.g;
-  return a.idx < b.idx;
-}
 
 constexpr std::int64_t kStraight = std::int64_t(1) << 40;
 constexpr std::int64_t kDiagonal = 1554944255988;  // sqrt(2) * 2^40, rounded
@@ -46,7 +39,7 @@ void GridSearch::beginSearch() {
 void GridSearch::siftUp(std::size_t i, const HeapEntry& e) {
   while (i > 0) {
     std::size_t parent = (i - 1) / 2;
-    if (!before(e, heap_[parent])) break;
+    if (!popsBefore(e, heap_[parent])) break;
     heap_[i] = heap_[parent];
     nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
     i = parent;
@@ -76,8 +69,8 @@ GridSearch::HeapEntry GridSearch::heapPop() {
   for (;;) {
     std::size_t child = 2 * i + 1;
     if (child >= n) break;
-    if (child + 1 < n && before(heap_[child + 1], heap_[child])) ++child;
-    if (!before(heap_[child], last)) break;
+    if (child + 1 < n && popsBefore(heap_[child + 1], heap_[child])) ++child;
+    if (!popsBefore(heap_[child], last)) break;
     heap_[i] = heap_[child];
     nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
     i = child;

@@ -3,18 +3,9 @@
 #include <algorithm>
 #include <cassert>
 
+#include "ai/open_order.h"
+
 namespace zonesim::ai {
-
-namespace {
-
-template <typename E>
-bool before(const E& a, const E& b) {
-  if (a.f != b.f) return a.f < b.f;
-  if (a.g != b.g) return a.g > b.g;
-  return a.idx < b.idx;
-}
-
-}  // namespace
 
 HpaPlanner::HpaPlanner(const GridMap& map, const HpaConfig& config)
     : map_(map), config_(config), search_(map) {
@@ -201,8 +192,7 @@ bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
   };
   auto push = [&](const HeapEntry& e) {
     heap_.push_back(e);
-    std::push_heap(heap_.begin(), heap_.end(),
-                   [](const HeapEntry& a, const HeapEntry& b) { return before(b, a); });
+    std::push_heap(heap_.begin(), heap_.end(), PopsLater{});
   };
   heap_.clear();
   records_[std::size_t(startNode)] = AbstractNode{0.0, -1, open};
@@ -216,8 +206,7 @@ bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
     push(HeapEntry{g + (to == goalNode ? 0.0 : octileDistance(cellOf(to), goal)), g, to});
   };
   while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(),
-                  [](const HeapEntry& a, const HeapEntry& b) { return before(b, a); });
+    std::pop_heap(heap_.begin(), heap_.end(), PopsLater{});
     HeapEntry top = heap_.back();
     heap_.pop_back();
     AbstractNode& cur = records_[std::size_t(top.idx)];

@@ -4,17 +4,9 @@
 #include <cassert>
 #include <cmath>
 
+#include "ai/open_order.h"
+
 namespace zonesim::ai {
-
-namespace {
-
-bool before(double fa, double ga, int ia, double fb, double gb, int ib) {
-  if (fa != fb) return fa < fb;
-  if (ga != gb) return ga > gb;
-  return ia < ib;
-}
-
-}  // namespace
 
 int WaypointGraph::addNode(Vec2 position) {
   positions_.push_back(position);
@@ -59,9 +51,7 @@ bool WaypointGraph::findPath(int start, int goal, std::uint32_t allowed, Waypoin
     const Vec2 p = positions_[std::size_t(n)];
     return heuristicScale_ * std::hypot(target.x - p.x, target.y - p.y);
   };
-  auto cmp = [](const HeapEntry& a, const HeapEntry& b) {
-    return before(b.f, b.g, b.idx, a.f, a.g, a.idx);
-  };
+  constexpr PopsLater cmp{};
   heap_.clear();
   records_[std::size_t(start)] = Record{0.0, -1, open};
   heap_.push_back(HeapEntry{h(start), 0.0, start});
