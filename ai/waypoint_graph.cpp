@@ -38,7 +38,6 @@ void WaypointGraph::setEdgeOpen(int edge, bool open) {
 bool WaypointGraph::findPath(int start, int goal, std::uint32_t allowed, WaypointPath& out) {
   out.nodes.clear();
   out.cost = 0.0;
-  expanded_ = 0;
   if (start < 0 || goal < 0 || start >= nodeCount() || goal >= nodeCount()) return false;
   if (generation_ >= 0xFFFFFFF0u) {
     for (Record& r : records_) r.stamp = 0;
@@ -62,7 +61,6 @@ bool WaypointGraph::findPath(int start, int goal, std::uint32_t allowed, Waypoin
     Record& cur = records_[std::size_t(top.idx)];
     if (cur.stamp == closed || top.g > cur.g) continue;
     cur.stamp = closed;
-    ++expanded_;
     if (top.idx == goal) {
       out.cost = cur.g;
       for (int n = goal; n >= 0; n = records_[std::size_t(n)].parent) out.nodes.push_back(n);

@@ -34,8 +34,6 @@ class WaypointGraph {
   int nodeCount() const { return int(positions_.size()); }
   /// Number of directed edges.
   int edgeCount() const { return int(edges_.size()); }
-  /// Nodes expanded by the last search.
-  int lastExpanded() const { return expanded_; }
 
  private:
   struct Edge {
@@ -64,7 +62,6 @@ class WaypointGraph {
   std::vector<Record> records_;
   std::vector<HeapEntry> heap_;
   std::uint32_t generation_ = 0;
-  int expanded_ = 0;
 };
 
 }  // namespace zonesim::ai

@@ -50,8 +50,6 @@ class AntColony {
 
   /// Sends one iteration of ants, then evaporates and deposits.
   AntIteration iterate();
-  /// Best route found so far (empty while none), nest first.
-  const std::vector<ai::Cell>& bestRoute() const { return best_; }
   /// Length of the best route (0 while none).
   double bestLength() const { return bestLength_; }
   /// The colony's current preferred route: from the nest, always the strongest unvisited

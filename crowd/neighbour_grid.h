@@ -107,25 +107,13 @@ class NeighbourGrid {
     }
   }
 
-  /// The ranges forEachRowNearAll(p, n, radius) visits, as (begin, end) pairs in `out`;
-  /// returns how many, or -1 when there are more than `cap` (for loops that cannot take a
-  /// callback, such as code compiled for another instruction set).
-  int rowRangesNearAll(const Vec2* p, int n, double radius, std::int32_t* out, int cap) const {
-    int count = 0;
-    forEachRowNearAll(p, n, radius, [&](std::int32_t begin, std::int32_t end) {
-      if (count < cap) {
-        out[2 * count] = begin;
-        out[2 * count + 1] = end;
-      }
-      ++count;
-    });
-    return count <= cap ? count : -1;
-  }
-
-  /// As rowRangesNearAll, but each row's range is the cells from the leftmost disc's left
-  /// edge to the rightmost disc's right edge at the row's nearest point to any of the discs:
-  /// a superset of the union of the chords (the extra cells lie outside every disc), found
-  /// with one square root per row. For groups of nearby discs, whose loops filter by distance.
+  /// The cell ranges of the rows near discs of `radius` around p[0..n), as (begin, end) pairs
+  /// in `out`; returns how many, or -1 when there are more than `cap` (for loops that cannot
+  /// take a callback, such as code compiled for another instruction set). Each row's range is
+  /// the cells from the leftmost disc's left edge to the rightmost disc's right edge at the
+  /// row's nearest point to any of the discs: a superset of the union of the chords that
+  /// forEachRowNearAll visits (the extra cells lie outside every disc), found with one square
+  /// root per row. For groups of nearby discs, whose loops filter by distance.
   int rowRangesNearBox(const Vec2* p, int n, double radius, std::int32_t* out, int cap) const {
     if (entries_.empty()) return 0;
     double xLo = p[0].x, xHi = p[0].x, yLo = p[0].y, yHi = p[0].y;

@@ -53,14 +53,6 @@ Q4 predictRotation(const State& s, Spin spin, double dt) {
   return normalized(multiply(step, s.rot));
 }
 
-State predict(const State& s, const Model& m, double dt) {
-  State out = s;
-  out.pos = predictPosition(s, m.order, dt);
-  out.vel = predictVelocity(s, m.order, dt);
-  out.rot = predictRotation(s, m.spin, dt);
-  return out;
-}
-
 double distance(const V3& a, const V3& b) {
   double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
   return std::sqrt(dx * dx + dy * dy + dz * dz);

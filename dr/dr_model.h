@@ -43,8 +43,6 @@ V3 predictPosition(const State& s, Order order, double dt);
 V3 predictVelocity(const State& s, Order order, double dt);
 /// Orientation after dt seconds: fixed, or rotated by angvel * dt about a world axis.
 Q4 predictRotation(const State& s, Spin spin, double dt);
-/// The whole state after dt seconds (acceleration and angular velocity carried over).
-State predict(const State& s, const Model& m, double dt);
 
 /// Euclidean distance.
 double distance(const V3& a, const V3& b);

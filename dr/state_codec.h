@@ -89,11 +89,8 @@ class StateCodec {
   /// Bits of a record without the id and tick prefixes, for the given model.
   int stateBits(const Model& m) const;
   const CodecParams& params() const { return params_; }
-  /// Worst-case position error per axis (half a step).
-  double positionStep() const { return px_.resolution; }
   /// Orientation component step (smallest-three).
   double rotationStep() const { return rot_.resolution; }
-  double velocityStep() const { return vel_.resolution; }
 
  private:
   Quantiser horizontal(int index_along, double world_min) const;

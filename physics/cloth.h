@@ -61,8 +61,6 @@ class Cloth {
   void step(double dt, int substeps, ClothColliders* colliders = nullptr);
   /// The description it was built from.
   const ClothDesc& desc() const { return desc_; }
-  /// Particle inverse masses (0: pinned).
-  const std::vector<double>& inverseMasses() const { return inv_mass_; }
   /// Total momentum of the free particles (kg m/s).
   Vec3 momentum() const;
 

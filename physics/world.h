@@ -66,8 +66,6 @@ class World {
   std::uint32_t addBallJoint(const BallJoint& joint) { return rigid_joints_.addBall(joint); }
   /// Adds a hinge joint and returns its index among the hinges.
   std::uint32_t addHingeJoint(const HingeJoint& joint) { return rigid_joints_.addHinge(joint); }
-  /// The distance joints with their last impulses.
-  std::span<const DistanceJoint> distanceJoints() const { return joints_.joints(); }
   /// Wakes body i and the island it sleeps in; call after setting a velocity by hand.
   void wake(BodyIndex i) { islands_.wake(i); }
   /// True when body i sleeps.
