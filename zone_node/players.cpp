@@ -118,7 +118,7 @@ void Players::applyInput(PlayerZone& zone, std::uint64_t player_id, std::uint32_
   }
   auto gone = departed_players_.find(player_id);
   if (gone != departed_players_.end()) {
-    forward_[std::size_t(gone->second)].push_back({player_id, 0, seq, move_x, move_z});
+    forward_[std::size_t(gone->second)].push_back({player_id, seq, move_x, move_z});
     ++zone.counters.inputs_forwarded;
     return;
   }

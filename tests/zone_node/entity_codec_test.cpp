@@ -37,7 +37,7 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   avatar.avatar.last_input_seq = 41;
   avatar.avatar.move_x = -0.5f;
   p.entities = {npc, avatar};
-  p.inputs = {{555, 0, 42, 1.0f, 0.0f}};
+  p.inputs = {{555, 42, 1.0f, 0.0f}};
 
   MigrationPayload q = decodeMigration(encodeMigration(p));
   EXPECT_EQ(q.tick, 77u);

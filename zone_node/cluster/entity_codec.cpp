@@ -183,8 +183,7 @@ std::vector<std::uint8_t> encodeMigration(const MigrationPayload& p) {
   std::vector<flatbuffers::Offset<fb::ForwardedInput>> inputs;
   inputs.reserve(p.inputs.size());
   for (const ForwardedInput& in : p.inputs)
-    inputs.push_back(
-        fb::CreateForwardedInput(b, in.player_id, in.avatar_id, in.seq, in.move_x, in.move_z));
+    inputs.push_back(fb::CreateForwardedInput(b, in.player_id, in.seq, in.move_x, in.move_z));
   auto root = fb::CreateMigrationBatch(b, p.tick, p.from_rank, b.CreateVector(entities),
                                        b.CreateVector(inputs));
   fb::FinishMigrationBatchBuffer(b, root);
@@ -210,7 +209,7 @@ MigrationPayload decodeMigration(std::span<const std::uint8_t> bytes) {
   }
   if (const auto* ins = m->inputs()) {
     for (const fb::ForwardedInput* in : *ins)
-      p.inputs.push_back({in->player_id(), in->avatar_id(), in->seq(), in->move_x(), in->move_z()});
+      p.inputs.push_back({in->player_id(), in->seq(), in->move_x(), in->move_z()});
   }
   return p;
 }

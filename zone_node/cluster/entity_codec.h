@@ -14,7 +14,6 @@ namespace zonesim::zone {
 /// An input that reached this zone after its avatar left; travels with the next migration.
 struct ForwardedInput {
   std::uint64_t player_id = 0;
-  std::uint64_t avatar_id = 0;
   std::uint32_t seq = 0;
   float move_x = 0, move_z = 0;
 };

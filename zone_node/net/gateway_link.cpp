@@ -19,10 +19,10 @@ GatewayLink::GatewayLink(int domain, int rank)
 
 std::vector<PlayerInputMsg> GatewayLink::takeInputs() {
   std::vector<PlayerInputMsg> out;
-  dds::takeAll<zonesim_dds_PlayerInput>(
-      inputs_.reader.get(), [&](const zonesim_dds_PlayerInput& s) {
-        out.push_back({s.player_id, s.avatar_id, s.seq, s.move_x, s.move_z});
-      });
+  dds::takeAll<zonesim_dds_PlayerInput>(inputs_.reader.get(),
+                                        [&](const zonesim_dds_PlayerInput& s) {
+                                          out.push_back({s.player_id, s.seq, s.move_x, s.move_z});
+                                        });
   return out;
 }
 

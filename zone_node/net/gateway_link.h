@@ -13,7 +13,6 @@ namespace zonesim::zone {
 /// One player input as the gateway sent it.
 struct PlayerInputMsg {
   std::uint64_t player_id = 0;
-  std::uint64_t avatar_id = 0;
   std::uint32_t seq = 0;
   float move_x = 0, move_z = 0;
 };
