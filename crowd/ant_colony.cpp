@@ -8,11 +8,9 @@
 namespace zonesim::crowd {
 
 namespace {
-constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-
 int directionOf(ai::Cell a, ai::Cell b) {
   for (int k = 0; k < 8; ++k)
-    if (a.x + kSteps[k][0] == b.x && a.y + kSteps[k][1] == b.y) return k;
+    if (antStep(a, k) == b) return k;
   return -1;
 }
 }  // namespace
@@ -31,58 +29,28 @@ AntColony::AntColony(const ai::GridMap& map, ai::Cell nest, ai::Cell food,
   if (settings_.maxSteps <= 0) settings_.maxSteps = 4 * map.passableCount();
 }
 
-bool AntColony::stepAllowed(int x, int y, int k) const {
-  int nx = x + kSteps[k][0], ny = y + kSteps[k][1];
-  if (!map_.passable(nx, ny)) return false;
-  if (k >= 4 && (!map_.passable(nx, y) || !map_.passable(x, ny))) return false;
-  return true;
-}
-
 bool AntColony::walk(std::vector<ai::Cell>& route) {
   ++stamp_;
   route.clear();
   route.push_back(nest_);
   seen_[map_.index(nest_.x, nest_.y)] = stamp_;
-  double weight[8];
+  const AntChoice rule{settings_.alpha, settings_.beta, settings_.knowsFoodPosition,
+                       settings_.exploitation};
   for (int moves = 0; moves < settings_.maxSteps; ++moves) {
     ai::Cell c = route.back();
     if (c == food_) return true;
-    double total = 0, strongest = -1;
-    int strongestK = -1;
-    for (int k = 0; k < 8; ++k) {
-      weight[k] = 0;
-      if (!stepAllowed(c.x, c.y, k)) continue;
-      ai::Cell nc{c.x + kSteps[k][0], c.y + kSteps[k][1]};
-      int n = map_.index(nc.x, nc.y);
-      if (seen_[n] == stamp_) continue;
-      double tau = tau_[std::size_t(map_.index(c.x, c.y)) * 8 + k];
-      double step = k >= 4 ? ai::kDiagonalCost : 1.0;
-      double eta =
-          settings_.knowsFoodPosition ? 1.0 / (step + ai::octileDistance(nc, food_)) : 1.0 / step;
-      weight[k] = std::pow(tau, settings_.alpha) * std::pow(eta, settings_.beta);
-      total += weight[k];
-      if (weight[k] > strongest) {
-        strongest = weight[k];
-        strongestK = k;
-      }
-    }
-    if (strongestK < 0) {
+    const std::size_t from = std::size_t(map_.index(c.x, c.y)) * 8;
+    const int k = chooseAntStep(
+        map_, c, food_, rule, [&](int step, ai::Cell) { return tau_[from + step]; },
+        [&](ai::Cell n) { return seen_[map_.index(n.x, n.y)] != stamp_; },
+        [&](int) { return rng_.uniform(); });
+    if (k < 0) {
       // Dead end: back off one cell (it stays marked, so the ant will not return).
       route.pop_back();
       if (route.empty()) return false;
       continue;
     }
-    int chosen = strongestK;
-    if (rng_.uniform() >= settings_.exploitation) {
-      double pick = rng_.uniform() * total;
-      for (int k = 0; k < 8; ++k) {
-        if (weight[k] <= 0) continue;
-        chosen = k;
-        pick -= weight[k];
-        if (pick < 0) break;
-      }
-    }
-    ai::Cell n{c.x + kSteps[chosen][0], c.y + kSteps[chosen][1]};
+    ai::Cell n = antStep(c, k);
     seen_[map_.index(n.x, n.y)] = stamp_;
     route.push_back(n);
   }
@@ -123,28 +91,8 @@ AntIteration AntColony::iterate() {
 }
 
 bool AntColony::trailRoute(std::vector<ai::Cell>& out) const {
-  std::vector<std::uint8_t> visited(seen_.size(), 0);
-  out.assign(1, nest_);
-  visited[map_.index(nest_.x, nest_.y)] = 1;
-  while (!(out.back() == food_)) {
-    ai::Cell c = out.back();
-    int bestK = -1;
-    double bestTau = -1;
-    for (int k = 0; k < 8; ++k) {
-      if (!stepAllowed(c.x, c.y, k)) continue;
-      if (visited[map_.index(c.x + kSteps[k][0], c.y + kSteps[k][1])]) continue;
-      double t = pheromone(c, k);
-      if (t > bestTau) {
-        bestTau = t;
-        bestK = k;
-      }
-    }
-    if (bestK < 0) return false;
-    ai::Cell n{c.x + kSteps[bestK][0], c.y + kSteps[bestK][1]};
-    visited[map_.index(n.x, n.y)] = 1;
-    out.push_back(n);
-  }
-  return true;
+  return strongestTrailRoute(
+      map_, nest_, food_, [&](ai::Cell c, int k, ai::Cell) { return pheromone(c, k); }, out);
 }
 
 }  // namespace zonesim::crowd

@@ -14,6 +14,7 @@
 
 #include "ai/grid_map.h"
 #include "common/rng.h"
+#include "crowd/ant_step.h"
 
 namespace zonesim::crowd {
 
@@ -62,7 +63,6 @@ class AntColony {
 
  private:
   bool walk(std::vector<ai::Cell>& route);
-  bool stepAllowed(int x, int y, int k) const;
 
   const ai::GridMap& map_;
   ai::Cell nest_, food_;

@@ -6,14 +6,13 @@
 
 #include "common/scene_source.h"
 #include "common/splitmix.h"
+#include "crowd/ant_step.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
 
 namespace {
-
-constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
 
 /// Uniform in [0, 1) from (seed, ant, tick, draw) alone: no ant's draws depend on which other
 /// ants a rank holds, nor on the order it steps them.
@@ -41,18 +40,13 @@ std::int32_t cellCount(const std::vector<std::int32_t>& cells) {
 
 /// One colony: where its nest and food are, its trail grid and the figures of its ants.
 struct AntMovement::Colony {
-  Colony(std::int32_t p, const NpcColony& c, const WorldMap& m) : population(p), cfg(c), map(m) {}
+  Colony(std::int32_t p, const NpcColony& c, const WorldMap& m)
+      : population(p), cfg(c), map(m), choice{c.alpha, c.beta, c.knows_food, c.exploitation} {}
 
-  bool stepAllowed(ai::Cell c, int k) const {
-    const ai::GridMap& g = map.grid;
-    int nx = c.x + kSteps[k][0], ny = c.y + kSteps[k][1];
-    if (!g.passable(nx, ny)) return false;
-    return k < 4 || (g.passable(nx, c.y) && g.passable(c.x, ny));  // no corner cutting
-  }
   std::size_t index(ai::Cell c) const { return std::size_t(map.grid.index(c.x, c.y)); }
   bool adjacent(ai::Cell a, ai::Cell b) const {
     for (int k = 0; k < 8; ++k)
-      if (a.x + kSteps[k][0] == b.x && a.y + kSteps[k][1] == b.y) return stepAllowed(a, k);
+      if (crowd::antStep(a, k) == b) return crowd::antStepAllowed(map.grid, a, k);
     return false;
   }
   /// Replaces `route` (x, y pairs, nest first) by the route home from its last cell that
@@ -75,6 +69,7 @@ struct AntMovement::Colony {
   std::int32_t population;
   const NpcColony& cfg;
   const WorldMap& map;
+  crowd::AntChoice choice;
   ai::Cell nest, food;
   std::size_t offset = 0;           // first cell of this colony in deltas_
   std::vector<std::int64_t> trail;  // fixed point, kTrailScale per unit
@@ -138,27 +133,9 @@ double AntMovement::totalTrail(std::size_t c) const {
 
 std::vector<ai::Cell> AntMovement::trailRoute(std::size_t c) const {
   const Colony& col = *colonies_[c];
-  std::vector<std::uint8_t> visited(col.trail.size(), 0);
-  std::vector<ai::Cell> out{col.nest};
-  visited[col.index(col.nest)] = 1;
-  while (!(out.back() == col.food)) {
-    ai::Cell at = out.back();
-    int best = -1;
-    std::int64_t strongest = -1;
-    for (int k = 0; k < 8; ++k) {
-      if (!col.stepAllowed(at, k)) continue;
-      ai::Cell n{at.x + kSteps[k][0], at.y + kSteps[k][1]};
-      if (visited[col.index(n)]) continue;
-      if (col.trail[col.index(n)] > strongest) {
-        strongest = col.trail[col.index(n)];
-        best = k;
-      }
-    }
-    if (best < 0) return {};
-    ai::Cell n{at.x + kSteps[best][0], at.y + kSteps[best][1]};
-    visited[col.index(n)] = 1;
-    out.push_back(n);
-  }
+  std::vector<ai::Cell> out;
+  auto strength = [&](ai::Cell, int, ai::Cell n) { return col.trail[col.index(n)]; };
+  if (!crowd::strongestTrailRoute(col.map.grid, col.nest, col.food, strength, out)) return {};
   return out;
 }
 
@@ -233,26 +210,14 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
           }
         } else {
           // Sense the eight cells around; weigh the open ones not yet walked on this trip.
-          double weight[8];
-          double total = 0, strongest = -1;
-          int best = -1;
-          for (int k = 0; k < 8; ++k) {
-            weight[k] = 0;
-            if (!col.stepAllowed(c, k)) continue;
-            ai::Cell n{c.x + kSteps[k][0], c.y + kSteps[k][1]};
-            if (contains(ant.crowd_path, n) || contains(ant.crowd_seen, n)) continue;
-            double tau = double(col.trail[col.index(n)]) / kTrailScale;
-            double step = k >= 4 ? ai::kDiagonalCost : 1.0;
-            double eta =
-                col.cfg.knows_food ? 1.0 / (step + ai::octileDistance(n, col.food)) : 1.0 / step;
-            weight[k] = std::pow(tau, col.cfg.alpha) * std::pow(eta, col.cfg.beta);
-            total += weight[k];
-            if (weight[k] > strongest) {
-              strongest = weight[k];
-              best = k;
-            }
-          }
-          if (best < 0) {
+          const int chosen = crowd::chooseAntStep(
+              col.map.grid, c, col.food, col.choice,
+              [&](int, ai::Cell n) { return double(col.trail[col.index(n)]) / kTrailScale; },
+              [&](ai::Cell n) {
+                return !contains(ant.crowd_path, n) && !contains(ant.crowd_seen, n);
+              },
+              [&](int draw) { return counterUniform(seed_, id, tick, draw); });
+          if (chosen < 0) {
             // Dead end: remember it and back off one cell (at the nest: start afresh).
             if (cellCount(ant.crowd_path) > 1) {
               ant.crowd_seen.push_back(c.x);
@@ -262,18 +227,9 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
               ant.crowd_seen.clear();
             }
           } else {
-            int chosen = best;
-            if (counterUniform(seed_, id, tick, 0) >= col.cfg.exploitation) {
-              double pick = counterUniform(seed_, id, tick, 1) * total;
-              for (int k = 0; k < 8; ++k) {
-                if (weight[k] <= 0) continue;
-                chosen = k;
-                pick -= weight[k];
-                if (pick < 0) break;
-              }
-            }
-            ant.crowd_path.push_back(c.x + kSteps[chosen][0]);
-            ant.crowd_path.push_back(c.y + kSteps[chosen][1]);
+            const ai::Cell n = crowd::antStep(c, chosen);
+            ant.crowd_path.push_back(n.x);
+            ant.crowd_path.push_back(n.y);
           }
         }
       }

@@ -4,8 +4,9 @@
 // cells next to it (a wall is found by standing next to it), never re-enters a cell of its
 // trip, backs off from dead ends, and picks its next cell with probability proportional to
 // trail^alpha * eta^beta, or the best such cell outright with probability `exploitation` (the
-// ACS rule). An ant that reaches the food walks its route back to the nest, laying
-// deposit / (route length) on every cell; trails evaporate every tick.
+// ACS rule, crowd/ant_step.h's chooseAntStep, the one AntColony uses too). An ant that reaches the
+// food walks its route back to the nest, laying deposit / (route length) on every cell; trails
+// evaporate every tick.
 //
 // Decomposition: the trail grid is global state that ants on every rank read and lay. Trails
 // are fixed-point integers: each rank adds up its own ants' deposits of a tick (deltas()), the
