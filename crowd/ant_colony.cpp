@@ -4,13 +4,14 @@
 #include <stdexcept>
 
 #include "ai/grid_path.h"
+#include "crowd/grid_step.h"
 
 namespace zonesim::crowd {
 
 namespace {
 int directionOf(ai::Cell a, ai::Cell b) {
   for (int k = 0; k < 8; ++k)
-    if (antStep(a, k) == b) return k;
+    if (gridStep(a, k) == b) return k;
   return -1;
 }
 }  // namespace
@@ -50,7 +51,7 @@ bool AntColony::walk(std::vector<ai::Cell>& route) {
       if (route.empty()) return false;
       continue;
     }
-    ai::Cell n = antStep(c, k);
+    ai::Cell n = gridStep(c, k);
     seen_[map_.index(n.x, n.y)] = stamp_;
     route.push_back(n);
   }

@@ -5,7 +5,8 @@
 // takes the strongest outright with probability `exploitation`, else draws one in proportion
 // to its weight (the ACS rule). Where the trail lives (per directed step or per cell, double
 // or fixed point) and where the draws come from (one stream, or a counter-based hash) are the
-// caller's: they come in as callables, so the rule itself is written once.
+// caller's: they come in as callables, so the rule itself is written once. The moves and the
+// no-corner-cutting rule are crowd/grid_step.h's.
 
 #include <cmath>
 #include <cstdint>
@@ -13,26 +14,9 @@
 
 #include "ai/grid_map.h"
 #include "ai/octile.h"
+#include "crowd/grid_step.h"
 
 namespace zonesim::crowd {
-
-/// The eight steps from a cell, straight ones first: every loop over them takes this order,
-/// so ties break alike everywhere.
-inline constexpr int kAntSteps[8][2] = {{1, 0}, {0, 1},  {-1, 0},  {0, -1},
-                                        {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-
-/// The cell step k (0..7) leads to from c.
-inline ai::Cell antStep(ai::Cell c, int k) {
-  return {c.x + kAntSteps[k][0], c.y + kAntSteps[k][1]};
-}
-
-/// Whether an ant at c may take step k: onto open ground, and diagonally only when both cells
-/// beside the step are open (no corner cutting).
-inline bool antStepAllowed(const ai::GridMap& map, ai::Cell c, int k) {
-  const int nx = c.x + kAntSteps[k][0], ny = c.y + kAntSteps[k][1];
-  if (!map.passable(nx, ny)) return false;
-  return k < 4 || (map.passable(nx, c.y) && map.passable(c.x, ny));
-}
 
 /// The parameters of the step choice.
 struct AntChoice {
@@ -54,8 +38,8 @@ int chooseAntStep(const ai::GridMap& map, ai::Cell c, ai::Cell food, const AntCh
   int best = -1;
   for (int k = 0; k < 8; ++k) {
     weight[k] = 0;
-    if (!antStepAllowed(map, c, k)) continue;
-    const ai::Cell n = antStep(c, k);
+    if (!gridStepAllowed(map, c, k)) continue;
+    const ai::Cell n = gridStep(c, k);
     if (!open(n)) continue;
     const double tau = trail(k, n);
     const double step = k >= 4 ? ai::kDiagonalCost : 1.0;
@@ -95,8 +79,8 @@ bool strongestTrailRoute(const ai::GridMap& map, ai::Cell nest, ai::Cell food, S
     int best = -1;
     decltype(strength(c, 0, c)) strongest = -1;
     for (int k = 0; k < 8; ++k) {
-      if (!antStepAllowed(map, c, k)) continue;
-      const ai::Cell n = antStep(c, k);
+      if (!gridStepAllowed(map, c, k)) continue;
+      const ai::Cell n = gridStep(c, k);
       if (visited[std::size_t(map.index(n.x, n.y))]) continue;
       const auto t = strength(c, k, n);
       if (t > strongest) {
@@ -105,7 +89,7 @@ bool strongestTrailRoute(const ai::GridMap& map, ai::Cell nest, ai::Cell food, S
       }
     }
     if (best < 0) return false;
-    const ai::Cell n = antStep(c, best);
+    const ai::Cell n = gridStep(c, best);
     visited[std::size_t(map.index(n.x, n.y))] = 1;
     out.push_back(n);
   }

@@ -3,13 +3,9 @@
 #include <stdexcept>
 
 #include "ai/grid_search.h"
+#include "crowd/grid_step.h"
 
 namespace zonesim::crowd {
-
-namespace {
-// Neighbour order fixes the tie-break between equally short next steps.
-constexpr int kSteps[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-}  // namespace
 
 FlowField::FlowField(const ai::GridMap& map, ai::Cell goal)
     : width_(map.width()), height_(map.height()), goal_(goal), mapVersion_(map.version()) {
@@ -32,14 +28,13 @@ FlowField::FlowField(const ai::GridMap& map, ai::Cell goal)
       // The neighbour through which the shortest path continues: argmin of its distance plus
       // the step, over moves that neither enter a blocked cell nor cut a blocked corner.
       double best = 1e300;
+      // The move order (crowd/grid_step.h) fixes the tie-break between equally short steps.
       for (int k = 0; k < 8; ++k) {
-        int nx = x + kSteps[k][0], ny = y + kSteps[k][1];
-        if (!map.passable(nx, ny)) continue;
-        bool diagonal = k >= 4;
-        if (diagonal && (!map.passable(nx, y) || !map.passable(x, ny))) continue;
-        double d = exact[map.index(nx, ny)];
+        if (!gridStepAllowed(map, ai::Cell{x, y}, k)) continue;
+        const ai::Cell n = gridStep(ai::Cell{x, y}, k);
+        double d = exact[map.index(n.x, n.y)];
         if (d < 0) continue;
-        double through = d + (diagonal ? ai::kDiagonalCost : 1.0);
+        double through = d + (k >= 4 ? ai::kDiagonalCost : 1.0);
         if (through < best - 1e-9) {
           best = through;
           dir_[idx] = std::int8_t(k);
@@ -57,7 +52,7 @@ bool FlowField::next(ai::Cell c, ai::Cell& out) const {
   if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return false;
   int k = dir_[std::size_t(c.y) * width_ + c.x];
   if (k < 0) return false;
-  out = ai::Cell{c.x + kSteps[k][0], c.y + kSteps[k][1]};
+  out = gridStep(c, k);
   return true;
 }
 

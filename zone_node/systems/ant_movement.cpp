@@ -7,6 +7,7 @@
 #include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "crowd/ant_step.h"
+#include "crowd/grid_step.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/world_map.h"
 
@@ -46,7 +47,7 @@ struct AntMovement::Colony {
   std::size_t index(ai::Cell c) const { return std::size_t(map.grid.index(c.x, c.y)); }
   bool adjacent(ai::Cell a, ai::Cell b) const {
     for (int k = 0; k < 8; ++k)
-      if (crowd::antStep(a, k) == b) return crowd::antStepAllowed(map.grid, a, k);
+      if (crowd::gridStep(a, k) == b) return crowd::gridStepAllowed(map.grid, a, k);
     return false;
   }
   /// Replaces `route` (x, y pairs, nest first) by the route home from its last cell that
@@ -227,7 +228,7 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
               ant.crowd_seen.clear();
             }
           } else {
-            const ai::Cell n = crowd::antStep(c, chosen);
+            const ai::Cell n = crowd::gridStep(c, chosen);
             ant.crowd_path.push_back(n.x);
             ant.crowd_path.push_back(n.y);
           }
