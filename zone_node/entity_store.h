@@ -8,6 +8,7 @@
 #include <optional>
 #include <tuple>
 #include <unordered_map>
+#include <variant>
 #include <vector>
 
 #include "common/entity_id.h"
@@ -18,6 +19,33 @@ namespace zonesim::zone {
 
 enum class EntityKind : std::uint8_t { Npc = 0, Avatar = 1, RigidBody = 2, Emitter = 3 };
 constexpr int kEntityKindCount = 4;
+
+/// A formation member's own state (systems/formation_movement.h: crowd::MemberState).
+struct FormationMemberData {
+  std::int32_t mode = 0;                ///< crowd::MemberMode
+  std::int32_t path_at = 0;             ///< index (in cells) of the next cell of `path`
+  double planned_x = 0, planned_z = 0;  ///< the centre the rejoin path was planned to
+  std::vector<std::int32_t> path;       ///< the rejoin path's cells as x, y pairs
+};
+
+/// An ant's own state (systems/ant_movement.h).
+struct AntData {
+  std::int32_t mode = 0;                ///< AntMode
+  std::int32_t route_at = 0;            ///< index (in cells) of the next cell of `route` back
+  double route_length = 0;              ///< m: length of the route found (0: none yet)
+  std::vector<std::int32_t> route;      ///< cells from the nest as x, y pairs
+  std::vector<std::int32_t> dead_ends;  ///< dead ends of this trip, x, y pairs
+};
+
+/// A road traveller's own state (systems/road_movement.h).
+struct RoadTripData {
+  std::int32_t next_node = 0;  ///< the node it walks to
+  std::int32_t goal = 0;       ///< the node it travels to
+};
+
+/// The per-system state of an NPC that a crowd system moves (none for wanderers, flocks and
+/// flow crowds, whose state is their position and velocity).
+using CrowdState = std::variant<std::monostate, FormationMemberData, AntData, RoadTripData>;
 
 /// Walking NPC: waypoint wandering.
 struct NpcData {
@@ -32,18 +60,21 @@ struct NpcData {
   double gather_radius = 0;          ///< 0: never gathers
   double gather_start = 0, gather_end = 0;  ///< simulated seconds
   bool gathering = false;                   ///< the current waypoint is one of the gathering's
-  /// Its population's index in Scene::npcs when a crowd system moves it (a flock or a flow
-  /// crowd: the population says which), else -1 (a wanderer).
-  std::int32_t flock = -1;
-  // A formation member's or an ant's own state (systems/formation_movement.h,
-  // systems/ant_movement.h), carried by migration like an agent's path.
-  std::int32_t crowd_mode = 0;           ///< formation: crowd::MemberMode; ant: AntMode
-  std::int32_t crowd_at = 0;             ///< index (in cells) of the next cell of crowd_path
-  double crowd_x = 0, crowd_z = 0;       ///< formation: centre a rejoin path was planned to;
-                                         ///< ant: x = length of the route found
-  std::vector<std::int32_t> crowd_path;  ///< cells as x, y pairs (rejoin path; ant's route)
-  std::vector<std::int32_t> crowd_seen;  ///< ant: dead ends of this trip, x, y pairs
+  /// Its population's index in Scene::npcs when a crowd system moves it (a flock, a flow
+  /// crowd, a formation, a colony or a road network: the population says which), else -1 (a
+  /// wanderer).
+  std::int32_t population = -1;
+  /// The state of its own that the crowd system keeps for it, carried by migration like an
+  /// agent's path: one type per system, so no field means different things to different ones.
+  CrowdState crowd;
 };
+
+/// The NPC's crowd state of type T, made afresh if it holds none (or another system's).
+template <typename T>
+T& crowdState(NpcData& n) {
+  if (!std::holds_alternative<T>(n.crowd)) n.crowd.template emplace<T>();
+  return std::get<T>(n.crowd);
+}
 
 /// A player's avatar, driven by inputs applied exactly once by sequence number.
 struct AvatarData {

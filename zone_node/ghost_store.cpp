@@ -7,7 +7,7 @@ namespace zonesim::zone {
 
 GhostColumn crowdPopulationColumn() {
   return {kCrowdPopulation, [](const EntityStore& s, std::size_t i) -> std::int64_t {
-            return s.kind[i] == EntityKind::Npc ? s.npc[i].flock : -1;
+            return s.kind[i] == EntityKind::Npc ? s.npc[i].population : -1;
           }};
 }
 

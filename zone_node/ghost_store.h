@@ -35,7 +35,7 @@ struct GhostColumn {
   std::function<std::int64_t(const EntityStore&, std::size_t)> read;
 };
 
-/// The crowd population an NPC's crowd system moves it for (NpcData::flock; -1: none), so
+/// The crowd population an NPC's crowd system moves it for (NpcData::population; -1: none), so
 /// flocks, flow crowds and formations see only their kin across a border.
 GhostColumn crowdPopulationColumn();
 inline constexpr const char* kCrowdPopulation = "crowd.population";

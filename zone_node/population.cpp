@@ -89,7 +89,7 @@ void forEachInitialEntity(const Scene& scene,
       r.npc.waypoint = nextWaypoint(scene, r.pos, p.waypoint_radius, r.rng_state, r.id);
       if (p.flock.enabled) {
         // A flock starts with random headings at flocking speed; alignment orders it.
-        r.npc.flock = std::int32_t(group);
+        r.npc.population = std::int32_t(group);
         Pcg32 more = Pcg32::fromState(r.rng_state, r.id.value);
         double heading = more.uniform(0.0, 2.0 * M_PI);
         double speed = std::min(r.npc.max_speed, p.flock.max_speed);
@@ -98,28 +98,29 @@ void forEachInitialEntity(const Scene& scene,
       }
       // A flow NPC starts at rest; the flow system moves it (the population index tells it
       // apart from wanderers, as for flocks).
-      if (p.flow.enabled) r.npc.flock = std::int32_t(group);
+      if (p.flow.enabled) r.npc.population = std::int32_t(group);
       // An ant starts at rest in its nest's cell centre, its route that one cell.
       if (p.colony.enabled) {
-        r.npc.flock = std::int32_t(group);
+        r.npc.population = std::int32_t(group);
         ai::Cell nest = map->frame.cellOf({p.colony.nest.x, p.colony.nest.z});
         crowd::Vec2 at = map->frame.centre(nest);
         r.pos = Vec3(at.x, scene.world.min.y, at.y);
-        r.npc.crowd_path = {nest.x, nest.y};
+        crowdState<AntData>(r.npc).route = {nest.x, nest.y};
       }
       // A road NPC starts at rest on a node drawn from its stream, which is its first goal.
       if (p.roads.enabled) {
-        r.npc.flock = std::int32_t(group);
+        r.npc.population = std::int32_t(group);
         Pcg32 more = Pcg32::fromState(r.rng_state, r.id.value);
         const int start = int(more.next() % std::uint32_t(p.roads.nodes.size()));
         r.pos = Vec3(p.roads.nodes[std::size_t(start)].x, scene.world.min.y,
                      p.roads.nodes[std::size_t(start)].z);
-        r.npc.crowd_at = r.npc.crowd_mode = start;
+        r.npc.crowd = RoadTripData{start, start};
         r.rng_state = more.state();
       }
       // A formation member starts at rest at its slot (its index in the population).
       if (p.formation.enabled) {
-        r.npc.flock = std::int32_t(group);
+        r.npc.population = std::int32_t(group);
+        r.npc.crowd = FormationMemberData{};
         crowd::Vec2 at = formationStart(scene, *map, group, i);
         r.pos = Vec3(at.x, scene.world.min.y, at.y);
       }

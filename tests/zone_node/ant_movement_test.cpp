@@ -84,7 +84,8 @@ TEST(AntMovement, AnAbandonedTrailFadesAsOneMinusRhoToTheT) {
   auto layers = [&] {
     int n = 0;
     for (std::size_t i = 0; i < c.store.size(); ++i)
-      n += c.store.npc[i].crowd_mode == int(AntMode::Returning) && c.store.npc[i].crowd_x > 0;
+      n += std::get<AntData>(c.store.npc[i].crowd).mode == int(AntMode::Returning) &&
+           std::get<AntData>(c.store.npc[i].crowd).route_length > 0;
     return n;
   };
   while (layers() > 0 && c.tick < std::uint64_t(400 / scene.dt)) c.run(1);
@@ -133,7 +134,8 @@ TEST(AntMovement, AnAntsWalkDoesNotDependOnTheOtherAntsItIsSteppedWith) {
       std::size_t w = *whole.store.indexOf(part->id[i]);
       EXPECT_EQ(part->pos[i].x(), whole.store.pos[w].x());
       EXPECT_EQ(part->pos[i].z(), whole.store.pos[w].z());
-      EXPECT_EQ(part->npc[i].crowd_path, whole.store.npc[w].crowd_path);
+      EXPECT_EQ(std::get<AntData>(part->npc[i].crowd).route,
+                std::get<AntData>(whole.store.npc[w].crowd).route);
       ++compared;
     }
   }

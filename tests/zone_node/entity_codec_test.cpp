@@ -18,13 +18,8 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   npc.rng_state = 0xDEADBEEFCAFEBABEULL;
   npc.npc.waypoint = Vec3(9, 0, 8);
   npc.npc.max_speed = 1.75;
-  npc.npc.flock = 2;
-  npc.npc.crowd_mode = 1;  // a rejoining formation member or a returning ant
-  npc.npc.crowd_at = 3;
-  npc.npc.crowd_x = 0.1;
-  npc.npc.crowd_z = -7.25;
-  npc.npc.crowd_path = {4, 5, 5, 6, 6, 6};
-  npc.npc.crowd_seen = {9, 1};
+  npc.npc.population = 2;
+  npc.npc.crowd = AntData{1, 3, 0.1, {4, 5, 5, 6, 6, 6}, {9, 1}};  // a returning ant
   npc.agent.type = 1;  // an agent whose path request waits in the cluster's queue
   npc.agent.nav = 1;
   npc.agent.asked_tick = 123456789012ULL;
@@ -50,19 +45,20 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   EXPECT_EQ(q.entities[0].rng_state, npc.rng_state);
   EXPECT_EQ(q.entities[0].npc.waypoint, npc.npc.waypoint);
   EXPECT_EQ(q.entities[0].npc.max_speed, 1.75);
-  EXPECT_EQ(q.entities[0].npc.flock, 2);
-  EXPECT_EQ(q.entities[0].npc.crowd_mode, 1);
-  EXPECT_EQ(q.entities[0].npc.crowd_at, 3);
-  EXPECT_EQ(q.entities[0].npc.crowd_x, 0.1);
-  EXPECT_EQ(q.entities[0].npc.crowd_z, -7.25);
-  EXPECT_EQ(q.entities[0].npc.crowd_path, npc.npc.crowd_path);
-  EXPECT_EQ(q.entities[0].npc.crowd_seen, npc.npc.crowd_seen);
+  EXPECT_EQ(q.entities[0].npc.population, 2);
+  const auto* ant = std::get_if<AntData>(&q.entities[0].npc.crowd);
+  ASSERT_NE(ant, nullptr);
+  EXPECT_EQ(ant->mode, 1);
+  EXPECT_EQ(ant->route_at, 3);
+  EXPECT_EQ(ant->route_length, 0.1);
+  EXPECT_EQ(ant->route, (std::vector<std::int32_t>{4, 5, 5, 6, 6, 6}));
+  EXPECT_EQ(ant->dead_ends, (std::vector<std::int32_t>{9, 1}));
   EXPECT_EQ(q.entities[0].agent.type, 1);
   EXPECT_EQ(q.entities[0].agent.nav, 1);
   EXPECT_EQ(q.entities[0].agent.asked_tick, 123456789012ULL);
   EXPECT_EQ(q.entities[0].agent.travelled, 2.5);
   EXPECT_EQ(q.entities[0].agent.path, npc.agent.path);
-  EXPECT_EQ(q.entities[1].npc.flock, -1);  // the default when absent from the record
+  EXPECT_EQ(q.entities[1].npc.population, -1);  // the default when absent from the record
   EXPECT_EQ(q.entities[1].kind, EntityKind::Avatar);
   EXPECT_EQ(q.entities[1].avatar.player_id, 555u);
   EXPECT_EQ(q.entities[1].avatar.last_input_seq, 41u);
@@ -84,6 +80,36 @@ TEST(EntityCodec, CorruptBuffersAreRejected) {
   EXPECT_THROW(decodeMigration(wrong_id), CodecError);
   std::vector<std::uint8_t> garbage(64, 0xAB);
   EXPECT_THROW(decodeMigration(garbage), CodecError);
+}
+
+TEST(EntityCodec, EveryKindOfCrowdStateMigratesAsItsOwnType) {
+  const std::vector<CrowdState> states{std::monostate{},
+                                       FormationMemberData{2, 1, 4.5, -3.25, {1, 2, 2, 3}},
+                                       AntData{1, 0, 12.5, {0, 0, 1, 1}, {}}, RoadTripData{7, 9}};
+  MigrationPayload p;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    EntityRecordData r;
+    r.id = EntityId::make(1, k + 1);
+    r.kind = EntityKind::Npc;
+    r.npc.population = std::int32_t(k) - 1;
+    r.npc.crowd = states[k];
+    p.entities.push_back(r);
+  }
+  MigrationPayload q = decodeMigration(encodeMigration(p));
+  ASSERT_EQ(q.entities.size(), states.size());
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    EXPECT_EQ(q.entities[k].npc.crowd.index(), states[k].index()) << k;
+    EXPECT_EQ(q.entities[k].npc.population, std::int32_t(k) - 1);
+  }
+  const auto& m = std::get<FormationMemberData>(q.entities[1].npc.crowd);
+  EXPECT_EQ(m.mode, 2);
+  EXPECT_EQ(m.path_at, 1);
+  EXPECT_EQ(m.planned_x, 4.5);
+  EXPECT_EQ(m.planned_z, -3.25);
+  EXPECT_EQ(m.path, (std::vector<std::int32_t>{1, 2, 2, 3}));
+  const auto& trip = std::get<RoadTripData>(q.entities[3].npc.crowd);
+  EXPECT_EQ(trip.next_node, 7);
+  EXPECT_EQ(trip.goal, 9);
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ TEST(EntityStore, EveryColumnOfTheListIsStoredMovedOnRemovalAndCopiedOut) {
   b.rot = Quat(0, 1, 0, 0);
   b.rng_state = 77;
   b.npc.max_speed = 3.5;
-  b.npc.crowd_path = {1, 2, 3, 4};
+  b.npc.crowd = AntData{1, 2, 3.5, {1, 2, 3, 4}, {5, 6}};
   b.avatar.player_id = 9;
   b.body.mass = 7;
   b.emitter.rate = 11;
@@ -83,7 +83,7 @@ TEST(EntityStore, EveryColumnOfTheListIsStoredMovedOnRemovalAndCopiedOut) {
   EXPECT_EQ(back.rot.coeffs(), b.rot.coeffs());
   EXPECT_EQ(back.rng_state, 77u);
   EXPECT_EQ(back.npc.max_speed, 3.5);
-  EXPECT_EQ(back.npc.crowd_path, b.npc.crowd_path);
+  EXPECT_EQ(std::get<AntData>(back.npc.crowd).dead_ends, std::get<AntData>(b.npc.crowd).dead_ends);
   EXPECT_EQ(back.avatar.player_id, 9u);
   EXPECT_EQ(back.body.mass, 7.0);
   EXPECT_EQ(back.emitter.rate, 11.0);

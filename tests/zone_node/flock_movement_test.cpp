@@ -35,7 +35,7 @@ Scene mixedScene(double alignment) {
 double localOrder(const EntityStore& store, double radius) {
   std::vector<std::size_t> who;
   for (std::size_t i = 0; i < store.size(); ++i)
-    if (store.npc[i].flock >= 0 && std::hypot(store.vel[i].x(), store.vel[i].z()) > 1e-9)
+    if (store.npc[i].population >= 0 && std::hypot(store.vel[i].x(), store.vel[i].z()) > 1e-9)
       who.push_back(i);
   double total = 0;
   for (std::size_t i : who) {
@@ -81,7 +81,7 @@ TEST(FlockMovement, FlockersAlignAndWanderersKeepTheirOwnPath) {
   EntityStore start;
   forEachInitialEntity(s, [&](const EntityRecordData& r) { start.add(r); });
   std::size_t flockers = 0;
-  for (const NpcData& n : start.npc) flockers += n.flock == 1;
+  for (const NpcData& n : start.npc) flockers += n.population == 1;
   EXPECT_EQ(flockers, 300u);
   double before = localOrder(start, 3.0);
 
@@ -89,7 +89,7 @@ TEST(FlockMovement, FlockersAlignAndWanderersKeepTheirOwnPath) {
   EntityStore still = run(s, 20, false);  // the flockers stand still without the system
   double after = localOrder(with, 3.0);
   for (std::size_t i = 0; i < with.size(); ++i) {
-    if (with.npc[i].flock >= 0) {
+    if (with.npc[i].population >= 0) {
       EXPECT_LE(std::hypot(with.vel[i].x(), with.vel[i].z()), s.npcs[1].flock.max_speed + 1e-9);
       EXPECT_EQ(still.pos[i], start.pos[i]) << "stepNpcs moved a flocking NPC";
     } else {

@@ -41,7 +41,8 @@ FormationRun runFormation(const Scene& scene, const WorldMap& map, EntityStore& 
     for (std::size_t i = 0; i < store.size(); ++i) {
       crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
       double err = crowd::length(p - f.slotPosition(store, i));
-      bool in = store.npc[i].crowd_mode == int(crowd::MemberMode::InFormation);
+      bool in = std::get<FormationMemberData>(store.npc[i].crowd).mode ==
+                int(crowd::MemberMode::InFormation);
       if (!f.centre(0).arrived() && in) r.worst_moving = std::max(r.worst_moving, err);
       settled = settled && in && err < settle;
       r.on_walls += map.walkable(p.x, p.y) ? 0 : 1;
@@ -93,10 +94,12 @@ TEST(FormationMovement, AMemberBehindAWallPlansAStarBackAndRejoins) {
   int ticks = 0;
   for (; ticks < int(bound / scene.dt); ++ticks) {
     LoneZone{scene.dt}.step(move, store, std::uint64_t(ticks));
-    cut_off = cut_off || store.npc[0].crowd_mode == int(crowd::MemberMode::Rejoining);
+    cut_off = cut_off || std::get<FormationMemberData>(store.npc[0].crowd).mode ==
+                             int(crowd::MemberMode::Rejoining);
     ASSERT_TRUE(map->walkable(store.pos[0].x(), store.pos[0].z())) << ticks;
     crowd::Vec2 p{store.pos[0].x(), store.pos[0].z()};
-    if (store.npc[0].crowd_mode == int(crowd::MemberMode::InFormation) &&
+    if (std::get<FormationMemberData>(store.npc[0].crowd).mode ==
+            int(crowd::MemberMode::InFormation) &&
         crowd::length(p - move.slotPosition(store, 0)) < 0.1)
       break;
   }

@@ -39,7 +39,7 @@ TEST(GhostStore, TheColumnsReadTheOwnersState) {
   EntityRecordData npc;
   npc.id = EntityId{1};
   npc.kind = EntityKind::Npc;
-  npc.npc.flock = 4;
+  npc.npc.population = 4;
   npc.agent.type = 1;
   EntityRecordData body;
   body.id = EntityId{2};

@@ -67,7 +67,8 @@ TEST(RoadMovement, NpcsTakeOnlyOpenAllowedEdgesAndCheapestPaths) {
   };
   std::vector<Trip> trips(store.size());
   // Each NPC starts on a node that is its first goal, so its first draw opens its first trip.
-  for (std::size_t i = 0; i < store.size(); ++i) trips[i].from = store.npc[i].crowd_at;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    trips[i].from = std::get<RoadTripData>(store.npc[i].crowd).next_node;
   std::vector<std::vector<Matrix>> best(scene.npcs.size());  // [population][shut?]
   for (std::size_t p = 0; p < scene.npcs.size(); ++p)
     best[p] = {floydWarshall(scene.npcs[p].roads, 0), floydWarshall(scene.npcs[p].roads, 20)};
@@ -79,20 +80,20 @@ TEST(RoadMovement, NpcsTakeOnlyOpenAllowedEdgesAndCheapestPaths) {
     const double t = double(tick) * dt;
     std::vector<int> before(store.size()), goal_before(store.size());
     for (std::size_t i = 0; i < store.size(); ++i) {
-      before[i] = store.npc[i].crowd_at;
-      goal_before[i] = store.npc[i].crowd_mode;
+      before[i] = std::get<RoadTripData>(store.npc[i].crowd).next_node;
+      goal_before[i] = std::get<RoadTripData>(store.npc[i].crowd).goal;
     }
     LoneZone{dt}.step(roads, store, tick);
     for (std::size_t i = 0; i < store.size(); ++i) {
       const NpcData& npc = store.npc[i];
-      const NpcRoads& r = scene.npcs[std::size_t(npc.flock)].roads;
+      const NpcRoads& r = scene.npcs[std::size_t(npc.population)].roads;
       Trip& trip = trips[i];
-      if (goal_before[i] != npc.crowd_mode) {
+      if (goal_before[i] != std::get<RoadTripData>(npc.crowd).goal) {
         // It stood on its goal and drew the next: that trip ended here. Trips that saw one
         // state of the closure (before, during or after its 10-30 s) are compared.
         auto phase = [](double s) { return s < 10 ? 0 : s < 30 ? 1 : 2; };
         if (trip.cost > 0 && phase(trip.started) == phase(t)) {
-          const Matrix& d = best[std::size_t(npc.flock)][phase(t) == 1 ? 1 : 0];
+          const Matrix& d = best[std::size_t(npc.population)][phase(t) == 1 ? 1 : 0];
           const double opt = d[std::size_t(trip.from)][std::size_t(goal_before[i])];
           worst = std::max(worst, std::abs(trip.cost - opt));
           trips_off += std::abs(trip.cost - opt) > 1e-9;
@@ -100,18 +101,18 @@ TEST(RoadMovement, NpcsTakeOnlyOpenAllowedEdgesAndCheapestPaths) {
         }
         trip = {goal_before[i], 0, t};
       }
-      if (npc.crowd_at == before[i]) {
-        waits += (store.vel[i].norm() == 0 && before[i] != npc.crowd_mode);
+      if (std::get<RoadTripData>(npc.crowd).next_node == before[i]) {
+        waits += (store.vel[i].norm() == 0 && before[i] != std::get<RoadTripData>(npc.crowd).goal);
         continue;
       }
       // A decision at node before[i] (one per tick here: edges are far longer than a step).
       ++decisions;
-      const double c = edgeCost(r, before[i], npc.crowd_at, t);
+      const double c = edgeCost(r, before[i], std::get<RoadTripData>(npc.crowd).next_node, t);
       wrong_edges += c == kNone;
       for (std::size_t k = 0; k < r.edges.size(); ++k) {
         const NpcRoads::Edge& e = r.edges[k];
-        const bool on =
-            (e.a == before[i] && e.b == npc.crowd_at) || (e.b == before[i] && e.a == npc.crowd_at);
+        const bool on = (e.a == before[i] && e.b == std::get<RoadTripData>(npc.crowd).next_node) ||
+                        (e.b == before[i] && e.a == std::get<RoadTripData>(npc.crowd).next_node);
         if (on && e.flags) ++door_uses;
         if (on && shut(r, k, t)) ++closed_uses;
       }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "entity_record_generated.h"
 
@@ -24,6 +26,59 @@ Quat fromFb(const fb::Quatd* q) {
   return q ? Quat(q->w(), q->x(), q->y(), q->z()) : Quat::Identity();
 }
 
+// crowd_kind is CrowdState's index: the schema's numbers hold only while the order does.
+static_assert(std::is_same_v<std::variant_alternative_t<1, CrowdState>, FormationMemberData> &&
+              std::is_same_v<std::variant_alternative_t<2, CrowdState>, AntData> &&
+              std::is_same_v<std::variant_alternative_t<3, CrowdState>, RoadTripData>);
+
+/// A crowd state laid out in the schema's crowd_* fields.
+struct CrowdFields {
+  std::int32_t mode = 0, at = 0;
+  double x = 0, z = 0;
+  const std::vector<std::int32_t>* path = nullptr;
+  const std::vector<std::int32_t>* seen = nullptr;
+};
+
+CrowdFields crowdFields(const CrowdState& s) {
+  CrowdFields c;
+  if (const auto* m = std::get_if<FormationMemberData>(&s)) {
+    c = {m->mode, m->path_at, m->planned_x, m->planned_z, &m->path, nullptr};
+  } else if (const auto* a = std::get_if<AntData>(&s)) {
+    c = {a->mode, a->route_at, a->route_length, 0, &a->route, &a->dead_ends};
+  } else if (const auto* t = std::get_if<RoadTripData>(&s)) {
+    c.mode = t->goal;
+    c.at = t->next_node;
+  }
+  return c;
+}
+
+std::vector<std::int32_t> cellList(const flatbuffers::Vector<std::int32_t>* v) {
+  if (!v) return {};
+  if (v->size() % 2 != 0) throw CodecError("npc record with an odd cell list");
+  return {v->begin(), v->end()};
+}
+
+void decodeCrowd(const fb::NpcState& n, CrowdState& s) {
+  switch (n.crowd_kind()) {
+    case 0:
+      s = std::monostate{};
+      return;
+    case 1:
+      s = FormationMemberData{n.crowd_mode(), n.crowd_at(), n.crowd_x(), n.crowd_z(),
+                              cellList(n.crowd_path())};
+      return;
+    case 2:
+      s = AntData{n.crowd_mode(), n.crowd_at(), n.crowd_x(), cellList(n.crowd_path()),
+                  cellList(n.crowd_seen())};
+      return;
+    case 3:
+      s = RoadTripData{n.crowd_at(), n.crowd_mode()};
+      return;
+  }
+  throw CodecError("npc record with an unknown crowd state kind " +
+                   std::to_string(int(n.crowd_kind())));
+}
+
 flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilder& b,
                                                    const EntityRecordData& r) {
   flatbuffers::Offset<fb::NpcState> npc;
@@ -34,14 +89,16 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
     case EntityKind::Npc: {
       fb::Vec3d wp = toFb(r.npc.waypoint);
       fb::Vec3d gp = toFb(r.npc.gather_point);
+      // The crowd state goes in the schema's crowd_* fields, as its kind lays them out.
+      CrowdFields c = crowdFields(r.npc.crowd);
       flatbuffers::Offset<flatbuffers::Vector<std::int32_t>> path, seen;
-      if (!r.npc.crowd_path.empty()) path = b.CreateVector(r.npc.crowd_path);
-      if (!r.npc.crowd_seen.empty()) seen = b.CreateVector(r.npc.crowd_seen);
+      if (c.path && !c.path->empty()) path = b.CreateVector(*c.path);
+      if (c.seen && !c.seen->empty()) seen = b.CreateVector(*c.seen);
       npc = fb::CreateNpcState(
           b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius, r.npc.arrive_distance,
           r.npc.separation_radius, r.npc.separation_weight, &gp, r.npc.gather_radius,
-          r.npc.gather_start, r.npc.gather_end, r.npc.gathering, r.npc.flock, r.npc.crowd_mode,
-          r.npc.crowd_at, r.npc.crowd_x, r.npc.crowd_z, path, seen);
+          r.npc.gather_start, r.npc.gather_end, r.npc.gathering, r.npc.population, c.mode, c.at,
+          c.x, c.z, path, seen, std::uint8_t(r.npc.crowd.index()));
       break;
     }
     case EntityKind::Avatar:
@@ -144,15 +201,8 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
     r.npc.gather_start = n->gather_start();
     r.npc.gather_end = n->gather_end();
     r.npc.gathering = n->gathering();
-    r.npc.flock = n->flock();
-    r.npc.crowd_mode = n->crowd_mode();
-    r.npc.crowd_at = n->crowd_at();
-    r.npc.crowd_x = n->crowd_x();
-    r.npc.crowd_z = n->crowd_z();
-    if (const auto* p = n->crowd_path()) r.npc.crowd_path.assign(p->begin(), p->end());
-    if (const auto* p = n->crowd_seen()) r.npc.crowd_seen.assign(p->begin(), p->end());
-    if (r.npc.crowd_path.size() % 2 != 0 || r.npc.crowd_seen.size() % 2 != 0)
-      throw CodecError("npc record with an odd cell list");
+    r.npc.population = n->flock();
+    decodeCrowd(*n, r.npc.crowd);
   }
   if (const fb::AvatarState* a = e.avatar()) {
     r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(),

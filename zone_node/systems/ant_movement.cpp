@@ -154,14 +154,14 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
     const crowd::MapFrame& frame = col.map.frame;
     const bool food_there = col.cfg.food_until < 0 || time < col.cfg.food_until;
     for (std::size_t i = 0; i < store.size(); ++i) {
-      if (store.kind[i] != EntityKind::Npc || store.npc[i].flock != col.population) continue;
-      NpcData& ant = store.npc[i];
+      if (store.kind[i] != EntityKind::Npc || store.npc[i].population != col.population) continue;
+      AntData& ant = crowdState<AntData>(store.npc[i]);
       const std::uint64_t id = store.id[i].value;
-      if (ant.crowd_path.empty()) ant.crowd_path = {col.nest.x, col.nest.y};
+      if (ant.route.empty()) ant.route = {col.nest.x, col.nest.y};
       auto target = [&] {
-        return ant.crowd_mode == std::int32_t(AntMode::Returning)
-                   ? cellAt(ant.crowd_path, ant.crowd_at)
-                   : cellAt(ant.crowd_path, cellCount(ant.crowd_path) - 1);
+        return ant.mode == std::int32_t(AntMode::Returning)
+                   ? cellAt(ant.route, ant.route_at)
+                   : cellAt(ant.route, cellCount(ant.route) - 1);
       };
       const crowd::Vec2 from{store.pos[i].x(), store.pos[i].z()};
       crowd::Vec2 to = frame.centre(target()) - from;
@@ -173,38 +173,38 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
         at = from + to;
         // At a cell centre: the ant decides where to go next (at most once per tick).
         ai::Cell c = target();
-        if (ant.crowd_mode == std::int32_t(AntMode::Returning)) {
-          if (ant.crowd_x > 0) {
+        if (ant.mode == std::int32_t(AntMode::Returning)) {
+          if (ant.route_length > 0) {
             deltas_[col.offset + col.index(c)] += std::max<std::int64_t>(
-                1, std::llround(col.cfg.deposit / ant.crowd_x * kTrailScale));
+                1, std::llround(col.cfg.deposit / ant.route_length * kTrailScale));
           }
-          if (ant.crowd_at > 0) {
-            --ant.crowd_at;
+          if (ant.route_at > 0) {
+            --ant.route_at;
           } else {  // home: count the trip, start a new one
-            if (ant.crowd_x > 0) {
+            if (ant.route_length > 0) {
               ++col.stats.trips;
-              col.stats.length_sum += ant.crowd_x;
-              col.stats.last_length = ant.crowd_x;
+              col.stats.length_sum += ant.route_length;
+              col.stats.last_length = ant.route_length;
             }
-            ant.crowd_mode = std::int32_t(AntMode::Searching);
-            ant.crowd_path.assign({col.nest.x, col.nest.y});
-            ant.crowd_seen.clear();
-            ant.crowd_x = 0;
-            ant.crowd_at = 0;
+            ant.mode = std::int32_t(AntMode::Searching);
+            ant.route.assign({col.nest.x, col.nest.y});
+            ant.dead_ends.clear();
+            ant.route_length = 0;
+            ant.route_at = 0;
           }
-        } else if ((c == col.food && food_there) || cellCount(ant.crowd_path) > col.max_steps) {
+        } else if ((c == col.food && food_there) || cellCount(ant.route) > col.max_steps) {
           // Found it (lay trail all the way home), or gave up (walk home laying nothing). The
           // way home cuts the detours of the way out: from each cell it steps to the earliest
           // cell of its route that lies next to it (it remembers the route and senses its
           // neighbours), so it lays trail on a shorter route than it walked.
-          col.shorten(ant.crowd_path);
+          col.shorten(ant.route);
           double length = 0;
-          for (std::int32_t k = 1; k < cellCount(ant.crowd_path); ++k)
-            length += ai::octileDistance(cellAt(ant.crowd_path, k - 1), cellAt(ant.crowd_path, k));
+          for (std::int32_t k = 1; k < cellCount(ant.route); ++k)
+            length += ai::octileDistance(cellAt(ant.route, k - 1), cellAt(ant.route, k));
           const bool found = c == col.food && food_there;
-          ant.crowd_mode = std::int32_t(AntMode::Returning);
-          ant.crowd_x = found ? length : 0;
-          ant.crowd_at = std::max(0, cellCount(ant.crowd_path) - 2);
+          ant.mode = std::int32_t(AntMode::Returning);
+          ant.route_length = found ? length : 0;
+          ant.route_at = std::max(0, cellCount(ant.route) - 2);
           if (found) {
             deltas_[col.offset + col.index(c)] +=
                 std::max<std::int64_t>(1, std::llround(col.cfg.deposit / length * kTrailScale));
@@ -214,23 +214,21 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
           const int chosen = crowd::chooseAntStep(
               col.map.grid, c, col.food, col.choice,
               [&](int, ai::Cell n) { return double(col.trail[col.index(n)]) / kTrailScale; },
-              [&](ai::Cell n) {
-                return !contains(ant.crowd_path, n) && !contains(ant.crowd_seen, n);
-              },
+              [&](ai::Cell n) { return !contains(ant.route, n) && !contains(ant.dead_ends, n); },
               [&](int draw) { return counterUniform(seed_, id, tick, draw); });
           if (chosen < 0) {
             // Dead end: remember it and back off one cell (at the nest: start afresh).
-            if (cellCount(ant.crowd_path) > 1) {
-              ant.crowd_seen.push_back(c.x);
-              ant.crowd_seen.push_back(c.y);
-              ant.crowd_path.resize(ant.crowd_path.size() - 2);
+            if (cellCount(ant.route) > 1) {
+              ant.dead_ends.push_back(c.x);
+              ant.dead_ends.push_back(c.y);
+              ant.route.resize(ant.route.size() - 2);
             } else {
-              ant.crowd_seen.clear();
+              ant.dead_ends.clear();
             }
           } else {
             const ai::Cell n = crowd::gridStep(c, chosen);
-            ant.crowd_path.push_back(n.x);
-            ant.crowd_path.push_back(n.y);
+            ant.route.push_back(n.x);
+            ant.route.push_back(n.y);
           }
         }
       }

@@ -30,7 +30,7 @@ namespace zonesim::zone {
 
 struct WorldMap;
 
-/// What an ant is doing (NpcData::crowd_mode).
+/// What an ant is doing (AntData::mode).
 enum class AntMode : std::int32_t {
   Searching = 0,  ///< walking away from the nest, looking for the food
   Returning = 1,  ///< walking its route back to the nest (laying trail if it found food)

@@ -92,7 +92,7 @@ FlowMovement::Group* FlowMovement::groupOf(std::int32_t population) const {
 }
 
 bool FlowMovement::arrived(const EntityStore& store, std::size_t i) const {
-  Group* g = groupOf(store.npc[i].flock);
+  Group* g = groupOf(store.npc[i].population);
   if (!g) return false;
   int d = flowDestination(store.id[i].value, g->crowd.destinationCount());
   return g->crowd.hasArrived({store.pos[i].x(), store.pos[i].z()}, d);

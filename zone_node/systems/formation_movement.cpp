@@ -90,7 +90,7 @@ std::int32_t FormationMovement::population(std::size_t g) const {
 }
 
 crowd::Vec2 FormationMovement::slotPosition(const EntityStore& store, std::size_t i) const {
-  Group* g = groupOf(store.npc[i].flock);
+  Group* g = groupOf(store.npc[i].population);
   if (!g) return {store.pos[i].x(), store.pos[i].z()};
   return g->centre.slotPosition(
       formationSlot(g->formation, g->count, g->slotIndex(store.id[i].value)));
@@ -125,20 +125,20 @@ void FormationMovement::step(StepContext& ctx) {
                 return x.id < y.id;
               });
     for (std::size_t a = 0; a < g.view.ids.size(); ++a) {
-      NpcData& npc = store.npc[g.view.index[a]];
+      FormationMemberData& member = crowdState<FormationMemberData>(store.npc[g.view.index[a]]);
       crowd::MemberState& m = g.state;
-      m.mode = crowd::MemberMode(npc.crowd_mode);
-      m.at = npc.crowd_at;
-      m.plannedFor = {npc.crowd_x, npc.crowd_z};
-      m.path.swap(npc.crowd_path);
+      m.mode = crowd::MemberMode(member.mode);
+      m.at = member.path_at;
+      m.plannedFor = {member.planned_x, member.planned_z};
+      m.path.swap(member.path);
       const std::uint64_t id = g.view.ids[a];
       g.stepper.step(id, m, formationSlot(g.formation, g.count, g.slotIndex(id)), g.centre,
                      g.members, g.view.pos[a], g.view.vel[a], dt);
-      npc.crowd_mode = std::int32_t(m.mode);
-      npc.crowd_at = m.at;
-      npc.crowd_x = m.plannedFor.x;
-      npc.crowd_z = m.plannedFor.y;
-      npc.crowd_path.swap(m.path);
+      member.mode = std::int32_t(m.mode);
+      member.path_at = m.at;
+      member.planned_x = m.plannedFor.x;
+      member.planned_z = m.plannedFor.y;
+      member.path.swap(m.path);
     }
     g.view.writeBack(store);
   }

@@ -62,8 +62,9 @@ void WanderMovement::step(StepContext& ctx) {
   desired.reserve(store.count(EntityKind::Npc));
   std::vector<Neighbour> found;
   for (std::size_t i = 0; i < store.size(); ++i) {
-    if (store.kind[i] != EntityKind::Npc || store.npc[i].flock >= 0) continue;  // flock_movement
-    if (store.agent[i].type >= 0) continue;                                     // agent_system
+    if (store.kind[i] != EntityKind::Npc || store.npc[i].population >= 0)
+      continue;                              // flock_movement
+    if (store.agent[i].type >= 0) continue;  // agent_system
     Vec3 v = wanderVelocity(scene, store, i, time);
     const NpcData& npc = store.npc[i];
     if (npc.separation_radius > 0) {

@@ -10,7 +10,7 @@ void PlanarCrowd::gatherAgents(const EntityStore& store) {
   pos.clear();
   vel.clear();
   for (std::size_t i = 0; i < store.size(); ++i) {
-    if (store.kind[i] != EntityKind::Npc || store.npc[i].flock != population) continue;
+    if (store.kind[i] != EntityKind::Npc || store.npc[i].population != population) continue;
     index.push_back(i);
     ids.push_back(store.id[i].value);
     pos.push_back({store.pos[i].x(), store.pos[i].z()});

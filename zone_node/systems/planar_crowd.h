@@ -16,7 +16,7 @@ namespace zonesim::zone {
 
 /// One population's agents and ghosts on the ground plane, gathered each tick.
 struct PlanarCrowd {
-  /// An empty view of population `p` (the NPCs whose `npc.flock` is `p`).
+  /// An empty view of population `p` (the NPCs whose `npc.population` is `p`).
   explicit PlanarCrowd(std::int32_t p) : population(p) {}
 
   /// Copies this population's NPCs from `store` (store order), replacing the last gather.

@@ -77,17 +77,18 @@ void RoadMovement::step(StepContext& ctx) {
   const double dt = ctx.dt;
   const double time = double(ctx.tick) * dt;
   for (std::size_t i = 0; i < store.size(); ++i) {
-    if (store.kind[i] != EntityKind::Npc || store.npc[i].flock < 0) continue;
-    Network* n = networkOf(store.npc[i].flock);
+    if (store.kind[i] != EntityKind::Npc || store.npc[i].population < 0) continue;
+    Network* n = networkOf(store.npc[i].population);
     if (!n) continue;
     NpcData& npc = store.npc[i];
+    RoadTripData& trip = crowdState<RoadTripData>(npc);
     const std::vector<ScenePoint>& nodes = n->roads->nodes;
     Vec3& pos = store.pos[i];
     Vec3 heading = Vec3::Zero();
     double budget = npc.max_speed * dt;
     // A fast NPC on short edges may pass several nodes in one tick; each one is a decision.
     for (int passed = 0; passed <= int(nodes.size()); ++passed) {
-      const ScenePoint& to = nodes[std::size_t(npc.crowd_at)];
+      const ScenePoint& to = nodes[std::size_t(trip.next_node)];
       const double dx = to.x - pos.x(), dz = to.z - pos.z(), dist = std::hypot(dx, dz);
       if (dist > budget) {
         heading = Vec3(dx / dist, 0, dz / dist);
@@ -96,16 +97,16 @@ void RoadMovement::step(StepContext& ctx) {
       }
       pos = Vec3(to.x, pos.y(), to.z);
       budget -= dist;
-      if (npc.crowd_at == npc.crowd_mode) {
+      if (trip.next_node == trip.goal) {
         // At the goal: draw another node from the NPC's own stream.
         Pcg32 rng = Pcg32::fromState(store.rng_state[i], store.id[i].value);
         int goal = int(rng.next() % std::uint32_t(nodes.size() - 1));
-        npc.crowd_mode = goal >= npc.crowd_at ? goal + 1 : goal;
+        trip.goal = goal >= trip.next_node ? goal + 1 : goal;
         store.rng_state[i] = rng.state();
       }
-      const int hop = nextHop(std::size_t(npc.flock), npc.crowd_at, npc.crowd_mode, time);
+      const int hop = nextHop(std::size_t(npc.population), trip.next_node, trip.goal, time);
       if (hop < 0) break;  // every way is shut: wait at the node
-      npc.crowd_at = hop;
+      trip.next_node = hop;
     }
     store.vel[i] = npc.max_speed * heading;
   }

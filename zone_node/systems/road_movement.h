@@ -5,8 +5,8 @@
 // edges it may use that are open then; at the goal it draws the next goal from its own random
 // stream. An edge that closes (a timed closure) stops nobody already on it: decisions are
 // made at nodes only, and an NPC with no open way waits at its node and asks again each tick.
-// Its state is two integers that migrate with it (NpcData::crowd_at: the node it walks to,
-// crowd_mode: its goal); every rank holds the same graph and closures, so the same question
+// Its state is two integers that migrate with it (RoadTripData: the node it walks to and
+// its goal); every rank holds the same graph and closures, so the same question
 // gets the same answer anywhere and a zone run ends bitwise equal on any number of ranks.
 
 #include <cstdint>
