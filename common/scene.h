@@ -22,8 +22,9 @@ struct SceneBox {
   SceneVec3 min, max;
 };
 
-/// How the ground plane is split among zone ranks.
-struct ZoneLayout {
+/// The `zones:` key: how the ground plane is split among zone ranks (the class that holds the
+/// split at run time is zone::ZoneLayout).
+struct SceneZones {
   /// Grid: even columns x rows. Rcb: the same shape, with column and row boundaries placed by
   /// recursive coordinate bisection so each zone starts with an equal share of the entities.
   enum class Kind { Grid, Rcb };
@@ -373,7 +374,7 @@ struct Scene {
   double tick_rate = 30;  ///< ticks per second of wall time when running real-time
   double dt = 1.0 / 30;   ///< simulated seconds per tick
   std::uint64_t seed = 1;
-  ZoneLayout zones;
+  SceneZones zones;
   double interest_cell_size = 50;  ///< metres; one DDS partition per cell
   int keyframe_every = 90;         ///< ticks between per-cell keyframes
   double halo_width = 10;

@@ -232,11 +232,11 @@ void readPopulations(const SceneMap& root, Scene& scene) {
 
 void readZones(const SceneMap& root, Scene& scene) {
   SceneMap zones = root.required("zones").map({"layout", "columns", "rows"});
-  scene.zones.kind = ZoneLayout::Kind::Grid;
+  scene.zones.kind = SceneZones::Kind::Grid;
   if (std::optional<SceneNode> layout = zones.optional("layout")) {
     std::string name = layout->text();
     if (name == "rcb")
-      scene.zones.kind = ZoneLayout::Kind::Rcb;
+      scene.zones.kind = SceneZones::Kind::Rcb;
     else if (name != "grid")
       layout->fail("unknown layout '" + name + "' (allowed: grid, rcb)");
   }

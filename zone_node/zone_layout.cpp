@@ -92,7 +92,7 @@ ZoneLayout ZoneLayout::forRanks(const Scene& scene, int ranks) {
     columns = ranks / rows;
   }
   ZoneLayout layout(scene.world, columns, rows);
-  if (scene.zones.kind == zonesim::ZoneLayout::Kind::Rcb) {
+  if (scene.zones.kind == SceneZones::Kind::Rcb) {
     std::vector<std::pair<double, double>> points;
     forEachInitialEntity(
         scene, [&](const EntityRecordData& r) { points.emplace_back(r.pos.x(), r.pos.z()); });

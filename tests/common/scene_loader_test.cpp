@@ -52,7 +52,7 @@ TEST(DemoScene, ValuesComeThrough) {
   EXPECT_DOUBLE_EQ(s.world.max.y, 100);
   EXPECT_EQ(s.dt, 1.0 / 30);
   EXPECT_DOUBLE_EQ(s.tick_rate, 30);
-  EXPECT_EQ(s.zones.kind, ZoneLayout::Kind::Grid);
+  EXPECT_EQ(s.zones.kind, SceneZones::Kind::Grid);
   EXPECT_EQ(s.zones.columns, 2);
   EXPECT_EQ(s.zones.rows, 2);
   EXPECT_DOUBLE_EQ(s.interest_cell_size, 50);
