@@ -13,7 +13,7 @@
 #include "clients/remote_view.h"
 #include "clients/reservoir.h"
 #include "clients/wander.h"
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 #include "dr/state_codec.h"
 #include "wire/ack_window.h"
 #include "wire/impairment.h"

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "common/rng.h"
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 
 namespace zonesim::clients {
 

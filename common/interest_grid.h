@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 
 namespace zonesim {
 

@@ -15,14 +15,14 @@
 #include <utility>
 
 #include "common/scene.h"
-#include "common/scene_crowd.h"
-#include "common/scene_document.h"
-#include "common/scene_node.h"
-#include "common/scene_physics.h"
+#include "common/scene_loader_crowd.h"
+#include "common/scene_loader_document.h"
+#include "common/scene_loader_node.h"
+#include "common/scene_loader_physics.h"
 
 namespace zonesim {
 
-void readAgents(const SceneMap& root, Scene& scene);  // scene_ai.cpp
+void readAgents(const SceneMap& root, Scene& scene);  // common/scene_loader_agents.cpp
 
 namespace {
 
@@ -376,7 +376,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readHalo(root, scene);
   readDeadReckoning(root, scene.dead_reckoning);
   readPhysics(root, scene.physics);
-  readPhysicsObjects(root, scene);  // common/scene_physics.cpp
+  readPhysicsObjects(root, scene);  // common/scene_loader_physics.cpp
   readObstacleMap(root, file, scene);
   readPopulations(root, scene);
   readClients(root, scene.clients);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/scene.h"
 #include "dr/bit_stream.h"
 
 namespace zonesim::dr {

@@ -14,9 +14,12 @@
 #include <span>
 #include <vector>
 
-#include "common/scene.h"
 #include "dr/bit_stream.h"
 #include "dr/dr_model.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::dr {
 

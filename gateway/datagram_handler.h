@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/rng.h"
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 #include "gateway/session_table.h"
 #include "wire/wire_encode.h"
 #include "wire/wire_verify.h"

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/rng.h"
+#include "common/scene.h"
 #include "common/scene_source.h"
 #include "zone_node/formation_start.h"
 #include "zone_node/world_map.h"

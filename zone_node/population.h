@@ -6,8 +6,11 @@
 #include <cstdint>
 #include <functional>
 
-#include "common/scene.h"
 #include "zone_node/entity_store.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

@@ -5,8 +5,11 @@
 #include <memory>
 
 #include "ai/grid_map.h"
-#include "common/scene.h"
 #include "crowd/map_frame.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/scene.h"
 #include "zone_node/population.h"
 
 namespace zonesim::zone {

@@ -10,7 +10,11 @@
 #include <utility>
 #include <vector>
 
-#include "common/scene.h"
+#include "common/scene_geometry.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

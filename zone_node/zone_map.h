@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "common/scene_ai.h"
+#include "common/scene_agents.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim {

@@ -18,6 +18,7 @@
 #include "clients/wander.h"
 #include "common/interest_grid.h"
 #include "common/rng.h"
+#include "common/scene.h"
 #include "wire/wire_encode.h"
 #include "zone_node/net/dead_reckoning.h"
 #include "zone_node/population.h"

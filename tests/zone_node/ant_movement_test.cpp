@@ -13,6 +13,7 @@
 
 #include "ai/grid_path.h"
 #include "ai/grid_search.h"
+#include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"

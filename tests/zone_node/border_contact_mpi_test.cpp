@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include "common/scene.h"
 #include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/migration.h"
 #include "zone_node/systems/lone_zone.h"

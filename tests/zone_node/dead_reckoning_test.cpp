@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/interest_grid.h"
+#include "common/scene.h"
 
 namespace zonesim::zone {
 namespace {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/scene.h"
 #include "crowd/vec2.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"

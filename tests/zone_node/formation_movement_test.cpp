@@ -12,6 +12,7 @@
 #include <string>
 
 #include "ai/grid_search.h"
+#include "common/scene.h"
 #include "crowd/formation.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/scene.h"
 #include "zone_node/cluster/load_balancer.h"
 
 namespace zonesim::zone {

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "common/scene.h"
+#include "common/scene_lod.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 

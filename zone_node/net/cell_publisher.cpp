@@ -1,5 +1,6 @@
 #include "zone_node/net/cell_publisher.h"
 
+#include "common/scene.h"
 #include "idl/dds_qos.h"
 #include "idl/dr_sample.h"
 #include "zone_node/net/dead_reckoning.h"

@@ -9,13 +9,16 @@
 #include <vector>
 
 #include "common/interest_grid.h"
-#include "common/scene.h"
 #include "idl/dds_entity.h"
 #include "idl/topics.h"
 #include "zone_node/departure.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/net/dead_reckoning.h"
 #include "zonesim.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

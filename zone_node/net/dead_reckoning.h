@@ -5,7 +5,7 @@
 // threshold or the entity's heartbeat has expired.
 
 #include "common/math.h"
-#include "common/scene.h"
+#include "common/scene_dead_reckoning.h"
 #include "dr/dr_model.h"
 #include "dr/state_codec.h"
 #include "zone_node/entity_store.h"

@@ -8,6 +8,7 @@
 #include "ai/fsm/guard_machine.h"
 #include "ai/fsm/machine.h"
 #include "ai/fsm/machine_def.h"
+#include "common/scene.h"
 
 namespace zonesim::zone {
 

@@ -8,9 +8,12 @@
 #include <memory>
 #include <vector>
 
-#include "common/scene.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/agent_senses.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

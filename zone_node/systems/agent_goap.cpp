@@ -1,6 +1,7 @@
 #include "zone_node/systems/agent_goap.h"
 
 #include "ai/goap/goap_planner.h"
+#include "common/scene.h"
 
 namespace zonesim::zone {
 

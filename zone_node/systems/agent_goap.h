@@ -7,8 +7,11 @@
 #include <memory>
 #include <vector>
 
-#include "common/scene.h"
 #include "zone_node/entity_store.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::ai {
 class GoapPlanner;

@@ -6,6 +6,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "common/scene.h"
+
 namespace zonesim::zone {
 
 namespace {

@@ -25,11 +25,14 @@
 #include "ai/path_service.h"
 #include "ai/spline_path.h"
 #include "common/math.h"
-#include "common/scene.h"
 #include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
 #include "zone_node/zone_map.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

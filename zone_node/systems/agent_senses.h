@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/math.h"
-#include "common/scene.h"
+#include "common/scene_agents.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/scene.h"
 #include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "crowd/ant_step.h"

@@ -22,9 +22,12 @@
 #include <vector>
 
 #include "ai/octile.h"
-#include "common/scene.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

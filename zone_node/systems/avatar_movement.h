@@ -1,7 +1,7 @@
 #pragma once
 // Player avatars: walk in the direction of the last applied input at the avatar's speed.
 
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 #include "zone_node/entity_store.h"
 
 namespace zonesim::zone {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/rng.h"
+#include "common/scene.h"
 #include "gpu/backend.h"
 #include "gpu/particle_system.h"
 #include "zone_node/tick_profile.h"

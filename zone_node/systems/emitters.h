@@ -13,10 +13,13 @@
 #include <utility>
 #include <vector>
 
-#include "common/scene.h"
 #include "gpu/offload.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::gpu {
 class ParticleSystem;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/scene.h"
 #include "crowd/flock.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"

@@ -14,12 +14,15 @@
 #include <string>
 #include <vector>
 
-#include "common/scene.h"
 #include "crowd/vec2.h"
 #include "gpu/offload.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::crowd {
 class Flock;

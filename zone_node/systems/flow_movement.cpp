@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "common/scene.h"
 #include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "crowd/flow_crowd.h"

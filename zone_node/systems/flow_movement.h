@@ -15,11 +15,15 @@
 #include <vector>
 
 #include "ai/grid_map.h"
-#include "common/scene.h"
+#include "common/scene_agents.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "common/scene.h"
 #include "common/scene_source.h"
 #include "crowd/formation.h"
 #include "zone_node/formation_start.h"

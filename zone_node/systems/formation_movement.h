@@ -12,11 +12,15 @@
 #include <memory>
 #include <vector>
 
-#include "common/scene.h"
+#include "common/scene_npcs.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::crowd {
 class FormationCentre;

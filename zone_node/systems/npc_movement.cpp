@@ -1,5 +1,6 @@
 #include "zone_node/systems/npc_movement.h"
 
+#include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/steering.h"

@@ -2,9 +2,12 @@
 // Walking NPCs: wander between random waypoints at their own top speed, keeping apart from
 // other walkers (their own zone's and the neighbours' ghosts alike) when the scene asks for it.
 
-#include "common/scene.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 

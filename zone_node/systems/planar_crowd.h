@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 #include "crowd/agents.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"

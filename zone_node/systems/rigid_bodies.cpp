@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/scene.h"
 #include "physics/cloth.h"
 #include "physics/cloth_collision.h"
 #include "physics/world.h"

@@ -28,12 +28,15 @@
 
 #include "common/entity_id.h"
 #include "common/math.h"
-#include "common/scene.h"
 #include "physics/step_profile.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/set_pieces.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::physics {
 class World;

@@ -5,6 +5,7 @@
 
 #include "ai/waypoint_graph.h"
 #include "common/rng.h"
+#include "common/scene.h"
 
 namespace zonesim::zone {
 

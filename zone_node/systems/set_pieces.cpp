@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/scene.h"
 #include "physics/world.h"
 
 namespace zonesim::zone {

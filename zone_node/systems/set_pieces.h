@@ -11,8 +11,11 @@
 #include <optional>
 #include <vector>
 
-#include "common/scene.h"
 #include "physics/body_storage.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::physics {
 class World;

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "common/math.h"
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 
 namespace zonesim::zone {
 

@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "common/scene_crowd.h"
+#include "common/scene.h"
+#include "common/scene_loader_crowd.h"
 
 namespace zonesim {
 namespace {

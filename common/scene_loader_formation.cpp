@@ -1,7 +1,8 @@
 // The `formation` block of an NPC population (docs/scene-format.md): a fixed group on the
 // scene's map whose centre walks a route of points.
 
-#include "common/scene_crowd.h"
+#include "common/scene.h"
+#include "common/scene_loader_crowd.h"
 
 namespace zonesim {
 

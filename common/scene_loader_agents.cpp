@@ -9,7 +9,7 @@
 #include <string>
 
 #include "common/scene.h"
-#include "common/scene_node.h"
+#include "common/scene_loader_node.h"
 
 namespace zonesim {
 namespace {

@@ -1,11 +1,11 @@
-#include "common/scene_document.h"
+#include "common/scene_loader_document.h"
 
 #include <yaml-cpp/eventhandler.h>
 
 #include <sstream>
 #include <vector>
 
-#include "common/scene_node.h"
+#include "common/scene_loader_node.h"
 
 namespace zonesim {
 namespace {

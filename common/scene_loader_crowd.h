@@ -4,10 +4,12 @@
 
 #include <string>
 
-#include "common/scene.h"
-#include "common/scene_node.h"
+#include "common/scene_loader_node.h"
+#include "common/scene_npcs.h"
 
 namespace zonesim {
+
+struct Scene;
 
 /// Reads the optional top-level `map` key; `file` is the scene's path (relative map paths are
 /// resolved against its folder).
@@ -22,13 +24,13 @@ void readCrowdLod(const SceneMap& root, Scene& scene);
 /// Reads the optional `flow` block of an NPC population (after the map: a flow needs one).
 void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
-/// Reads the optional `formation` block of an NPC population (common/scene_formation.cpp).
+/// Reads the optional `formation` block of an NPC population (common/scene_loader_formation.cpp).
 void readNpcFormation(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
-/// Reads the optional `colony` block of an NPC population (common/scene_colony.cpp).
+/// Reads the optional `colony` block of an NPC population (common/scene_loader_colony.cpp).
 void readNpcColony(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
-/// Reads the optional `roads` block of an NPC population (common/scene_roads.cpp).
+/// Reads the optional `roads` block of an NPC population (common/scene_loader_roads.cpp).
 void readNpcRoads(const SceneMap& population, const Scene& scene, NpcPopulation& p);
 
 /// Reads `key`'s {radius, weight} section of `m` into the two values (defaults kept when

@@ -1,4 +1,4 @@
-// Crowd keys of the scene (common/scene_crowd.cpp): the top-level `map:` key (where the
+// Crowd keys of the scene (common/scene_loader_crowd.cpp): the top-level `map:` key (where the
 // obstacle map lies; the grid itself is parsed by zone_node/world_map.h, tested in
 // tests/zone_node/test_world_map.cpp) and an NPC population's `flow` block.
 

@@ -1,4 +1,4 @@
-#include "common/scene_node.h"
+#include "common/scene_loader_node.h"
 
 #include <algorithm>
 #include <charconv>
@@ -6,6 +6,8 @@
 #include <cmath>
 #include <system_error>
 #include <tuple>
+
+#include "common/scene.h"
 
 namespace zonesim {
 namespace {

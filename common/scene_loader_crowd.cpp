@@ -1,4 +1,4 @@
-#include "common/scene_crowd.h"
+#include "common/scene_loader_crowd.h"
 
 #include <cmath>
 #include <filesystem>
@@ -6,6 +6,8 @@
 #include <optional>
 #include <tuple>
 #include <utility>
+
+#include "common/scene.h"
 
 namespace zonesim {
 

@@ -2,12 +2,14 @@
 // need the whole scene in one zone: a joint's bodies would have to cross zone borders together
 // and a cloth is simulated by the zone that holds it, so both are rejected on more zones.
 
-#include "common/scene_physics.h"
+#include "common/scene_loader_physics.h"
 
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "common/scene.h"
 
 namespace zonesim {
 namespace {

@@ -1,7 +1,8 @@
 // The `colony` block of an NPC population (docs/scene-format.md): ants exploring the scene's
 // map from a nest toward food, with pheromone trails that evaporate.
 
-#include "common/scene_crowd.h"
+#include "common/scene.h"
+#include "common/scene_loader_crowd.h"
 
 namespace zonesim {
 

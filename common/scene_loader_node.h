@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/scene.h"
+#include "common/scene_geometry.h"
 
 namespace zonesim {
 

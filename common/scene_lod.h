@@ -1,0 +1,24 @@
+#pragma once
+// The scene's `lod` key: level of detail for crowds.
+
+#include <utility>
+#include <vector>
+
+namespace zonesim {
+
+/// Level of detail for crowds (crowd/lod.h): NPCs far from every player are updated
+/// less often, the farthest without steering (`lod:` key; absent: every NPC every tick).
+struct CrowdLod {
+  bool enabled = false;     ///< the scene has a `lod` key
+  double near_radius = 40;  ///< m from the nearest player: every tick, full steering
+  double far_radius = 120;  ///< m: between near and far, every `mid_every` ticks
+  int mid_every = 2;        ///< ticks between updates of the middle band
+  int far_every = 8;        ///< ticks between updates beyond far_radius
+  bool mid_steers = true;   ///< the middle band keeps its neighbour terms
+  bool far_steers = false;  ///< the far band follows its field only
+  /// Fixed ground-plane points (x, z) that count as players (scripted observers: runs
+  /// without clients, tests, points of interest that keep full detail).
+  std::vector<std::pair<double, double>> observers;
+};
+
+}  // namespace zonesim
