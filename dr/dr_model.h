@@ -7,17 +7,9 @@
 
 #include <cstdint>
 
+#include "dr/dr_state.h"
+
 namespace zonesim::dr {
-
-/// A plain 3-vector.
-struct V3 {
-  double x = 0, y = 0, z = 0;
-};
-
-/// A unit quaternion (x, y, z, w).
-struct Q4 {
-  double x = 0, y = 0, z = 0, w = 1;
-};
 
 /// How position is extrapolated.
 enum class Order : std::uint8_t { Static = 0, First = 1, Second = 2 };
@@ -28,13 +20,6 @@ enum class Spin : std::uint8_t { Fixed = 0, Rotating = 1 };
 struct Model {
   Order order = Order::First;
   Spin spin = Spin::Fixed;
-};
-
-/// What a receiver was last told of an entity, valid at the time it was sampled.
-struct State {
-  V3 pos, vel, acc;
-  Q4 rot;
-  V3 angvel;  ///< world frame, rad/s
 };
 
 /// Position after dt seconds under the model's order.

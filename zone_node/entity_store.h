@@ -3,7 +3,6 @@
 // Removal swaps the last entity into the hole, so indices are not stable across a tick's
 // migrations: hold EntityIds, and look them up with indexOf().
 
-#include <array>
 #include <cstdint>
 #include <optional>
 #include <tuple>
@@ -13,7 +12,7 @@
 
 #include "common/entity_id.h"
 #include "common/math.h"
-#include "dr/dr_model.h"
+#include "zone_node/net/dead_reckoning_state.h"
 
 namespace zonesim::zone {
 
@@ -142,20 +141,6 @@ struct AgentData {
   std::int32_t replans = 0;           ///< paths requested again after a door cut them
   std::int32_t arrivals = 0;          ///< goals reached
   std::vector<std::int32_t> path;     ///< cells as x, y pairs; empty when not moving
-};
-
-/// What the publish phase last told subscribers about the entity (sender-side dead reckoning).
-struct DeadReckoningState {
-  int cell = -1;    ///< interest cell it was last published in; -1 = never published here
-  dr::State sent;   ///< the quantised state receivers hold
-  double time = 0;  ///< sim time `sent` was sampled
-  /// Velocities of the last ticks (oldest first once full): the acceleration estimate's window.
-  static constexpr int kVelocityWindow = 6;
-  std::array<Vec3, kVelocityWindow> vel_history{};
-  int vel_count = 0;                 ///< how many of vel_history hold a tick (up to the window)
-  int vel_next = 0;                  ///< where the next tick's velocity goes
-  Quat last_rot = Quat::Identity();  ///< previous tick's orientation (angular velocity estimate)
-  bool has_last = false;
 };
 
 /// One entity with all its components, for creation and migration.

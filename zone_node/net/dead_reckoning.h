@@ -9,6 +9,7 @@
 #include "dr/dr_model.h"
 #include "dr/state_codec.h"
 #include "zone_node/entity_store.h"
+#include "zone_node/net/dead_reckoning_state.h"
 
 namespace zonesim::zone {
 
