@@ -1,7 +1,7 @@
 #pragma once
 // Scene description of AI agents (docs/scene-format.md, `agents`): agent types, each composing a
 // decision behaviour with perception, needs (health, energy) and locomotion, the populations that
-// use them, the path service's budget and doors that open or close at scene times. Plain data;
+// use them and the path service's budget (doors are cells of the map: scene_map.h). Plain data;
 // zone_node/systems/agent_*.cpp give it life.
 
 #include <cstdint>
@@ -96,15 +96,6 @@ struct AgentPopulation {
   double min_x = 0, min_z = 0, max_x = 0, max_z = 0;  ///< start region on the ground
 };
 
-/// A map cell that opens or closes at a scene time (a door).
-struct AgentDoor {
-  double at_s = 0;   ///< simulated seconds
-  int x = 0, y = 0;  ///< cell of the scene's map
-  bool open = false;
-  std::string file;  ///< scene file, for the zone's check that the cell is on the map
-  int line = 0;      ///< its line
-};
-
 /// The path service shared by a zone's navigating agents.
 struct AgentPathSettings {
   bool hpa = false;             ///< HPA* instead of A*
@@ -118,7 +109,6 @@ struct AgentPathSettings {
 struct AgentSettings {
   std::vector<AgentType> types;
   std::vector<AgentPopulation> populations;
-  std::vector<AgentDoor> doors;  ///< in time order
   AgentPathSettings paths;
 };
 

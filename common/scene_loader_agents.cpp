@@ -1,5 +1,5 @@
-// The scene's `agents` key (docs/scene-format.md): agent types, their populations, the path
-// service's budget and doors. Machine files named here are read by the zone (ai/
+// The scene's `agents` key (docs/scene-format.md): agent types, their populations and the path
+// service's budget. Machine files named here are read by the zone (ai/
 // parses them with their own file:line errors); everything in the scene itself is checked here.
 
 #include <algorithm>
@@ -276,39 +276,20 @@ void readPaths(const SceneMap& agents, AgentPathSettings& p) {
   m.read("cache", p.cache, Limit::atLeast(0));
 }
 
-void readDoors(const SceneMap& agents, const Scene& scene, AgentSettings& s) {
-  std::optional<SceneNode> doors = agents.optional("doors");
-  if (!doors) return;
-  for (const SceneNode& item : doors->items()) {
-    SceneMap m = item.map({"at_s", "cell", "open"});
-    AgentDoor d;
-    d.at_s = m.required("at_s").number(Limit::atLeast(0));
-    SceneNode cell = m.required("cell");
-    std::vector<SceneNode> xy = cell.items();
-    if (xy.size() != 2) cell.fail("must be [x, y] (map column and row)");
-    d.x = xy[0].integer(Limit::atLeast(0));
-    d.y = xy[1].integer(Limit::atLeast(0));
-    m.read("open", d.open);
-    if (!scene.map.present()) item.fail("doors are cells of the scene's map, and it has none");
-    d.file = item.file();
-    d.line = item.line();
-    if (!s.doors.empty() && d.at_s < s.doors.back().at_s)
-      m.failAt("at_s", "doors must be listed in time order");
-    s.doors.push_back(d);
-  }
-}
-
 }  // namespace
 
 void readAgents(const SceneMap& root, Scene& scene) {
   std::optional<SceneNode> node = root.optional("agents");
   if (!node) return;
+  // Doors are cells of the map (map.doors); the old key is refused rather than ignored, so a
+  // scene written for the old layout does not silently lose its doors.
   SceneMap agents = node->map({"types", "populations", "paths", "doors"});
+  if (agents.optional("doors"))
+    agents.failAt("doors", "moved to map.doors (same keys: at_s, cell, open)");
   for (const SceneNode& t : agents.required("types").items()) readType(t, scene);
   if (std::optional<SceneNode> pops = agents.optional("populations"))
     for (const SceneNode& p : pops->items()) readPopulation(p, scene);
   readPaths(agents, scene.agents.paths);
-  readDoors(agents, scene, scene.agents);
 }
 
 }  // namespace zonesim

@@ -6,15 +6,43 @@
 #include <optional>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "common/scene.h"
 
 namespace zonesim {
 
+namespace {
+
+// `map.doors`: cells that open or close at scene times, in time order. Whether each cell lies on
+// the grid is checked by the zone, which parses the map file (zone_node/world_map.h).
+void readMapDoors(const SceneMap& m, ObstacleMap& map) {
+  std::optional<SceneNode> doors = m.optional("doors");
+  if (!doors) return;
+  for (const SceneNode& item : doors->items()) {
+    SceneMap d_map = item.map({"at_s", "cell", "open"});
+    MapDoor d;
+    d.at_s = d_map.required("at_s").number(Limit::atLeast(0));
+    SceneNode cell = d_map.required("cell");
+    std::vector<SceneNode> xy = cell.items();
+    if (xy.size() != 2) cell.fail("must be [x, y] (map column and row)");
+    d.x = xy[0].integer(Limit::atLeast(0));
+    d.y = xy[1].integer(Limit::atLeast(0));
+    d_map.read("open", d.open);
+    d.file = item.file();
+    d.line = item.line();
+    if (!map.doors.empty() && d.at_s < map.doors.back().at_s)
+      d_map.failAt("at_s", "doors must be listed in time order");
+    map.doors.push_back(d);
+  }
+}
+
+}  // namespace
+
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene) {
   std::optional<SceneNode> node = root.optional("map");
   if (!node) return;
-  SceneMap m = node->map({"file", "origin", "cell_size"});
+  SceneMap m = node->map({"file", "origin", "cell_size", "doors"});
   SceneNode file_node = m.required("file");
   std::string name = file_node.text();
   if (name.empty()) file_node.fail("must not be empty");
@@ -41,6 +69,7 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
     map.origin_z = at.z;
   }
   m.read("cell_size", map.cell_size, Limit::above(0));
+  readMapDoors(m, map);
 }
 
 namespace {

@@ -11,8 +11,8 @@ namespace zonesim {
 
 struct Scene;
 
-/// Reads the optional top-level `map` key; `file` is the scene's path (relative map paths are
-/// resolved against its folder).
+/// Reads the optional top-level `map` key, doors included; `file` is the scene's path (relative map
+/// paths are resolved against its folder).
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene);
 
 /// Reads the optional `goal` of a population's `flock` mapping (after its max_speed).

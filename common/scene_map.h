@@ -6,14 +6,24 @@
 
 namespace zonesim {
 
+/// A map cell that opens or closes at a scene time (`map.doors`).
+struct MapDoor {
+  double at_s = 0;   ///< simulated seconds
+  int x = 0, y = 0;  ///< cell of the scene's map
+  bool open = false;
+  std::string file;  ///< scene file, for the zone's check that the cell is on the map
+  int line = 0;      ///< its line
+};
+
 /// The world's obstacle map: a Moving AI .map grid laid on the ground plane (`map:` key).
 /// Column x runs along world x, row y along world z. Loaded by zone_node/world_map.h.
 struct ObstacleMap {
-  std::string file;      ///< path resolved against the scene file's folder; empty: no map
-  double origin_x = 0;   ///< world x of the outer corner of cell (0, 0)
-  double origin_z = 0;   ///< world z of the outer corner of cell (0, 0)
-  double cell_size = 1;  ///< side of one cell, metres
-  int line = 0;          ///< line of `map.file` in the scene (for errors found on loading)
+  std::string file;            ///< path resolved against the scene file's folder; empty: no map
+  double origin_x = 0;         ///< world x of the outer corner of cell (0, 0)
+  double origin_z = 0;         ///< world z of the outer corner of cell (0, 0)
+  double cell_size = 1;        ///< side of one cell, metres
+  int line = 0;                ///< line of `map.file` in the scene (for errors found on loading)
+  std::vector<MapDoor> doors;  ///< in time order; agents' paths and flow crowds see them
   /// Whether the scene has a map.
   bool present() const { return !file.empty(); }
 };

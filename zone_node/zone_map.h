@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "common/scene_agents.h"
+#include "common/scene_map.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim {
@@ -22,14 +22,14 @@ class ZoneMap {
  public:
   /// A door due this tick, and whether it changed its cell (it may already have been so).
   struct DoorChange {
-    const AgentDoor* door;
+    const MapDoor* door;
     bool changed;
   };
 
   /// The scene's map with its doors, or null when the scene has no map. Throws SceneError as
   /// loadWorldMap does, and "file:line: doors: cell (x, y) is off the WxH map".
   static std::unique_ptr<ZoneMap> load(const Scene& scene);
-  ZoneMap(WorldMap map, const std::vector<AgentDoor>& doors);
+  ZoneMap(WorldMap map, const std::vector<MapDoor>& doors);
 
   /// The map as the doors have left it so far.
   const WorldMap& world() const { return map_; }
@@ -48,7 +48,7 @@ class ZoneMap {
 
  private:
   WorldMap map_;
-  std::vector<AgentDoor> doors_;  // in time order
+  std::vector<MapDoor> doors_;  // in time order
   std::size_t next_door_ = 0;
   std::vector<DoorChange> now_;
 };

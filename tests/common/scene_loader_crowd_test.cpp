@@ -78,7 +78,55 @@ TEST(SceneMap, ErrorsNameLineAndField) {
   EXPECT_EQ(sceneError([] {
               parseScene(sceneWith("map: {file: maps/courtyard.map, size: 3}\n"), kSceneName);
             }),
-            kSceneName + ":5: map.size: unknown key (allowed: file, origin, cell_size)");
+            kSceneName + ":5: map.size: unknown key (allowed: file, origin, cell_size, doors)");
+}
+
+TEST(SceneMap, DoorsComeThroughInTimeOrderWithTheirLines) {
+  Scene s = parseScene(sceneWith("map:\n"
+                                 "  file: maps/courtyard.map\n"
+                                 "  doors:\n"
+                                 "    - {at_s: 1, cell: [22, 10]}\n"
+                                 "    - {at_s: 4.5, cell: [22, 11], open: true}\n"),
+                       kSceneName);
+  ASSERT_EQ(s.map.doors.size(), 2u);
+  EXPECT_EQ(s.map.doors[0].at_s, 1);
+  EXPECT_EQ(s.map.doors[0].x, 22);
+  EXPECT_EQ(s.map.doors[0].y, 10);
+  EXPECT_FALSE(s.map.doors[0].open);
+  EXPECT_EQ(s.map.doors[0].file, kSceneName);
+  EXPECT_EQ(s.map.doors[0].line, 8);
+  EXPECT_EQ(s.map.doors[1].at_s, 4.5);
+  EXPECT_TRUE(s.map.doors[1].open);
+  EXPECT_EQ(s.map.doors[1].line, 9);
+}
+
+TEST(SceneMap, DoorMistakesNameTheirLine) {
+  auto doors = [](const std::string& list) {
+    return sceneError([&] {
+      parseScene(sceneWith("map:\n  file: maps/courtyard.map\n  doors:\n" + list), kSceneName);
+    });
+  };
+  EXPECT_EQ(doors("    - {at_s: 4, cell: [1, 1]}\n    - {at_s: 2, cell: [1, 2]}\n"),
+            kSceneName + ":9: map.doors[1].at_s: doors must be listed in time order");
+  EXPECT_EQ(doors("    - {at_s: 4, cell: [1]}\n"),
+            kSceneName + ":8: map.doors[0].cell: must be [x, y] (map column and row)");
+  EXPECT_EQ(doors("    - {cell: [1, 1]}\n"),
+            kSceneName + ":8: map.doors[0].at_s: required field is missing");
+  EXPECT_EQ(doors("    - {at_s: 1, cell: [1, 1], shut: true}\n"),
+            kSceneName + ":8: map.doors[0].shut: unknown key (allowed: at_s, cell, open)");
+}
+
+// Doors used to be agents.doors: a scene still written that way is refused, saying where they went.
+TEST(SceneMap, AgentsDoorsIsRefusedAndPointsToMapDoors) {
+  EXPECT_EQ(sceneError([] {
+              parseScene(sceneWith("map: {file: maps/courtyard.map}\n"
+                                   "agents:\n"
+                                   "  types: []\n"
+                                   "  doors:\n"
+                                   "    - {at_s: 4, cell: [22, 10]}\n"),
+                         kSceneName);
+            }),
+            kSceneName + ":9: agents.doors: moved to map.doors (same keys: at_s, cell, open)");
 }
 
 const std::string kMap = "map: {file: maps/courtyard.map}\n";

@@ -70,11 +70,11 @@ TEST(FlowMovement, TheCrowdGoesRoundADoorThatCloses) {
   // in it step out), nobody stands on a wall, and every NPC still arrives, by the south door.
   Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
   for (int y = 10; y <= 12; ++y) {
-    AgentDoor d;
+    MapDoor d;
     d.at_s = 3.0;
     d.x = 22;
     d.y = y;
-    scene.agents.doors.push_back(d);
+    scene.map.doors.push_back(d);
   }
   std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
   EntityStore store;

@@ -15,8 +15,8 @@ std::string source(const std::string& relative) {
   return std::string(ZONESIM_SOURCE_DIR) + "/" + relative;
 }
 
-AgentDoor door(double at_s, int x, int y, bool open) {
-  AgentDoor d;
+MapDoor door(double at_s, int x, int y, bool open) {
+  MapDoor d;
   d.at_s = at_s;
   d.x = x;
   d.y = y;
@@ -32,7 +32,7 @@ constexpr int kWallRow = 32, kGapFrom = 36, kGapTo = 38;
 Scene withWestGapShut(const std::string& scene_file) {
   Scene scene = loadScene(source(scene_file));
   for (int x = kGapFrom; x <= kGapTo; ++x)
-    scene.agents.doors.push_back(door(0.0, x, kWallRow, false));
+    scene.map.doors.push_back(door(0.0, x, kWallRow, false));
   return scene;
 }
 
@@ -71,7 +71,7 @@ TEST(ZoneMap, ADoorOffTheMapIsASceneErrorWithItsLine) {
     ADD_FAILURE() << "no SceneError";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "doors.yaml:7: agents.doors: cell (64, 3) is off the 64x64 map");
+              "doors.yaml:7: map.doors: cell (64, 3) is off the 64x64 map");
   }
 }
 

@@ -47,7 +47,7 @@ AgentNavigation::~AgentNavigation() = default;
 void AgentNavigation::followDoors(EntityStore& store) {
   if (!service_) return;
   for (const ZoneMap::DoorChange& change : map_->doorsNow()) {
-    const AgentDoor& d = *change.door;
+    const MapDoor& d = *change.door;
     if (change.changed) service_->cellChanged(ai::Cell{d.x, d.y}, d.open);
     ++map_changes_;
     for (std::size_t i = 0; i < store.size(); ++i) {

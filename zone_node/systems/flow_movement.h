@@ -6,7 +6,7 @@
 // arrival radius of its goal has arrived: it stands still and leaves the crowd (neither moved
 // nor seen), which every rank decides from the position alone. The separation sums run in the
 // crowd library's canonical order over owned NPCs and ghosts, so a zone run ends bitwise equal
-// on any number of ranks. The scene's doors (agents.doors) open and close the crowds' copy of the
+// on any number of ranks. The scene's doors (map.doors) open and close the crowds' copy of the
 // map at their time; the fields they change are rebuilt then, alike on every rank.
 
 #include <cstdint>
@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "ai/grid_map.h"
-#include "common/scene_agents.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
