@@ -83,7 +83,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   const WorldMap* walls = map_ ? &map_->world() : nullptr;
   flows_ = std::make_unique<FlowMovement>(scene, map_.get());
   formations_ = std::make_unique<FormationMovement>(scene, walls);
-  roads_ = std::make_unique<RoadMovement>(scene);
+  roads_ = std::make_unique<RoadMovement>(scene.npcs);
   ants_ = std::make_unique<AntMovement>(scene, walls);
   agents_ = std::make_unique<AgentSystem>(scene, map_.get());
   wanderers_ = std::make_unique<WanderMovement>(scene);
@@ -130,7 +130,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   }
   PlayerZone zone = playerZone();
   players_.restored(zone);
-  emitters_ = std::make_unique<EmitterSystem>(scene_, gpu_mode, thresholds);
+  emitters_ = std::make_unique<EmitterSystem>(scene_.emitters, gpu_mode, thresholds);
   // What the active systems read on ghosts (the scene decides: every rank registers alike).
   for (auto [stage, system] : ai_systems_)
     if (system->active())

@@ -59,7 +59,7 @@ TEST(RoadMovement, NpcsTakeOnlyOpenAllowedEdgesAndCheapestPaths) {
   Scene scene = loadScene(std::string(ZONESIM_SOURCE_DIR) + "/scenes/roads.yaml");
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
-  RoadMovement roads(scene);
+  RoadMovement roads(scene.npcs);
   ASSERT_TRUE(roads.active());
   struct Trip {
     int from = -1;

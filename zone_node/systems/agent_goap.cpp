@@ -1,12 +1,12 @@
 #include "zone_node/systems/agent_goap.h"
 
 #include "ai/goap/goap_planner.h"
-#include "common/scene.h"
+#include "common/scene_agents.h"
 
 namespace zonesim::zone {
 
-AgentGoapPlans::AgentGoapPlans(const Scene& scene) : scene_(scene) {
-  for (const AgentType& t : scene.agents.types) {
+AgentGoapPlans::AgentGoapPlans(const AgentSettings& agents) : agents_(agents) {
+  for (const AgentType& t : agents.types) {
     std::unique_ptr<ai::GoapPlanner> p;
     if (t.behaviour == AgentType::Behaviour::Goap) {
       p = std::make_unique<ai::GoapPlanner>();
@@ -22,7 +22,7 @@ AgentGoapPlans::AgentGoapPlans(const Scene& scene) : scene_(scene) {
 AgentGoapPlans::~AgentGoapPlans() = default;
 
 bool AgentGoapPlans::target(AgentData& a, double& x, double& z) {
-  const AgentGoap& g = scene_.agents.types[std::size_t(a.type)].goap;
+  const AgentGoap& g = agents_.types[std::size_t(a.type)].goap;
   if (a.plan_length < 0) {
     std::vector<int> plan;
     bool found = planners_[std::size_t(a.type)]->plan(a.facts, {g.goal_mask, g.goal_values}, plan);
@@ -42,7 +42,7 @@ bool AgentGoapPlans::target(AgentData& a, double& x, double& z) {
 }
 
 bool AgentGoapPlans::work(AgentData& a, double dt) {
-  const AgentGoap& g = scene_.agents.types[std::size_t(a.type)].goap;
+  const AgentGoap& g = agents_.types[std::size_t(a.type)].goap;
   const AgentGoapAction& act = g.actions[std::size_t(a.plan[a.plan_step])];
   a.action_time += dt;
   if (a.action_time < act.duration_s) return false;

@@ -10,7 +10,7 @@
 #include "zone_node/entity_store.h"
 
 namespace zonesim {
-struct Scene;
+struct AgentSettings;
 }  // namespace zonesim
 
 namespace zonesim::ai {
@@ -22,8 +22,8 @@ namespace zonesim::zone {
 /// Planners for the scene's GOAP agent types.
 class AgentGoapPlans {
  public:
-  /// One planner per GOAP type of `scene`.
-  explicit AgentGoapPlans(const Scene& scene);
+  /// One planner per GOAP type of `agents` (the scene's, which must outlive this).
+  explicit AgentGoapPlans(const AgentSettings& agents);
   ~AgentGoapPlans();
 
   /// Plans for `a` if it has no plan yet; returns false when its plan is done or impossible
@@ -34,7 +34,7 @@ class AgentGoapPlans {
   bool work(AgentData& a, double dt);
 
  private:
-  const Scene& scene_;
+  const AgentSettings& agents_;
   std::vector<std::unique_ptr<ai::GoapPlanner>> planners_;  // by type; null for other types
 };
 

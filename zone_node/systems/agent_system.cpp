@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_decisions.h"
 #include "zone_node/systems/agent_goap.h"
@@ -29,12 +30,16 @@ Vec3 toward(const Vec3& from, const Vec3& to, double speed) {
 AgentSystem::AgentSystem(const Scene& scene, ZoneMap* map)
     : scene_(scene),
       decisions_(std::make_unique<AgentDecisions>(scene)),
-      goap_(std::make_unique<AgentGoapPlans>(scene)),
+      goap_(std::make_unique<AgentGoapPlans>(scene.agents)),
       nav_(scene, map) {
   for (const AgentType& t : scene.agents.types) reach_ = std::max(reach_, t.sight);
 }
 
 AgentSystem::~AgentSystem() = default;
+
+bool AgentSystem::active() const {
+  return !scene_.agents.types.empty();
+}
 
 void AgentSystem::step(StepContext& ctx) {
   EntityStore& store = ctx.store;

@@ -14,13 +14,17 @@
 #include <vector>
 
 #include "ai/grid_map.h"
-#include "common/scene.h"
+#include "common/scene_agents.h"
 #include "crowd/map_frame.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/agent_navigation.h"
 #include "zone_node/systems/agent_senses.h"
 #include "zone_node/systems/step_context.h"
+
+namespace zonesim {
+struct Scene;
+}  // namespace zonesim
 
 namespace zonesim::zone {
 
@@ -47,7 +51,7 @@ class AgentSystem : public ZoneSystem {
   ~AgentSystem();
 
   /// Whether the scene has agent types at all.
-  bool active() const override { return !scene_.agents.types.empty(); }
+  bool active() const override;
   /// Widest sight of a type: agents read ghosts this far across a border.
   double reach() const { return reach_; }
   /// Advances every agent by one tick; collective through ctx.cluster.gather (the zones share

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "common/rng.h"
-#include "common/scene.h"
+#include "common/scene_emitters.h"
 #include "gpu/backend.h"
 #include "gpu/particle_system.h"
 #include "zone_node/tick_profile.h"
@@ -16,10 +16,11 @@ constexpr gpu::Vec3d kGravity{0.0, -9.81, 0.0};
 constexpr double kConeHalfAngle = 0.6;
 }  // namespace
 
-EmitterSystem::EmitterSystem(const Scene& scene, const std::string& gpu_mode,
+EmitterSystem::EmitterSystem(const std::vector<EmitterPopulation>& emitters,
+                             const std::string& gpu_mode,
                              const gpu::OffloadThresholds& thresholds) {
   std::size_t total = 0;
-  for (const EmitterPopulation& p : scene.emitters) {
+  for (const EmitterPopulation& p : emitters) {
     std::size_t budget = std::size_t(p.count) * std::size_t(p.max_particles);
     capacity_[{p.drag, p.restitution}] += budget;
     total += budget;

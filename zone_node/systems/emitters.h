@@ -18,7 +18,7 @@
 #include "zone_node/systems/step_context.h"
 
 namespace zonesim {
-struct Scene;
+struct EmitterPopulation;
 }  // namespace zonesim
 
 namespace zonesim::gpu {
@@ -31,7 +31,7 @@ class EmitterSystem : public ZoneSystem {
  public:
   /// gpu_mode is "on", "off" or "auto" (see gpu/backend.h); auto offloads from the particle
   /// threshold, which every rank must share (zone_node/cluster/offload_agreement.h).
-  EmitterSystem(const Scene& scene, const std::string& gpu_mode,
+  EmitterSystem(const std::vector<EmitterPopulation>& emitters, const std::string& gpu_mode,
                 const gpu::OffloadThresholds& thresholds);
   ~EmitterSystem();
 

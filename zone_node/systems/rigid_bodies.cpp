@@ -114,7 +114,7 @@ static_assert(int(BodyData::Capsule) == int(SceneBody::Shape::Capsule));
 RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
     : scene_(scene),
       rank_(rank),
-      set_pieces_(scene),
+      set_pieces_(scene.physics),
       cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
   for (const SceneCloth& c : scene.physics.cloths) {
     cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));

@@ -5,7 +5,7 @@
 
 #include "ai/waypoint_graph.h"
 #include "common/rng.h"
-#include "common/scene.h"
+#include "common/scene_npcs.h"
 
 namespace zonesim::zone {
 
@@ -34,9 +34,9 @@ struct RoadMovement::Network {
   }
 };
 
-RoadMovement::RoadMovement(const Scene& scene) : scene_(scene) {
-  for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
-    const NpcRoads& roads = scene.npcs[p].roads;
+RoadMovement::RoadMovement(const std::vector<NpcPopulation>& npcs) {
+  for (std::size_t p = 0; p < npcs.size(); ++p) {
+    const NpcRoads& roads = npcs[p].roads;
     if (!roads.enabled) continue;
     auto n = std::make_unique<Network>();
     n->population = std::int32_t(p);

@@ -17,7 +17,7 @@
 #include "zone_node/systems/step_context.h"
 
 namespace zonesim {
-struct Scene;
+struct NpcPopulation;
 }  // namespace zonesim
 
 namespace zonesim::zone {
@@ -25,7 +25,8 @@ namespace zonesim::zone {
 /// Steps the road-network NPC populations of a scene.
 class RoadMovement : public ZoneSystem {
  public:
-  explicit RoadMovement(const Scene& scene);
+  /// The road networks of `npcs` (the scene's NPC populations).
+  explicit RoadMovement(const std::vector<NpcPopulation>& npcs);
   ~RoadMovement();
 
   /// Whether the scene has a road population at all.
@@ -42,7 +43,6 @@ class RoadMovement : public ZoneSystem {
   struct Network;
   Network* networkOf(std::int32_t population);
 
-  const Scene& scene_;
   std::vector<std::unique_ptr<Network>> networks_;
 };
 

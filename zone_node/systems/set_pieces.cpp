@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "common/scene.h"
+#include "common/scene_physics.h"
 #include "physics/world.h"
 
 namespace zonesim::zone {
@@ -38,8 +38,8 @@ Quat turned(const SceneBody& b, double t) {
 
 }  // namespace
 
-SetPieces::SetPieces(const Scene& scene) : scene_(scene) {
-  const std::vector<SceneBody>& bodies = scene.physics.bodies;
+SetPieces::SetPieces(const PhysicsSettings& physics) : physics_(physics) {
+  const std::vector<SceneBody>& bodies = physics.bodies;
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     if (bodies[k].motion == SceneBody::Motion::Dynamic) continue;
     scene_body_.push_back(k);
@@ -52,7 +52,7 @@ SetPieces::SetPieces(const Scene& scene) : scene_(scene) {
 void SetPieces::addTo(physics::World& world) {
   index_.clear();
   for (std::size_t k : scene_body_) {
-    const SceneBody& b = scene_.physics.bodies[k];
+    const SceneBody& b = physics_.bodies[k];
     physics::BodyDesc d;
     d.type = b.motion == SceneBody::Motion::Static ? physics::BodyType::Static
                                                    : physics::BodyType::Kinematic;
@@ -73,7 +73,7 @@ void SetPieces::pose(physics::World& world, std::uint64_t k, double dt) const {
   physics::BodyStorage& s = world.bodies();
   const double t = double(k) * dt;
   for (std::size_t n = 0; n < scene_body_.size(); ++n) {
-    const SceneBody& b = scene_.physics.bodies[scene_body_[n]];
+    const SceneBody& b = physics_.bodies[scene_body_[n]];
     if (b.motion != SceneBody::Motion::Kinematic) continue;
     const physics::BodyIndex i = index_[n];
     s.position[i] = vec(b.position) + t * vec(b.velocity);

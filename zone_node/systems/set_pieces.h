@@ -14,7 +14,7 @@
 #include "physics/body_storage.h"
 
 namespace zonesim {
-struct Scene;
+struct PhysicsSettings;
 }  // namespace zonesim
 
 namespace zonesim::physics {
@@ -25,7 +25,8 @@ namespace zonesim::zone {
 
 class SetPieces {
  public:
-  explicit SetPieces(const Scene& scene);
+  /// The set pieces among `physics.bodies` (the scene's, which must outlive this).
+  explicit SetPieces(const PhysicsSettings& physics);
 
   /// Adds every static and kinematic scene body to `world`, posed for tick 0, in scene order.
   void addTo(physics::World& world);
@@ -39,7 +40,7 @@ class SetPieces {
   bool moving() const { return moving_; }
 
  private:
-  const Scene& scene_;
+  const PhysicsSettings& physics_;
   std::vector<std::size_t> scene_body_;    // set piece n -> index into scene.physics.bodies
   std::vector<physics::BodyIndex> index_;  // set piece n -> world index (after addTo)
   bool moving_ = false;
