@@ -53,6 +53,8 @@ void dumpState(MPI_Comm comm, const EntityStore& store,
   if (rank == 0) {
     int total = 0;
     for (int r = 0; r < size; ++r) {
+      // Each segment starts aligned so that decodeMigration reads it in place.
+      total = int((std::size_t(total) + kBatchAlign - 1) / kBatchAlign * kBatchAlign);
       displs[std::size_t(r)] = total;
       total += counts[std::size_t(r)];
     }

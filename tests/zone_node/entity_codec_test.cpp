@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
+
 namespace zonesim::zone {
 namespace {
 
@@ -80,6 +83,29 @@ TEST(EntityCodec, CorruptBuffersAreRejected) {
   EXPECT_THROW(decodeMigration(wrong_id), CodecError);
   std::vector<std::uint8_t> garbage(64, 0xAB);
   EXPECT_THROW(decodeMigration(garbage), CodecError);
+}
+
+// A segment of a gathered buffer may start at any byte. Reading its Vec3d in place there is
+// undefined (an -fsanitize=undefined build stops on it); the decoder must give the same records.
+TEST(EntityCodec, BatchAtAMisalignedAddressDecodesTheSame) {
+  MigrationPayload p;
+  EntityRecordData e;
+  e.id = EntityId::make(4, 9);
+  e.kind = EntityKind::RigidBody;
+  e.pos = Vec3(1.5, -2.25, 1.0 / 7.0);
+  e.body.angular_velocity = Vec3(0.1, 0.2, 0.3);
+  p.entities = {e};
+  std::vector<std::uint8_t> bytes = encodeMigration(p);
+  std::vector<std::uint8_t> storage(bytes.size() + kBatchAlign);
+  std::uint8_t* at = storage.data() + 1;  // storage itself is aligned by operator new
+  ASSERT_NE(reinterpret_cast<std::uintptr_t>(at) % kBatchAlign, 0u);
+  std::memcpy(at, bytes.data(), bytes.size());
+
+  MigrationPayload q = decodeMigration(std::span<const std::uint8_t>(at, bytes.size()));
+  ASSERT_EQ(q.entities.size(), 1u);
+  EXPECT_EQ(q.entities[0].id, e.id);
+  EXPECT_EQ(q.entities[0].pos, e.pos);
+  EXPECT_EQ(q.entities[0].body.angular_velocity, e.body.angular_velocity);
 }
 
 TEST(EntityCodec, EveryKindOfCrowdStateMigratesAsItsOwnType) {

@@ -1,10 +1,12 @@
 #pragma once
 // One personalised all-to-all of byte buffers: sizes first (MPI_Alltoall), then the payloads
 // (MPI_Alltoallv). Migration and the halo both move their data this way; the buffers are kept
-// across ticks so a warmed-up exchange does not allocate.
+// across ticks so a warmed-up exchange does not allocate. Each received segment starts at a
+// multiple of kSegmentAlign, so a FlatBuffer in it can be read in place.
 
 #include <mpi.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -13,6 +15,9 @@ namespace zonesim::zone {
 
 class ByteExchange {
  public:
+  /// Alignment of every received segment (the widest FlatBuffers scalar, a double).
+  static constexpr std::size_t kSegmentAlign = alignof(double);
+
   ByteExchange(MPI_Comm comm, int size);
 
   /// Clears the outgoing buffers; call before packing a new round.

@@ -1,6 +1,7 @@
 #include "zone_node/cluster/entity_codec.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -241,6 +242,12 @@ std::vector<std::uint8_t> encodeMigration(const MigrationPayload& p) {
 }
 
 MigrationPayload decodeMigration(std::span<const std::uint8_t> bytes) {
+  // Reading a Vec3d at a misaligned address is undefined even when the Verifier passed it.
+  std::vector<std::uint8_t> aligned;
+  if (reinterpret_cast<std::uintptr_t>(bytes.data()) % kBatchAlign != 0) {
+    aligned.assign(bytes.begin(), bytes.end());  // operator new aligns for any scalar
+    bytes = aligned;
+  }
   // Every record is two tables; the default cap (a million tables) would refuse batches of more
   // than ~500k entities (a big checkpoint or rebalance), so the cap follows the buffer's size.
   flatbuffers::Verifier verifier(
