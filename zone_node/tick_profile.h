@@ -98,6 +98,7 @@ struct TickCounters {
   std::uint64_t paths_planned = 0;      ///< path planner calls (at most the per-tick budget)
   std::uint64_t paths_queued = 0;       ///< path requests left waiting for a later tick
   std::uint64_t path_replans = 0;       ///< agents whose path a closing door cut
+  std::uint64_t quarantined = 0;        ///< entities frozen for a non-finite state (quarantine.h)
 };
 
 /// Every counter with its name: totals, metrics lines and summaries iterate this one list.
@@ -140,6 +141,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"agent_transitions", &TickCounters::agent_transitions, false},
     {"paths_planned", &TickCounters::paths_planned, false},
     {"paths_queued", &TickCounters::paths_queued, true},
-    {"path_replans", &TickCounters::path_replans, false}};
+    {"path_replans", &TickCounters::path_replans, false},
+    {"quarantined", &TickCounters::quarantined, false}};
 
 }  // namespace zonesim::zone

@@ -203,6 +203,7 @@ void ZoneNode::input() {
 }
 
 void ZoneNode::ai() {
+  quarantine_.begin(store_);
   // The doors change the one map every system reads, before any of them steps.
   if (map_ && map_->hasDoors()) {
     ScopedTimer t(profile_[Stage::AiDoors]);
@@ -227,14 +228,18 @@ void ZoneNode::ai() {
 
 void ZoneNode::avatars() {
   stepAvatars(scene_.world, store_, scene_.dt);
+  // Before physics, the halo, migration and publish read what the movers wrote.
+  counters_.quarantined = quarantine_.apply(store_);
 }
 
 void ZoneNode::physics() {
   if ((store_.count(EntityKind::RigidBody) > 0 || !scene_.physics.cloths.empty()) && !bodies_)
     bodies_ = std::make_unique<RigidBodySystem>(scene_, rank_);
   if (bodies_) {
+    const std::uint64_t frozen_before = bodies_->quarantined();
     StepContext ctx = stepContext();
     bodies_->step(ctx);
+    counters_.quarantined += bodies_->quarantined() - frozen_before;
     const physics::StepProfile& p = bodies_->profile();
     profile_[Stage::PhysicsIntegrate] += p.integrate;
     profile_[Stage::PhysicsBroadphase] += p.broadphase;

@@ -20,6 +20,7 @@
 #include "zone_node/cluster/migration.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/players.h"
+#include "zone_node/quarantine.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/step_context.h"
 #include "zone_node/tick_profile.h"
@@ -136,6 +137,7 @@ class ZoneNode {
   bool bodies_in_scene_ = false;  // rigid bodies may touch across borders
   double walker_reach_ = 0;       // widest radius at which walkers see each other
   Neighbourhood near_;            // walkers and their ghosts, rebuilt each AI phase
+  Quarantine quarantine_;         // movers whose state became non-finite, held frozen
   std::uint64_t layout_version_ = 0;  // bumped whenever zone boundaries move
   std::unique_ptr<GatewayLink> link_;
   std::unique_ptr<CellPublisher> publisher_;
