@@ -68,7 +68,9 @@ def free_dds_domain():
 
 
 def mpirun(np, *args):
-    return ["mpirun", "-np", str(np), "--oversubscribe", "--bind-to", "none", *map(str, args)]
+    # Sanitizer options (deploy/sanitize.sh) go to every rank explicitly, wherever it runs.
+    forward = [a for v in ("ASAN_OPTIONS", "UBSAN_OPTIONS") if v in os.environ for a in ("-x", v)]
+    return ["mpirun", "-np", str(np), "--oversubscribe", "--bind-to", "none", *forward, *map(str, args)]
 
 
 def start(cmd, log_path, env):
