@@ -7,16 +7,32 @@
 namespace zonesim::zone {
 namespace {
 
-TEST(ZoneNode, ASingleZoneConservesItsEntitiesAndSkipsIdleSystems) {
+// A scene with work for the AI and physics phases and none for the others: every tick the
+// walkers move and the bodies are stepped, while migration, particles and agents count nothing.
+TEST(ZoneNode, ASingleZoneConservesItsEntitiesAndWorksOnlyWhereThereIsWork) {
   Scene s = testing::npcScene(300);
+  RigidBodyPopulation bodies;
+  bodies.count = 5;
+  bodies.region = s.world;
+  s.rigid_bodies.push_back(bodies);
   ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(1));
   ASSERT_EQ(node.size(), 1);
-  EXPECT_EQ(node.store().size(), 300u);
+  ASSERT_EQ(node.store().size(), 305u);
   for (int t = 0; t < 120; ++t) {
+    std::vector<Vec3> before = node.store().pos;
     node.tick();
-    EXPECT_EQ(node.counters().migrated_out, 0u);
-    EXPECT_EQ(node.counters().bodies_awake, 0u);     // no rigid bodies: physics never entered
-    EXPECT_EQ(node.counters().particles_alive, 0u);  // no emitters: nothing on the GPU
+    const EntityStore& st = node.store();
+    ASSERT_EQ(st.size(), 305u);
+    int walked = 0;
+    for (std::size_t i = 0; i < st.size(); ++i)
+      walked += st.kind[i] == EntityKind::Npc && st.pos[i] != before[i];
+    EXPECT_GT(walked, 250) << "tick " << t;          // ai: nearly every walker moved
+    EXPECT_EQ(node.counters().bodies_awake, 5u);     // physics: the bodies never sleep here
+    EXPECT_EQ(node.counters().migrated_out, 0u);     // one zone: nobody leaves
+    EXPECT_EQ(node.counters().migration_bytes, 0u);  // nor is anything sent
+    EXPECT_EQ(node.counters().particles_alive, 0u);  // no emitters
+    EXPECT_EQ(node.counters().agents, 0u);           // no agents
+    EXPECT_EQ(node.counters().quarantined, 0u);
   }
   EXPECT_EQ(node.conservation().checks, 120u);
   EXPECT_EQ(node.conservation().failures, 0u);
