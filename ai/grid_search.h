@@ -7,6 +7,7 @@
 // them dominated the run time.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "ai/grid_map.h"
@@ -40,6 +41,11 @@ class GridSearch {
   const SearchStats& lastStats() const { return stats_; }
   /// The map searched.
   const GridMap& map() const { return map_; }
+  /// Capacity of the node records and of the open list: once the open list reached its peak,
+  /// a query leaves both unchanged (it allocates nothing).
+  std::pair<std::size_t, std::size_t> storageCapacity() const {
+    return {nodes_.capacity(), heap_.capacity()};
+  }
 
  private:
   struct Node {

@@ -131,6 +131,9 @@ TEST(GridSearch, ReuseGivesTheSamePathAndStopsAllocating) {
   for (std::size_t i = 0; i < queries.size(); ++i) {
     search.findPath(queries[i].first, queries[i].second, first[i]);
   }
+  // The first pass took the open list to its peak; the same queries cannot grow it again.
+  const auto warm = search.storageCapacity();
+  EXPECT_GT(warm.second, 0u);
   // Same queries again, in reverse order, through one output path whose storage is reused.
   GridPath path;
   path.cells.reserve(128 * 128);
@@ -139,6 +142,7 @@ TEST(GridSearch, ReuseGivesTheSamePathAndStopsAllocating) {
     search.findPath(queries[k].first, queries[k].second, path);
     EXPECT_EQ(path.cells, first[k].cells) << "query " << k;
     EXPECT_EQ(path.length, first[k].length);
+    EXPECT_EQ(search.storageCapacity(), warm) << "query " << k;
   }
   EXPECT_EQ(path.cells.data(), storage);
 }
