@@ -5,9 +5,18 @@
 #   (environment: ZONESIM_DEMO_SECONDS, ZONESIM_DEMO_PLAYERS, ZONESIM_DEMO_SCENE,
 #    ZONESIM_DEMO_TRUTH_EVERY: zones log the truth of every K-th entity id and clients what they
 #    showed of it, for the error-against-truth table of the report; 0 = off;
-#    ZONESIM_DEMO_CLIENT_ARGS: more client_stub options, e.g. "--max-lead-s 0" to compare)
+#    ZONESIM_DEMO_CLIENT_ARGS: more client_stub options, e.g. "--max-lead-s 0" to compare;
+#    ZONESIM_BIN: run the programs already built there, without setup.sh's apt-get and build,
+#    as tests/integration/demo_smoke.py does)
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+if [ -n "${ZONESIM_BIN:-}" ]; then
+  ZONESIM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+  BIN="$ZONESIM_BIN"
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+else
+  source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+  BIN="$BUILD_DIR/bin"
+fi
 
 SECONDS_RUN="${ZONESIM_DEMO_SECONDS:-20}"
 PLAYERS="${ZONESIM_DEMO_PLAYERS:-32}"
@@ -15,7 +24,6 @@ SCENE="${ZONESIM_DEMO_SCENE:-$ZONESIM_ROOT/scenes/demo.yaml}"
 TRUTH_EVERY="${ZONESIM_DEMO_TRUTH_EVERY:-32}"
 read -r -a CLIENT_ARGS <<<"${ZONESIM_DEMO_CLIENT_ARGS:-}"
 RUN_DIR="$(realpath -m "${1:-$ZONESIM_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}")"
-BIN="$BUILD_DIR/bin"
 mkdir -p "$RUN_DIR"
 rm -f "$RUN_DIR/gateway.port"  # a port left by an earlier run in the same folder would mislead us
 export CYCLONEDDS_URI="file://$ZONESIM_ROOT/deploy/cyclonedds.xml"
