@@ -160,8 +160,9 @@ double boundingRadius(const RigidBodyPopulation& p) {
 namespace {
 
 void readRigidBodies(const SceneNode& node, Scene& scene) {
-  SceneMap m = node.map({"kind", "count", "shape", "radius", "size", "length", "mass", "friction",
-                         "restitution", "drop_height", "region"});
+  SceneMap m =
+      node.map({"kind", "count", "shape", "radius", "size", "length", "mass", "friction",
+                "restitution", "linear_damping", "angular_damping", "drop_height", "region"});
   RigidBodyPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   p.shape = RigidBodyPopulation::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
@@ -175,6 +176,8 @@ void readRigidBodies(const SceneNode& node, Scene& scene) {
   m.read("friction", p.friction, Limit::atLeast(0));
   m.read("mass", p.mass, Limit::above(0));
   m.read("restitution", p.restitution, Limit::between(0, 1));
+  m.read("linear_damping", p.linear_damping, Limit::atLeast(0));
+  m.read("angular_damping", p.angular_damping, Limit::atLeast(0));
   m.read("drop_height", p.drop_height, p.max_drop_height, Limit::atLeast(0));
   p.region = readRegion(m, scene.world);
   // drop_height is the gap under the body's bounding sphere, so its top starts 2 radii higher.

@@ -59,9 +59,9 @@ SceneQuat readRotation(const SceneNode& node) {
 
 SceneBody readBody(const SceneNode& node, const Scene& scene,
                    const std::vector<SceneBody>& earlier) {
-  SceneMap m =
-      node.map({"name", "motion", "shape", "position", "rotation", "size", "radius", "length",
-                "velocity", "angular_velocity", "mass", "friction", "restitution"});
+  SceneMap m = node.map({"name", "motion", "shape", "position", "rotation", "size", "radius",
+                         "length", "velocity", "angular_velocity", "mass", "friction",
+                         "restitution", "linear_damping", "angular_damping"});
   SceneBody b;
   SceneNode name = m.required("name");
   b.name = name.text();
@@ -81,14 +81,19 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
   m.read("length", b.length, Limit::above(0));
   if (auto v = m.optional("velocity")) b.velocity = v->vec3();
   if (auto w = m.optional("angular_velocity")) b.angular_velocity = w->vec3();
-  if (b.motion != SceneBody::Motion::Dynamic && m.optional("mass"))
-    m.failAt("mass", "only dynamic bodies have a mass");
+  if (b.motion != SceneBody::Motion::Dynamic) {
+    if (m.optional("mass")) m.failAt("mass", "only dynamic bodies have a mass");
+    for (const char* key : {"linear_damping", "angular_damping"})
+      if (m.optional(key)) m.failAt(key, "only dynamic bodies are damped");
+  }
   if (b.motion == SceneBody::Motion::Static)
     for (const char* key : {"velocity", "angular_velocity"})
       if (m.optional(key)) m.failAt(key, "a static body does not move");
   m.read("mass", b.mass, Limit::above(0));
   m.read("friction", b.friction, Limit::atLeast(0));
   m.read("restitution", b.restitution, Limit::between(0, 1));
+  m.read("linear_damping", b.linear_damping, Limit::atLeast(0));
+  m.read("angular_damping", b.angular_damping, Limit::atLeast(0));
   return b;
 }
 

@@ -22,6 +22,8 @@ struct RigidBodyPopulation {
   double radius = 0.5;  ///< sphere and capsule radius (m)
   double mass = 1.0;
   double restitution = 0.5;
+  double linear_damping = 0;      ///< 1/s: v /= 1 + c dt each substep (physics::BodyDesc)
+  double angular_damping = 0;     ///< 1/s: w /= 1 + c dt each substep
   double drop_height = 10.0;      ///< start gap between ground and body (lowest of the range)
   double max_drop_height = 10.0;  ///< start heights are drawn uniformly in [drop_height, this]
   SceneBox region;                ///< where they start on x-z (defaults to the world)
@@ -49,6 +51,8 @@ struct SceneBody {
   double mass = 1.0;
   double friction = 0.5;
   double restitution = 0.0;
+  double linear_damping = 0;   ///< 1/s, dynamic bodies only (as RigidBodyPopulation's)
+  double angular_damping = 0;  ///< 1/s, dynamic bodies only
 };
 
 /// A joint between named bodies, or a body and the world (physics.joints; one zone only).

@@ -96,6 +96,8 @@ struct BodyData {
   Vec3 half_extents = Vec3::Constant(0.5);  ///< box
   double half_height = 0.5;                 ///< capsule: half the inner segment, local y
   double friction = 0.5;
+  double linear_damping = 0;   ///< 1/s (physics::BodyDesc)
+  double angular_damping = 0;  ///< 1/s
 };
 
 /// A particle emitter; its particles are zone-local effects (see systems/emitters.h).

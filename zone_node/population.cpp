@@ -142,6 +142,8 @@ void forEachInitialEntity(const Scene& scene,
       r.body.mass = p.mass;
       r.body.friction = p.friction;
       r.body.restitution = p.restitution;
+      r.body.linear_damping = p.linear_damping;
+      r.body.angular_damping = p.angular_damping;
       r.rng_state = rng.state();
       keep(r);
     }
@@ -178,6 +180,8 @@ void forEachInitialEntity(const Scene& scene,
     r.body.mass = b.mass;
     r.body.friction = b.friction;
     r.body.restitution = b.restitution;
+    r.body.linear_damping = b.linear_damping;
+    r.body.angular_damping = b.angular_damping;
     r.rng_state = rng.state();
     keep(r);
   }

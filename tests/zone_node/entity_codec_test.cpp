@@ -94,6 +94,8 @@ TEST(EntityCodec, BatchAtAMisalignedAddressDecodesTheSame) {
   e.kind = EntityKind::RigidBody;
   e.pos = Vec3(1.5, -2.25, 1.0 / 7.0);
   e.body.angular_velocity = Vec3(0.1, 0.2, 0.3);
+  e.body.linear_damping = 0.5;
+  e.body.angular_damping = 0.25;
   p.entities = {e};
   std::vector<std::uint8_t> bytes = encodeMigration(p);
   std::vector<std::uint8_t> storage(bytes.size() + kBatchAlign);
@@ -106,6 +108,8 @@ TEST(EntityCodec, BatchAtAMisalignedAddressDecodesTheSame) {
   EXPECT_EQ(q.entities[0].id, e.id);
   EXPECT_EQ(q.entities[0].pos, e.pos);
   EXPECT_EQ(q.entities[0].body.angular_velocity, e.body.angular_velocity);
+  EXPECT_EQ(q.entities[0].body.linear_damping, 0.5);  // a damped body stays damped on arrival
+  EXPECT_EQ(q.entities[0].body.angular_damping, 0.25);
 }
 
 TEST(EntityCodec, EveryKindOfCrowdStateMigratesAsItsOwnType) {

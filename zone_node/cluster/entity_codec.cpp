@@ -111,7 +111,7 @@ flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilde
       fb::Vec3d w = toFb(r.body.angular_velocity), h = toFb(r.body.half_extents);
       body = fb::CreateBodyState(b, r.body.radius, r.body.mass, r.body.restitution, &w,
                                  r.body.sleeping, r.body.shape, &h, r.body.half_height,
-                                 r.body.friction);
+                                 r.body.friction, r.body.linear_damping, r.body.angular_damping);
       break;
     }
     case EntityKind::Emitter:
@@ -214,6 +214,8 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
     r.body = {s->radius(),   s->mass(),  s->restitution(),          fromFb(s->angular_velocity()),
               s->sleeping(), s->shape(), fromFb(s->half_extents()), s->half_height(),
               s->friction()};
+    r.body.linear_damping = s->linear_damping();
+    r.body.angular_damping = s->angular_damping();
   }
   if (const fb::EmitterState* m = e.emitter()) {
     r.emitter = {m->rate(), m->lifetime(),    m->speed(),        m->spawn_accumulator(),

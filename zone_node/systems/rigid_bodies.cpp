@@ -135,6 +135,8 @@ static physics::BodyDesc descOf(const BodyData& b, const Vec3& pos, const Quat& 
   d.density = b.mass / volumeOf(b);
   d.friction = b.friction;
   d.restitution = b.restitution;
+  d.linear_damping = b.linear_damping;
+  d.angular_damping = b.angular_damping;
   return d;
 }
 
@@ -174,6 +176,8 @@ void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts
   for (std::size_t g : foreign) {
     physics::BodyDesc d = descOf(ghosts->body[g], ghosts->pos[g], ghosts->rot[g], ghosts->vel[g]);
     d.foreign = true;
+    // Its owner damps it; damping here too would be handed back as a push (applyImpulses).
+    d.linear_damping = d.angular_damping = 0;
     world_->addBody(d);
     foreign_entity_.push_back(ghosts->id[g]);
   }
