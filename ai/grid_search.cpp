@@ -41,11 +41,11 @@ void GridSearch::siftUp(std::size_t i, const HeapEntry& e) {
     std::size_t parent = (i - 1) / 2;
     if (!popsBefore(e, heap_[parent])) break;
     heap_[i] = heap_[parent];
-    nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
+    nodes_[std::size_t(heap_[i].idx)].heap_pos = std::int32_t(i);
     i = parent;
   }
   heap_[i] = e;
-  nodes_[std::size_t(e.idx)].heapPos = std::int32_t(i);
+  nodes_[std::size_t(e.idx)].heap_pos = std::int32_t(i);
 }
 
 void GridSearch::heapPush(const HeapEntry& e) {
@@ -56,7 +56,7 @@ void GridSearch::heapPush(const HeapEntry& e) {
 
 void GridSearch::heapDecrease(const HeapEntry& e) {
   // A lower g for an open node lowers its f (same h) and only ever moves it up.
-  siftUp(std::size_t(nodes_[std::size_t(e.idx)].heapPos), e);
+  siftUp(std::size_t(nodes_[std::size_t(e.idx)].heap_pos), e);
 }
 
 GridSearch::HeapEntry GridSearch::heapPop() {
@@ -72,11 +72,11 @@ GridSearch::HeapEntry GridSearch::heapPop() {
     if (child + 1 < n && popsBefore(heap_[child + 1], heap_[child])) ++child;
     if (!popsBefore(heap_[child], last)) break;
     heap_[i] = heap_[child];
-    nodes_[std::size_t(heap_[i].idx)].heapPos = std::int32_t(i);
+    nodes_[std::size_t(heap_[i].idx)].heap_pos = std::int32_t(i);
     i = child;
   }
   heap_[i] = last;
-  nodes_[std::size_t(last.idx)].heapPos = std::int32_t(i);
+  nodes_[std::size_t(last.idx)].heap_pos = std::int32_t(i);
   return top;
 }
 

@@ -53,7 +53,7 @@ class GridSearch {
     std::int32_t parent;
     // stamp == generation_: open, stamp == generation_ + 1: closed, anything else: untouched.
     std::uint32_t stamp;
-    std::int32_t heapPos;  // position in heap_ while open
+    std::int32_t heap_pos;  // position in heap_ while open
   };
   // Costs are integers in 2^-40 units (a cardinal step is 2^40, a diagonal sqrt(2) * 2^40
   // rounded). Doubles reached through different orders of 1 and sqrt(2) steps differ in their

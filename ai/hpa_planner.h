@@ -18,18 +18,18 @@ namespace zonesim::ai {
 
 /// Settings of the abstraction.
 struct HpaConfig {
-  int clusterSize = 16;  ///< cluster side in cells
-  int wideEntrance = 6;  ///< entrances at least this wide get a transition at each end
-  int smoothSpan = 0;    ///< re-optimise windows of this many abstract steps (0: raw HPA*)
+  int cluster_size = 16;  ///< cluster side in cells
+  int wide_entrance = 6;  ///< entrances at least this wide get a transition at each end
+  int smooth_span = 0;    ///< re-optimise windows of this many abstract steps (0: raw HPA*)
 };
 
 /// Size of the abstraction, for reports.
 struct HpaStats {
-  int clusters = 0;      ///< number of clusters
-  int nodes = 0;         ///< abstract nodes (transition cells)
-  int edges = 0;         ///< directed abstract edges
-  int expanded = 0;      ///< abstract nodes expanded by the last query
-  int gridExpanded = 0;  ///< grid cells expanded by the last query (linking, refining, smoothing)
+  int clusters = 0;       ///< number of clusters
+  int nodes = 0;          ///< abstract nodes (transition cells)
+  int edges = 0;          ///< directed abstract edges
+  int expanded = 0;       ///< abstract nodes expanded by the last query
+  int grid_expanded = 0;  ///< grid cells expanded by the last query (linking, refining, smoothing)
 };
 
 /// Hierarchical planner over a map that may change; repairs only the clusters a change touches.
@@ -83,33 +83,33 @@ class HpaPlanner {
 
   const GridMap& map_;
   HpaConfig config_;
-  int clustersX_ = 0, clustersY_ = 0;
+  int clusters_x_ = 0, clustersY_ = 0;
   // Borders: first the vertical ones (between (cx, cy) and (cx + 1, cy)), then horizontal.
   std::vector<std::vector<Transition>> borders_;
   std::vector<std::vector<IntraEdge>> intra_;
-  // Abstract graph in compressed rows; node i is cell nodeCell_[i].
-  std::vector<std::int32_t> nodeCell_;
-  std::vector<std::int32_t> cellNode_;
-  std::vector<std::int32_t> edgeStart_;
+  // Abstract graph in compressed rows; node i is cell node_cell_[i].
+  std::vector<std::int32_t> node_cell_;
+  std::vector<std::int32_t> cell_node_;
+  std::vector<std::int32_t> edge_start_;
   std::vector<Edge> edges_;
-  std::uint64_t builtVersion_ = 0;
+  std::uint64_t built_version_ = 0;
 
   // Per-query scratch, reused so that a warmed-up query allocates only for its path.
   GridSearch search_;
-  std::vector<Edge> startEdges_;
-  std::vector<double> goalCost_;
-  std::vector<std::uint32_t> goalStamp_;
+  std::vector<Edge> start_edges_;
+  std::vector<double> goal_cost_;
+  std::vector<std::uint32_t> goal_stamp_;
   std::vector<AbstractNode> records_;
   std::vector<HeapEntry> heap_;
-  std::vector<std::int32_t> abstractPath_;
-  std::vector<std::int32_t> scratchCells_;
+  std::vector<std::int32_t> abstract_path_;
+  std::vector<std::int32_t> scratch_cells_;
   GridPath piece_;
   GridPath direct_;
   std::vector<std::int32_t> waypoints_;  // positions in the refined path of abstract nodes
   std::vector<Cell> smoothed_;
   std::uint32_t generation_ = 0;
   int expanded_ = 0;
-  int gridExpanded_ = 0;
+  int grid_expanded_ = 0;
 };
 
 }  // namespace zonesim::ai

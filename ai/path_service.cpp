@@ -5,7 +5,7 @@
 namespace zonesim::ai {
 
 PathService::PathService(GridMap& map, const PathServiceConfig& config)
-    : map_(map), config_(config), cache_(config.cacheCapacity) {
+    : map_(map), config_(config), cache_(config.cache_capacity) {
   if (config_.planner == PlannerKind::AStar) {
     astar_ = std::make_unique<GridSearch>(map_);
   } else {
@@ -15,9 +15,9 @@ PathService::PathService(GridMap& map, const PathServiceConfig& config)
 
 PathRequestId PathService::request(Cell start, Cell goal) {
   std::uint32_t slot;
-  if (!freeSlots_.empty()) {
-    slot = freeSlots_.back();
-    freeSlots_.pop_back();
+  if (!free_slots_.empty()) {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
   } else {
     slot = std::uint32_t(requests_.size());
     requests_.emplace_back();
@@ -38,7 +38,7 @@ void PathService::release(PathRequestId id) {
   r.status = PathStatus::Unknown;
   r.path.clear();
   ++r.generation;  // stale handles, including any left in the queue, no longer match
-  freeSlots_.push_back(id.slot);
+  free_slots_.push_back(id.slot);
 }
 
 const PathService::Request* PathService::find(PathRequestId id) const {
@@ -55,14 +55,14 @@ bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
     expanded = astar_->lastStats().expanded;
   } else {
     found = hpa_->findPath(start, goal, out);
-    expanded = hpa_->stats().expanded + hpa_->stats().gridExpanded;
+    expanded = hpa_->stats().expanded + hpa_->stats().grid_expanded;
   }
   stats_.expanded += std::uint64_t(expanded);
   return found;
 }
 
 void PathService::tick() {
-  int budget = config_.pathsPerTick;
+  int budget = config_.paths_per_tick;
   long expansions = 0;
   bool plannedAny = false;
   while (!queue_.empty()) {
@@ -76,12 +76,13 @@ void PathService::tick() {
     if (const GridPath* cached = cache_.find(r.start, r.goal)) {
       r.path = *cached;
       r.status = PathStatus::Ready;
-      ++stats_.cacheHits;
+      ++stats_.cache_hits;
       queue_.pop_front();
       continue;
     }
     if (budget == 0) break;
-    if (plannedAny && config_.expansionsPerTick > 0 && expansions >= config_.expansionsPerTick) {
+    if (plannedAny && config_.expansions_per_tick > 0 &&
+        expansions >= config_.expansions_per_tick) {
       break;
     }
     --budget;
@@ -102,7 +103,7 @@ void PathService::tick() {
 bool PathService::solve(Cell start, Cell goal, GridPath& out, int& expanded) {
   if (const GridPath* cached = cache_.find(start, goal, &expanded)) {
     out = *cached;
-    ++stats_.cacheHits;
+    ++stats_.cache_hits;
     return true;
   }
   if (!plan(start, goal, out, expanded)) return false;
@@ -141,7 +142,7 @@ void PathService::cellChanged(Cell c, bool open) {
     }
     return;
   }
-  if (config_.clearCacheOnClose)
+  if (config_.clear_cache_on_close)
     cache_.clear();
   else
     cache_.cellClosed(c);

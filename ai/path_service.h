@@ -1,6 +1,6 @@
 #pragma once
 // Path requests for many agents under a per-tick budget: requests queue in arrival order, each
-// tick() plans at most `pathsPerTick` of them and stops once `expansionsPerTick` nodes were
+// tick() plans at most `paths_per_tick` of them and stops once `expansions_per_tick` nodes were
 // expanded (cache hits are free; at least one plan per tick so the queue always moves), so a
 // burst of requests is spread over several ticks instead of blowing one. Map changes go through
 // setCell(), which repairs the planner, invalidates cached paths and re-queues every request whose
@@ -25,13 +25,13 @@ enum class PlannerKind { AStar, Hpa };
 struct PathServiceConfig {
   PlannerKind planner = PlannerKind::Hpa;  ///< A* (optimal) or HPA* (faster on large maps)
   HpaConfig hpa;                           ///< abstraction settings when planner is Hpa
-  int pathsPerTick = 8;                    ///< planner calls allowed per tick
-  int expansionsPerTick = 0;               ///< node expansions allowed per tick (0: no limit)
-  std::size_t cacheCapacity = 1024;        ///< cached paths (0: no cache)
+  int paths_per_tick = 8;                  ///< planner calls allowed per tick
+  int expansions_per_tick = 0;             ///< node expansions allowed per tick (0: no limit)
+  std::size_t cache_capacity = 1024;       ///< cached paths (0: no cache)
   /// Closing a cell clears the cache too. A kept path stays optimal, but a fresh plan on the new
   /// map may pick another path of the same length; set this where a hit must equal a fresh plan
   /// (zones, whose caches differ from rank to rank).
-  bool clearCacheOnClose = false;
+  bool clear_cache_on_close = false;
 };
 
 /// State of a request.
@@ -45,10 +45,10 @@ struct PathRequestId {
 
 /// Counters for reports and tests.
 struct PathServiceStats {
-  std::uint64_t planned = 0;    ///< planner calls
-  std::uint64_t cacheHits = 0;  ///< requests served from the cache
-  std::uint64_t replans = 0;    ///< requests re-queued because the map cut their path
-  std::uint64_t expanded = 0;   ///< nodes expanded by all planner calls
+  std::uint64_t planned = 0;     ///< planner calls
+  std::uint64_t cache_hits = 0;  ///< requests served from the cache
+  std::uint64_t replans = 0;     ///< requests re-queued because the map cut their path
+  std::uint64_t expanded = 0;    ///< nodes expanded by all planner calls
 };
 
 /// Budgeted, cached path finding over one map that the service owns changes to.
@@ -67,7 +67,8 @@ class PathService {
   /// Plans one path now, outside the queue and its budget (for a caller that budgets itself):
   /// from the cache when it holds the pair, else by the planner (then cached). `expanded` is
   /// the planner's node count, on a hit the count stored with the path, so that with
-  /// clearCacheOnClose a hit gives the caller's budget and the agent exactly what planning would.
+  /// clear_cache_on_close a hit gives the caller's budget and the agent exactly what planning
+  /// would.
   bool solve(Cell start, Cell goal, GridPath& out, int& expanded);
   /// State of a request (Unknown for a released or stale handle).
   PathStatus status(PathRequestId id) const;
@@ -100,7 +101,7 @@ class PathService {
   std::unique_ptr<HpaPlanner> hpa_;
   PathCache cache_;
   std::vector<Request> requests_;
-  std::vector<std::uint32_t> freeSlots_;
+  std::vector<std::uint32_t> free_slots_;
   std::deque<PathRequestId> queue_;
   PathServiceStats stats_;
   GridPath empty_;

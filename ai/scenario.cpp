@@ -50,9 +50,9 @@ std::vector<ScenarioProblem> parseScenario(std::istream& in, const std::string& 
     std::size_t pathEnd = f.size() - kTrailingFields;
     const char* pathBegin = f[1].data();
     const char* pathLast = f[pathEnd - 1].data() + f[pathEnd - 1].size();
-    p.mapPath.assign(pathBegin, pathLast);
-    p.mapWidth = intField(f[pathEnd + 0], file, lineNo, "map width");
-    p.mapHeight = intField(f[pathEnd + 1], file, lineNo, "map height");
+    p.map_path.assign(pathBegin, pathLast);
+    p.map_width = intField(f[pathEnd + 0], file, lineNo, "map width");
+    p.map_height = intField(f[pathEnd + 1], file, lineNo, "map height");
     p.start.x = intField(f[pathEnd + 2], file, lineNo, "start x");
     p.start.y = intField(f[pathEnd + 3], file, lineNo, "start y");
     p.goal.x = intField(f[pathEnd + 4], file, lineNo, "goal x");
@@ -60,11 +60,11 @@ std::vector<ScenarioProblem> parseScenario(std::istream& in, const std::string& 
     if (!parseDouble(f[pathEnd + 6], p.optimal) || p.optimal < 0) {
       throw ParseError(file, lineNo, "bad optimal length '" + std::string(f[pathEnd + 6]) + "'");
     }
-    if (p.mapWidth <= 0 || p.mapHeight <= 0) {
+    if (p.map_width <= 0 || p.map_height <= 0) {
       throw ParseError(file, lineNo, "map size must be positive");
     }
     auto onMap = [&](Cell c) {
-      return c.x >= 0 && c.y >= 0 && c.x < p.mapWidth && c.y < p.mapHeight;
+      return c.x >= 0 && c.y >= 0 && c.x < p.map_width && c.y < p.map_height;
     };
     if (!onMap(p.start) || !onMap(p.goal)) {
       throw ParseError(file, lineNo, "start or goal outside the listed map size");

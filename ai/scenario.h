@@ -12,9 +12,9 @@ namespace zonesim::ai {
 /// One problem of a scenario file.
 struct ScenarioProblem {
   int bucket = 0;        ///< difficulty bucket from the file
-  std::string mapPath;   ///< map named by the file (informational: callers choose the map)
-  int mapWidth = 0;      ///< map width the problem was generated for
-  int mapHeight = 0;     ///< map height the problem was generated for
+  std::string map_path;  ///< map named by the file (informational: callers choose the map)
+  int map_width = 0;     ///< map width the problem was generated for
+  int map_height = 0;    ///< map height the problem was generated for
   Cell start;            ///< start cell
   Cell goal;             ///< goal cell
   double optimal = 0.0;  ///< listed optimal length (rounded in the file)

@@ -10,7 +10,7 @@ namespace zonesim::ai {
 
 int WaypointGraph::addNode(Vec2 position) {
   positions_.push_back(position);
-  firstEdge_.push_back(-1);
+  first_edge_.push_back(-1);
   records_.push_back(Record{0.0, -1, 0});
   return int(positions_.size()) - 1;
 }
@@ -20,10 +20,10 @@ int WaypointGraph::addEdge(int a, int b, double cost, std::uint32_t flags, bool 
   double length = std::hypot(positions_[std::size_t(b)].x - positions_[std::size_t(a)].x,
                              positions_[std::size_t(b)].y - positions_[std::size_t(a)].y);
   // An edge cheaper than its straight-line length would make the plain distance inadmissible.
-  if (length > 0) heuristicScale_ = std::min(heuristicScale_, cost / length);
+  if (length > 0) heuristic_scale_ = std::min(heuristic_scale_, cost / length);
   auto add = [&](int from, int to) {
-    edges_.push_back(Edge{from, to, cost, flags, true, firstEdge_[std::size_t(from)]});
-    firstEdge_[std::size_t(from)] = int(edges_.size()) - 1;
+    edges_.push_back(Edge{from, to, cost, flags, true, first_edge_[std::size_t(from)]});
+    first_edge_[std::size_t(from)] = int(edges_.size()) - 1;
     return int(edges_.size()) - 1;
   };
   int id = add(a, b);
@@ -48,7 +48,7 @@ bool WaypointGraph::findPath(int start, int goal, std::uint32_t allowed, Waypoin
   const Vec2 target = positions_[std::size_t(goal)];
   auto h = [&](int n) {
     const Vec2 p = positions_[std::size_t(n)];
-    return heuristicScale_ * std::hypot(target.x - p.x, target.y - p.y);
+    return heuristic_scale_ * std::hypot(target.x - p.x, target.y - p.y);
   };
   constexpr PopsLater cmp{};
   heap_.clear();
@@ -67,7 +67,7 @@ bool WaypointGraph::findPath(int start, int goal, std::uint32_t allowed, Waypoin
       std::reverse(out.nodes.begin(), out.nodes.end());
       return true;
     }
-    for (int e = firstEdge_[std::size_t(top.idx)]; e >= 0; e = edges_[std::size_t(e)].next) {
+    for (int e = first_edge_[std::size_t(top.idx)]; e >= 0; e = edges_[std::size_t(e)].next) {
       const Edge& edge = edges_[std::size_t(e)];
       if (!edge.open || (edge.flags & ~allowed) != 0) continue;
       Record& next = records_[std::size_t(edge.to)];

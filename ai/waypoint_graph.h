@@ -56,9 +56,9 @@ class WaypointGraph {
   };
 
   std::vector<Vec2> positions_;
-  std::vector<int> firstEdge_;
+  std::vector<int> first_edge_;
   std::vector<Edge> edges_;
-  double heuristicScale_ = 1.0;
+  double heuristic_scale_ = 1.0;
   std::vector<Record> records_;
   std::vector<HeapEntry> heap_;
   std::uint32_t generation_ = 0;

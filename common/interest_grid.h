@@ -22,7 +22,7 @@ class InterestGrid {
   int columns() const { return columns_; }
   int rows() const { return rows_; }
   int cellCount() const { return columns_ * rows_; }
-  double cellSize() const { return cell_size_; }
+  double cell_size() const { return cell_size_; }
 
   int columnOf(double x) const { return clampedIndex((x - min_x_) / cell_size_, columns_); }
   int rowOf(double z) const { return clampedIndex((z - min_z_) / cell_size_, rows_); }

@@ -23,11 +23,11 @@ AntColony::AntColony(const ai::GridMap& map, ai::Cell nest, ai::Cell food,
       food_(food),
       settings_(settings),
       rng_(settings.seed, 0xA17),
-      tau_(std::size_t(map.width()) * map.height() * 8, settings.initialPheromone),
+      tau_(std::size_t(map.width()) * map.height() * 8, settings.initial_pheromone),
       seen_(std::size_t(map.width()) * map.height(), 0) {
   if (!map.passable(nest.x, nest.y) || !map.passable(food.x, food.y))
     throw std::invalid_argument("AntColony: nest and food must be walkable");
-  if (settings_.maxSteps <= 0) settings_.maxSteps = 4 * map.passableCount();
+  if (settings_.max_steps <= 0) settings_.max_steps = 4 * map.passableCount();
 }
 
 bool AntColony::walk(std::vector<ai::Cell>& route) {
@@ -35,9 +35,9 @@ bool AntColony::walk(std::vector<ai::Cell>& route) {
   route.clear();
   route.push_back(nest_);
   seen_[map_.index(nest_.x, nest_.y)] = stamp_;
-  const AntChoice rule{settings_.alpha, settings_.beta, settings_.knowsFoodPosition,
+  const AntChoice rule{settings_.alpha, settings_.beta, settings_.knows_food_position,
                        settings_.exploitation};
-  for (int moves = 0; moves < settings_.maxSteps; ++moves) {
+  for (int moves = 0; moves < settings_.max_steps; ++moves) {
     ai::Cell c = route.back();
     if (c == food_) return true;
     const std::size_t from = std::size_t(map_.index(c.x, c.y)) * 8;
@@ -71,12 +71,12 @@ AntIteration AntColony::iterate() {
     double len = ai::pathLength(route);
     ++out.found;
     sum += len;
-    if (bestLength_ == 0 || len < bestLength_) {
-      bestLength_ = len;
+    if (best_length_ == 0 || len < best_length_) {
+      best_length_ = len;
       best_ = route;
     }
   }
-  for (double& t : tau_) t = std::max(settings_.minPheromone, t * (1.0 - settings_.evaporation));
+  for (double& t : tau_) t = std::max(settings_.min_pheromone, t * (1.0 - settings_.evaporation));
   auto lay = [&](const std::vector<ai::Cell>& route, double amount) {
     for (std::size_t k = 0; k + 1 < route.size(); ++k) {
       int dir = directionOf(route[k], route[k + 1]);
@@ -85,9 +85,9 @@ AntIteration AntColony::iterate() {
   };
   for (const auto& route : routes_)
     if (!route.empty()) lay(route, settings_.deposit / ai::pathLength(route));
-  if (settings_.eliteDeposit && !best_.empty()) lay(best_, settings_.deposit / bestLength_);
-  out.meanLength = out.found ? sum / out.found : 0.0;
-  out.bestLength = bestLength_;
+  if (settings_.elite_deposit && !best_.empty()) lay(best_, settings_.deposit / best_length_);
+  out.mean_length = out.found ? sum / out.found : 0.0;
+  out.best_length = best_length_;
   return out;
 }
 

@@ -20,26 +20,26 @@ namespace zonesim::crowd {
 
 /// Colony parameters.
 struct AntColonySettings {
-  int ants = 20;                   ///< ants sent per iteration
-  double alpha = 1.0;              ///< weight of pheromone in the step choice
-  double beta = 2.0;               ///< weight of the heuristic desirability eta of a step
-  bool knowsFoodPosition = true;   ///< eta = 1 / (step + octile distance to the food); else
-                                   ///< eta = 1 / step: the ants know nothing but their cell
-  double evaporation = 0.1;        ///< rho: fraction of every trail lost per iteration
-  double deposit = 1.0;            ///< Q: an ant lays Q / (route length) on each of its steps
-  double exploitation = 0.0;       ///< q0: chance of taking the strongest step outright
-  double initialPheromone = 0.01;  ///< trail on every step before any ant walked
-  double minPheromone = 1e-6;      ///< floor, so that no step ever becomes impossible
-  bool eliteDeposit = true;        ///< the best route so far is reinforced every iteration
-  int maxSteps = 0;                ///< moves before an ant gives up (0: 4 x walkable cells)
-  std::uint64_t seed = 1;          ///< random stream of the colony
+  int ants = 20;                    ///< ants sent per iteration
+  double alpha = 1.0;               ///< weight of pheromone in the step choice
+  double beta = 2.0;                ///< weight of the heuristic desirability eta of a step
+  bool knows_food_position = true;  ///< eta = 1 / (step + octile distance to the food); else
+                                    ///< eta = 1 / step: the ants know nothing but their cell
+  double evaporation = 0.1;         ///< rho: fraction of every trail lost per iteration
+  double deposit = 1.0;             ///< Q: an ant lays Q / (route length) on each of its steps
+  double exploitation = 0.0;        ///< q0: chance of taking the strongest step outright
+  double initial_pheromone = 0.01;  ///< trail on every step before any ant walked
+  double min_pheromone = 1e-6;      ///< floor, so that no step ever becomes impossible
+  bool elite_deposit = true;        ///< the best route so far is reinforced every iteration
+  int max_steps = 0;                ///< moves before an ant gives up (0: 4 x walkable cells)
+  std::uint64_t seed = 1;           ///< random stream of the colony
 };
 
 /// Summary of one iteration.
 struct AntIteration {
-  int found = 0;            ///< ants that reached the food
-  double meanLength = 0.0;  ///< mean route length of those ants
-  double bestLength = 0.0;  ///< best route length found so far (0 while none)
+  int found = 0;             ///< ants that reached the food
+  double mean_length = 0.0;  ///< mean route length of those ants
+  double best_length = 0.0;  ///< best route length found so far (0 while none)
 };
 
 /// A colony exploring one map from a nest toward food it has not seen.
@@ -52,7 +52,7 @@ class AntColony {
   /// Sends one iteration of ants, then evaporates and deposits.
   AntIteration iterate();
   /// Length of the best route (0 while none).
-  double bestLength() const { return bestLength_; }
+  double best_length() const { return best_length_; }
   /// The colony's current preferred route: from the nest, always the strongest unvisited
   /// step; false when it dead-ends or loops without reaching the food.
   bool trailRoute(std::vector<ai::Cell>& out) const;
@@ -72,7 +72,7 @@ class AntColony {
   std::vector<std::uint32_t> seen_;  // stamp per cell: visited by the current ant
   std::uint32_t stamp_ = 0;
   std::vector<ai::Cell> best_;
-  double bestLength_ = 0.0;
+  double best_length_ = 0.0;
   std::vector<std::vector<ai::Cell>> routes_;  // this iteration's successful routes
 };
 

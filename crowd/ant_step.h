@@ -22,7 +22,7 @@ namespace zonesim::crowd {
 struct AntChoice {
   double alpha = 1.0;         ///< weight of the trail
   double beta = 2.0;          ///< weight of the desirability eta
-  bool knowsFood = true;      ///< eta = 1 / (step + octile distance to the food), else 1 / step
+  bool knows_food = true;     ///< eta = 1 / (step + octile distance to the food), else 1 / step
   double exploitation = 0.0;  ///< q0: chance of taking the strongest step outright
 };
 
@@ -43,7 +43,7 @@ int chooseAntStep(const ai::GridMap& map, ai::Cell c, ai::Cell food, const AntCh
     if (!open(n)) continue;
     const double tau = trail(k, n);
     const double step = k >= 4 ? ai::kDiagonalCost : 1.0;
-    const double eta = rule.knowsFood ? 1.0 / (step + ai::octileDistance(n, food)) : 1.0 / step;
+    const double eta = rule.knows_food ? 1.0 / (step + ai::octileDistance(n, food)) : 1.0 / step;
     weight[k] = std::pow(tau, rule.alpha) * std::pow(eta, rule.beta);
     total += weight[k];
     if (weight[k] > strongest) {

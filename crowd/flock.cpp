@@ -343,21 +343,21 @@ Vec2 steeringFrom(const FlockSettings& s, const NeighbourGrid& grid, const Neigh
   if (n.coincident > 1) {
     // Exact overlaps besides the agent itself (rare): split them along x by id so that the
     // push is deterministic.
-    grid.forEachNear(self.pos, s.neighbourRadius, [&](const GridEntry& o) {
+    grid.forEachNear(self.pos, s.neighbour_radius, [&](const GridEntry& o) {
       if (o.id != self.id && lengthSq(o.pos - self.pos) <= 1e-18)
         sep.x += self.id < o.id ? -1e3 : 1e3;
     });
   }
   // Take out the agent itself: counted once, with its own velocity; its offset is zero.
   int count = int(n.count) - 1;
-  Vec2 acc = sep * s.separationWeight;
+  Vec2 acc = sep * s.separation_weight;
   if (count > 0) {
     double inv = 1.0 / count;
-    acc += ((n.vel - self.vel) * inv - self.vel) * s.alignmentWeight;
-    acc += n.rel * (inv * s.cohesionWeight);
+    acc += ((n.vel - self.vel) * inv - self.vel) * s.alignment_weight;
+    acc += n.rel * (inv * s.cohesion_weight);
   }
-  if (hasGoal) acc += (goal - self.vel) * s.goalWeight;
-  return clampLength(acc, s.maxForce);
+  if (hasGoal) acc += (goal - self.vel) * s.goal_weight;
+  return clampLength(acc, s.max_force);
 }
 
 }  // namespace
@@ -376,30 +376,30 @@ int Flock::useLanes(int lanes) {
 Vec2 Flock::steering(const GridEntry& self, Vec2 goal, bool hasGoal) const {
   const FlockSettings& s = settings_;
   return steeringFrom(s, grid_,
-                      neighbourSums(grid_, self.pos, s.neighbourRadius, s.separationRadius), self,
+                      neighbourSums(grid_, self.pos, s.neighbour_radius, s.separation_radius), self,
                       goal, hasGoal);
 }
 
 void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
-                 std::span<const Vec2> goalVel, const StepPlan& plan) {
+                 std::span<const Vec2> goal_vel, const StepPlan& plan) {
   const std::size_t n = agents.size();
   if (agents.pos.size() != n || agents.vel.size() != n || ghosts.pos.size() != ghosts.size() ||
-      ghosts.vel.size() != ghosts.size() || (!goalVel.empty() && goalVel.size() != n) ||
+      ghosts.vel.size() != ghosts.size() || (!goal_vel.empty() && goal_vel.size() != n) ||
       (!plan.empty() && (plan.dt.size() != n || plan.steer.size() != n)))
     throw std::invalid_argument("Flock::step: array sizes differ");
-  grid_.build(agents, ghosts, settings_.neighbourRadius);
-  const bool hasGoal = !goalVel.empty();
+  grid_.build(agents, ghosts, settings_.neighbour_radius);
+  const bool hasGoal = !goal_vel.empty();
   const FlockSettings& s = settings_;
   auto advance = [&](const GridEntry& e, Vec2 acc) {
     const double h = plan.empty() ? dt : plan.dt[e.src];
-    Vec2 v = clampLength(e.vel + acc * h, s.maxSpeed);
+    Vec2 v = clampLength(e.vel + acc * h, s.max_speed);
     agents.vel[e.src] = v;
     agents.pos[e.src] = e.pos + v * h;
   };
-  auto goalOf = [&](const GridEntry& e) { return hasGoal ? goalVel[e.src] : Vec2{}; };
+  auto goalOf = [&](const GridEntry& e) { return hasGoal ? goal_vel[e.src] : Vec2{}; };
   auto steerPair = [&](const GridEntry& a, const GridEntry& b) {
     NeighbourSums sa, sb;
-    neighbourSumsPair(grid_, a.pos, b.pos, s.neighbourRadius, s.separationRadius, sa, sb);
+    neighbourSumsPair(grid_, a.pos, b.pos, s.neighbour_radius, s.separation_radius, sa, sb);
     advance(a, steeringFrom(s, grid_, sa, a, goalOf(a), hasGoal));
     advance(b, steeringFrom(s, grid_, sb, b, goalOf(b), hasGoal));
   };
@@ -412,17 +412,17 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
       Vec2 p[8];
       for (int l = 0; l < lanes_; ++l) p[l] = q[l < held ? l : held - 1]->pos;
       std::int32_t ranges[2 * kGroupRows];
-      int rows = grid_.rowRangesNearBox(p, lanes_, s.neighbourRadius, ranges, kGroupRows);
+      int rows = grid_.rowRangesNearBox(p, lanes_, s.neighbour_radius, ranges, kGroupRows);
       if (rows >= 0) {
         std::size_t candidates = 0;
         for (int r = 0; r < rows; ++r) candidates += std::size_t(ranges[2 * r + 1] - ranges[2 * r]);
         if (noted_.size() < candidates) noted_.resize(candidates);
         LaneSums sums;
         if (lanes_ == 8)
-          neighbourSumsOcta(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius,
+          neighbourSumsOcta(grid_, p, ranges, rows, s.neighbour_radius, s.separation_radius,
                             noted_.data(), sums);
         else
-          neighbourSumsQuad(grid_, p, ranges, rows, s.neighbourRadius, s.separationRadius,
+          neighbourSumsQuad(grid_, p, ranges, rows, s.neighbour_radius, s.separation_radius,
                             noted_.data(), sums);
         for (int l = 0; l < held; ++l) {
           NeighbourSums n;
@@ -454,7 +454,7 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
     if (h <= 0.0) continue;
     if (!plan.empty() && !plan.steer[e.src]) {
       Vec2 acc;
-      if (hasGoal) acc = clampLength((goalVel[e.src] - e.vel) * s.goalWeight, s.maxForce);
+      if (hasGoal) acc = clampLength((goal_vel[e.src] - e.vel) * s.goal_weight, s.max_force);
       advance(e, acc);
       continue;
     }

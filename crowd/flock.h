@@ -17,14 +17,14 @@ namespace zonesim::crowd {
 
 /// Flocking parameters; lengths in metres, times in seconds.
 struct FlockSettings {
-  double neighbourRadius = 3.0;    ///< alignment and cohesion see agents this close
-  double separationRadius = 1.0;   ///< separation pushes apart agents closer than this
-  double separationWeight = 20.0;  ///< 1/s^2 per unit of (radius / distance - 1)
-  double alignmentWeight = 1.0;    ///< 1/s: rate at which velocity follows the neighbours'
-  double cohesionWeight = 0.5;     ///< 1/s^2: pull toward the neighbours' centre
-  double goalWeight = 1.0;         ///< 1/s: rate at which velocity follows the goal velocity
-  double maxSpeed = 2.0;           ///< m/s
-  double maxForce = 8.0;           ///< m/s^2, bound on the steering acceleration
+  double neighbour_radius = 3.0;    ///< alignment and cohesion see agents this close
+  double separation_radius = 1.0;   ///< separation pushes apart agents closer than this
+  double separation_weight = 20.0;  ///< 1/s^2 per unit of (radius / distance - 1)
+  double alignment_weight = 1.0;    ///< 1/s: rate at which velocity follows the neighbours'
+  double cohesion_weight = 0.5;     ///< 1/s^2: pull toward the neighbours' centre
+  double goal_weight = 1.0;         ///< 1/s: rate at which velocity follows the goal velocity
+  double max_speed = 2.0;           ///< m/s
+  double max_force = 8.0;           ///< m/s^2, bound on the steering acceleration
 };
 
 /// Steps flocks; owns the neighbour grid so that a warm step allocates nothing.
@@ -38,9 +38,9 @@ class Flock {
   /// returns the width in use.
   int useLanes(int lanes);
   /// Advances `agents` by `dt` (semi-implicit Euler). `ghosts` are seen, not moved.
-  /// `goalVel`: empty, or a desired velocity per agent. `plan`: per-agent dt/detail (lod.h).
+  /// `goal_vel`: empty, or a desired velocity per agent. `plan`: per-agent dt/detail (lod.h).
   void step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
-            std::span<const Vec2> goalVel = {}, const StepPlan& plan = {});
+            std::span<const Vec2> goal_vel = {}, const StepPlan& plan = {});
 
   /// The settings in use.
   const FlockSettings& settings() const { return settings_; }

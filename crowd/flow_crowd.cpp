@@ -53,24 +53,24 @@ Vec2 FlowCrowd::desiredVelocity(Vec2 pos, int d) const {
     // Arrive: speed proportional to the remaining distance inside the slow radius.
     Vec2 to = goal - pos;
     double dist = length(to);
-    double speed = settings_.maxSpeed * std::min(1.0, dist / settings_.slowRadius);
+    double speed = settings_.max_speed * std::min(1.0, dist / settings_.slow_radius);
     return withLength(to, speed);
   }
   if (!f.next(c, next) && !(!map_.passable(c.x, c.y) && leaveClosedCell(f, c, next))) return {};
   Vec2 to = frame_.centre(next) - pos;
-  double speed = settings_.maxSpeed;
-  double remaining = f.distance(c) * frame_.cellSize;
-  if (remaining < settings_.slowRadius) speed *= std::max(0.25, remaining / settings_.slowRadius);
+  double speed = settings_.max_speed;
+  double remaining = f.distance(c) * frame_.cell_size;
+  if (remaining < settings_.slow_radius) speed *= std::max(0.25, remaining / settings_.slow_radius);
   return withLength(to, speed);
 }
 
 bool FlowCrowd::hasArrived(Vec2 pos, int d) const {
   Vec2 goal = frame_.centre(fields_[d]->goal());
-  return lengthSq(pos - goal) <= settings_.arriveRadius * settings_.arriveRadius;
+  return lengthSq(pos - goal) <= settings_.arrive_radius * settings_.arrive_radius;
 }
 
 Vec2 FlowCrowd::separation(const GridEntry& self) const {
-  const double r = settings_.separationRadius, r2 = r * r;
+  const double r = settings_.separation_radius, r2 = r * r;
   Vec2 sep;
   grid_.forEachNear(self.pos, r, [&](const GridEntry& o) {
     if (o.id == self.id) return;
@@ -84,7 +84,7 @@ Vec2 FlowCrowd::separation(const GridEntry& self) const {
       sep.x += self.id < o.id ? -1e3 : 1e3;
     }
   });
-  return sep * settings_.separationWeight;
+  return sep * settings_.separation_weight;
 }
 
 void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> dest,
@@ -99,7 +99,7 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
     if (d >= fields_.size()) throw std::out_of_range("FlowCrowd::step: unknown destination");
   // Arrived agents have left the crowd: they are neither moved nor seen.
   grid_.build(agents.ids, agents.pos, agents.vel, ghosts,
-              std::max(settings_.gridCell, settings_.separationRadius), arrived);
+              std::max(settings_.grid_cell, settings_.separation_radius), arrived);
   const std::span<const GridEntry> entries = grid_.entries();
   constexpr std::size_t kAhead = 8;
   for (std::size_t k = 0; k < entries.size(); ++k) {
@@ -123,9 +123,9 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
     if (plan.empty() || plan.steer[e.src]) {
       // Velocity relaxes toward the desired one by the exact factor 1 - exp(-rate h), not
       // rate h: LOD steps of several ticks would overshoot (and beyond rate h = 2 diverge).
-      double relax = 1.0 - std::exp(-settings_.steerRate * h);
+      double relax = 1.0 - std::exp(-settings_.steer_rate * h);
       Vec2 dv = (desired - e.vel) * relax + separation(e) * h;
-      v = clampLength(e.vel + clampLength(dv, settings_.maxForce * h), settings_.maxSpeed);
+      v = clampLength(e.vel + clampLength(dv, settings_.max_force * h), settings_.max_speed);
     } else {
       v = desired;  // cheap update: ride the field, no neighbours, no inertia
     }

@@ -21,18 +21,18 @@ namespace zonesim::crowd {
 
 /// Flow-field following parameters; lengths in metres, times in seconds.
 struct FlowCrowdSettings {
-  double maxSpeed = 2.0;           ///< m/s
-  double maxForce = 10.0;          ///< m/s^2, bound on the steering acceleration
-  double steerRate = 4.0;          ///< 1/s: rate at which velocity follows the field
-  double separationRadius = 0.6;   ///< neighbours closer than this push apart
-  double separationWeight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
-  double arriveRadius = 0.75;      ///< an agent this close to its goal's centre has arrived
-  double slowRadius = 2.0;         ///< inside this distance of the goal, speed ramps down
+  double max_speed = 2.0;           ///< m/s
+  double max_force = 10.0;          ///< m/s^2, bound on the steering acceleration
+  double steer_rate = 4.0;          ///< 1/s: rate at which velocity follows the field
+  double separation_radius = 0.6;   ///< neighbours closer than this push apart
+  double separation_weight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
+  double arrive_radius = 0.75;      ///< an agent this close to its goal's centre has arrived
+  double slow_radius = 2.0;         ///< inside this distance of the goal, speed ramps down
   /// Side of the neighbour grid's cells (at least the separation radius). Larger than the
   /// radius because the grid's per-step cost grows with the cells of the occupied box, which
   /// dominates for sparse crowds on big maps; every rank must use the same value (it fixes
   /// the order of the separation sums).
-  double gridCell = 2.0;
+  double grid_cell = 2.0;
 };
 
 /// Steps agents along shared flow fields on one map.

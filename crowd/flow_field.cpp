@@ -8,7 +8,7 @@
 namespace zonesim::crowd {
 
 FlowField::FlowField(const ai::GridMap& map, ai::Cell goal)
-    : width_(map.width()), height_(map.height()), goal_(goal), mapVersion_(map.version()) {
+    : width_(map.width()), height_(map.height()), goal_(goal), map_version_(map.version()) {
   if (!map.passable(goal.x, goal.y)) throw std::invalid_argument("FlowField: goal is blocked");
   ai::GridSearch search(map);
   // The grid is undirected (the same move costs both ways), so distances from the goal are

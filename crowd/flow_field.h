@@ -25,14 +25,14 @@ class FlowField {
   /// The next cell on a shortest path from `c`; false at the goal or where unreachable.
   bool next(ai::Cell c, ai::Cell& out) const;
   /// The map version the fields were built from (rebuild when the map's version differs).
-  std::uint64_t mapVersion() const { return mapVersion_; }
+  std::uint64_t mapVersion() const { return map_version_; }
   /// Memory held by the fields, in bytes.
   std::size_t bytes() const;
 
  private:
   int width_ = 0, height_ = 0;
   ai::Cell goal_;
-  std::uint64_t mapVersion_ = 0;
+  std::uint64_t map_version_ = 0;
   std::vector<float> distance_;   // float: 24 bits cover paths of millions of cells to 0.1
   std::vector<std::int8_t> dir_;  // 0..7 into kNeighbourSteps, -1 at the goal or unreachable
 };

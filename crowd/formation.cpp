@@ -45,7 +45,7 @@ void FormationCentre::advance(double dt) {
       remaining += length(route_[k] - route_[k - 1]);
     // Slow down into the destination (so the members' pull fades, seed step 5), but not to a
     // crawl that never ends.
-    double speed = settings_.centreSpeed * std::clamp(remaining / settings_.slowRadius, 0.2, 1.0);
+    double speed = settings_.centre_speed * std::clamp(remaining / settings_.slow_radius, 0.2, 1.0);
     double s = speed * dt;
     while (s > 0 && !done_) {
       Vec2 to = route_[next_] - at_;
@@ -66,7 +66,7 @@ void FormationCentre::advance(double dt) {
   vel_ = (at_ - before) * (1.0 / dt);
   if (lengthSq(vel_) > 1e-12) {
     Vec2 target = withLength(vel_, 1.0);
-    Vec2 h = heading_ + (target - heading_) * std::min(1.0, settings_.turnRate * dt);
+    Vec2 h = heading_ + (target - heading_) * std::min(1.0, settings_.turn_rate * dt);
     heading_ = lengthSq(h) > 1e-12 ? withLength(h, 1.0) : target;
   }
 }
@@ -82,8 +82,8 @@ Vec2 MemberStepper::waypoint(const MemberState& m, std::int32_t k) const {
 bool MemberStepper::planRejoin(MemberState& m, Vec2 pos, const FormationCentre& centre) {
   m.path.clear();
   m.at = 0;
-  m.plannedFor = centre.position();
-  ++rejoinPlans_;
+  m.planned_for = centre.position();
+  ++rejoin_plans_;
   if (!search_.findPath(frame_.cellOf(pos), frame_.cellOf(centre.position()), scratch_))
     return false;
   for (std::size_t k = 1; k < scratch_.cells.size(); ++k) {
@@ -96,13 +96,14 @@ bool MemberStepper::planRejoin(MemberState& m, Vec2 pos, const FormationCentre& 
 void MemberStepper::updateMode(MemberState& m, Vec2 pos, Vec2 slot, const FormationCentre& centre) {
   double slotDist = length(slot - pos);
   if (m.mode == MemberMode::InFormation) {
-    if (!lineOfSight(map_, frame_, pos, centre.position()) || slotDist > settings_.cutOffDistance) {
+    if (!lineOfSight(map_, frame_, pos, centre.position()) ||
+        slotDist > settings_.cut_off_distance) {
       m.mode = MemberMode::Rejoining;
       planRejoin(m, pos, centre);
     }
     return;
   }
-  if (slotDist < settings_.rejoinDistance && walkable(map_, frame_, slot) &&
+  if (slotDist < settings_.rejoin_distance && walkable(map_, frame_, slot) &&
       lineOfSight(map_, frame_, pos, slot)) {
     m.mode = MemberMode::InFormation;
     m.path.clear();
@@ -110,32 +111,32 @@ void MemberStepper::updateMode(MemberState& m, Vec2 pos, Vec2 slot, const Format
     return;
   }
   const std::int32_t cells = std::int32_t(m.path.size() / 2);
-  if (length(centre.position() - m.plannedFor) > settings_.replanDistance || m.at >= cells)
+  if (length(centre.position() - m.planned_for) > settings_.replan_distance || m.at >= cells)
     planRejoin(m, pos, centre);
 }
 
 Vec2 MemberStepper::desiredVelocity(MemberState& m, Vec2 pos, Vec2 slot,
                                     const FormationCentre& centre) const {
   auto towardSlot = [&] {
-    return clampLength(centre.velocity() + (slot - pos) * settings_.slotGain,
-                       settings_.memberMaxSpeed);
+    return clampLength(centre.velocity() + (slot - pos) * settings_.slot_gain,
+                       settings_.member_max_speed);
   };
   if (m.mode == MemberMode::InFormation) return towardSlot();
   if (walkable(map_, frame_, slot) && lineOfSight(map_, frame_, pos, slot)) return towardSlot();
   // Follow the rejoin path: drop reached waypoints, and skip ahead to ones in plain view.
   const std::int32_t cells = std::int32_t(m.path.size() / 2);
-  while (m.at < cells && length(waypoint(m, m.at) - pos) < settings_.waypointRadius) ++m.at;
+  while (m.at < cells && length(waypoint(m, m.at) - pos) < settings_.waypoint_radius) ++m.at;
   for (int look = 0; look < 3 && m.at + 1 < cells; ++look) {
     if (!lineOfSight(map_, frame_, pos, waypoint(m, m.at + 1))) break;
     ++m.at;
   }
   Vec2 target = m.at < cells ? waypoint(m, m.at) : centre.position();
-  return withLength(target - pos, settings_.memberMaxSpeed);
+  return withLength(target - pos, settings_.member_max_speed);
 }
 
 Vec2 MemberStepper::separation(std::uint64_t id, Vec2 pos,
                                std::span<const MemberNeighbour> others) const {
-  const double r = settings_.separationRadius;
+  const double r = settings_.separation_radius;
   Vec2 sep;
   for (const MemberNeighbour& o : others) {
     if (o.id == id) continue;
@@ -149,7 +150,7 @@ Vec2 MemberStepper::separation(std::uint64_t id, Vec2 pos,
       sep.x += id < o.id ? -1e3 : 1e3;  // on top of each other: the ids decide who goes where
     }
   }
-  return sep * settings_.separationWeight;
+  return sep * settings_.separation_weight;
 }
 
 void MemberStepper::step(std::uint64_t id, MemberState& m, Vec2 offset,
@@ -159,8 +160,9 @@ void MemberStepper::step(std::uint64_t id, MemberState& m, Vec2 offset,
   const Vec2 slot = centre.slotPosition(offset);
   updateMode(m, p, slot, centre);
   Vec2 desired = desiredVelocity(m, p, slot, centre);
-  Vec2 acc = (desired - vel) * settings_.steerRate + separation(id, p, neighbours);
-  Vec2 v = clampLength(vel + clampLength(acc, settings_.maxForce) * dt, settings_.memberMaxSpeed);
+  Vec2 acc = (desired - vel) * settings_.steer_rate + separation(id, p, neighbours);
+  Vec2 v =
+      clampLength(vel + clampLength(acc, settings_.max_force) * dt, settings_.member_max_speed);
   pos = slideMove(map_, frame_, p, p + v * dt, v);
   vel = v;
 }

@@ -18,19 +18,19 @@ namespace zonesim::crowd {
 
 /// Formation parameters; lengths in metres, times in seconds.
 struct FormationSettings {
-  double centreSpeed = 1.5;        ///< m/s of the centre along its path
-  double memberMaxSpeed = 2.5;     ///< m/s; above the centre's so members can catch up
-  double maxForce = 8.0;           ///< m/s^2, bound on a member's steering acceleration
-  double steerRate = 4.0;          ///< 1/s: rate at which velocity follows the desired one
-  double slotGain = 2.0;           ///< 1/s: desired velocity per metre of slot error
-  double slowRadius = 3.0;         ///< the centre slows down this close to its destination
-  double turnRate = 3.0;           ///< 1/s: how fast the formation's heading follows the path
-  double cutOffDistance = 5.0;     ///< a member this far from its slot is cut off
-  double rejoinDistance = 1.0;     ///< a rejoining member this close to a visible slot rejoins
-  double replanDistance = 2.0;     ///< re-plan a rejoin path when the centre moved this far
-  double waypointRadius = 0.4;     ///< a rejoin waypoint this close counts as reached
-  double separationRadius = 0.6;   ///< members closer than this push apart
-  double separationWeight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
+  double centre_speed = 1.5;        ///< m/s of the centre along its path
+  double member_max_speed = 2.5;    ///< m/s; above the centre's so members can catch up
+  double max_force = 8.0;           ///< m/s^2, bound on a member's steering acceleration
+  double steer_rate = 4.0;          ///< 1/s: rate at which velocity follows the desired one
+  double slot_gain = 2.0;           ///< 1/s: desired velocity per metre of slot error
+  double slow_radius = 3.0;         ///< the centre slows down this close to its destination
+  double turn_rate = 3.0;           ///< 1/s: how fast the formation's heading follows the path
+  double cut_off_distance = 5.0;    ///< a member this far from its slot is cut off
+  double rejoin_distance = 1.0;     ///< a rejoining member this close to a visible slot rejoins
+  double replan_distance = 2.0;     ///< re-plan a rejoin path when the centre moved this far
+  double waypoint_radius = 0.4;     ///< a rejoin waypoint this close counts as reached
+  double separation_radius = 0.6;   ///< members closer than this push apart
+  double separation_weight = 10.0;  ///< 1/s^2 per unit of (radius / distance - 1)
 };
 
 /// What a member is doing.
@@ -77,7 +77,7 @@ struct MemberState {
   MemberMode mode = MemberMode::InFormation;  ///< what it is doing
   std::vector<std::int32_t> path;             ///< rejoin path: cells as x, y pairs, start first
   std::int32_t at = 0;                        ///< index of the next cell of `path`
-  Vec2 plannedFor;                            ///< centre position the path was planned to
+  Vec2 planned_for;                           ///< centre position the path was planned to
 };
 
 /// Another member as a neighbour: its id (for the order of sums and ties) and position.
@@ -100,7 +100,7 @@ class MemberStepper {
   void step(std::uint64_t id, MemberState& m, Vec2 offset, const FormationCentre& centre,
             std::span<const MemberNeighbour> neighbours, Vec2& pos, Vec2& vel, double dt);
   /// Number of rejoin paths planned so far (A* calls for members).
-  int rejoinPlans() const { return rejoinPlans_; }
+  int rejoinPlans() const { return rejoin_plans_; }
 
  private:
   void updateMode(MemberState& m, Vec2 pos, Vec2 slot, const FormationCentre& centre);
@@ -114,7 +114,7 @@ class MemberStepper {
   FormationSettings settings_;
   ai::GridSearch search_;
   ai::GridPath scratch_;
-  int rejoinPlans_ = 0;
+  int rejoin_plans_ = 0;
 };
 
 /// One fixed group on a grid map; members are indexed like the slot offsets (their ids are

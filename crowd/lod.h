@@ -17,12 +17,12 @@ namespace zonesim::crowd {
 
 /// LOD radii and update periods (scene settings).
 struct LodSettings {
-  double nearRadius = 40.0;  ///< within this distance of a player: every tick, full steering
-  double farRadius = 120.0;  ///< from nearRadius to here: every midEvery ticks
-  int midEvery = 2;          ///< update period of the middle band (ticks)
-  int farEvery = 8;          ///< update period beyond farRadius (ticks)
-  bool midSteers = true;     ///< middle band keeps full steering
-  bool farSteers = false;    ///< far band: path/field following only, no neighbour query
+  double near_radius = 40.0;  ///< within this distance of a player: every tick, full steering
+  double far_radius = 120.0;  ///< from near_radius to here: every mid_every ticks
+  int mid_every = 2;          ///< update period of the middle band (ticks)
+  int far_every = 8;          ///< update period beyond far_radius (ticks)
+  bool mid_steers = true;     ///< middle band keeps full steering
+  bool far_steers = false;    ///< far band: path/field following only, no neighbour query
 };
 
 /// Detail level of an agent.
@@ -35,12 +35,12 @@ class LevelOfDetail {
   explicit LevelOfDetail(const LodSettings& settings);
 
   /// Plans tick `tick` (step length `dt`) for agents at `pos` with `ids`, given the players'
-  /// positions. `lastTick`: per agent, the tick of its last update (read and written; the
+  /// positions. `last_tick`: per agent, the tick of its last update (read and written; the
   /// caller keeps it with the agent, -1 for new agents); when empty, an update advances by
   /// its period times dt, which loses or gains time only when an agent changes level.
   StepPlan plan(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
                 std::span<const Vec2> players, std::int64_t tick, double dt,
-                std::span<std::int64_t> lastTick = {});
+                std::span<std::int64_t> last_tick = {});
 
   /// Level of agent i in the last plan.
   LodLevel level(std::size_t i) const { return LodLevel(level_[i]); }

@@ -47,7 +47,7 @@ Vec2 slideMove(const ai::GridMap& map, const MapFrame& frame, Vec2 from, Vec2 to
   // jumps over a blocked cell.
   Vec2 d = to - from;
   double len = length(d);
-  int pieces = len < 0.5 * frame.cellSize ? 1 : int(std::ceil(len / (0.45 * frame.cellSize)));
+  int pieces = len < 0.5 * frame.cell_size ? 1 : int(std::ceil(len / (0.45 * frame.cell_size)));
   Vec2 piece = d * (1.0 / pieces), at = from;
   for (int k = 0; k < pieces; ++k) {
     Vec2 target = k + 1 == pieces ? to : at + piece;
@@ -66,8 +66,10 @@ Vec2 slideMove(const ai::GridMap& map, const MapFrame& frame, Vec2 from, Vec2 to
 
 bool lineOfSight(const ai::GridMap& map, const MapFrame& frame, Vec2 a, Vec2 b) {
   // Amanatides-Woo traversal in cell units.
-  double ax = (a.x - frame.origin.x) / frame.cellSize, ay = (a.y - frame.origin.y) / frame.cellSize;
-  double bx = (b.x - frame.origin.x) / frame.cellSize, by = (b.y - frame.origin.y) / frame.cellSize;
+  double ax = (a.x - frame.origin.x) / frame.cell_size,
+         ay = (a.y - frame.origin.y) / frame.cell_size;
+  double bx = (b.x - frame.origin.x) / frame.cell_size,
+         by = (b.y - frame.origin.y) / frame.cell_size;
   int x = int(std::floor(ax)), y = int(std::floor(ay));
   const int xEnd = int(std::floor(bx)), yEnd = int(std::floor(by));
   if (!map.passable(x, y)) return false;

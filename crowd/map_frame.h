@@ -10,17 +10,17 @@ namespace zonesim::crowd {
 
 /// Placement of a grid map in the world plane.
 struct MapFrame {
-  Vec2 origin;            ///< world position of the outer corner of cell (0, 0)
-  double cellSize = 1.0;  ///< side of one cell in metres
+  Vec2 origin;             ///< world position of the outer corner of cell (0, 0)
+  double cell_size = 1.0;  ///< side of one cell in metres
 
   /// Cell containing `p` (may lie off the map).
   ai::Cell cellOf(Vec2 p) const {
-    return ai::Cell{int(std::floor((p.x - origin.x) / cellSize)),
-                    int(std::floor((p.y - origin.y) / cellSize))};
+    return ai::Cell{int(std::floor((p.x - origin.x) / cell_size)),
+                    int(std::floor((p.y - origin.y) / cell_size))};
   }
   /// World position of a cell's centre.
   Vec2 centre(ai::Cell c) const {
-    return Vec2{origin.x + (c.x + 0.5) * cellSize, origin.y + (c.y + 0.5) * cellSize};
+    return Vec2{origin.x + (c.x + 0.5) * cell_size, origin.y + (c.y + 0.5) * cell_size};
   }
 };
 

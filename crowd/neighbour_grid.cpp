@@ -12,11 +12,11 @@ constexpr long long kMaxCells = 1LL << 24;
 }  // namespace
 
 void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
-                          std::span<const Vec2> vel, const GhostSpan& ghosts, double cellSize,
+                          std::span<const Vec2> vel, const GhostSpan& ghosts, double cell_size,
                           std::span<const std::uint8_t> skip) {
-  if (!(cellSize > 0.0)) throw std::invalid_argument("NeighbourGrid: cell size must be > 0");
-  cellSize_ = cellSize;
-  invCell_ = 1.0 / cellSize;
+  if (!(cell_size > 0.0)) throw std::invalid_argument("NeighbourGrid: cell size must be > 0");
+  cell_size_ = cell_size;
+  inv_cell_ = 1.0 / cell_size;
   // Input index i: owned agents first, then ghosts (i >= owned).
   const std::size_t owned = ids.size(), total = owned + ghosts.size();
   auto posOf = [&](std::size_t i) { return i < owned ? pos[i] : ghosts.pos[i - owned]; };
@@ -26,14 +26,14 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   cellY_.resize(total);
   bool any = false;
   long long maxX = 0, maxY = 0;
-  minX_ = minY_ = 0;
+  min_x_ = minY_ = 0;
   for (std::size_t i = 0; i < total; ++i) {
     if (i < owned && !skip.empty() && skip[i]) continue;
     Vec2 p = posOf(i);
     long long cx = cellCoord(p.x), cy = cellCoord(p.y);
     cellX_[i] = cx;
     cellY_[i] = cy;
-    if (!any || cx < minX_) minX_ = cx;
+    if (!any || cx < min_x_) min_x_ = cx;
     if (!any || cy < minY_) minY_ = cy;
     if (!any || cx > maxX) maxX = cx;
     if (!any || cy > maxY) maxY = cy;
@@ -44,32 +44,32 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     width_ = height_ = 0;
     return;
   }
-  width_ = maxX - minX_ + 1;
+  width_ = maxX - min_x_ + 1;
   height_ = maxY - minY_ + 1;
   if (width_ * height_ > kMaxCells)
     throw std::length_error("NeighbourGrid: agents spread over too many cells for the cell size");
 
   // Counting sort of input indices: count per cell, prefix sums, stable scatter.
   starts_.assign(static_cast<std::size_t>(width_ * height_ + 1), 0);
-  cellOf_.resize(total);
+  cell_of_.resize(total);
   for (std::size_t i = 0; i < total; ++i) {
     if (i < owned && !skip.empty() && skip[i]) {
-      cellOf_[i] = -1;
+      cell_of_[i] = -1;
       continue;
     }
-    cellOf_[i] = static_cast<std::int32_t>((cellY_[i] - minY_) * width_ + (cellX_[i] - minX_));
-    ++starts_[cellOf_[i] + 1];
+    cell_of_[i] = static_cast<std::int32_t>((cellY_[i] - minY_) * width_ + (cellX_[i] - min_x_));
+    ++starts_[cell_of_[i] + 1];
   }
   for (std::size_t c = 1; c < starts_.size(); ++c) starts_[c] += starts_[c - 1];
   const std::size_t n = static_cast<std::size_t>(starts_.back());
   order_.resize(n);
-  sortIds_.resize(n);
+  sort_ids_.resize(n);
   // Scatter with a moving cursor per cell; starts_ is restored afterwards by shifting.
   for (std::size_t i = 0; i < total; ++i) {
-    if (cellOf_[i] < 0) continue;
-    std::int32_t k = starts_[cellOf_[i]]++;
+    if (cell_of_[i] < 0) continue;
+    std::int32_t k = starts_[cell_of_[i]]++;
     order_[k] = static_cast<std::int32_t>(i);
-    sortIds_[k] = i < owned ? ids[i] : ghosts.ids[i - owned];
+    sort_ids_[k] = i < owned ? ids[i] : ghosts.ids[i - owned];
   }
   for (std::size_t c = starts_.size() - 1; c > 0; --c) starts_[c] = starts_[c - 1];
   starts_[0] = 0;
@@ -80,15 +80,15 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     const std::size_t lo = static_cast<std::size_t>(starts_[c]);
     const std::size_t hi = static_cast<std::size_t>(starts_[c + 1]);
     for (std::size_t k = lo + 1; k < hi; ++k) {
-      std::uint64_t id = sortIds_[k];
+      std::uint64_t id = sort_ids_[k];
       std::int32_t at = order_[k];
       std::size_t j = k;
-      while (j > lo && sortIds_[j - 1] > id) {
-        sortIds_[j] = sortIds_[j - 1];
+      while (j > lo && sort_ids_[j - 1] > id) {
+        sort_ids_[j] = sort_ids_[j - 1];
         order_[j] = order_[j - 1];
         --j;
       }
-      sortIds_[j] = id;
+      sort_ids_[j] = id;
       order_[j] = at;
     }
   }
@@ -110,7 +110,7 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     const Vec2 v = own ? vel[i] : ghosts.vel[i - owned];
     const std::int32_t src =
         own ? static_cast<std::int32_t>(i) : -1 - static_cast<std::int32_t>(i - owned);
-    entries_[k] = GridEntry{p, v, sortIds_[k], src, cellOf_[i]};
+    entries_[k] = GridEntry{p, v, sort_ids_[k], src, cell_of_[i]};
     xs_[k] = p.x;
     ys_[k] = p.y;
     vxs_[k] = v.x;

@@ -30,14 +30,14 @@ struct GridEntry {
 /// Cells over owned agents and ghosts; rebuilt every step, allocation-free once warm.
 class NeighbourGrid {
  public:
-  /// Sorts `agents` and `ghosts` into cells of side `cellSize` (> 0). Owned agents with a
+  /// Sorts `agents` and `ghosts` into cells of side `cell_size` (> 0). Owned agents with a
   /// non-zero `skip` flag (an empty span skips none) are left out: nobody sees them.
   void build(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
-             std::span<const Vec2> vel, const GhostSpan& ghosts, double cellSize,
+             std::span<const Vec2> vel, const GhostSpan& ghosts, double cell_size,
              std::span<const std::uint8_t> skip = {});
   /// Convenience: build from an AgentSpan.
-  void build(const AgentSpan& agents, const GhostSpan& ghosts, double cellSize) {
-    build(agents.ids, agents.pos, agents.vel, ghosts, cellSize);
+  void build(const AgentSpan& agents, const GhostSpan& ghosts, double cell_size) {
+    build(agents.ids, agents.pos, agents.vel, ghosts, cell_size);
   }
 
   /// All entries in cell order (owned and ghosts).
@@ -76,12 +76,12 @@ class NeighbourGrid {
   template <class F>
   void forEachRowNearAll(const Vec2* p, int n, double radius, F&& f) const {
     if (entries_.empty()) return;
-    double yLo = p[0].y, yHi = p[0].y;
+    double y_lo = p[0].y, yHi = p[0].y;
     for (int i = 1; i < n; ++i) {
-      yLo = std::min(yLo, p[i].y);
+      y_lo = std::min(y_lo, p[i].y);
       yHi = std::max(yHi, p[i].y);
     }
-    long long cy0 = cellCoord(yLo - radius) - minY_, cy1 = cellCoord(yHi + radius) - minY_;
+    long long cy0 = cellCoord(y_lo - radius) - minY_, cy1 = cellCoord(yHi + radius) - minY_;
     if (cy0 < 0) cy0 = 0;
     if (cy1 >= height_) cy1 = height_ - 1;
     for (long long cy = cy0; cy <= cy1; ++cy) {
@@ -116,23 +116,23 @@ class NeighbourGrid {
   /// root per row. For groups of nearby discs, whose loops filter by distance.
   int rowRangesNearBox(const Vec2* p, int n, double radius, std::int32_t* out, int cap) const {
     if (entries_.empty()) return 0;
-    double xLo = p[0].x, xHi = p[0].x, yLo = p[0].y, yHi = p[0].y;
+    double x_lo = p[0].x, xHi = p[0].x, y_lo = p[0].y, yHi = p[0].y;
     for (int i = 1; i < n; ++i) {
-      xLo = std::min(xLo, p[i].x);
+      x_lo = std::min(x_lo, p[i].x);
       xHi = std::max(xHi, p[i].x);
-      yLo = std::min(yLo, p[i].y);
+      y_lo = std::min(y_lo, p[i].y);
       yHi = std::max(yHi, p[i].y);
     }
-    long long cy0 = std::max(cellCoord(yLo - radius) - minY_, 0LL);
+    long long cy0 = std::max(cellCoord(y_lo - radius) - minY_, 0LL);
     long long cy1 = std::min(cellCoord(yHi + radius) - minY_, height_ - 1);
     int count = 0;
     for (long long cy = cy0; cy <= cy1; ++cy) {
-      double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
+      double rowLo = double(cy + minY_) * cell_size_, rowHi = rowLo + cell_size_;
       // The smallest gap between the row and a disc centre bounds every chord in the row.
-      double gap = yHi < rowLo ? rowLo - yHi : (yLo > rowHi ? yLo - rowHi : 0.0);
+      double gap = yHi < rowLo ? rowLo - yHi : (y_lo > rowHi ? y_lo - rowHi : 0.0);
       double half = std::sqrt(std::max(0.0, radius * radius - gap * gap));
-      long long cx0 = std::max(cellCoord(xLo - half) - minX_, 0LL);
-      long long cx1 = std::min(cellCoord(xHi + half) - minX_, width_ - 1);
+      long long cx0 = std::max(cellCoord(x_lo - half) - min_x_, 0LL);
+      long long cx1 = std::min(cellCoord(xHi + half) - min_x_, width_ - 1);
       if (cx0 > cx1) continue;
       const std::int32_t* row = starts_.data() + cy * width_;
       if (row[cx0] == row[cx1 + 1]) continue;
@@ -157,13 +157,13 @@ class NeighbourGrid {
   std::int32_t rowOf(std::int32_t cell) const { return static_cast<std::int32_t>(cell / width_); }
 
   /// Side of the cells.
-  double cellSize() const { return cellSize_; }
+  double cell_size() const { return cell_size_; }
 
  private:
   // floor() without the libm call (baseline x86-64 has no rounding instruction to inline);
   // exact for |v| < 2^63, far beyond any world.
   long long cellCoord(double v) const {
-    double s = v * invCell_;
+    double s = v * inv_cell_;
     long long t = static_cast<long long>(s);
     return t - (s < static_cast<double>(t));
   }
@@ -175,22 +175,22 @@ class NeighbourGrid {
       x1 = 0;
       return;
     }
-    double rowLo = double(cy + minY_) * cellSize_, rowHi = rowLo + cellSize_;
+    double rowLo = double(cy + minY_) * cell_size_, rowHi = rowLo + cell_size_;
     double gap = p.y < rowLo ? rowLo - p.y : (p.y > rowHi ? p.y - rowHi : 0.0);
     double half = std::sqrt(std::max(0.0, radius * radius - gap * gap));
-    x0 = cellCoord(p.x - half) - minX_;
-    x1 = cellCoord(p.x + half) - minX_;
+    x0 = cellCoord(p.x - half) - min_x_;
+    x1 = cellCoord(p.x + half) - min_x_;
   }
 
-  double cellSize_ = 1.0;
-  double invCell_ = 1.0;
-  long long minX_ = 0, minY_ = 0;
+  double cell_size_ = 1.0;
+  double inv_cell_ = 1.0;
+  long long min_x_ = 0, minY_ = 0;
   long long width_ = 0, height_ = 0;
   std::vector<std::int32_t> starts_;         // width_*height_ + 1 prefix sums
   std::vector<long long> cellX_, cellY_;     // input order (owned, then ghosts): coordinates
-  std::vector<std::int32_t> cellOf_;         // input order: dense cell, -1 when skipped
+  std::vector<std::int32_t> cell_of_;        // input order: dense cell, -1 when skipped
   std::vector<std::int32_t> order_;          // cell order: input index
-  std::vector<std::uint64_t> sortIds_;       // cell order: id
+  std::vector<std::uint64_t> sort_ids_;      // cell order: id
   std::vector<GridEntry> entries_;           // cell order
   std::vector<double> xs_, ys_, vxs_, vys_;  // entries_ as structure of arrays
 };

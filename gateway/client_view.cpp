@@ -42,7 +42,7 @@ std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const Interest
   double keep_factor = at.nimbus > 0 ? at.keep / at.nimbus : 1.0;
   // Entities are indexed by the cell their zone put them in; one cell of slack covers entities
   // that moved since their last sample without crossing into a cell we do not read.
-  double reach = std::max(at.nimbus, at.keep) + grid.cellSize();
+  double reach = std::max(at.nimbus, at.keep) + grid.cell_size();
   for (int cell : grid.cellsWithin(at.x, at.z, reach)) {
     cache.forEachInCell(cell, [&](std::uint64_t id, const CachedEntity& e) {
       if (id == at.self) {

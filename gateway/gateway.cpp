@@ -61,7 +61,7 @@ Gateway::Gateway(GatewayConfig config)
       handler_(sessions_, handlerConfig(config_)),
       cache_(graceNs(config_)),
       clock_(config_.scene.tick_rate * config_.scene.dt),
-      interest_(grid_, interestRadius(config_), grid_.cellSize() * 0.5),
+      interest_(grid_, interestRadius(config_), grid_.cell_size() * 0.5),
       link_(config_.dds_domain, expectedZones(config_)),
       rx_buffer_(kMaxDatagramBytes + 1),
       codec_(dr::codecParams(config_.scene)),

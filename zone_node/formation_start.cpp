@@ -9,18 +9,18 @@ namespace zonesim::zone {
 
 crowd::FormationSettings formationSettings(const NpcFormation& f) {
   crowd::FormationSettings s;
-  s.centreSpeed = f.centre_speed;
-  s.memberMaxSpeed = f.max_speed;
-  s.maxForce = f.max_force;
-  s.steerRate = f.steer_rate;
-  s.slotGain = f.slot_gain;
-  s.slowRadius = f.slow_radius;
-  s.turnRate = f.turn_rate;
-  s.cutOffDistance = f.cut_off;
-  s.rejoinDistance = f.rejoin;
-  s.replanDistance = f.replan;
-  s.separationRadius = f.separation_radius;
-  s.separationWeight = f.separation_weight;
+  s.centre_speed = f.centre_speed;
+  s.member_max_speed = f.max_speed;
+  s.max_force = f.max_force;
+  s.steer_rate = f.steer_rate;
+  s.slot_gain = f.slot_gain;
+  s.slow_radius = f.slow_radius;
+  s.turn_rate = f.turn_rate;
+  s.cut_off_distance = f.cut_off;
+  s.rejoin_distance = f.rejoin;
+  s.replan_distance = f.replan;
+  s.separation_radius = f.separation_radius;
+  s.separation_weight = f.separation_weight;
   return s;
 }
 

@@ -31,7 +31,7 @@ std::shared_ptr<const WorldMap> loadWorldMap(const Scene& scene) {
     throw SceneError(prefix + "map: " + what.substr(prefix.size()));
   }
   map->frame.origin = crowd::Vec2{scene.map.origin_x, scene.map.origin_z};
-  map->frame.cellSize = scene.map.cell_size;
+  map->frame.cell_size = scene.map.cell_size;
   double max_x = scene.map.origin_x + map->grid.width() * scene.map.cell_size;
   double max_z = scene.map.origin_z + map->grid.height() * scene.map.cell_size;
   // A small tolerance: a 1e-12 overshoot from a cell size like 0.1 is not a user mistake.

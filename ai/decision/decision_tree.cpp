@@ -10,10 +10,10 @@ int DecisionTree::addLeaf(int action) {
   return root_;
 }
 
-int DecisionTree::addTest(int input, double threshold, int ifLess, int otherwise) {
+int DecisionTree::addTest(int input, double threshold, int if_less, int otherwise) {
   // Children must exist already, which also rules out cycles.
-  assert(input >= 0 && ifLess >= 0 && otherwise >= 0 && ifLess < size() && otherwise < size());
-  nodes_.push_back(Node{input, threshold, ifLess, otherwise});
+  assert(input >= 0 && if_less >= 0 && otherwise >= 0 && if_less < size() && otherwise < size());
+  nodes_.push_back(Node{input, threshold, if_less, otherwise});
   root_ = int(nodes_.size()) - 1;
   return root_;
 }
@@ -23,11 +23,11 @@ int DecisionTree::decide(const double* inputs, int* depth) const {
   int n = root_, tests = 0;
   while (nodes_[std::size_t(n)].input >= 0) {
     const Node& node = nodes_[std::size_t(n)];
-    n = inputs[node.input] < node.threshold ? node.ifLess : node.otherwise;
+    n = inputs[node.input] < node.threshold ? node.if_less : node.otherwise;
     ++tests;
   }
   if (depth) *depth = tests;
-  return nodes_[std::size_t(n)].ifLess;
+  return nodes_[std::size_t(n)].if_less;
 }
 
 }  // namespace zonesim::ai

@@ -12,8 +12,8 @@ class DecisionTree {
  public:
   /// Adds a leaf returning `action`; returns its node index.
   int addLeaf(int action);
-  /// Adds a test `inputs[input] < threshold ? ifLess : otherwise`; returns its node index.
-  int addTest(int input, double threshold, int ifLess, int otherwise);
+  /// Adds a test `inputs[input] < threshold ? if_less : otherwise`; returns its node index.
+  int addTest(int input, double threshold, int if_less, int otherwise);
   /// Makes `node` the root (by default the last node added).
   void setRoot(int node) { root_ = node; }
   /// The action chosen for `inputs`; `depth`, when given, receives the tests evaluated.
@@ -25,7 +25,7 @@ class DecisionTree {
   struct Node {
     int input;  // -1 for a leaf
     double threshold;
-    int ifLess;  // child index, or the action for a leaf
+    int if_less;  // child index, or the action for a leaf
     int otherwise;
   };
   std::vector<Node> nodes_;

@@ -16,23 +16,23 @@ bool GuardMachine::step(const GuardInputs& in) {
     case State::Patrol:
       if (in.health < 25) {
         next = State::Flee;
-      } else if (in.enemyDistance < 10) {
+      } else if (in.enemy_distance < 10) {
         next = State::Chase;
       }
       break;
     case State::Chase:
       if (in.health < 25) {
         next = State::Flee;
-      } else if (in.enemyDistance < 2) {
+      } else if (in.enemy_distance < 2) {
         next = State::Attack;
-      } else if (in.enemyDistance > 15) {
+      } else if (in.enemy_distance > 15) {
         next = State::Patrol;
       }
       break;
     case State::Attack:
       if (in.health < 25) {
         next = State::Flee;
-      } else if (in.enemyDistance > 3) {
+      } else if (in.enemy_distance > 3) {
         next = State::Chase;
       }
       break;

@@ -9,8 +9,8 @@ namespace zonesim::ai {
 
 /// What the guard perceives each tick.
 struct GuardInputs {
-  double enemyDistance = 1e9;  ///< distance to the nearest enemy
-  double health = 100.0;       ///< own health, 0..100
+  double enemy_distance = 1e9;  ///< distance to the nearest enemy
+  double health = 100.0;        ///< own health, 0..100
 };
 
 /// Hand-coded guard state machine.

@@ -14,7 +14,7 @@ bool stepMachine(const MachineDef& def, MachineState& m, const double* inputs) {
   for (int level = 0; level <= leafDepth; ++level) {
     const int elapsed = m.tick - m.enteredAt[level];
     for (const TransitionDef& t : def.states[std::size_t(chain[level])].transitions) {
-      if (elapsed < t.minTicks) continue;
+      if (elapsed < t.min_ticks) continue;
       bool all = true;
       for (const Condition& c : t.conditions) all = all && holds(c, inputs);
       if (!all) continue;

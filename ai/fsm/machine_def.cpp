@@ -19,8 +19,8 @@ int MachineDef::stateIndex(const std::string& n) const {
 }
 
 int MachineDef::enterLeaf(int state) const {
-  while (states[std::size_t(state)].initialChild >= 0)
-    state = states[std::size_t(state)].initialChild;
+  while (states[std::size_t(state)].initial_child >= 0)
+    state = states[std::size_t(state)].initial_child;
   return state;
 }
 
@@ -118,13 +118,13 @@ void declareStates(const std::string& file, const YAML::Node& list, int parent, 
     if (YAML::Node subs = s["substates"]) {
       int firstChild = int(def.states.size());
       declareStates(file, subs, index, def, nodes);
-      def.states[std::size_t(index)].initialChild = firstChild;
+      def.states[std::size_t(index)].initial_child = firstChild;
       if (YAML::Node init = s["initial"]) {
         int child = def.stateIndex(scalar(file, init, "initial"));
         if (child < 0 || def.states[std::size_t(child)].parent != index) {
           fail(file, init, "initial '" + init.Scalar() + "' is not a substate of '" + name + "'");
         }
-        def.states[std::size_t(index)].initialChild = child;
+        def.states[std::size_t(index)].initial_child = child;
       }
     } else if (s["initial"]) {
       fail(file, s["initial"], "`initial` needs `substates`");
@@ -156,7 +156,7 @@ void parseTransitions(const std::string& file, const YAML::Node& s, MachineDef& 
       }
     }
     if (YAML::Node m = t["min_ticks"]) {
-      if (!parseInt(scalar(file, m, "min_ticks"), td.minTicks) || td.minTicks < 0) {
+      if (!parseInt(scalar(file, m, "min_ticks"), td.min_ticks) || td.min_ticks < 0) {
         fail(file, m, "min_ticks must be a non-negative integer");
       }
     }

@@ -21,11 +21,11 @@ struct Condition {
   double value = 0.0;              ///< constant compared with
 };
 
-/// A guarded edge; it fires when all conditions hold and the state has lasted `minTicks`.
+/// A guarded edge; it fires when all conditions hold and the state has lasted `min_ticks`.
 struct TransitionDef {
   int to = 0;                         ///< target state index
   std::vector<Condition> conditions;  ///< all must hold (an empty list always holds)
-  int minTicks = 0;                   ///< dwell time before it may fire (hysteresis in time)
+  int min_ticks = 0;                  ///< dwell time before it may fire (hysteresis in time)
 };
 
 /// Deepest nesting of states a machine may have.
@@ -36,7 +36,7 @@ struct StateDef {
   std::string name;                        ///< name used in files and reports (unique)
   std::vector<TransitionDef> transitions;  ///< in priority order
   int parent = -1;                         ///< enclosing composite state, -1 at top level
-  int initialChild = -1;                   ///< substate entered first, -1 for a leaf
+  int initial_child = -1;                  ///< substate entered first, -1 for a leaf
   int depth = 0;                           ///< 0 at top level
 };
 

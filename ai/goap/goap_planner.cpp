@@ -23,7 +23,7 @@ int GoapPlanner::addAction(GoapAction action) {
 }
 
 bool GoapPlanner::plan(std::uint64_t start, const FactSet& goal, std::vector<int>& out,
-                       double* cost, int maxExpansions) {
+                       double* cost, int max_expansions) {
   out.clear();
   records_.clear();
   index_.clear();
@@ -61,7 +61,7 @@ bool GoapPlanner::plan(std::uint64_t start, const FactSet& goal, std::vector<int
       std::reverse(out.begin(), out.end());
       return true;
     }
-    if (++expansions > maxExpansions) return false;
+    if (++expansions > max_expansions) return false;
     for (std::size_t a = 0; a < actions_.size(); ++a) {
       const GoapAction& act = actions_[a];
       if (!act.preconditions.satisfiedBy(state)) continue;

@@ -41,9 +41,9 @@ class GoapPlanner {
   /// The actions, by index.
   const std::vector<GoapAction>& actions() const { return actions_; }
   /// Cheapest sequence of action indices from `start` to a state satisfying `goal`; false when
-  /// none is found within `maxExpansions` states.
+  /// none is found within `max_expansions` states.
   bool plan(std::uint64_t start, const FactSet& goal, std::vector<int>& out, double* cost = nullptr,
-            int maxExpansions = 100000);
+            int max_expansions = 100000);
 
  private:
   struct Record {

@@ -31,7 +31,7 @@ int usage() {
 
 int main(int argc, char** argv) {
   using namespace zonesim::ai;
-  std::string mapPath, scenPath, planner = "astar";
+  std::string map_path, scenPath, planner = "astar";
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--planner" && i + 1 < argc) {
@@ -40,31 +40,31 @@ int main(int argc, char** argv) {
       planner = a.substr(10);
     } else if (!a.empty() && a[0] == '-') {
       return usage();
-    } else if (mapPath.empty()) {
-      mapPath = a;
+    } else if (map_path.empty()) {
+      map_path = a;
     } else if (scenPath.empty()) {
       scenPath = a;
     } else {
       return usage();
     }
   }
-  if (mapPath.empty() || scenPath.empty() || (planner != "astar" && planner != "hpa")) {
+  if (map_path.empty() || scenPath.empty() || (planner != "astar" && planner != "hpa")) {
     return usage();
   }
   const bool optimal = planner == "astar";
 
   try {
-    GridMap map = loadMovingAiMap(mapPath);
+    GridMap map = loadMovingAiMap(map_path);
     auto problems = loadScenario(scenPath);
     for (const auto& p : problems) {
-      if (p.mapWidth != map.width() || p.mapHeight != map.height()) {
+      if (p.map_width != map.width() || p.map_height != map.height()) {
         throw ParseError(scenPath, p.line,
-                         "problem is for a " + std::to_string(p.mapWidth) + "x" +
-                             std::to_string(p.mapHeight) + " map, " + mapPath + " is " +
+                         "problem is for a " + std::to_string(p.map_width) + "x" +
+                             std::to_string(p.map_height) + " map, " + map_path + " is " +
                              std::to_string(map.width()) + "x" + std::to_string(map.height()));
       }
       if (!map.passable(p.start.x, p.start.y) || !map.passable(p.goal.x, p.goal.y)) {
-        throw ParseError(scenPath, p.line, "start or goal is blocked on " + mapPath);
+        throw ParseError(scenPath, p.line, "start or goal is blocked on " + map_path);
       }
     }
 

@@ -218,13 +218,13 @@ void benchLod(const std::vector<int>& counts, double seconds) {
   const int ticks = int(seconds * 20);
   LodSettings cheap;  // defaults: far agents ride the field without the neighbour query
   LodSettings steered = cheap;
-  steered.farSteers = true;
+  steered.far_steers = true;
   std::printf(
       "\nLOD: flow crowd on random512-10-0, 4 destinations, 2 players at (150,150) and "
       "(360,300), %d ticks of 1/20 s; near %.0f m every tick, mid to %.0f m every %d "
       "ticks, far every %d ticks; variant far-field: far agents without steering, "
       "far-steer: with. Errors against the full-detail run of the same agents.\n\n",
-      ticks, cheap.nearRadius, cheap.farRadius, cheap.midEvery, cheap.farEvery);
+      ticks, cheap.near_radius, cheap.far_radius, cheap.mid_every, cheap.far_every);
   std::printf(
       "| agents | variant | ms/tick | speed-up | updates ratio | arrived | arrival "
       "|dt| mean s | max s | end pos error mean m | max m |\n"
@@ -239,7 +239,7 @@ void benchLod(const std::vector<int>& counts, double seconds) {
       LodRun lod = runLod(map, n, ticks, s);
       const OutcomeDrift d = outcomeDrift(full, lod, 1.0 / 20.0);  // arrival in 1/20 s ticks
       std::printf("| %d | %s | %.3f | %.2f | %.2f | %d | %.3f | %.2f | %.3f | %.2f |\n", n,
-                  s->farSteers ? "far-steer" : "far-field", lod.msPerTick,
+                  s->far_steers ? "far-steer" : "far-field", lod.msPerTick,
                   full.msPerTick / lod.msPerTick, double(full.updates) / double(lod.updates),
                   d.arrived, d.both ? d.sumDt / d.both : 0.0, d.maxDt, d.sumErr / n, d.maxErr);
     }
@@ -273,13 +273,14 @@ FlockLodRun runFlockLod(int n, int ticks, double progress, const LodSettings* lo
   Flock flock{FlockSettings{}};
   std::optional<LevelOfDetail> lod;
   if (lodSettings) lod.emplace(*lodSettings);
-  std::vector<Vec2> goalVel(a.ids.size());
+  std::vector<Vec2> goal_vel(a.ids.size());
   FlockLodRun r;
   r.arrival.assign(a.ids.size(), -1);
   double cpu = 0;
   for (int t = 0; t < ticks; ++t) {
     double t0 = Clock::now();
-    for (std::size_t i = 0; i < goalVel.size(); ++i) goalVel[i] = withLength(goal - a.pos[i], 2.0);
+    for (std::size_t i = 0; i < goal_vel.size(); ++i)
+      goal_vel[i] = withLength(goal - a.pos[i], 2.0);
     StepPlan plan;
     if (lod) {
       plan = lod->plan(a.ids, a.pos, players, t, dt);
@@ -287,7 +288,7 @@ FlockLodRun runFlockLod(int n, int ticks, double progress, const LodSettings* lo
     } else {
       r.updates += a.ids.size();
     }
-    flock.step(a.span(), {}, dt, goalVel, plan);
+    flock.step(a.span(), {}, dt, goal_vel, plan);
     cpu += msSince(t0);
     for (std::size_t i = 0; i < a.ids.size(); ++i)
       if (r.arrival[i] < 0 && dot(a.pos[i], dir) - start[i] >= progress)
@@ -310,14 +311,14 @@ void benchLodFlock(const std::vector<int>& counts, double seconds) {
   const double progress = 40;
   LodSettings cheap;
   LodSettings steered = cheap;
-  steered.farSteers = true;
+  steered.far_steers = true;
   std::printf(
       "\nLOD: flock at 0.5/m^2 heading north-east (goal velocity 2 m/s), 2 players at (0.3, "
       "0.3) and (0.7, 0.6) of the square's side, %d ticks of 1/30 s; near %.0f m every tick, "
       "mid to %.0f m every %d ticks, far every %d ticks; far-goal: far agents follow the goal "
       "velocity only, far-steer: with the flock's terms. Arrival: time to make %.0f m toward "
       "the goal; errors against the full-detail run of the same agents.\n\n",
-      ticks, cheap.nearRadius, cheap.farRadius, cheap.midEvery, cheap.farEvery, progress);
+      ticks, cheap.near_radius, cheap.far_radius, cheap.mid_every, cheap.far_every, progress);
   std::printf(
       "| agents | variant | ms/tick | speed-up | updates ratio | arrived | arrival |dt| mean s "
       "| max s | end pos error mean m | max m | closest pair m |\n"
@@ -332,7 +333,7 @@ void benchLodFlock(const std::vector<int>& counts, double seconds) {
       FlockLodRun lod = runFlockLod(n, ticks, progress, s);
       const OutcomeDrift d = outcomeDrift(full, lod, 1.0);  // arrival already in s
       std::printf("| %d | %s | %.3f | %.2f | %.2f | %d | %.3f | %.2f | %.3f | %.2f | %.2f |\n", n,
-                  s->farSteers ? "far-steer" : "far-goal", lod.msPerTick,
+                  s->far_steers ? "far-steer" : "far-goal", lod.msPerTick,
                   full.msPerTick / lod.msPerTick, double(full.updates) / double(lod.updates),
                   d.arrived, d.both ? d.sumDt / d.both : 0.0, d.maxDt, d.sumErr / n, d.maxErr,
                   lod.closest);

@@ -31,10 +31,10 @@ TEST(Fsm, InterpretedGuardMatchesHandCodedGuard) {
     GuardInputs in;
     // A random walk of the inputs that crosses every threshold many times, noise included.
     for (int tick = 0; tick < 2000; ++tick) {
-      in.enemyDistance = std::clamp(
-          in.enemyDistance > 100 ? 20.0 : in.enemyDistance + rng.uniform(-2.0, 2.0), 0.0, 30.0);
+      in.enemy_distance = std::clamp(
+          in.enemy_distance > 100 ? 20.0 : in.enemy_distance + rng.uniform(-2.0, 2.0), 0.0, 30.0);
       in.health = std::clamp(in.health + rng.uniform(-6.0, 6.0), 0.0, 100.0);
-      double inputs[2] = {in.enemyDistance, in.health};
+      double inputs[2] = {in.enemy_distance, in.health};
       bool a = coded.step(in);
       bool b = stepMachine(def, data, inputs);
       ASSERT_EQ(a, b) << "seed " << seed << " tick " << tick;

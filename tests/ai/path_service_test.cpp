@@ -51,7 +51,7 @@ TEST_P(PathServiceTest, BudgetSpreadsRequestsOverTicks) {
   GridMap m = test::randomMap(64, 64, 0.15, 3);
   PathServiceConfig config;
   config.planner = GetParam();
-  config.pathsPerTick = 4;
+  config.paths_per_tick = 4;
   PathService service(m, config);
   Pcg32 rng(3, 9);
   std::vector<PathRequestId> ids;
@@ -82,12 +82,12 @@ TEST_P(PathServiceTest, ExpansionBudgetStopsATickButAlwaysPlansOne) {
     queries.push_back({test::randomFreeCell(m, rng), test::randomFreeCell(m, rng)});
   }
   std::uint64_t total = 0;
-  auto ticksToServe = [&](int expansionsPerTick) {
+  auto ticksToServe = [&](int expansions_per_tick) {
     PathServiceConfig config;
     config.planner = GetParam();
-    config.pathsPerTick = 100;
-    config.expansionsPerTick = expansionsPerTick;
-    config.cacheCapacity = 0;
+    config.paths_per_tick = 100;
+    config.expansions_per_tick = expansions_per_tick;
+    config.cache_capacity = 0;
     PathService service(m, config);
     for (auto [s, g] : queries) service.request(s, g);
     int ticks = 0;
@@ -116,7 +116,7 @@ TEST_P(PathServiceTest, RepeatedQueriesComeFromTheCacheAndCostNoBudget) {
   GridMap m = twoDoors();
   PathServiceConfig config;
   config.planner = GetParam();
-  config.pathsPerTick = 1;
+  config.paths_per_tick = 1;
   PathService service(m, config);
   PathRequestId first = service.request({2, 2}, {38, 2});
   service.tick();
@@ -125,7 +125,7 @@ TEST_P(PathServiceTest, RepeatedQueriesComeFromTheCacheAndCostNoBudget) {
   for (int i = 0; i < 5; ++i) again.push_back(service.request({2, 2}, {38, 2}));
   service.tick();
   EXPECT_EQ(service.stats().planned, 1u);
-  EXPECT_EQ(service.stats().cacheHits, 5u);
+  EXPECT_EQ(service.stats().cache_hits, 5u);
   for (PathRequestId id : again) EXPECT_EQ(service.path(id).cells, service.path(first).cells);
 }
 
@@ -170,14 +170,14 @@ TEST_P(PathServiceTest, WithClearCacheOnCloseAHitIsWhatAFreshPlanGives) {
   GridMap m = twoDoors();
   PathServiceConfig config;
   config.planner = GetParam();
-  config.clearCacheOnClose = true;
+  config.clear_cache_on_close = true;
   PathService service(m, config);
   GridPath first, hit;
   int expandedFirst = 0, expandedHit = 0;
   ASSERT_TRUE(service.solve({2, 30}, {38, 30}, first, expandedFirst));
   ASSERT_TRUE(service.solve({2, 30}, {38, 30}, hit, expandedHit));
   EXPECT_EQ(service.stats().planned, 1u);
-  EXPECT_EQ(service.stats().cacheHits, 1u);
+  EXPECT_EQ(service.stats().cache_hits, 1u);
   EXPECT_EQ(hit.cells, first.cells);
   EXPECT_EQ(expandedHit, expandedFirst);
   EXPECT_GT(expandedFirst, 0);

@@ -32,9 +32,9 @@ TEST(ScenarioParser, ReadsTabSeparatedVersion1) {
   auto p = parse("version 1\n3\tmaps/a.map\t512\t256\t1\t2\t3\t4\t5.82843\n");
   ASSERT_EQ(p.size(), 1u);
   EXPECT_EQ(p[0].bucket, 3);
-  EXPECT_EQ(p[0].mapPath, "maps/a.map");
-  EXPECT_EQ(p[0].mapWidth, 512);
-  EXPECT_EQ(p[0].mapHeight, 256);
+  EXPECT_EQ(p[0].map_path, "maps/a.map");
+  EXPECT_EQ(p[0].map_width, 512);
+  EXPECT_EQ(p[0].map_height, 256);
   EXPECT_EQ(p[0].start, (Cell{1, 2}));
   EXPECT_EQ(p[0].goal, (Cell{3, 4}));
   EXPECT_DOUBLE_EQ(p[0].optimal, 5.82843);
@@ -59,7 +59,7 @@ TEST(ScenarioParser, AcceptsSpacesVersion10DecimalsAndBlankLines) {
 TEST(ScenarioParser, KeepsAMapPathWithSpaces) {
   auto p = parse("version 1\n0 my maps/a b.map 10 10 0 0 1 1 1.41421\n");
   ASSERT_EQ(p.size(), 1u);
-  EXPECT_EQ(p[0].mapPath, "my maps/a b.map");
+  EXPECT_EQ(p[0].map_path, "my maps/a b.map");
 }
 
 TEST(ScenarioParser, ErrorsNameTheLine) {

@@ -22,7 +22,7 @@ TEST(InterestGrid, SizeRoundsUpToWholeCells) {
   EXPECT_EQ(grid.columns(), 4);
   EXPECT_EQ(grid.rows(), 3);  // 130 m needs a third, partial row
   EXPECT_EQ(grid.cellCount(), 12);
-  EXPECT_EQ(grid.cellSize(), 50);
+  EXPECT_EQ(grid.cell_size(), 50);
 }
 
 TEST(InterestGrid, CellOfNumbersRowMajorFromTheMinCorner) {

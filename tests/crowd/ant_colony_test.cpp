@@ -44,7 +44,7 @@ ColonyResult runColony(const ai::GridMap& map, AntColonySettings s, int iteratio
   for (int it = 0; it < iterations; ++it) {
     AntIteration i = colony.iterate();
     if (it >= iterations - 10 && i.found) {
-      sum += i.meanLength;
+      sum += i.mean_length;
       ++n;
     }
   }
@@ -54,7 +54,7 @@ ColonyResult runColony(const ai::GridMap& map, AntColonySettings s, int iteratio
     r.trail = ai::pathLength(route);
   }
   r.lastMean = n ? sum / n : 0;
-  r.best = colony.bestLength();
+  r.best = colony.best_length();
   return r;
 }
 

@@ -41,7 +41,7 @@ int components(const std::vector<Vec2>& pos, double r) {
 }
 
 FlockRun runFlock(const FlockSettings& s, int side, double seconds) {
-  auto a = test::lattice(side, 1.2 * s.separationRadius, 1.0, 21);
+  auto a = test::lattice(side, 1.2 * s.separation_radius, 1.0, 21);
   Flock flock(s);
   const double dt = 1.0 / 30;
   FlockRun out;
@@ -55,7 +55,7 @@ FlockRun runFlock(const FlockSettings& s, int side, double seconds) {
   for (Vec2 v : a.vel) mean += v;
   mean = mean * (1.0 / double(a.vel.size()));
   for (Vec2 v : a.vel) out.finalSpeedSpread = std::max(out.finalSpeedSpread, length(v - mean));
-  out.components = components(a.pos, s.neighbourRadius);
+  out.components = components(a.pos, s.neighbour_radius);
   return out;
 }
 
@@ -64,7 +64,7 @@ TEST(Flock, KeepsSeparationAndCohesion) {
   FlockRun r = runFlock(s, 12, 30.0);  // 144 agents, 30 s
   std::printf("min distance %.3f, max radius %.3f, velocity spread %.4f, groups %d\n",
               r.minDistance, r.maxRadius, r.finalSpeedSpread, r.components);
-  EXPECT_GE(r.minDistance, 0.5 * s.separationRadius);
+  EXPECT_GE(r.minDistance, 0.5 * s.separation_radius);
   EXPECT_LE(r.maxRadius, 12.0);
   EXPECT_EQ(r.components, 1);
   // Alignment: the flock ends with one common velocity (started with random ones up to 1.4).
@@ -73,10 +73,10 @@ TEST(Flock, KeepsSeparationAndCohesion) {
 
 TEST(Flock, WithoutSeparationTheFlockCollapses) {
   FlockSettings s;
-  s.separationWeight = 0;
+  s.separation_weight = 0;
   FlockRun r = runFlock(s, 12, 30.0);
   std::printf("no separation: min distance %.3f, max radius %.3f\n", r.minDistance, r.maxRadius);
-  EXPECT_LT(r.minDistance, 0.5 * s.separationRadius);
+  EXPECT_LT(r.minDistance, 0.5 * s.separation_radius);
 }
 
 }  // namespace

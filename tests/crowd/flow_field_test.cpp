@@ -83,9 +83,9 @@ TEST(FlowCrowd, AllAgentsReachTheirDestination) {
   }
   const double dt = 1.0 / 20;
   // Generous bound: the longest path at a quarter of the top speed.
-  const int maxSteps = int(longest / (0.25 * crowd.settings().maxSpeed) / dt);
+  const int max_steps = int(longest / (0.25 * crowd.settings().max_speed) / dt);
   int reached = 0, steps = 0, blockedVisits = 0;
-  while (!agents.ids.empty() && steps < maxSteps) {
+  while (!agents.ids.empty() && steps < max_steps) {
     crowd.step(agents.span(), dest, arrived, {}, dt);
     ++steps;
     // Arrived agents leave the scene (as at an exit), compacting the arrays.
@@ -109,7 +109,7 @@ TEST(FlowCrowd, AllAgentsReachTheirDestination) {
     dest.resize(w);
     arrived.resize(w);
   }
-  std::printf("%d agents arrived in %.1f s (bound %.1f s)\n", reached, steps * dt, maxSteps * dt);
+  std::printf("%d agents arrived in %.1f s (bound %.1f s)\n", reached, steps * dt, max_steps * dt);
   EXPECT_EQ(reached, 400);
   EXPECT_TRUE(agents.ids.empty());
   EXPECT_EQ(blockedVisits, 0);

@@ -19,10 +19,10 @@ namespace {
 
 TEST(Lod, LevelsPeriodsAndCaughtUpTime) {
   LodSettings s;
-  s.nearRadius = 10;
-  s.farRadius = 30;
-  s.midEvery = 3;
-  s.farEvery = 8;
+  s.near_radius = 10;
+  s.far_radius = 30;
+  s.mid_every = 3;
+  s.far_every = 8;
   LevelOfDetail lod(s);
   std::vector<std::uint64_t> ids;
   std::vector<Vec2> pos;
@@ -79,10 +79,10 @@ TEST(Lod, FlowCrowdWithLodReachesTheSameOutcome) {
     std::vector<std::uint8_t> arrived(a.ids.size(), 0);
     std::vector<std::int64_t> last(a.ids.size(), -1);
     LodSettings s;
-    s.nearRadius = 15;
-    s.farRadius = 30;
-    s.midEvery = 2;
-    s.farEvery = 6;
+    s.near_radius = 15;
+    s.far_radius = 30;
+    s.mid_every = 2;
+    s.far_every = 6;
     LevelOfDetail lod(s);
     Run r;
     const double dt = 0.05;
@@ -137,15 +137,15 @@ TEST(Lod, FlockFollowsThePlan) {
   flock.step(a.span(), {}, 0.05, goal, StepPlan{dt, steer});
   EXPECT_EQ(a.pos[0], before.pos[0]);
   EXPECT_EQ(a.vel[0], before.vel[0]);
-  // Cheap update: v += goalWeight (goal - v) h, then x += v h, with no neighbour terms.
-  Vec2 v1 = before.vel[1] + (goal[1] - before.vel[1]) * (s.goalWeight * 0.1);
+  // Cheap update: v += goal_weight (goal - v) h, then x += v h, with no neighbour terms.
+  Vec2 v1 = before.vel[1] + (goal[1] - before.vel[1]) * (s.goal_weight * 0.1);
   EXPECT_NEAR(a.vel[1].x, v1.x, 1e-15);
   EXPECT_NEAR(a.vel[1].y, v1.y, 1e-15);
   EXPECT_NEAR(a.pos[1].x, before.pos[1].x + v1.x * 0.1, 1e-15);
   EXPECT_NEAR(a.pos[1].y, before.pos[1].y + v1.y * 0.1, 1e-15);
   // Full detail: the skipped agent still pushes it (separation), so it differs from the
   // goal-only update.
-  Vec2 v2goal = before.vel[2] + (goal[2] - before.vel[2]) * (s.goalWeight * 0.2);
+  Vec2 v2goal = before.vel[2] + (goal[2] - before.vel[2]) * (s.goal_weight * 0.2);
   EXPECT_GT(length(a.vel[2] - v2goal), 0.1);
   EXPECT_NEAR(a.pos[2].x, before.pos[2].x + a.vel[2].x * 0.2, 1e-15);
 }

@@ -132,7 +132,7 @@ TEST(NeighbourGrid, HaloOfTheNeighbourRadiusIsEnoughForBitwiseSplits) {
   auto whole = randomAgents(1200, 12.0, 13);
   auto split = whole;
   const FlockSettings settings{};
-  const double line = 1.3, halo = settings.neighbourRadius;
+  const double line = 1.3, halo = settings.neighbour_radius;
   Flock single{settings}, left{settings}, right{settings};
   for (int s = 0; s < 20; ++s) {
     single.step(whole.span(), {}, 1.0 / 30);

@@ -24,7 +24,7 @@ constexpr double kDt = 0.05;  // the zone scenes' tick
 
 crowd::FlockSettings settings() {
   crowd::FlockSettings s;  // the scene defaults: radius 3, separation 1 m at weight 20, ...
-  s.goalWeight = 0.8;
+  s.goal_weight = 0.8;
   return s;
 }
 

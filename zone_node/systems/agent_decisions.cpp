@@ -57,12 +57,12 @@ AgentDecisions::AgentDecisions(const Scene& scene) {
           int s = def.stateIndex(state);
           if (s < 0)
             typeError(t, "actions: machine " + t.machine + " has no state '" + state + "'");
-          if (def.states[std::size_t(s)].initialChild >= 0)
+          if (def.states[std::size_t(s)].initial_child >= 0)
             typeError(t, "actions: state '" + state + "' has substates; map its leaves");
           type->state_action[std::size_t(s)] = action;
         }
         for (std::size_t s = 0; s < def.states.size(); ++s)
-          if (def.states[s].initialChild < 0 && type->state_action[s] < 0)
+          if (def.states[s].initial_child < 0 && type->state_action[s] < 0)
             typeError(t, "actions: state '" + def.states[s].name + "' has no action");
         break;
       }

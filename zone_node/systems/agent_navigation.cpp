@@ -31,14 +31,14 @@ AgentNavigation::AgentNavigation(const Scene& scene, ZoneMap* map)
   ai::PathServiceConfig c;
   const AgentPathSettings& p = scene.agents.paths;
   c.planner = p.hpa ? ai::PlannerKind::Hpa : ai::PlannerKind::AStar;
-  c.hpa.clusterSize = p.cluster_size;
-  c.pathsPerTick = p.paths_per_tick;
-  c.expansionsPerTick = p.expansions_per_tick;
-  c.cacheCapacity = std::size_t(p.cache);
+  c.hpa.cluster_size = p.cluster_size;
+  c.paths_per_tick = p.paths_per_tick;
+  c.expansions_per_tick = p.expansions_per_tick;
+  c.cache_capacity = std::size_t(p.cache);
   // Caches differ between ranks, so a hit must be exactly what a fresh plan would give: the
   // planners are deterministic for a given map (A* and HPA* break every tie by a fixed order),
   // and any door, closing or opening, clears the cache.
-  c.clearCacheOnClose = true;
+  c.clear_cache_on_close = true;
   service_ = std::make_unique<ai::PathService>(map->serviceGrid(), c);
 }
 
@@ -255,7 +255,7 @@ crowd::Vec2 AgentNavigation::fleeTarget(double x, double z, double ex, double ez
   const crowd::Vec2 from{x, z};
   crowd::Vec2 best = frame_.centre(startCell(x, z));
   double best_d = std::hypot(best.x - ex, best.y - ez);
-  const double step = 0.5 * frame_.cellSize;
+  const double step = 0.5 * frame_.cell_size;
   const double kPi = 3.14159265358979323846;
   for (int k = 0; k < 16; ++k) {
     const double dx = std::cos(kPi * k / 8), dz = std::sin(kPi * k / 8);

@@ -4,12 +4,12 @@ namespace zonesim::zone {
 
 crowd::LodSettings lodOf(const CrowdLod& l) {
   crowd::LodSettings s;
-  s.nearRadius = l.near_radius;
-  s.farRadius = l.far_radius;
-  s.midEvery = l.mid_every;
-  s.farEvery = l.far_every;
-  s.midSteers = l.mid_steers;
-  s.farSteers = l.far_steers;
+  s.near_radius = l.near_radius;
+  s.far_radius = l.far_radius;
+  s.mid_every = l.mid_every;
+  s.far_every = l.far_every;
+  s.mid_steers = l.mid_steers;
+  s.far_steers = l.far_steers;
   return s;
 }
 

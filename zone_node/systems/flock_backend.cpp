@@ -18,14 +18,14 @@ void toDevice(std::span<const crowd::Vec2> in, std::vector<gpu::Vec2d>& out) {
 
 gpu::PlanarFlockParams paramsOf(const crowd::FlockSettings& s) {
   gpu::PlanarFlockParams p;
-  p.neighbour_radius = s.neighbourRadius;
-  p.separation_radius = s.separationRadius;
-  p.separation_weight = s.separationWeight;
-  p.alignment_weight = s.alignmentWeight;
-  p.cohesion_weight = s.cohesionWeight;
-  p.goal_weight = s.goalWeight;
-  p.max_speed = s.maxSpeed;
-  p.max_force = s.maxForce;
+  p.neighbour_radius = s.neighbour_radius;
+  p.separation_radius = s.separation_radius;
+  p.separation_weight = s.separation_weight;
+  p.alignment_weight = s.alignment_weight;
+  p.cohesion_weight = s.cohesion_weight;
+  p.goal_weight = s.goal_weight;
+  p.max_speed = s.max_speed;
+  p.max_force = s.max_force;
   return p;
 }
 
@@ -87,16 +87,16 @@ FlockBackend::FlockBackend(const crowd::FlockSettings& settings, gpu::Backend ba
 FlockBackend::~FlockBackend() = default;
 
 void FlockBackend::step(const crowd::AgentSpan& agents, const crowd::GhostSpan& ghosts, double dt,
-                        std::span<const crowd::Vec2> goalVel, const crowd::StepPlan& plan) {
+                        std::span<const crowd::Vec2> goal_vel, const crowd::StepPlan& plan) {
   if (!device_) {
-    cpu_.step(agents, ghosts, dt, goalVel, plan);
+    cpu_.step(agents, ghosts, dt, goal_vel, plan);
     return;
   }
   toDevice(agents.pos, pos_);
   toDevice(agents.vel, vel_);
   toDevice(ghosts.pos, ghost_pos_);
   toDevice(ghosts.vel, ghost_vel_);
-  toDevice(goalVel, goal_);
+  toDevice(goal_vel, goal_);
   device_->step(agents.ids, pos_, vel_, gpu::PlanarAgents{ghosts.ids, ghost_pos_, ghost_vel_}, dt,
                 gpu::PlanarControls{goal_, plan.dt, plan.steer});
   for (std::size_t i = 0; i < pos_.size(); ++i) {

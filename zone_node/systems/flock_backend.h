@@ -40,7 +40,7 @@ class FlockBackend {
 
   /// As crowd::Flock::step: advances `agents` by `dt`, seeing `ghosts`.
   void step(const crowd::AgentSpan& agents, const crowd::GhostSpan& ghosts, double dt,
-            std::span<const crowd::Vec2> goalVel = {}, const crowd::StepPlan& plan = {});
+            std::span<const crowd::Vec2> goal_vel = {}, const crowd::StepPlan& plan = {});
   /// The backend in use.
   gpu::Backend backend() const { return backend_; }
 

@@ -19,24 +19,24 @@ struct FlockMovement::Group {
   FlockBackend flock;
   crowd::LevelOfDetail lod;
   bool hasGoal = false;
-  crowd::Vec2 goal;                  // the point the flock heads for
-  double goalSpeed = 0;              // m/s toward it
-  double goalSlowRadius = 1;         // m: speed ramps down to 0 this close
-  std::vector<crowd::Vec2> goalVel;  // per gathered NPC, kept warm
+  crowd::Vec2 goal;                   // the point the flock heads for
+  double goalSpeed = 0;               // m/s toward it
+  double goalSlowRadius = 1;          // m: speed ramps down to 0 this close
+  std::vector<crowd::Vec2> goal_vel;  // per gathered NPC, kept warm
 };
 
 namespace {
 
 crowd::FlockSettings settingsOf(const NpcFlock& f) {
   crowd::FlockSettings s;
-  s.neighbourRadius = f.radius;
-  s.separationRadius = f.separation_radius;
-  s.separationWeight = f.separation_weight;
-  s.alignmentWeight = f.alignment_weight;
-  s.cohesionWeight = f.cohesion_weight;
-  s.maxSpeed = f.max_speed;
-  s.maxForce = f.max_force;
-  s.goalWeight = f.goal_weight;
+  s.neighbour_radius = f.radius;
+  s.separation_radius = f.separation_radius;
+  s.separation_weight = f.separation_weight;
+  s.alignment_weight = f.alignment_weight;
+  s.cohesion_weight = f.cohesion_weight;
+  s.max_speed = f.max_speed;
+  s.max_force = f.max_force;
+  s.goal_weight = f.goal_weight;
   return s;
 }
 
@@ -77,21 +77,21 @@ std::size_t FlockMovement::advance(EntityStore& store, const GhostStore* ghosts,
     g.view.gatherGhosts(ghosts);
     if (g.view.ids.empty()) continue;
     // The goal velocity depends on the NPC's position alone, so every rank computes the same.
-    std::span<const crowd::Vec2> goalVel;
+    std::span<const crowd::Vec2> goal_vel;
     if (g.hasGoal) {
-      g.goalVel.resize(g.view.pos.size());
+      g.goal_vel.resize(g.view.pos.size());
       for (std::size_t a = 0; a < g.view.pos.size(); ++a) {
         crowd::Vec2 to = g.goal - g.view.pos[a];
         double speed = g.goalSpeed * std::min(1.0, crowd::length(to) / g.goalSlowRadius);
-        g.goalVel[a] = crowd::withLength(to, speed);
+        g.goal_vel[a] = crowd::withLength(to, speed);
       }
-      goalVel = g.goalVel;
+      goal_vel = g.goal_vel;
     }
     // Far from every player a flocker steps less often (by the time it skipped), the farthest
     // on its goal velocity only; the plan depends on ids, positions and the tick alone.
     crowd::StepPlan plan;
     if (lod_) plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt);
-    g.flock.step(g.view.agents(), g.view.ghostSpan(), dt, goalVel, plan);
+    g.flock.step(g.view.agents(), g.view.ghostSpan(), dt, goal_vel, plan);
     updates_ += lod_ ? g.lod.updated() : g.view.ids.size();
     // The flock moves on the ground plane; the walls of the world stop it like any walker.
     g.view.writeBack(store, &scene_.world);

@@ -36,14 +36,14 @@ namespace {
 
 crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
   crowd::FlowCrowdSettings s;
-  s.maxSpeed = f.max_speed;
-  s.maxForce = f.max_force;
-  s.steerRate = f.steer_rate;
-  s.separationRadius = f.separation_radius;
-  s.separationWeight = f.separation_weight;
-  s.arriveRadius = f.arrive_radius;
-  s.slowRadius = f.slow_radius;
-  s.gridCell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
+  s.max_speed = f.max_speed;
+  s.max_force = f.max_force;
+  s.steer_rate = f.steer_rate;
+  s.separation_radius = f.separation_radius;
+  s.separation_weight = f.separation_weight;
+  s.arrive_radius = f.arrive_radius;
+  s.slow_radius = f.slow_radius;
+  s.grid_cell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
   return s;
 }
 

@@ -130,15 +130,15 @@ void FormationMovement::step(StepContext& ctx) {
       crowd::MemberState& m = g.state;
       m.mode = crowd::MemberMode(member.mode);
       m.at = member.path_at;
-      m.plannedFor = {member.planned_x, member.planned_z};
+      m.planned_for = {member.planned_x, member.planned_z};
       m.path.swap(member.path);
       const std::uint64_t id = g.view.ids[a];
       g.stepper.step(id, m, formationSlot(g.formation, g.count, g.slotIndex(id)), g.centre,
                      g.members, g.view.pos[a], g.view.vel[a], dt);
       member.mode = std::int32_t(m.mode);
       member.path_at = m.at;
-      member.planned_x = m.plannedFor.x;
-      member.planned_z = m.plannedFor.y;
+      member.planned_x = m.planned_for.x;
+      member.planned_z = m.planned_for.y;
       member.path.swap(m.path);
     }
     g.view.writeBack(store);
