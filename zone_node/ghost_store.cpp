@@ -6,14 +6,18 @@
 namespace zonesim::zone {
 
 GhostColumn crowdPopulationColumn() {
-  return {kCrowdPopulation, [](const EntityStore& s, std::size_t i) -> std::int64_t {
-            return s.kind[i] == EntityKind::Npc ? s.npc[i].population : -1;
+  return {kCrowdPopulation, [](const EntityStore& s, std::vector<std::int64_t>& out) {
+            out.resize(s.size());
+            for (std::size_t i = 0; i < s.size(); ++i)
+              out[i] = s.kind[i] == EntityKind::Npc ? s.npc[i].population : -1;
           }};
 }
 
 GhostColumn agentTypeColumn() {
-  return {kAgentType, [](const EntityStore& s, std::size_t i) -> std::int64_t {
-            return s.kind[i] == EntityKind::Npc ? s.agent[i].type : -1;
+  return {kAgentType, [](const EntityStore& s, std::vector<std::int64_t>& out) {
+            out.resize(s.size());
+            for (std::size_t i = 0; i < s.size(); ++i)
+              out[i] = s.kind[i] == EntityKind::Npc ? s.agent[i].type : -1;
           }};
 }
 

@@ -31,8 +31,9 @@ struct GhostImpulse {
 /// integer per registered column with every ghost, so it carries no fixed slot per system.
 struct GhostColumn {
   std::string name;
-  /// The owner's value for entity i of its store.
-  std::function<std::int64_t(const EntityStore&, std::size_t)> read;
+  /// The owner's values for every entity of its store, by index (one call per column and
+  /// refresh, not one per entity: the halo packs thousands of ghosts a tick).
+  std::function<void(const EntityStore&, std::vector<std::int64_t>&)> read;
 };
 
 /// The crowd population an NPC's crowd system moves it for (NpcData::population; -1: none), so

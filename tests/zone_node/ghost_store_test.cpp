@@ -46,10 +46,15 @@ TEST(GhostStore, TheColumnsReadTheOwnersState) {
   body.kind = EntityKind::RigidBody;
   store.add(npc);
   store.add(body);
-  EXPECT_EQ(crowdPopulationColumn().read(store, 0), 4);
-  EXPECT_EQ(agentTypeColumn().read(store, 0), 1);
-  EXPECT_EQ(crowdPopulationColumn().read(store, 1), -1);
-  EXPECT_EQ(agentTypeColumn().read(store, 1), -1);
+  std::vector<std::int64_t> crowd, agent;
+  crowdPopulationColumn().read(store, crowd);
+  agentTypeColumn().read(store, agent);
+  ASSERT_EQ(crowd.size(), 2u);
+  ASSERT_EQ(agent.size(), 2u);
+  EXPECT_EQ(crowd[0], 4);
+  EXPECT_EQ(agent[0], 1);
+  EXPECT_EQ(crowd[1], -1);
+  EXPECT_EQ(agent[1], -1);
 }
 
 }  // namespace

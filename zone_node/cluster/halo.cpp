@@ -104,12 +104,14 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
     built_layout_ = layout_version;
     stats.rebuilt = true;
   }
+  const std::vector<GhostColumn>& columns = ghosts_.columns();
+  column_values_.resize(columns.size());
+  for (std::size_t c = 0; c < columns.size(); ++c) columns[c].read(store, column_values_[c]);
+  const std::size_t record = sizeof(GhostWire) + columns.size() * sizeof(std::int64_t);
   bytes_.begin();
   for (int r = 0; r < size_; ++r) {
     std::vector<std::uint8_t>& out = bytes_.outgoing(r);
     const std::vector<EntityId>& list = send_[std::size_t(r)];
-    const std::vector<GhostColumn>& columns = ghosts_.columns();
-    const std::size_t record = sizeof(GhostWire) + columns.size() * sizeof(std::int64_t);
     out.resize(list.size() * record);
     for (std::size_t k = 0; k < list.size(); ++k) {
       std::optional<std::size_t> i = store.indexOf(list[k]);
@@ -118,7 +120,7 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
       std::uint8_t* at = out.data() + k * record;
       std::memcpy(at, &w, sizeof w);
       for (std::size_t c = 0; c < columns.size(); ++c) {
-        std::int64_t v = columns[c].read(store, *i);
+        const std::int64_t v = column_values_[c][*i];
         std::memcpy(at + sizeof w + c * sizeof v, &v, sizeof v);
       }
     }
@@ -128,17 +130,16 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
   stats.bytes_sent = bytes_.bytesSent();
 
   ghosts_.clear();
-  const std::size_t columns = ghosts_.columns().size();
-  const std::size_t record = sizeof(GhostWire) + columns * sizeof(std::int64_t);
-  std::vector<std::int64_t> values(columns);
+  std::vector<std::int64_t> values(columns.size());
   for (int r = 0; r < size_; ++r) {
     std::span<const std::uint8_t> in = bytes_.received(r);
     if (in.size() % record != 0) throw std::runtime_error("halo payload size is odd");
     for (std::size_t off = 0; off < in.size(); off += record) {
       GhostWire w;
       std::memcpy(&w, in.data() + off, sizeof w);
-      if (columns > 0)
-        std::memcpy(values.data(), in.data() + off + sizeof w, columns * sizeof(std::int64_t));
+      if (!values.empty())
+        std::memcpy(values.data(), in.data() + off + sizeof w,
+                    values.size() * sizeof(std::int64_t));
       BodyData b;
       if (EntityKind(w.kind) == EntityKind::RigidBody) {
         b.angular_velocity =

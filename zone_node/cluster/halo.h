@@ -61,6 +61,7 @@ class HaloExchange {
   std::vector<Vec3> built_pos_;      // and their positions
   std::uint64_t built_layout_ = ~0ull;
   bool built_ = false;
+  std::vector<std::vector<std::int64_t>> column_values_;  // this refresh's, per column, by index
 };
 
 }  // namespace zonesim::zone
