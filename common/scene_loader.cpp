@@ -293,8 +293,9 @@ void readTick(const SceneMap& root, Scene& scene) {
 void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   SceneMap m =
       root.section("physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
-                               "position_iterations", "sleep", "solver", "sor_omega", "bodies",
-                               "joints", "cloths", "explosions"});
+                               "position_iterations", "sleep", "solver", "sor_omega",
+                               "linear_drag", "quadratic_drag", "bodies", "joints", "cloths",
+                               "explosions"});
   ps.integrator = PhysicsSettings::Integrator(
       m.choice("integrator",
                {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
@@ -311,6 +312,8 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
       m.choice("solver", {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection"},
                int(ps.solver)));
   m.read("sor_omega", ps.sor_omega, Limit::between(0.1, 1.99));
+  m.read("linear_drag", ps.linear_drag, Limit::atLeast(0));
+  m.read("quadratic_drag", ps.quadratic_drag, Limit::atLeast(0));
 }
 
 void readDeadReckoningModel(const SceneMap& models, std::string_view kind,

@@ -118,6 +118,8 @@ struct PhysicsSettings {
   bool sleep = true;  ///< resting islands sleep and cost (almost) nothing
   Solver solver = Solver::GaussSeidel;
   double sor_omega = 1.3;                  ///< over-relaxation factor of the sor solver
+  double linear_drag = 0;     ///< N s/m: F = -k v on every dynamic body (physics::ForceModel)
+  double quadratic_drag = 0;  ///< N s^2/m^2: F = -c |v| v on every dynamic body
   std::vector<SceneBody> bodies;           ///< named bodies (entities after the populations)
   std::vector<SceneJoint> joints;          ///< between named bodies
   std::vector<SceneCloth> cloths;          ///< zone-local, not sent to clients

@@ -115,7 +115,7 @@ void World::integrateForces(double dt) {
   // position recurrence cannot see.
   const LinearStateView view{x_start_, v_start_,     bodies_.inv_mass,
                              x_force_, v_force_,     bodies_.position_prev,
-                             false,    bodies_.force};
+                             false,    bodies_.force,       bodies_.foreign};
   integrator_.step(settings_.integrator, forces_, view, dt);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];

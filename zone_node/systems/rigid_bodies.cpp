@@ -152,6 +152,8 @@ std::vector<std::size_t> RigidBodySystem::foreignBodies(const GhostStore* ghosts
 void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts,
                               const std::vector<std::size_t>& foreign) {
   world_ = std::make_unique<physics::World>(settingsFor(scene_.physics));
+  world_->forces().linear_drag = scene_.physics.linear_drag;
+  world_->forces().quadratic_drag = scene_.physics.quadratic_drag;
   const SceneBox& w = scene_.world;
   world_->addBody(wall(Vec3(0, w.min.y, 0), Vec3::UnitY()));
   world_->addBody(wall(Vec3(w.min.x, 0, 0), Vec3::UnitX()));
@@ -353,7 +355,7 @@ std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghost
     awake += !store.body[i].sleeping;
   }
   // What our bodies did to the foreign ones: their velocity change less gravity's (they have
-  // no damping or other forces here). Round-off of that subtraction is far below 1e-9 m/s.
+  // no damping or drag here: their owner applies those). Round-off of that subtraction is far below 1e-9 m/s.
   const Vec3 gravity_dv = world_->forces().gravity * dt;
   for (std::size_t k = 0; k < foreign.size(); ++k) {
     std::size_t g = foreign[k];
