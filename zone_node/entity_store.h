@@ -12,6 +12,7 @@
 
 #include "common/entity_id.h"
 #include "common/math.h"
+#include "crowd/ant_trip.h"
 #include "zone_node/net/dead_reckoning_state.h"
 
 namespace zonesim::zone {
@@ -27,14 +28,8 @@ struct FormationMemberData {
   std::vector<std::int32_t> path;       ///< the rejoin path's cells as x, y pairs
 };
 
-/// An ant's own state (systems/ant_movement.h).
-struct AntData {
-  std::int32_t mode = 0;                ///< AntMode
-  std::int32_t route_at = 0;            ///< index (in cells) of the next cell of `route` back
-  double route_length = 0;              ///< m: length of the route found (0: none yet)
-  std::vector<std::int32_t> route;      ///< cells from the nest as x, y pairs
-  std::vector<std::int32_t> dead_ends;  ///< dead ends of this trip, x, y pairs
-};
+/// An ant's own state (systems/ant_movement.h): its trip, crowd/'s colony rule's data.
+using AntData = crowd::AntTrip;
 
 /// A road traveller's own state (systems/road_movement.h).
 struct RoadTripData {

@@ -1,20 +1,20 @@
 #pragma once
 // Ant colonies in a zone: each NPC population with `colony` is a colony on the scene's map. Its
-// ants are entities walking from cell centre to cell centre; a searching ant senses only the
-// cells next to it (a wall is found by standing next to it), never re-enters a cell of its
-// trip, backs off from dead ends, and picks its next cell with probability proportional to
-// trail^alpha * eta^beta, or the best such cell outright with probability `exploitation` (the
-// ACS rule, crowd/ant_step.h's chooseAntStep, the one AntColony uses too). An ant that reaches the
-// food walks its route back to the nest, laying deposit / (route length) on every cell; trails
-// evaporate every tick.
+// ants are entities walking from cell centre to cell centre. The colony rule is crowd/'s: an
+// ant's trip (search, dead ends, the shortened way home, laying deposit / (route length) on
+// every cell) is crowd/ant_trip_rule.h's, riding in the entity as AntData (crowd::AntTrip);
+// the step choice is chooseAntStep (crowd/ant_step.h, the one AntColony uses too); the trail is
+// a fixed-point grid per colony that evaporates every tick (crowd/ant_trail.h). This system is
+// the adapter: it maps the scene's colonies and entities to those, moves the ants between cell
+// centres, and sums the trail deposits over the ranks.
 //
 // Decomposition: the trail grid is global state that ants on every rank read and lay. Trails
 // are fixed-point integers: each rank adds up its own ants' deposits of a tick (deltas()), the
 // zone sums the deltas of all ranks (one MPI_Allreduce, exact and order-free in integers:
 // cluster/trail_exchange.h), and applyTrails() evaporates and adds them with integer
 // arithmetic, alike on every rank. An ant's choice reads the trails as they stood at the start
-// of the tick and a random number keyed by (seed, ant id, tick), and its route rides in the
-// entity (NpcData::crowd_*), so a run ends bitwise equal on any number of ranks.
+// of the tick and a random number keyed by (seed, ant id, tick), and its trip rides in the
+// entity (NpcData::crowd), so a run ends bitwise equal on any number of ranks.
 
 #include <cstdint>
 #include <memory>
@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "ai/octile.h"
+#include "crowd/ant_trail.h"
+#include "crowd/ant_trip.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
 
@@ -33,14 +35,9 @@ namespace zonesim::zone {
 
 struct WorldMap;
 
-/// What an ant is doing (AntData::mode).
-enum class AntMode : std::int32_t {
-  Searching = 0,  ///< walking away from the nest, looking for the food
-  Returning = 1,  ///< walking its route back to the nest (laying trail if it found food)
-};
-
-/// Trail units per unit of pheromone (fixed point).
-inline constexpr double kTrailScale = double(1 << 20);
+// The colony rule's names where the zone's code and tests read them.
+using crowd::AntMode;
+using crowd::kTrailScale;
 
 /// Per-colony figures of this rank's ants.
 struct ColonyStats {
