@@ -14,6 +14,17 @@ int directionOf(ai::Cell a, ai::Cell b) {
     if (gridStep(a, k) == b) return k;
   return -1;
 }
+
+// The trip rule's settings, once the nest and food are checked (the colony's error first).
+AntTripSettings tripSettings(const ai::GridMap& map, ai::Cell nest, ai::Cell food,
+                             const AntColonySettings& settings) {
+  if (!map.passable(nest.x, nest.y) || !map.passable(food.x, food.y))
+    throw std::invalid_argument("AntColony: nest and food must be walkable");
+  return {{settings.alpha, settings.beta, settings.knows_food_position, settings.exploitation},
+          settings.deposit,
+          settings.max_steps};
+}
+
 }  // namespace
 
 AntColony::AntColony(const ai::GridMap& map, ai::Cell nest, ai::Cell food,
@@ -22,40 +33,32 @@ AntColony::AntColony(const ai::GridMap& map, ai::Cell nest, ai::Cell food,
       nest_(nest),
       food_(food),
       settings_(settings),
+      trips_(map, nest, food, tripSettings(map, nest, food, settings)),
       rng_(settings.seed, 0xA17),
       tau_(std::size_t(map.width()) * map.height() * 8, settings.initial_pheromone),
       seen_(std::size_t(map.width()) * map.height(), 0) {
-  if (!map.passable(nest.x, nest.y) || !map.passable(food.x, food.y))
-    throw std::invalid_argument("AntColony: nest and food must be walkable");
   if (settings_.max_steps <= 0) settings_.max_steps = 4 * map.passableCount();
 }
 
-bool AntColony::walk(std::vector<ai::Cell>& route) {
+bool AntColony::walk(AntTrip& trip) {
+  // A stamp per cell says what the trip's route and dead ends say, without searching them.
   ++stamp_;
-  route.clear();
-  route.push_back(nest_);
-  seen_[map_.index(nest_.x, nest_.y)] = stamp_;
-  const AntChoice rule{settings_.alpha, settings_.beta, settings_.knows_food_position,
-                       settings_.exploitation};
+  auto mark = [&](ai::Cell n) { seen_[std::size_t(map_.index(n.x, n.y))] = stamp_; };
+  trips_.restart(trip);
+  mark(nest_);
   for (int moves = 0; moves < settings_.max_steps; ++moves) {
-    ai::Cell c = route.back();
+    const ai::Cell c = trips_.target(trip);
     if (c == food_) return true;
     const std::size_t from = std::size_t(map_.index(c.x, c.y)) * 8;
-    const int k = chooseAntStep(
-        map_, c, food_, rule, [&](int step, ai::Cell) { return tau_[from + step]; },
-        [&](ai::Cell n) { return seen_[map_.index(n.x, n.y)] != stamp_; },
+    const AntDecision d = trips_.decide(
+        trip, [&](int step, ai::Cell) { return tau_[from + step]; },
+        [&](ai::Cell n) { return seen_[std::size_t(map_.index(n.x, n.y))] != stamp_; },
         [&](int) { return rng_.uniform(); });
-    if (k < 0) {
-      // Dead end: back off one cell (it stays marked, so the ant will not return).
-      route.pop_back();
-      if (route.empty()) return false;
-      continue;
-    }
-    ai::Cell n = gridStep(c, k);
-    seen_[map_.index(n.x, n.y)] = stamp_;
-    route.push_back(n);
+    if (d == AntDecision::Moved) mark(trips_.target(trip));
+    // A dead end at the nest: this ant is lost.
+    if (d == AntDecision::StuckAtNest) return false;
   }
-  return route.back() == food_;
+  return trips_.target(trip) == food_;
 }
 
 AntIteration AntColony::iterate() {
@@ -64,10 +67,11 @@ AntIteration AntColony::iterate() {
   double sum = 0;
   for (int a = 0; a < settings_.ants; ++a) {
     std::vector<ai::Cell>& route = routes_[a];
-    if (!walk(route)) {
+    if (!walk(trip_)) {
       route.clear();
       continue;
     }
+    route = routeCells(trip_.route);
     double len = ai::pathLength(route);
     ++out.found;
     sum += len;

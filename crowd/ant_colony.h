@@ -8,6 +8,15 @@
 // stays unknown) or nothing at all. Ants that find the food lay
 // Q / length on the steps of their route; every iteration all trails evaporate by a fraction
 // rho, so routes that stop being used fade and early detours do not pin the colony.
+//
+// The zone's ant colonies (zone_node/systems/ant_movement.h) are ants of the same rule stepped
+// differently: entities that walk tick by tick, with a fixed-point trail per cell
+// (crowd/ant_trail.h) that must end bitwise equal on any number of ranks, and a way home
+// (crowd/ant_trip_rule.h). This colony is the textbook iteration-based ACS for studies: whole
+// walks per iteration, one random stream, a double trail per directed step, an ant that is
+// lost at a dead-ended nest or after max_steps moves (back-offs included), and no walk home.
+// What the two share is written once: the step choice (crowd/ant_step.h) and the searching
+// ant's decision with its dead-end back-off (AntTripRule::decide).
 
 #include <cstdint>
 #include <vector>
@@ -15,6 +24,8 @@
 #include "ai/grid_map.h"
 #include "common/rng.h"
 #include "crowd/ant_step.h"
+#include "crowd/ant_trip.h"
+#include "crowd/ant_trip_rule.h"
 
 namespace zonesim::crowd {
 
@@ -62,14 +73,16 @@ class AntColony {
   }
 
  private:
-  bool walk(std::vector<ai::Cell>& route);
+  bool walk(AntTrip& trip);
 
   const ai::GridMap& map_;
   ai::Cell nest_, food_;
   AntColonySettings settings_;
+  AntTripRule trips_;  // for decide(): walk() ends the walks, by its own count of moves
   Pcg32 rng_;
   std::vector<double> tau_;          // 8 directed steps per cell
-  std::vector<std::uint32_t> seen_;  // stamp per cell: visited by the current ant
+  AntTrip trip_;                     // the walking ant's
+  std::vector<std::uint32_t> seen_;  // stamp per cell: on trip_'s route or dead ends
   std::uint32_t stamp_ = 0;
   std::vector<ai::Cell> best_;
   double best_length_ = 0.0;
