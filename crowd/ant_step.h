@@ -1,11 +1,12 @@
 #pragma once
-// One ant's step on a grid, the rule that AntColony (crowd/ant_colony.h) and the zone's ant
-// colonies (zone_node/systems/ant_movement.h) both follow: the ant senses the eight cells
-// next to it, weighs each open one it has not walked this trip by trail^alpha * eta^beta and
-// takes the strongest outright with probability `exploitation`, else draws one in proportion
-// to its weight (the ACS rule). Where the trail lives (per directed step or per cell, double
-// or fixed point) and where the draws come from (one stream, or a counter-based hash) are the
-// caller's: they come in as callables, so the rule itself is written once. The moves and the
+// One ant's step on a grid, the rule that both colonies follow: AntColony (crowd/ant_colony.h)
+// and the zone's ants, through crowd/ant_trip_rule.h (zone_node/systems/ant_movement.h only
+// adapts entities to it). The ant senses the eight cells next to it, weighs each open one it
+// has not walked this trip by trail^alpha * eta^beta and takes the strongest outright with
+// probability `exploitation`, else draws one in proportion to its weight (the ACS rule). Where
+// the trail lives (per directed step or per cell, double or fixed point: crowd/ant_trail.h)
+// and where the draws come from (one stream, or a counter-based hash) are the caller's: they
+// come in as callables, so the rule itself is written once. The moves and the
 // no-corner-cutting rule are crowd/grid_step.h's.
 
 #include <cmath>
