@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   double duration = 10;
   std::uint64_t seed = 1;
   app.add_option("--scene", scene_path, "scene file")->required();
-  app.add_option("--gateway", gateway_addr, "gateway address HOST:PORT (loopback)")->required();
+  app.add_option("--gateway", gateway_addr, "gateway address HOST:PORT (IPv4: a dotted address or a host name)")->required();
   app.add_option("--players", players, "simulated players (default: the scene's clients.players)")
       ->check(CLI::Range(1, 100000));
   app.add_option("--duration", duration, "seconds to run")->check(CLI::PositiveNumber);
@@ -56,7 +56,11 @@ int main(int argc, char** argv) {
     zonesim::applyCommonOptions(common, "clients");
     zonesim::Scene scene = zonesim::loadScene(scene_path);
     zonesim::clients::FleetConfig cfg;
-    cfg.player.gateway = zonesim::gateway::Endpoint::parseLoopback(gateway_addr);
+    try {
+      cfg.player.gateway = zonesim::gateway::resolveEndpoint(gateway_addr);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error("--gateway " + gateway_addr + ": " + e.what());
+    }
     cfg.player.world = scene.world;
     cfg.player.input_hz = scene.clients.input_hz;
     cfg.player.retarget_seconds = scene.clients.retarget_seconds;

@@ -140,7 +140,8 @@ class SimPlayer {
                                                     std::int64_t now_ns);
 
   PlayerConfig config_;
-  gateway::UdpSocket socket_;
+  // Every interface, so a gateway on another host is reached through the route's source address.
+  gateway::UdpSocket socket_{gateway::Endpoint::any(0)};
   std::uint64_t nonce_;
   std::uint64_t token_ = 0, player_id_ = 0, avatar_id_ = 0;
   int zone_ = -1;

@@ -56,7 +56,7 @@ Gateway::Gateway(GatewayConfig config)
       grid_(config_.scene.world, config_.scene.interest_cell_size),
       tick_ns_(std::max<std::int64_t>(1, seconds(1.0 / config_.scene.tick_rate))),
       start_ns_(nowNs()),
-      socket_(config_.port),
+      socket_(config_.bind),
       sessions_(config_.gateway_id, config_.max_sessions, randomIncarnation()),
       handler_(sessions_, handlerConfig(config_)),
       cache_(graceNs(config_)),

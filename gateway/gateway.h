@@ -28,7 +28,7 @@ namespace zonesim::gateway {
 /// Everything a gateway is configured with.
 struct GatewayConfig {
   Scene scene;
-  std::uint16_t port = 0;        ///< 0 = ephemeral
+  Endpoint bind = Endpoint::loopback(0);  ///< UDP address for players; port 0 = ephemeral
   std::uint32_t gateway_id = 1;  ///< 1..65535, bits 32-47 of the player ids issued here
   int dds_domain = 0;
   std::uint64_t spawn_seed = 1;   ///< seeds avatar spawn positions
@@ -56,6 +56,8 @@ class Gateway {
 
   /// The bound UDP port.
   std::uint16_t port() const { return socket_.localPort(); }
+  /// The bound UDP address and port.
+  const Endpoint& local() const { return socket_.local(); }
   /// Runs until stop is true or duration_s (if > 0) has passed. Returns within one tick.
   void run(const std::atomic<bool>& stop, double duration_s = 0);
   /// The exit summary as JSON.

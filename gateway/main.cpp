@@ -1,11 +1,13 @@
 // gateway: UDP server for simulated players, DDS client of the zones. Prints
-// "gateway listening on 127.0.0.1:PORT" once ready; exits cleanly on SIGINT/SIGTERM or after
+// "gateway listening on ADDR:PORT" once ready (the bound address: --bind, 127.0.0.1 by default); exits cleanly on SIGINT/SIGTERM or after
 // --duration, printing a JSON summary line; exits non-zero with a message on any error.
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "common/cli.h"
 #include "common/log.h"
@@ -38,9 +40,13 @@ int main(int argc, char** argv) {
   zonesim::gateway::GatewayConfig cfg;
   double duration = 0;
   std::int64_t seed = -1;
-  int port = 0;
+  int port = -1;
+  std::string bind_text = "127.0.0.1";
   app.add_option("--scene", scene_path, "scene file")->required();
-  app.add_option("--port", port, "UDP port on 127.0.0.1 (0 = ephemeral)")
+  app.add_option("--bind", bind_text,
+                 "UDP address for players, ADDR or ADDR:PORT: an IPv4 address (0.0.0.0 = every "
+                 "interface), an interface name or a host name (default 127.0.0.1)");
+  app.add_option("--port", port, "UDP port, when --bind gives none (default 0 = ephemeral)")
       ->check(CLI::Range(0, 65535));
   app.add_option("--port-file", port_file, "write the bound port to this file");
   app.add_option("--dds-domain", cfg.dds_domain,
@@ -78,16 +84,30 @@ int main(int argc, char** argv) {
   try {
     zonesim::applyCommonOptions(common, "gateway");
     cfg.scene = zonesim::loadScene(scene_path);
-    cfg.port = std::uint16_t(port);
+    // What the user typed, so an error names the options at fault.
+    std::string bind_option = "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
+    try {
+      cfg.bind = zonesim::gateway::parseBindAddress(bind_text, std::uint16_t(std::max(port, 0)));
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(bind_option + ": " + e.what());
+    }
+    if (port >= 0 && bind_text.find(':') != std::string::npos)
+      throw std::runtime_error(bind_option + ": the port is given twice; use one of them");
     if (resend_early) cfg.loss_detection = zonesim::gateway::LossDetection::LaterAck;
     cfg.spawn_seed = seed >= 0 ? std::uint64_t(seed) : cfg.scene.seed;
     if (!metrics_dir.empty()) {
       std::filesystem::create_directories(metrics_dir);
       cfg.metrics_path = metrics_dir + "/gateway.jsonl";
     }
-    zonesim::gateway::Gateway gateway(cfg);
+    std::optional<zonesim::gateway::Gateway> bound;
+    try {
+      bound.emplace(cfg);
+    } catch (const zonesim::gateway::BindError& e) {
+      throw std::runtime_error(bind_option + ": " + e.what());
+    }
+    zonesim::gateway::Gateway& gateway = *bound;
     if (!port_file.empty()) writeFile(port_file, std::to_string(gateway.port()));
-    std::printf("gateway listening on 127.0.0.1:%u\n", unsigned(gateway.port()));
+    std::printf("gateway listening on %s\n", gateway.local().str().c_str());
     std::fflush(stdout);
     gateway.run(zonesim::stopRequested(), duration);
     std::string summary = gateway.summaryJson();

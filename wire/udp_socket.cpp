@@ -2,9 +2,12 @@
 
 #include <arpa/inet.h>
 #include <fcntl.h>
+#include <ifaddrs.h>
+#include <netdb.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <stdexcept>
 #include <system_error>
@@ -43,41 +46,105 @@ Endpoint Endpoint::loopback(std::uint16_t port) {
   return {INADDR_LOOPBACK, port};
 }
 
-Endpoint Endpoint::parseLoopback(const std::string& text) {
-  auto colon = text.rfind(':');
-  if (colon == std::string::npos)
-    throw std::invalid_argument("expected HOST:PORT, got '" + text + "'");
-  std::string host = text.substr(0, colon), port_text = text.substr(colon + 1);
-  if (host == "localhost") host = "127.0.0.1";
-  in_addr a{};
-  if (inet_pton(AF_INET, host.c_str(), &a) != 1)
-    throw std::invalid_argument("not an IPv4 address: '" + host + "'");
-  if ((ntohl(a.s_addr) >> 24) != 127)
-    throw std::invalid_argument("only loopback addresses are supported: '" + host + "'");
-  std::size_t used = 0;
-  unsigned long port = 0;
-  try {
-    port = std::stoul(port_text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != port_text.size() || port == 0 || port > 65535)
-    throw std::invalid_argument("bad port: '" + port_text + "'");
-  return {ntohl(a.s_addr), std::uint16_t(port)};
+Endpoint Endpoint::any(std::uint16_t port) {
+  return {INADDR_ANY, port};
 }
 
-UdpSocket::UdpSocket(std::uint16_t port) {
+namespace {
+
+struct HostPort {
+  std::string host;
+  std::optional<std::uint16_t> port;
+};
+
+// "HOST:PORT" or, where the port may be left out, "HOST". Ports are plain decimal digits.
+HostPort splitHostPort(const std::string& text, bool port_required, int min_port) {
+  auto colon = text.rfind(':');
+  if (colon == std::string::npos) {
+    if (port_required) throw std::invalid_argument("expected HOST:PORT, got '" + text + "'");
+    return {text, std::nullopt};
+  }
+  HostPort hp{text.substr(0, colon), std::nullopt};
+  std::string port_text = text.substr(colon + 1);
+  bool digits = !port_text.empty() && port_text.size() <= 5 &&
+                std::all_of(port_text.begin(), port_text.end(),
+                            [](char c) { return c >= '0' && c <= '9'; });
+  unsigned long port = digits ? std::stoul(port_text) : 0;
+  if (!digits || port < unsigned(min_port) || port > 65535)
+    throw std::invalid_argument("bad port '" + port_text + "' in '" + text + "' (expected " +
+                                std::to_string(min_port) + "-65535)");
+  hp.port = std::uint16_t(port);
+  return hp;
+}
+
+std::optional<std::uint32_t> numericAddress(const std::string& host) {
+  in_addr a{};
+  if (inet_pton(AF_INET, host.c_str(), &a) != 1) return std::nullopt;
+  return ntohl(a.s_addr);
+}
+
+// The first IPv4 address of the interface with this name, if there is one.
+std::optional<std::uint32_t> interfaceAddress(const std::string& name) {
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return std::nullopt;
+  std::optional<std::uint32_t> found;
+  for (ifaddrs* i = list; i != nullptr && !found; i = i->ifa_next)
+    if (i->ifa_addr != nullptr && i->ifa_addr->sa_family == AF_INET && name == i->ifa_name)
+      found = ntohl(reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr.s_addr);
+  freeifaddrs(list);
+  return found;
+}
+
+std::uint32_t resolvedAddress(const std::string& host) {
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_DGRAM;
+  addrinfo* result = nullptr;
+  int rc = getaddrinfo(host.c_str(), nullptr, &hints, &result);
+  if (rc != 0 || result == nullptr)
+    throw std::invalid_argument("cannot resolve host '" + host +
+                                "' to an IPv4 address: " + gai_strerror(rc));
+  std::uint32_t address = ntohl(reinterpret_cast<const sockaddr_in*>(result->ai_addr)->sin_addr.s_addr);
+  freeaddrinfo(result);
+  return address;
+}
+
+}  // namespace
+
+Endpoint resolveEndpoint(const std::string& text) {
+  HostPort hp = splitHostPort(text, true, 1);
+  if (hp.host.empty()) throw std::invalid_argument("no host in '" + text + "'");
+  std::optional<std::uint32_t> numeric = numericAddress(hp.host);
+  return {numeric ? *numeric : resolvedAddress(hp.host), *hp.port};
+}
+
+Endpoint parseBindAddress(const std::string& text, std::uint16_t default_port) {
+  HostPort hp = splitHostPort(text, false, 0);
+  if (hp.host.empty()) throw std::invalid_argument("no address in '" + text + "'");
+  std::uint16_t port = hp.port.value_or(default_port);
+  if (auto numeric = numericAddress(hp.host)) return {*numeric, port};
+  if (auto local = interfaceAddress(hp.host)) return {*local, port};
+  return {resolvedAddress(hp.host), port};
+}
+
+BindError::BindError(int err, const Endpoint& where)
+    : std::system_error(err, std::generic_category(), "cannot bind " + where.str()),
+      where_(where) {}
+
+UdpSocket::UdpSocket(std::uint16_t port) : UdpSocket(Endpoint::loopback(port)) {}
+
+UdpSocket::UdpSocket(const Endpoint& local) {
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throwErrno("socket");
   int size = kSocketBufferBytes;
   // Best effort: the kernel caps these at rmem_max/wmem_max, which is fine.
   ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &size, sizeof size);
   ::setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &size, sizeof size);
-  sockaddr_in sa = Endpoint::loopback(port).toSockaddr();
+  sockaddr_in sa = local.toSockaddr();
   if (::bind(fd_, reinterpret_cast<sockaddr*>(&sa), sizeof sa) != 0) {
     int err = errno;
     close();
-    throw std::system_error(err, std::generic_category(), "bind 127.0.0.1:" + std::to_string(port));
+    throw BindError(err, local);
   }
   socklen_t len = sizeof sa;
   if (::getsockname(fd_, reinterpret_cast<sockaddr*>(&sa), &len) != 0) {
@@ -85,7 +152,7 @@ UdpSocket::UdpSocket(std::uint16_t port) {
     close();
     throw std::system_error(err, std::generic_category(), "getsockname");
   }
-  port_ = ntohs(sa.sin_port);
+  local_ = Endpoint::fromSockaddr(sa);
 }
 
 UdpSocket::~UdpSocket() {
@@ -93,13 +160,13 @@ UdpSocket::~UdpSocket() {
 }
 
 UdpSocket::UdpSocket(UdpSocket&& other) noexcept
-    : fd_(std::exchange(other.fd_, -1)), port_(std::exchange(other.port_, 0)) {}
+    : fd_(std::exchange(other.fd_, -1)), local_(std::exchange(other.local_, Endpoint{})) {}
 
 UdpSocket& UdpSocket::operator=(UdpSocket&& other) noexcept {
   if (this != &other) {
     close();
     fd_ = std::exchange(other.fd_, -1);
-    port_ = std::exchange(other.port_, 0);
+    local_ = std::exchange(other.local_, Endpoint{});
   }
   return *this;
 }

@@ -1,6 +1,8 @@
 #pragma once
-// A non-blocking IPv4 UDP socket bound to the loopback interface, with the endpoint type used to
-// key sessions by source address. Errors are thrown as std::system_error; nothing here exits.
+// A non-blocking IPv4 UDP socket, with the endpoint type used to key sessions by source address
+// and the parsing of the addresses users type (IPv4 only: the cluster networks this targets are
+// IPv4, and one family keeps the session key a single 48-bit value). Errors are thrown as
+// std::invalid_argument (bad text), std::system_error or BindError; nothing here exits.
 
 #include <netinet/in.h>
 
@@ -9,6 +11,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <system_error>
 
 namespace zonesim::gateway {
 
@@ -23,9 +26,30 @@ struct Endpoint {
   static Endpoint fromSockaddr(const sockaddr_in& sa);
   /// 127.0.0.1:port.
   static Endpoint loopback(std::uint16_t port);
-  /// Parses "HOST:PORT" where HOST is a dotted IPv4 loopback address or "localhost"; throws
-  /// std::invalid_argument otherwise (the simulator only ever talks over loopback).
-  static Endpoint parseLoopback(const std::string& text);
+  /// 0.0.0.0:port: every interface (a client's socket, so it reaches any gateway's route).
+  static Endpoint any(std::uint16_t port);
+};
+
+/// The address to send to from "HOST:PORT": HOST is a dotted IPv4 address or a name resolved
+/// with getaddrinfo (IPv4 results only), PORT 1-65535. Throws std::invalid_argument with a
+/// message that quotes the text and says what is wrong (no colon, bad port, unknown host).
+Endpoint resolveEndpoint(const std::string& text);
+
+/// The address to bind from "ADDR" or "ADDR:PORT" (PORT 0-65535, default_port when absent):
+/// ADDR is a dotted IPv4 address (0.0.0.0 = every interface), the name of a local interface
+/// (its first IPv4 address) or a host name that resolves to an IPv4 address. Throws
+/// std::invalid_argument as resolveEndpoint does; whether the address is local shows at bind.
+Endpoint parseBindAddress(const std::string& text, std::uint16_t default_port);
+
+/// A bind that failed (address in use, not a local address, no permission): what() is one line
+/// naming the address, e.g. "cannot bind 10.0.0.9:4000: Cannot assign requested address".
+class BindError : public std::system_error {
+ public:
+  BindError(int err, const Endpoint& where);
+  const Endpoint& where() const { return where_; }
+
+ private:
+  Endpoint where_;
 };
 
 /// Hash for unordered containers keyed by endpoint.
@@ -42,11 +66,13 @@ struct Received {
   Endpoint from;
 };
 
-/// Owns a non-blocking UDP socket on 127.0.0.1.
+/// Owns a non-blocking UDP socket.
 class UdpSocket {
  public:
-  /// Binds 127.0.0.1:port (0 = ephemeral); throws std::system_error on failure.
+  /// Binds 127.0.0.1:port (0 = ephemeral); throws BindError or std::system_error on failure.
   explicit UdpSocket(std::uint16_t port = 0);
+  /// Binds local (port 0 = ephemeral); throws BindError or std::system_error on failure.
+  explicit UdpSocket(const Endpoint& local);
   ~UdpSocket();
   UdpSocket(UdpSocket&& other) noexcept;
   UdpSocket& operator=(UdpSocket&& other) noexcept;
@@ -55,7 +81,9 @@ class UdpSocket {
 
   int fd() const { return fd_; }
   /// The bound port (useful after binding port 0).
-  std::uint16_t localPort() const { return port_; }
+  std::uint16_t localPort() const { return local_.port; }
+  /// The bound address and port.
+  const Endpoint& local() const { return local_; }
   /// Sends one datagram; false if the kernel buffer is full (the datagram is dropped, as UDP
   /// may do anyway); throws on other errors.
   bool sendTo(const Endpoint& to, std::span<const std::uint8_t> bytes);
@@ -65,7 +93,7 @@ class UdpSocket {
  private:
   void close();
   int fd_ = -1;
-  std::uint16_t port_ = 0;
+  Endpoint local_;
 };
 
 }  // namespace zonesim::gateway

@@ -23,11 +23,12 @@ with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
     zones = h.start(h.mpirun(4, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 600,
                              "--realtime", "--metrics", out, "--dds-domain", domain, *balance),
                     out / "zones.log", env)
-    gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file", out / "port",
+    gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--bind", "127.0.0.1", "--port", 0,
+                       "--port-file", out / "port",
                        "--dds-domain", domain, "--metrics", out], out / "gateway.log", env)
     port = h.wait_for_port(out / "port", gateway, out / "gateway.log")
     time.sleep(2)
-    h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway", f"127.0.0.1:{port}", "--players", 12,
+    h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway", f"localhost:{port}", "--players", 12,
            "--duration", CLIENT_SECONDS, "--summary", out / "clients.json", "--metrics", out],
           out / "clients.log", env, timeout=60)
     time.sleep(2)  # 60 ticks for the last despawn requests to reach the zones
@@ -38,6 +39,8 @@ with tempfile.TemporaryDirectory(prefix="zs_e2e_") as tmp:
     if not all((out / f"zone_{r}_summary.json").exists() for r in range(4)):
         h.fail("zones did not write their summaries\n%s" % h.tail(out / "zones.log"))
 
+    h.check(f"gateway listening on 127.0.0.1:{port}" in (out / "gateway.log").read_text(),
+            "the gateway named the address it bound; players reached it by name (localhost)")
     clients = h.load_json(out / "clients.json")["clients"]
     zone_summaries = [h.load_json(out / f"zone_{r}_summary.json") for r in range(4)]
     h.check(len(clients) == 12, "12 players reported")
