@@ -91,6 +91,8 @@ class ZoneNode {
   const std::vector<std::uint64_t>& handoffLatencyTicks() const {
     return players_.handoffLatencyTicks();
   }
+  /// Entities this tick's exchange moved to other ranks (with their destination).
+  const std::vector<Departure>& migratedThisTick() const { return last_migration_.departed; }
   /// Position and velocity of every live particle of this zone's emitters.
   std::vector<std::array<double, 6>> liveParticles() const;
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").

@@ -4,6 +4,16 @@
 
 namespace zonesim::zone {
 
+namespace {
+// {"1":12,"3":4}: a JSON object keyed by rank.
+std::string byRank(const std::map<int, std::uint64_t>& counts) {
+  std::string out;
+  for (const auto& [rank, n] : counts)
+    out += (out.empty() ? "\"" : ",\"") + std::to_string(rank) + "\":" + std::to_string(n);
+  return "{" + out + "}";
+}
+}  // namespace
+
 ZoneReport::ZoneReport(const ZoneNode& zone) : entities_start_(zone.store().size()) {}
 
 void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWriter& metrics) {
@@ -14,6 +24,11 @@ void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWr
     phase_totals_.stage_seconds[i] += p.stage_seconds[i];
   for (std::uint64_t t : zone.handoffLatencyTicks())
     handoff_latency_ms_.push_back(double(t) * zone.tickSeconds() * 1e3);
+  for (const Departure& d : zone.migratedThisTick()) {
+    if (d.to_rank < 0) continue;
+    ++migrated_to_[d.to_rank];
+    if (d.announced_avatar) ++avatars_to_[d.to_rank];
+  }
   const TickCounters& c = zone.counters();
   for (const CounterField& f : kCounterFields)
     totals_.*f.field = f.gauge ? c.*f.field : totals_.*f.field + c.*f.field;
@@ -51,6 +66,8 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.add("conservation_failures", zone.conservation().failures);
   s.add("particle_backend", zone.particleBackend());
   s.add("flock_backend", zone.flockBackend());
+  s.addRaw("migrated_out_to", byRank(migrated_to_));
+  s.addRaw("avatars_out_to", byRank(avatars_to_));
   s.add("handoffs_timed", std::uint64_t(handoff_latency_ms_.size()));
   if (!handoff_latency_ms_.empty()) {
     s.add("handoff_latency_ms_p50", percentile(handoff_latency_ms_, 50))

@@ -3,6 +3,7 @@
 // and one summary object at the end (entities, migrations, handoffs, tick-time percentiles).
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ class ZoneReport {
   TickProfile phase_totals_;
   TickCounters totals_;  // event counters summed; gauges hold their last value
   std::vector<double> handoff_latency_ms_;
+  // Per destination rank, so a run across hosts can show which moves crossed a host boundary.
+  std::map<int, std::uint64_t> migrated_to_;
+  std::map<int, std::uint64_t> avatars_to_;
 };
 
 }  // namespace zonesim::zone
