@@ -1,10 +1,17 @@
 #include "zone_node/zone_report.h"
 
+#include <unistd.h>
+
 #include "common/stats.h"
 
 namespace zonesim::zone {
 
 namespace {
+std::string hostName() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string();
+}
+
 // {"1":12,"3":4}: a JSON object keyed by rank.
 std::string byRank(const std::map<int, std::uint64_t>& counts) {
   std::string out;
@@ -50,6 +57,7 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   const ZoneRect r = zone.layout().rect(zone.rank());
   JsonLine s;
   s.add("rank", zone.rank()).add("ranks", zone.size()).add("ticks", zone.tickCount());
+  s.add("host", hostName());  // which rank ran where, for runs across hosts
   s.addRaw("rect", "[" + std::to_string(r.min_x) + "," + std::to_string(r.min_z) + "," +
                        std::to_string(r.max_x) + "," + std::to_string(r.max_z) + "]");
   s.add("entities_start", entities_start_).add("entities_end", std::uint64_t(zone.store().size()));
