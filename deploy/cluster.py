@@ -1,0 +1,566 @@
+#!/usr/bin/env python3
+"""Starts a zonesim cluster from one cluster file: the zone ranks with mpirun over a generated
+hostfile, the gateways and the client fleets on their hosts; gathers every process's metrics into
+one run folder and prints deploy/report.py's report. Called by deploy/cluster.sh (which builds
+first when ZONESIM_BIN is not set); usage: cluster.py CLUSTER_FILE [RUN_DIR].
+
+The cluster file is INI (sections and `key = value`, `#` comments); values may use ${VAR} and
+${VAR:-default} from the environment. Relative paths are relative to the source folder.
+
+  [cluster]   scene, duration (seconds of player traffic), network (CIDR that MPI's TCP uses,
+              needed with several hosts), btl, yield (auto | on | off), dds_domain (default:
+              $ZONESIM_DDS_DOMAIN or random), truth_every, zone_args, client_args,
+              shared_storage (yes | no: copy each ssh host's run folder back at the end)
+  [host NAME] reach (local | netns NAMESPACE | ssh [USER@]HOST | slurm NODE), address (IPv4 on
+              the cluster network; default 127.0.0.1 for local, else NAME resolved), zones
+              (ranks there, default 0), cores (default: nproc there)
+  [gateway NAME]  host, bind (ADDR[:PORT], default the host's address), id (default 1, 2, ...)
+  [fleet NAME]    host, gateway, players, args
+
+Hosts that share cores (processes on one machine, namespaces included, beyond its cores) get
+mpi_yield_when_idle: Open MPI only knows the slots it is given and otherwise busy-polls, so a
+collective waits a scheduler slice for every descheduled rank (24 ms ticks instead of 0.9 ms
+for 4 ranks in 2 namespaces on 2 cores, issue 13).
+"""
+import configparser
+import ipaddress
+import os
+import random
+import re
+import shlex
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+KEYS = {
+    "cluster": {"scene", "duration", "network", "btl", "yield", "dds_domain", "truth_every",
+                "zone_args", "client_args", "shared_storage"},
+    "host": {"reach", "address", "zones", "cores"},
+    "gateway": {"host", "bind", "id", "args"},
+    "fleet": {"host", "gateway", "players", "args"},
+}
+REACHES = ("local", "netns", "ssh", "slurm")
+# Zones outlive the players by this much at most: they are stopped once the fleets are done.
+ZONE_SAFETY_S = 300
+
+
+class ClusterError(Exception):
+    """A bad cluster file or a failed start: one line naming what and where."""
+
+
+@dataclass
+class Host:
+    name: str
+    reach: str
+    target: str  # namespace, ssh destination or node; "" for local
+    address: str
+    zones: int
+    cores: int = 0
+    tmp: str = ""  # TMPDIR (Open MPI's session folder) of processes there; "" = theirs
+
+    def machine(self):
+        """Hosts on the same machine share its cores."""
+        return "this machine" if self.reach in ("local", "netns") else self.target
+
+    def describe(self):
+        return f"host {self.name} ({self.reach}{' ' + self.target if self.target else ''})"
+
+
+@dataclass
+class Gateway:
+    name: str
+    host: Host
+    bind: str
+    id: int
+    args: list
+    folder: Path = None
+    proc: subprocess.Popen = None
+    log: Path = None
+    address: str = ""  # ADDR:PORT it listens on
+
+
+@dataclass
+class Fleet:
+    name: str
+    host: Host
+    gateway: Gateway
+    players: int
+    args: list
+    folder: Path = None
+    proc: subprocess.Popen = None
+    log: Path = None
+
+
+@dataclass
+class Cluster:
+    scene: Path
+    duration: float
+    network: str
+    btl: str
+    yield_mode: str
+    dds_domain: int
+    truth_every: int
+    zone_args: list
+    client_args: list
+    shared_storage: bool
+    hosts: dict
+    gateways: list
+    fleets: list = field(default_factory=list)
+
+
+def expand(text, where):
+    def var(m):
+        name, default = m.group(1), m.group(3)
+        if name in os.environ and os.environ[name] != "":
+            return os.environ[name]
+        if default is not None:
+            return default
+        raise ClusterError(f"{where}: ${{{name}}} is not set and has no default")
+    return re.sub(r"\$\{([A-Za-z_][A-Za-z0-9_]*)(:-([^}]*))?\}", var, text)
+
+
+def number(text, where, kind=int, low=0):
+    try:
+        v = kind(text)
+    except ValueError:
+        raise ClusterError(f"{where}: '{text}' is not a number")
+    if v < low:
+        raise ClusterError(f"{where}: {text} is below {low}")
+    return v
+
+
+def ipv4_of(name, where):
+    try:
+        return str(ipaddress.IPv4Address(name))
+    except ValueError:
+        pass
+    try:
+        return socket.gethostbyname(name)
+    except OSError as e:
+        raise ClusterError(f"{where}: cannot resolve '{name}' to an IPv4 address ({e})")
+
+
+def load(path):
+    parser = configparser.ConfigParser(interpolation=None, inline_comment_prefixes=("#",),
+                                       comment_prefixes=("#",), empty_lines_in_values=False)
+    try:
+        with open(path) as f:
+            parser.read_file(f)
+    except (OSError, configparser.Error) as e:
+        raise ClusterError(f"{path}: {str(e).splitlines()[0]}")
+    sections = {"cluster": {}, "host": {}, "gateway": {}, "fleet": {}}
+    for title in parser.sections():
+        kind, _, name = title.partition(" ")
+        where = f"{path} [{title}]"
+        if kind not in sections or (kind == "cluster") != (name == ""):
+            raise ClusterError(f"{where}: unknown section (expected [cluster], [host NAME], "
+                               f"[gateway NAME] or [fleet NAME])")
+        values = {k: expand(v, f"{where} {k}") for k, v in parser.items(title)}
+        unknown = set(values) - KEYS[kind]
+        if unknown:
+            raise ClusterError(f"{where}: unknown key {sorted(unknown)[0]} (known: {', '.join(sorted(KEYS[kind]))})")
+        if kind == "cluster":
+            sections["cluster"] = values
+        else:
+            sections[kind][name] = (values, where)
+
+    c = sections["cluster"]
+    where = f"{path} [cluster]"
+    if "scene" not in c:
+        raise ClusterError(f"{where}: scene is missing")
+    scene = (ROOT / c["scene"]).resolve()
+    if not scene.is_file():
+        raise ClusterError(f"{where} scene: no such file {scene}")
+    hosts = {}
+    for name, (v, w) in sections["host"].items():
+        if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._-]*", name):
+            raise ClusterError(f"{w}: host names are letters, digits, '.', '_' and '-'")
+        reach = v.get("reach", "local").split()
+        if not reach or reach[0] not in REACHES or (reach[0] == "local") != (len(reach) == 1) or len(reach) > 2:
+            raise ClusterError(f"{w} reach: '{v.get('reach')}' (expected local, netns NAMESPACE, "
+                               f"ssh [USER@]HOST or slurm NODE)")
+        target = reach[1] if len(reach) == 2 else ""
+        default_address = "127.0.0.1" if reach[0] == "local" else (target.split("@")[-1] if target else name)
+        address = ipv4_of(v.get("address", default_address), f"{w} address")
+        hosts[name] = Host(name, reach[0], target, address, number(v.get("zones", "0"), f"{w} zones"),
+                           number(v.get("cores", "0"), f"{w} cores"))
+    if not hosts:
+        raise ClusterError(f"{path}: no [host NAME] section")
+    reaches = {h.reach for h in hosts.values()}
+    if sum(h.reach == "local" for h in hosts.values()) > 1:
+        raise ClusterError(f"{path}: more than one host with reach = local")
+    if "slurm" in reaches and reaches - {"slurm", "local"}:
+        raise ClusterError(f"{path}: slurm hosts cannot be mixed with netns or ssh hosts")
+    if sum(h.zones for h in hosts.values()) == 0:
+        raise ClusterError(f"{path}: no host runs zones (zones = N)")
+
+    def host_of(v, w):
+        if v.get("host") not in hosts:
+            raise ClusterError(f"{w} host: '{v.get('host')}' is not a [host NAME] of this file")
+        return hosts[v["host"]]
+
+    gateways = {}
+    for i, (name, (v, w)) in enumerate(sections["gateway"].items()):
+        h = host_of(v, w)
+        gateways[name] = Gateway(name, h, v.get("bind", h.address), number(v.get("id", str(i + 1)), f"{w} id", low=1),
+                                 shlex.split(v.get("args", "")))
+    fleets = []
+    for name, (v, w) in sections["fleet"].items():
+        h = host_of(v, w)
+        g = v.get("gateway", next(iter(gateways), None) if len(gateways) == 1 else None)
+        if g not in gateways:
+            raise ClusterError(f"{w} gateway: '{v.get('gateway')}' is not a [gateway NAME] of this file")
+        fleets.append(Fleet(name, h, gateways[g], number(v.get("players", "32"), f"{w} players", low=1),
+                            shlex.split(v.get("args", ""))))
+    domain = os.environ.get("ZONESIM_DDS_DOMAIN") or c.get("dds_domain", "auto")
+    # Domains 1-90: their ports (7400 + 250 d + [0, 250)) lie below the ephemeral range, so no
+    # player or gateway socket can draw one and receive Cyclone's discovery packets.
+    domain = random.randint(1, 90) if domain == "auto" else number(domain, f"{where} dds_domain")
+    network = c.get("network", "")
+    if network:
+        try:
+            ipaddress.IPv4Network(network, strict=False)
+        except ValueError:
+            raise ClusterError(f"{where} network: '{network}' is not an IPv4 network (a.b.c.d/n)")
+    if len(hosts) > 1 and not network and reaches != {"slurm"}:
+        raise ClusterError(f"{where}: network (a.b.c.d/n) is needed with several hosts, so MPI "
+                           f"uses the cluster network and no other interface")
+    yield_mode = c.get("yield", "auto")
+    if yield_mode not in ("auto", "on", "off"):
+        raise ClusterError(f"{where} yield: '{yield_mode}' (expected auto, on or off)")
+    storage = c.get("shared_storage", "yes")
+    if storage not in ("yes", "no"):
+        raise ClusterError(f"{where} shared_storage: '{storage}' (expected yes or no)")
+    return Cluster(scene, number(c.get("duration", "20"), f"{where} duration", float, 1), network,
+                   c.get("btl", ""), yield_mode, domain, number(c.get("truth_every", "0"), f"{where} truth_every"),
+                   shlex.split(c.get("zone_args", "")), shlex.split(c.get("client_args", "")),
+                   storage == "yes", hosts, list(gateways.values()), fleets)
+
+
+def on_host(host, argv, env=None):
+    """argv run on host, with env (a dict) set there."""
+    env = dict(env or {})
+    if host.tmp:
+        env["TMPDIR"] = host.tmp
+    assignments = [f"{k}={v}" for k, v in env.items()]
+    argv = [str(a) for a in argv]
+    if host.reach == "local":
+        return ["env", *assignments, *argv]
+    if host.reach == "netns":
+        # Its own hostname (a UTS namespace) as well as its own network: Open MPI names session
+        # folders and shared-memory segments after the host, and two daemons that think they
+        # are the same host collide (an orted crashed in hwloc's topology write, issue 13).
+        return ["ip", "netns", "exec", host.target, "unshare", "--uts", "sh", "-c",
+                'hostname "$0" && exec "$@"', host.name, "env", *assignments, *argv]
+    if host.reach == "ssh":
+        remote = f"cd {shlex.quote(str(ROOT))} && exec env {' '.join(map(shlex.quote, assignments + argv))}"
+        return ["ssh", "-o", "BatchMode=yes", host.target, remote]
+    return ["srun", "--nodes=1", "--ntasks=1", "--overlap", "-w", host.target, "env", *assignments, *argv]
+
+
+def mpi_agent(cluster, path):
+    """mpirun's plm_rsh_agent: `agent HOST COMMAND...` runs COMMAND (a shell line) on HOST."""
+    lines = ["#!/bin/sh", "# Written by deploy/cluster.py: starts Open MPI's daemon on a host of the cluster file.",
+             'host="$1"; shift', 'case "$host" in']
+    for h in cluster.hosts.values():
+        if h.reach == "slurm":
+            continue  # Open MPI starts its daemons with srun itself
+        if h.reach == "ssh":  # as Open MPI calls ssh by default
+            lines.append(f"  {shlex.quote(h.name)}) exec ssh -o BatchMode=yes {shlex.quote(h.target)} \"$@\" ;;")
+            continue
+        lines.append(f"  {shlex.quote(h.name)}) exec {shlex.join(on_host(h, ['sh', '-c']))} \"$*\" ;;")
+    lines += ['  *) echo "mpi agent: $host is not a host of the cluster file" >&2; exit 1 ;;', "esac"]
+    path.write_text("\n".join(lines) + "\n")
+    path.chmod(0o755)
+
+
+def dds_config(host, peers, max_index):
+    peer_lines = "\n".join(f'        <Peer address="{p}"/>' for p in peers)
+    return f"""<?xml version="1.0" encoding="UTF-8"?>
+<!-- Written by deploy/cluster.py for host {host.name}: its cluster address only, unicast
+     discovery to every host that runs zones or gateways (multicast is often filtered between
+     hosts and is off), and participant indices enough for the DDS processes of one host. -->
+<CycloneDDS xmlns="https://cdds.io/config">
+  <Domain Id="any">
+    <General>
+      <Interfaces>
+        <NetworkInterface address="{host.address}"/>
+      </Interfaces>
+      <AllowMulticast>false</AllowMulticast>
+      <MaxMessageSize>65500B</MaxMessageSize>
+    </General>
+    <Discovery>
+      <ParticipantIndex>auto</ParticipantIndex>
+      <MaxAutoParticipantIndex>{max_index}</MaxAutoParticipantIndex>
+      <Peers>
+{peer_lines}
+      </Peers>
+    </Discovery>
+    <Tracing>
+      <Verbosity>warning</Verbosity>
+      <OutputFile>stderr</OutputFile>
+    </Tracing>
+  </Domain>
+</CycloneDDS>
+"""
+
+
+class Launch:
+    def __init__(self, cluster, run_dir, bin_dir):
+        self.c = cluster
+        self.run = run_dir
+        self.bin = bin_dir
+        self.procs = []  # (Popen, what, log), stopped in reverse order
+        self.zones = None
+        self.tmp = None
+
+    def log(self, msg):
+        print(msg, flush=True)
+
+    def start(self, what, argv, log_path):
+        log = open(log_path, "w")
+        p = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                             start_new_session=True)
+        self.procs.append((p, what, log_path))
+        return p
+
+    def fail(self, what, msg, log_path=None):
+        tail = ""
+        if log_path and Path(log_path).exists():
+            lines = Path(log_path).read_text(errors="replace").splitlines()[-12:]
+            tail = "".join("\n    " + l for l in lines)
+        raise ClusterError(f"{what}: {msg}{tail}")
+
+    def probe_hosts(self):
+        """Every host answers (nproc), or the start stops naming it."""
+        for h in self.c.hosts.values():
+            if h.reach in ("local", "netns"):
+                h.tmp = str(Path(self.tmp) / h.name)
+                Path(h.tmp).mkdir(parents=True, exist_ok=True)
+            try:
+                r = subprocess.run(on_host(h, ["nproc"]), capture_output=True, text=True, timeout=60)
+            except (OSError, subprocess.TimeoutExpired) as e:
+                raise ClusterError(f"{h.describe()}: cannot run a command there ({e})")
+            if r.returncode != 0 or not r.stdout.strip().isdigit():
+                msg = (r.stderr.strip().splitlines() or ["no output"])[-1]
+                raise ClusterError(f"{h.describe()}: cannot run a command there ({msg})")
+            h.cores = h.cores or int(r.stdout)
+
+    def shared_cores(self):
+        """Machines whose zone ranks, gateways and fleets outnumber their cores."""
+        load, cores = {}, {}
+        for h in self.c.hosts.values():
+            m = h.machine()
+            load[m] = load.get(m, 0) + h.zones
+            cores[m] = min(cores.get(m, h.cores), h.cores)
+        for p in self.c.gateways + self.c.fleets:
+            load[p.host.machine()] += 1
+        return [f"{m}: {load[m]} processes on {cores[m]} cores" for m in load if load[m] > cores[m]]
+
+    def write_dds_configs(self):
+        hosts = list(self.c.hosts.values())
+        if all(h.reach == "local" for h in hosts):
+            return {h.name: ROOT / "deploy" / "cyclonedds.xml" for h in hosts}
+        users = {g.host.name for g in self.c.gateways} | {h.name for h in hosts if h.zones}
+        peers = sorted({self.c.hosts[n].address for n in users})
+        per_host = [h.zones + sum(g.host is h for g in self.c.gateways) for h in hosts]
+        # Cyclone probes every index up to the cap on every peer: enough for this cluster's
+        # processes on one host, plus a few for tools (ddsls, ddsperf) run beside it.
+        max_index = max(per_host) + 4
+        folder = self.run / "dds"
+        folder.mkdir(exist_ok=True)
+        paths = {}
+        for h in hosts:
+            paths[h.name] = folder / f"{h.name}.xml"
+            paths[h.name].write_text(dds_config(h, peers, max_index))
+        return paths
+
+    def start_zones(self, dds):
+        zone_hosts = [h for h in self.c.hosts.values() if h.zones]
+        hostfile = self.run / "hostfile"
+        hostfile.write_text("".join(f"{self.mpi_name(h)} slots={h.zones}\n" for h in zone_hosts))
+        mca = []
+        if any(h.reach in ("netns", "ssh") for h in zone_hosts):
+            agent = self.run / "mpi-agent.sh"
+            mpi_agent(self.c, agent)
+            mca += ["--mca", "plm", "rsh", "--mca", "plm_rsh_agent", str(agent)]
+        if self.c.network:
+            mca += ["--mca", "btl_tcp_if_include", self.c.network, "--mca", "oob_tcp_if_include", self.c.network]
+        if self.c.btl:
+            mca += ["--mca", "btl", self.c.btl]
+        shared = self.shared_cores()
+        if self.c.yield_mode == "on" or (self.c.yield_mode == "auto" and shared):
+            why = "; ".join(shared) if shared else "yield = on"
+            self.log(f"== hosts share cores ({why}): mpi_yield_when_idle 1")
+            mca += ["--mca", "mpi_yield_when_idle", "1"]
+        zone_argv = [self.bin / "zone_node", "--scene", self.c.scene, "--realtime",
+                     "--duration", int(self.c.duration + ZONE_SAFETY_S), "--metrics", self.run,
+                     "--dds-domain", self.c.dds_domain, "--truth-every", self.c.truth_every, *self.c.zone_args]
+        contexts = []
+        for h in zone_hosts:
+            contexts += [":"] if contexts else []
+            contexts += ["-np", h.zones, "--host", f"{self.mpi_name(h)}:{h.zones}",
+                         "-x", f"CYCLONEDDS_URI=file://{dds[h.name]}", *zone_argv]
+        argv = ["mpirun", "--hostfile", hostfile, "--bind-to", "none", *mca, *contexts]
+        # mpirun runs where it reaches every daemon: inside the first host's namespace for a
+        # namespace cluster, else here.
+        first = zone_hosts[0]
+        launch_argv = on_host(first, argv) if first.reach == "netns" else ["env", *([f"TMPDIR={first.tmp}"] if first.tmp else []), *map(str, argv)]
+        (self.run / "zones.cmd").write_text(shlex.join(map(str, launch_argv)) + "\n")
+        self.zones = self.start("zones (mpirun over " + ", ".join(h.name for h in zone_hosts) + ")",
+                                launch_argv, self.run / "zones.log")
+
+    def mpi_name(self, h):
+        return "localhost" if h.reach == "local" else (h.target if h.reach == "slurm" else h.name)
+
+    def folder(self, kind, name, count):
+        """One process of its kind writes into the run folder itself (report.py's layout);
+        several get a subfolder each."""
+        f = self.run if count == 1 else self.run / f"{kind}-{name}"
+        f.mkdir(parents=True, exist_ok=True)
+        return f
+
+    def start_gateways(self, dds):
+        expect = sum(h.zones for h in self.c.hosts.values())
+        for g in self.c.gateways:
+            g.folder = self.folder("gateway", g.name, len(self.c.gateways))
+            argv = [self.bin / "gateway", "--scene", self.c.scene, "--bind", g.bind, "--dds-domain",
+                    self.c.dds_domain, "--gateway-id", g.id, "--metrics", g.folder, "--expect-zones", expect,
+                    "--duration", int(self.c.duration + ZONE_SAFETY_S), *g.args]
+            g.log = self.run / f"gateway-{g.name}.log"
+            g.proc = self.start(f"{g.host.describe()}, gateway {g.name}",
+                                on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}), g.log)
+        for g in self.c.gateways:
+            what = f"{g.host.describe()}, gateway {g.name}"
+            deadline = time.monotonic() + 120  # a loaded 2-core machine can take long to start one
+            while not g.address:
+                m = re.search(r"gateway listening on (\S+)", g.log.read_text(errors="replace"))
+                if m:
+                    g.address = m.group(1)
+                elif g.proc.poll() is not None:
+                    self.fail(what, f"exited with {g.proc.returncode} before listening", g.log)
+                elif self.zones.poll() is not None:
+                    self.fail(self.procs[0][1], f"exited with {self.zones.returncode}", self.run / "zones.log")
+                elif time.monotonic() > deadline:
+                    self.fail(what, "not listening after 120 s", g.log)
+                else:
+                    time.sleep(0.1)
+            self.log(f"== gateway {g.name} on {g.host.name} listening on {g.address}")
+
+    def start_fleets(self):
+        for f in self.c.fleets:
+            f.folder = self.folder("fleet", f.name, len(self.c.fleets))
+            address, port = f.gateway.address.rsplit(":", 1)
+            if address == "0.0.0.0":
+                address = f.gateway.host.address
+            argv = [self.bin / "client_stub", "--scene", self.c.scene, "--gateway", f"{address}:{port}",
+                    "--players", f.players, "--duration", self.c.duration, "--metrics", f.folder,
+                    "--summary", f.folder / "clients_summary.json", "--truth-every", self.c.truth_every,
+                    *self.c.client_args, *f.args]
+            f.log = self.run / f"fleet-{f.name}.log"
+            self.log(f"== fleet {f.name} on {f.host.name}: {f.players} players for {self.c.duration:g} s against {address}:{port}")
+            f.proc = self.start(f"{f.host.describe()}, fleet {f.name}", on_host(f.host, argv), f.log)
+
+    def wait_fleets(self):
+        report = ROOT / "deploy" / "report.py"
+        next_progress = time.monotonic() + 5
+        while any(f.proc.poll() is None for f in self.c.fleets):
+            time.sleep(0.2)
+            for p, what, log in self.procs:
+                if p not in (f.proc for f in self.c.fleets) and p.poll() is not None:
+                    self.fail(what, f"exited with {p.returncode} while players played", log)
+            if time.monotonic() >= next_progress and (self.c.fleets[0].folder / "clients.jsonl").exists():
+                subprocess.run([sys.executable, report, "--progress", self.c.fleets[0].folder])
+                next_progress += 5
+        for f in self.c.fleets:
+            if f.proc.returncode != 0:
+                self.fail(f"{f.host.describe()}, fleet {f.name}", f"exited with {f.proc.returncode}", f.log)
+
+    def stop(self, p, grace):
+        if p.poll() is not None:
+            return p.returncode
+        try:
+            os.killpg(p.pid, signal.SIGTERM)
+            return p.wait(timeout=grace)
+        except (ProcessLookupError, subprocess.TimeoutExpired):
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            return p.wait()
+
+    def finish(self):
+        time.sleep(2)  # 60 ticks for the last goodbyes and despawns to reach the zones
+        for g in self.c.gateways:
+            self.stop(g.proc, 10)
+        # SIGTERM: the ranks finish their tick and write their summaries; mpirun then reports
+        # the signal in its own status, so the summaries are what is checked.
+        self.stop(self.zones, 30)
+        ranks = sum(h.zones for h in self.c.hosts.values())
+        if not self.c.shared_storage:
+            self.fetch_remote_folders()
+        written = len(list(self.run.glob("zone_*_summary.json")))
+        if written != ranks:
+            self.fail(self.procs[0][1], f"{written} of {ranks} ranks wrote their summary", self.run / "zones.log")
+
+    def fetch_remote_folders(self):
+        used = {p.host.name for p in self.c.gateways + self.c.fleets} | {h.name for h in self.c.hosts.values() if h.zones}
+        for h in (self.c.hosts[n] for n in sorted(used)):
+            if h.reach in ("ssh", "slurm"):
+                pack = subprocess.Popen(on_host(h, ["tar", "-C", self.run, "-cf", "-", "."]), stdout=subprocess.PIPE)
+                subprocess.run(["tar", "-C", self.run, "-xf", "-", "--skip-old-files"], stdin=pack.stdout, check=False)
+                pack.wait()
+
+    def cleanup(self):
+        for p, _, _ in reversed(self.procs):
+            self.stop(p, 5)
+
+    def go(self):
+        self.run.mkdir(parents=True, exist_ok=True)
+        # Short, so that Open MPI's unix socket paths under it stay within their 108 characters.
+        self.tmp = tempfile.mkdtemp(prefix="zsc")
+        try:
+            self.probe_hosts()
+            dds = self.write_dds_configs()
+            self.log(f"== run folder: {self.run} (DDS domain {self.c.dds_domain}, hosts "
+                     + ", ".join(f"{h.name}={h.address}" for h in self.c.hosts.values()) + ")")
+            self.start_zones(dds)
+            self.start_gateways(dds)
+            time.sleep(2)  # let DDS discovery between zones and gateways settle before players ask for avatars
+            self.start_fleets()
+            self.wait_fleets()
+            self.finish()
+        finally:
+            self.cleanup()
+            subprocess.run(["rm", "-rf", self.tmp])
+        r = subprocess.run([sys.executable, ROOT / "deploy" / "report.py", self.run])
+        if r.returncode != 0:
+            raise ClusterError(f"report.py {self.run}: exited with {r.returncode}")
+
+
+def main():
+    if len(sys.argv) not in (2, 3):
+        sys.exit("usage: cluster.py CLUSTER_FILE [RUN_DIR]")
+    bin_dir = Path(os.environ.get("ZONESIM_BIN", ROOT / "build" / "bin"))
+    run_dir = Path(sys.argv[2] if len(sys.argv) == 3 else ROOT / "runs" / time.strftime("cluster-%Y%m%d-%H%M%S")).resolve()
+    # A signal ends the launch through the same clean-up as an error.
+    for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
+        signal.signal(s, lambda n, _: sys.exit(f"cluster.sh: stopped by signal {n}"))
+    try:
+        cluster = load(sys.argv[1])
+        for prog in ("zone_node", "gateway", "client_stub"):
+            if not (bin_dir / prog).is_file():
+                raise ClusterError(f"{bin_dir / prog}: not built (set ZONESIM_BIN or build first)")
+        Launch(cluster, run_dir, bin_dir).go()
+    except ClusterError as e:
+        sys.exit(f"cluster.sh: error: {e}")
+
+
+if __name__ == "__main__":
+    main()
