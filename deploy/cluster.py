@@ -2,7 +2,8 @@
 """Starts a zonesim cluster from one cluster file: the zone ranks with mpirun over a generated
 hostfile, the gateways and the client fleets on their hosts; gathers every process's metrics into
 one run folder and prints deploy/report.py's report. Called by deploy/cluster.sh (which builds
-first when ZONESIM_BIN is not set); usage: cluster.py CLUSTER_FILE [RUN_DIR].
+first when ZONESIM_BIN is not set); usage: cluster.py CLUSTER_FILE [RUN_DIR], or
+cluster.py --dry-run CLUSTER_FILE to check the file and print what would run where.
 
 The cluster file is INI (sections and `key = value`, `#` comments); values may use ${VAR} and
 ${VAR:-default} from the environment. Relative paths are relative to the source folder.
@@ -544,9 +545,28 @@ class Launch:
             raise ClusterError(f"report.py {self.run}: exited with {r.returncode}")
 
 
+def plan(cluster):
+    """What runs where, one line each."""
+    lines = [f"scene {cluster.scene}, {cluster.duration:g} s of players, DDS domain {cluster.dds_domain}"
+             + (f", network {cluster.network}" if cluster.network else "")]
+    for h in cluster.hosts.values():
+        lines.append(f"{h.describe()} at {h.address}: {h.zones} zone ranks")
+    for g in cluster.gateways:
+        lines.append(f"gateway {g.name} (id {g.id}) on {g.host.name}, --bind {g.bind}")
+    for f in cluster.fleets:
+        lines.append(f"fleet {f.name} on {f.host.name}: {f.players} players to gateway {f.gateway.name}")
+    return "\n".join(lines)
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--dry-run":
+        try:
+            print(plan(load(sys.argv[2])))
+        except ClusterError as e:
+            sys.exit(f"cluster.sh: error: {e}")
+        return
     if len(sys.argv) not in (2, 3):
-        sys.exit("usage: cluster.py CLUSTER_FILE [RUN_DIR]")
+        sys.exit("usage: cluster.py CLUSTER_FILE [RUN_DIR] | cluster.py --dry-run CLUSTER_FILE")
     bin_dir = Path(os.environ.get("ZONESIM_BIN", ROOT / "build" / "bin"))
     run_dir = Path(sys.argv[2] if len(sys.argv) == 3 else ROOT / "runs" / time.strftime("cluster-%Y%m%d-%H%M%S")).resolve()
     # A signal ends the launch through the same clean-up as an error.

@@ -31,9 +31,13 @@ def last_json_line(path):
 
 def build_report(run):
     zones = sorted((load(p) for p in run.glob("zone_*_summary.json")), key=lambda z: z["rank"])
-    clients = load(run / "clients_summary.json") if (run / "clients_summary.json").exists() else {}
-    gateway = last_json_line(run / "gateway.jsonl")
-    per_client = clients.get("clients", [])
+    # One fleet or gateway writes into the run folder itself; a cluster with several gives each
+    # a folder of its own (deploy/cluster.py): fleet-NAME/, gateway-NAME/.
+    per_client = [c for f in sorted([run, *run.glob("fleet-*")]) if (f / "clients_summary.json").exists()
+                  for c in load(f / "clients_summary.json").get("clients", [])]
+    gateways = {f.name: last_json_line(f / "gateway.jsonl")
+                for f in sorted([run, *run.glob("gateway-*")]) if (f / "gateway.jsonl").exists()}
+    gateway = next(iter(gateways.values()), {})
     own = run / "own_stream.csv"
     gaps = own_stream.analyse(own_stream.load(own)) if own.exists() else None
     truth = truth_error.figures(*truth_error.join(run)) if (run / "display.csv").exists() else None
@@ -65,6 +69,7 @@ def build_report(run):
         },
         "clients": per_client,
         "gateway": gateway,
+        "gateways": gateways if len(gateways) > 1 else None,
     }
 
 
