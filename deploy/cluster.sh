@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Starts a zonesim cluster from a cluster file (deploy/clusters/*.cluster; the format is at the
-# top of deploy/cluster.py): zones with mpirun, gateways and client fleets on their hosts, all
+# top of deploy/cluster_file.py): zones with mpirun, gateways and client fleets on their hosts, all
 # metrics in RUN_DIR, then the report (printed and RUN_DIR/report.json).
 # Usage: deploy/cluster.sh CLUSTER_FILE [RUN_DIR]
 #   ZONESIM_BIN: run the programs already built there, without setup.sh's apt-get and build.
