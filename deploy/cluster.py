@@ -256,12 +256,14 @@ class Launch:
     def wait_fleets(self):
         report = ROOT / "deploy" / "report.py"
         next_progress = time.monotonic() + 5
-        while any(f.proc.poll() is None for f in self.c.fleets):
+        # A cluster without fleets (players from elsewhere) runs for the duration.
+        end = time.monotonic() + self.c.duration
+        while (any(f.proc.poll() is None for f in self.c.fleets) if self.c.fleets else time.monotonic() < end):
             time.sleep(0.2)
             for p, what, log in self.procs:
                 if p not in (f.proc for f in self.c.fleets) and p.poll() is not None:
                     self.fail(what, f"exited with {p.returncode} while players played", log)
-            if time.monotonic() >= next_progress and (self.c.fleets[0].folder / "clients.jsonl").exists():
+            if self.c.fleets and time.monotonic() >= next_progress and (self.c.fleets[0].folder / "clients.jsonl").exists():
                 subprocess.run([sys.executable, report, "--progress", self.c.fleets[0].folder])
                 next_progress += 5
         for f in self.c.fleets:
