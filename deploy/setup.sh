@@ -16,6 +16,7 @@ PACKAGES=(
   python3 python3-matplotlib
   libbullet-dev
   clang libclang-rt-14-dev
+  iproute2  # ip netns, veth and bridge for the multi_host test (deploy/netns.sh)
 )
 
 missing=()
