@@ -21,6 +21,8 @@ struct AntTrip {
   double route_length = 0;              ///< m: length of the route found (0: none yet)
   std::vector<std::int32_t> route;      ///< cells from the nest as x, y pairs
   std::vector<std::int32_t> dead_ends;  ///< dead ends of this trip, x, y pairs
+
+  bool operator==(const AntTrip&) const = default;
 };
 
 }  // namespace zonesim::crowd

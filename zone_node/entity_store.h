@@ -26,6 +26,8 @@ struct FormationMemberData {
   std::int32_t path_at = 0;             ///< index (in cells) of the next cell of `path`
   double planned_x = 0, planned_z = 0;  ///< the centre the rejoin path was planned to
   std::vector<std::int32_t> path;       ///< the rejoin path's cells as x, y pairs
+
+  bool operator==(const FormationMemberData&) const = default;
 };
 
 /// An ant's own state (systems/ant_movement.h): its trip, crowd/'s colony rule's data.
@@ -35,6 +37,8 @@ using AntData = crowd::AntTrip;
 struct RoadTripData {
   std::int32_t next_node = 0;  ///< the node it walks to
   std::int32_t goal = 0;       ///< the node it travels to
+
+  bool operator==(const RoadTripData&) const = default;
 };
 
 /// The per-system state of an NPC that a crowd system moves (none for wanderers, flocks and
@@ -61,6 +65,8 @@ struct NpcData {
   /// The state of its own that the crowd system keeps for it, carried by migration like an
   /// agent's path: one type per system, so no field means different things to different ones.
   CrowdState crowd;
+
+  bool operator==(const NpcData&) const = default;
 };
 
 /// The NPC's crowd state of type T, made afresh if it holds none (or another system's).
@@ -77,6 +83,8 @@ struct AvatarData {
   float move_x = 0, move_z = 0;
   double max_speed = 5.0;
   bool announced = false;  ///< its owner told the gateways (creation announced)
+
+  bool operator==(const AvatarData&) const = default;
 };
 
 /// A rigid body simulated by physics/.
@@ -93,6 +101,8 @@ struct BodyData {
   double friction = 0.5;
   double linear_damping = 0;   ///< 1/s (physics::BodyDesc)
   double angular_damping = 0;  ///< 1/s
+
+  bool operator==(const BodyData&) const = default;
 };
 
 /// A particle emitter; its particles are zone-local effects (see systems/emitters.h).
@@ -104,6 +114,8 @@ struct EmitterData {
   double drag = 0.1;
   double restitution = 0.4;
   int max_particles = 4096;
+
+  bool operator==(const EmitterData&) const = default;
 };
 
 /// An AI agent's own state (zone_node/systems/agent_*.h); travels with the entity on migration,
@@ -138,6 +150,8 @@ struct AgentData {
   std::int32_t replans = 0;           ///< paths requested again after a door cut them
   std::int32_t arrivals = 0;          ///< goals reached
   std::vector<std::int32_t> path;     ///< cells as x, y pairs; empty when not moving
+
+  bool operator==(const AgentData&) const = default;
 };
 
 /// One entity with all its components, for creation and migration.
@@ -190,30 +204,34 @@ class EntityStore {
   std::size_t kind_count_[kEntityKindCount] = {};
 };
 
-/// One per-entity column: the store's array and the record's field it holds.
-template <typename T>
+/// One per-entity column: the store's array and the record's field it holds. The two members
+/// are template arguments, so code keyed on a column (the migration codec's schema field, the
+/// dump's choice of columns) picks it by the column's type, at compile time.
+template <auto Store, auto Record>
 struct EntityColumn {
+  static constexpr auto store = Store;
+  static constexpr auto record = Record;
   const char* name;
-  std::vector<T> EntityStore::*store;
-  T EntityRecordData::*record;
 };
 
-/// Every column an entity record carries: add, remove and record iterate this one list (as
-/// kCounterFields drives the metrics), so a new per-entity field is one line here, plus its
-/// schema field in the migration codec. (`dr`, the publisher's memory of what it sent, is
-/// the store's own and never migrates.)
-inline constexpr auto kEntityColumns = std::tuple{
-    EntityColumn<EntityId>{"id", &EntityStore::id, &EntityRecordData::id},
-    EntityColumn<EntityKind>{"kind", &EntityStore::kind, &EntityRecordData::kind},
-    EntityColumn<Vec3>{"pos", &EntityStore::pos, &EntityRecordData::pos},
-    EntityColumn<Vec3>{"vel", &EntityStore::vel, &EntityRecordData::vel},
-    EntityColumn<Quat>{"rot", &EntityStore::rot, &EntityRecordData::rot},
-    EntityColumn<std::uint64_t>{"rng_state", &EntityStore::rng_state, &EntityRecordData::rng_state},
-    EntityColumn<NpcData>{"npc", &EntityStore::npc, &EntityRecordData::npc},
-    EntityColumn<AvatarData>{"avatar", &EntityStore::avatar, &EntityRecordData::avatar},
-    EntityColumn<BodyData>{"body", &EntityStore::body, &EntityRecordData::body},
-    EntityColumn<EmitterData>{"emitter", &EntityStore::emitter, &EntityRecordData::emitter},
-    EntityColumn<AgentData>{"agent", &EntityStore::agent, &EntityRecordData::agent}};
+/// Every column an entity record carries, in the schema's order. This one list drives add,
+/// remove and record (entity_store.cpp), the migration and checkpoint codec
+/// (cluster/entity_codec.cpp: one SchemaField per column, a compile error if one is missing) and
+/// the state dump (state_dump.cpp), as kCounterFields drives the metrics: a new per-entity field
+/// is one line here plus its field in idl/entity_record.fbs and its SchemaField. (`dr`, the
+/// publisher's memory of what it sent, is the store's own and never migrates.)
+inline constexpr auto kEntityColumns =
+    std::tuple{EntityColumn<&EntityStore::id, &EntityRecordData::id>{"id"},
+               EntityColumn<&EntityStore::kind, &EntityRecordData::kind>{"kind"},
+               EntityColumn<&EntityStore::pos, &EntityRecordData::pos>{"pos"},
+               EntityColumn<&EntityStore::vel, &EntityRecordData::vel>{"vel"},
+               EntityColumn<&EntityStore::rot, &EntityRecordData::rot>{"rot"},
+               EntityColumn<&EntityStore::rng_state, &EntityRecordData::rng_state>{"rng_state"},
+               EntityColumn<&EntityStore::npc, &EntityRecordData::npc>{"npc"},
+               EntityColumn<&EntityStore::avatar, &EntityRecordData::avatar>{"avatar"},
+               EntityColumn<&EntityStore::body, &EntityRecordData::body>{"body"},
+               EntityColumn<&EntityStore::emitter, &EntityRecordData::emitter>{"emitter"},
+               EntityColumn<&EntityStore::agent, &EntityRecordData::agent>{"agent"}};
 
 /// Calls f(column) for every column of kEntityColumns, in order.
 template <typename F>

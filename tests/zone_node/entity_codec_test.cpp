@@ -4,9 +4,193 @@
 
 #include <cstdint>
 #include <cstring>
+#include <string>
 
 namespace zonesim::zone {
 namespace {
+
+/// A record with every column away from its default, every component included.
+EntityRecordData everyColumnSet() {
+  EntityRecordData r;
+  r.id = EntityId::make(7, 123456789);
+  r.kind = EntityKind::Emitter;
+  r.pos = Vec3(0.1, -0.2, 1.0 / 3.0);
+  r.vel = Vec3(-1e-300, 5e300, 2.5);
+  r.rot = Quat(0.5, -0.5, 0.5, 0.5);
+  r.rng_state = 0xDEADBEEFCAFEBABEULL;
+  r.npc = {.waypoint = Vec3(9, 1, 8),
+           .max_speed = 1.75,
+           .accel = 2.5,
+           .waypoint_radius = 31,
+           .arrive_distance = 1.5,
+           .separation_radius = 0.7,
+           .separation_weight = 2,
+           .gather_point = Vec3(3, 0, 4),
+           .gather_radius = 12,
+           .gather_start = 100.5,
+           .gather_end = 200.25,
+           .gathering = true,
+           .population = 4,
+           .crowd = AntData{.mode = 1,
+                            .route_at = 3,
+                            .route_length = 0.1,
+                            .route = {4, 5, 5, 6},
+                            .dead_ends = {9, 1}}};
+  r.avatar = {.player_id = 555,
+              .last_input_seq = 41,
+              .move_x = -0.5f,
+              .move_z = 0.25f,
+              .max_speed = 6.5,
+              .announced = true};
+  r.body = {.radius = 0.75,
+            .mass = 3,
+            .restitution = 0.6,
+            .angular_velocity = Vec3(0.1, 0.2, 0.3),
+            .sleeping = true,
+            .shape = BodyData::Capsule,
+            .half_extents = Vec3(1, 2, 3),
+            .half_height = 0.9,
+            .friction = 0.3,
+            .linear_damping = 0.05,
+            .angular_damping = 0.125};
+  r.emitter = {.rate = 250,
+               .lifetime = 1.5,
+               .speed = 7,
+               .spawn_accumulator = 0.375,
+               .drag = 0.2,
+               .restitution = 0.6,
+               .max_particles = 99};
+  AgentData& a = r.agent;
+  a.type = 2;
+  a.state = 3;
+  a.step = 40;
+  for (int i = 0; i < AgentData::kLevels; ++i) a.entered[i] = 10 + i;
+  a.action = 5;
+  a.transitions = 6;
+  a.health = 55.5;
+  a.energy = 44.25;
+  a.speed_factor = 0.8;
+  a.approach = -0.4;
+  a.facts = 0xF0F0;
+  for (int i = 0; i < AgentData::kMaxPlan; ++i) a.plan[i] = i % 5;
+  a.plan_length = 9;
+  a.plan_step = 4;
+  a.action_time = 1.25;
+  a.plan_cost = 17.5;
+  a.goal = 2;
+  a.nav = 2;
+  a.dwell = 0.5;
+  a.origin_x = -3;
+  a.origin_z = 4;
+  a.target_x = 30;
+  a.target_z = -40;
+  a.travelled = 12.75;
+  a.asked_tick = 123456789012ULL;
+  a.replans = 3;
+  a.arrivals = 8;
+  a.path = {7, 8, 8, 9};
+  return r;
+}
+
+/// What a record of its kind arrives as: each kind carries its own component only.
+EntityRecordData carried(EntityRecordData r) {
+  if (r.kind != EntityKind::Npc) r.npc = {};
+  if (r.kind != EntityKind::Avatar) r.avatar = {};
+  if (r.kind != EntityKind::RigidBody) r.body = {};
+  if (r.kind != EntityKind::Emitter) r.emitter = {};
+  return r;
+}
+
+template <typename T>
+bool same(const T& a, const T& b) {
+  return a == b;
+}
+bool same(const Quat& a, const Quat& b) {
+  return a.coeffs() == b.coeffs();
+}
+
+// Driven by kEntityColumns, so a new column is checked as soon as it is listed: it must be set
+// in everyColumnSet() and must come back from its schema field unchanged.
+TEST(EntityCodec, EveryColumnRoundTripsForEveryKind) {
+  const EntityRecordData full = everyColumnSet();
+  const EntityRecordData defaults;
+  forEachEntityColumn([&](const auto& c) {
+    EXPECT_FALSE(same(full.*c.record, defaults.*c.record))
+        << c.name << " is at its default: set it in everyColumnSet()";
+  });
+  MigrationPayload p;
+  for (int k = 0; k < kEntityKindCount; ++k) {
+    EntityRecordData r = full;
+    r.kind = EntityKind(k);
+    r.id = EntityId::make(7, std::uint64_t(k) + 1);
+    p.entities.push_back(r);
+  }
+  MigrationPayload q = decodeMigration(encodeMigration(p));
+  ASSERT_EQ(q.entities.size(), p.entities.size());
+  for (std::size_t i = 0; i < p.entities.size(); ++i) {
+    const EntityRecordData want = carried(p.entities[i]);
+    int columns = 0;
+    forEachEntityColumn([&](const auto& c) {
+      ++columns;
+      EXPECT_TRUE(same(q.entities[i].*c.record, want.*c.record))
+          << c.name << " of a record of kind " << int(want.kind);
+    });
+    EXPECT_EQ(columns, int(std::tuple_size_v<decltype(kEntityColumns)>));
+  }
+}
+
+// Every prefix of a batch is refused: the Verifier finds what is cut off, wherever the cut.
+TEST(EntityCodec, EveryTruncationIsRefused) {
+  MigrationPayload p;
+  p.entities = {everyColumnSet()};
+  p.entities[0].kind = EntityKind::Npc;
+  p.inputs = {{555, 42, 1.0f, 0.0f}};
+  const std::vector<std::uint8_t> bytes = encodeMigration(p);
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<std::uint8_t> prefix(bytes.begin(), bytes.begin() + long(n));
+    EXPECT_THROW(decodeMigration(prefix), CodecError) << n << " of " << bytes.size() << " bytes";
+  }
+}
+
+// Values that pass the Verifier (it checks structure only) but no entity can hold are refused,
+// each with the reason.
+TEST(EntityCodec, OutOfRangeValuesAreRefusedWithTheirReason) {
+  struct Case {
+    const char* reason;
+    void (*spoil)(EntityRecordData&);
+  };
+  const Case cases[] = {
+      {"entity record with unknown kind", [](EntityRecordData& r) { r.kind = EntityKind(9); }},
+      {"entity record without id", [](EntityRecordData& r) { r.id = EntityId{}; }},
+      {"body record with unknown shape",
+       [](EntityRecordData& r) {
+         r.kind = EntityKind::RigidBody;
+         r.body.shape = 3;
+       }},
+      {"npc record with an odd cell list",
+       [](EntityRecordData& r) {
+         r.npc.crowd = FormationMemberData{0, 0, 0, 0, {1, 2, 3}};
+       }},
+      {"agent record with an odd path",
+       [](EntityRecordData& r) {
+         r.agent.path = {1, 2, 3};
+       }},
+      {"agent record with a long plan",
+       [](EntityRecordData& r) { r.agent.plan_length = AgentData::kMaxPlan + 1; }},
+  };
+  for (const Case& c : cases) {
+    MigrationPayload p;
+    p.entities = {everyColumnSet()};
+    p.entities[0].kind = EntityKind::Npc;
+    c.spoil(p.entities[0]);
+    try {
+      decodeMigration(encodeMigration(p));
+      ADD_FAILURE() << "accepted a record meant to fail with: " << c.reason;
+    } catch (const CodecError& e) {
+      EXPECT_EQ(std::string(e.what()), c.reason);
+    }
+  }
+}
 
 TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   MigrationPayload p;

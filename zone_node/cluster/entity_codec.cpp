@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <variant>
 
 #include "entity_record_generated.h"
@@ -13,6 +15,10 @@ namespace zonesim::zone {
 namespace fb = zonesim::rec;
 
 namespace {
+
+using Builder = flatbuffers::FlatBufferBuilder;
+using RecordBuilder = fb::EntityRecordBuilder;
+using Record = fb::EntityRecord;
 
 fb::Vec3d toFb(const Vec3& v) {
   return fb::Vec3d(v.x(), v.y(), v.z());
@@ -26,6 +32,8 @@ Vec3 fromFb(const fb::Vec3d* v) {
 Quat fromFb(const fb::Quatd* q) {
   return q ? Quat(q->w(), q->x(), q->y(), q->z()) : Quat::Identity();
 }
+
+// ---- The component tables (NpcState, AvatarState, BodyState, EmitterState, AgentState) ----
 
 // crowd_kind is CrowdState's index: the schema's numbers hold only while the order does.
 static_assert(std::is_same_v<std::variant_alternative_t<1, CrowdState>, FormationMemberData> &&
@@ -80,62 +88,86 @@ void decodeCrowd(const fb::NpcState& n, CrowdState& s) {
                    std::to_string(int(n.crowd_kind())));
 }
 
-flatbuffers::Offset<fb::EntityRecord> encodeEntity(flatbuffers::FlatBufferBuilder& b,
-                                                   const EntityRecordData& r) {
-  flatbuffers::Offset<fb::NpcState> npc;
-  flatbuffers::Offset<fb::AvatarState> avatar;
-  flatbuffers::Offset<fb::BodyState> body;
-  flatbuffers::Offset<fb::EmitterState> emitter;
-  switch (r.kind) {
-    case EntityKind::Npc: {
-      fb::Vec3d wp = toFb(r.npc.waypoint);
-      fb::Vec3d gp = toFb(r.npc.gather_point);
-      // The crowd state goes in the schema's crowd_* fields, as its kind lays them out.
-      CrowdFields c = crowdFields(r.npc.crowd);
-      flatbuffers::Offset<flatbuffers::Vector<std::int32_t>> path, seen;
-      if (c.path && !c.path->empty()) path = b.CreateVector(*c.path);
-      if (c.seen && !c.seen->empty()) seen = b.CreateVector(*c.seen);
-      npc = fb::CreateNpcState(
-          b, &wp, r.npc.max_speed, r.npc.accel, r.npc.waypoint_radius, r.npc.arrive_distance,
-          r.npc.separation_radius, r.npc.separation_weight, &gp, r.npc.gather_radius,
-          r.npc.gather_start, r.npc.gather_end, r.npc.gathering, r.npc.population, c.mode, c.at,
-          c.x, c.z, path, seen, std::uint8_t(r.npc.crowd.index()));
-      break;
-    }
-    case EntityKind::Avatar:
-      avatar =
-          fb::CreateAvatarState(b, r.avatar.player_id, r.avatar.last_input_seq, r.avatar.move_x,
-                                r.avatar.move_z, r.avatar.max_speed, r.avatar.announced);
-      break;
-    case EntityKind::RigidBody: {
-      fb::Vec3d w = toFb(r.body.angular_velocity), h = toFb(r.body.half_extents);
-      body = fb::CreateBodyState(b, r.body.radius, r.body.mass, r.body.restitution, &w,
-                                 r.body.sleeping, r.body.shape, &h, r.body.half_height,
-                                 r.body.friction, r.body.linear_damping, r.body.angular_damping);
-      break;
-    }
-    case EntityKind::Emitter:
-      emitter = fb::CreateEmitterState(b, r.emitter.rate, r.emitter.lifetime, r.emitter.speed,
-                                       r.emitter.spawn_accumulator, r.emitter.drag,
-                                       r.emitter.restitution, r.emitter.max_particles);
-      break;
-  }
-  flatbuffers::Offset<fb::AgentState> agent;
-  if (r.agent.type >= 0) {
-    const AgentData& a = r.agent;
-    auto entered = b.CreateVector(a.entered, AgentData::kLevels);
-    auto plan = b.CreateVector(a.plan, AgentData::kMaxPlan);
-    auto path = b.CreateVector(a.path);
-    agent = fb::CreateAgentState(b, a.type, a.state, a.step, entered, a.action, a.transitions,
-                                 a.health, a.energy, a.speed_factor, a.approach, a.facts, plan,
-                                 a.plan_length, a.plan_step, a.action_time, a.plan_cost, a.goal,
-                                 a.nav, a.dwell, a.origin_x, a.origin_z, a.target_x, a.target_z,
-                                 a.travelled, a.replans, a.arrivals, path, a.asked_tick);
-  }
-  fb::Vec3d pos = toFb(r.pos), vel = toFb(r.vel);
-  fb::Quatd rot = toFb(r.rot);
-  return fb::CreateEntityRecord(b, r.id.value, fb::EntityKind(r.kind), &pos, &vel, &rot,
-                                r.rng_state, npc, avatar, body, emitter, agent);
+// Each encodeX returns a null offset for an entity without that component (the table is absent).
+
+flatbuffers::Offset<fb::NpcState> encodeNpc(Builder& b, const NpcData& n, EntityKind kind) {
+  if (kind != EntityKind::Npc) return {};
+  fb::Vec3d wp = toFb(n.waypoint), gp = toFb(n.gather_point);
+  // The crowd state goes in the schema's crowd_* fields, as its kind lays them out.
+  CrowdFields c = crowdFields(n.crowd);
+  flatbuffers::Offset<flatbuffers::Vector<std::int32_t>> path, seen;
+  if (c.path && !c.path->empty()) path = b.CreateVector(*c.path);
+  if (c.seen && !c.seen->empty()) seen = b.CreateVector(*c.seen);
+  return fb::CreateNpcState(b, &wp, n.max_speed, n.accel, n.waypoint_radius, n.arrive_distance,
+                            n.separation_radius, n.separation_weight, &gp, n.gather_radius,
+                            n.gather_start, n.gather_end, n.gathering, n.population, c.mode, c.at,
+                            c.x, c.z, path, seen, std::uint8_t(n.crowd.index()));
+}
+
+void decodeNpc(const fb::NpcState& s, NpcData& n) {
+  n.waypoint = fromFb(s.waypoint());
+  n.max_speed = s.max_speed();
+  n.accel = s.accel();
+  n.waypoint_radius = s.waypoint_radius();
+  n.arrive_distance = s.arrive_distance();
+  n.separation_radius = s.separation_radius();
+  n.separation_weight = s.separation_weight();
+  n.gather_point = fromFb(s.gather_point());
+  n.gather_radius = s.gather_radius();
+  n.gather_start = s.gather_start();
+  n.gather_end = s.gather_end();
+  n.gathering = s.gathering();
+  n.population = s.flock();
+  decodeCrowd(s, n.crowd);
+}
+
+flatbuffers::Offset<fb::AvatarState> encodeAvatar(Builder& b, const AvatarData& a,
+                                                  EntityKind kind) {
+  if (kind != EntityKind::Avatar) return {};
+  return fb::CreateAvatarState(b, a.player_id, a.last_input_seq, a.move_x, a.move_z, a.max_speed,
+                               a.announced);
+}
+
+void decodeAvatar(const fb::AvatarState& s, AvatarData& a) {
+  a = {s.player_id(), s.last_input_seq(), s.move_x(), s.move_z(), s.max_speed(), s.announced()};
+}
+
+flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, EntityKind kind) {
+  if (kind != EntityKind::RigidBody) return {};
+  fb::Vec3d w = toFb(s.angular_velocity), h = toFb(s.half_extents);
+  return fb::CreateBodyState(b, s.radius, s.mass, s.restitution, &w, s.sleeping, s.shape, &h,
+                             s.half_height, s.friction, s.linear_damping, s.angular_damping);
+}
+
+void decodeBody(const fb::BodyState& s, BodyData& d) {
+  if (s.shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
+  d = {s.radius(),   s.mass(),           s.restitution(),          fromFb(s.angular_velocity()),
+       s.sleeping(), s.shape(),          fromFb(s.half_extents()), s.half_height(),
+       s.friction(), s.linear_damping(), s.angular_damping()};
+}
+
+flatbuffers::Offset<fb::EmitterState> encodeEmitter(Builder& b, const EmitterData& m,
+                                                    EntityKind kind) {
+  if (kind != EntityKind::Emitter) return {};
+  return fb::CreateEmitterState(b, m.rate, m.lifetime, m.speed, m.spawn_accumulator, m.drag,
+                                m.restitution, m.max_particles);
+}
+
+void decodeEmitter(const fb::EmitterState& s, EmitterData& m) {
+  m = {s.rate(), s.lifetime(),    s.speed(),        s.spawn_accumulator(),
+       s.drag(), s.restitution(), s.max_particles()};
+}
+
+flatbuffers::Offset<fb::AgentState> encodeAgent(Builder& b, const AgentData& a, EntityKind) {
+  if (a.type < 0) return {};  // not an AI agent (of any kind)
+  auto entered = b.CreateVector(a.entered, AgentData::kLevels);
+  auto plan = b.CreateVector(a.plan, AgentData::kMaxPlan);
+  auto path = b.CreateVector(a.path);
+  return fb::CreateAgentState(b, a.type, a.state, a.step, entered, a.action, a.transitions,
+                              a.health, a.energy, a.speed_factor, a.approach, a.facts, plan,
+                              a.plan_length, a.plan_step, a.action_time, a.plan_cost, a.goal, a.nav,
+                              a.dwell, a.origin_x, a.origin_z, a.target_x, a.target_z, a.travelled,
+                              a.replans, a.arrivals, path, a.asked_tick);
 }
 
 template <typename T, typename V>
@@ -179,49 +211,143 @@ void decodeAgent(const fb::AgentState& g, AgentData& a) {
   if (a.path.size() % 2 != 0) throw CodecError("agent record with an odd path");
 }
 
-EntityRecordData decodeEntity(const fb::EntityRecord& e) {
+// ---- One schema field per entity column (kEntityColumns) ----
+
+/// How a column's value type is kept in one of EntityRecord's own fields.
+template <typename T>
+struct InlineValue;
+
+template <>
+struct InlineValue<EntityId> {
+  static std::uint64_t encode(EntityId v) { return v.value; }
+  static EntityId decode(std::uint64_t v) { return EntityId{v}; }
+};
+template <>
+struct InlineValue<std::uint64_t> {
+  static std::uint64_t encode(std::uint64_t v) { return v; }
+  static std::uint64_t decode(std::uint64_t v) { return v; }
+};
+template <>
+struct InlineValue<EntityKind> {
+  static fb::EntityKind encode(EntityKind k) { return fb::EntityKind(k); }
+  static EntityKind decode(fb::EntityKind k) {
+    if (std::uint8_t(k) >= kEntityKindCount) throw CodecError("entity record with unknown kind");
+    return EntityKind(k);
+  }
+};
+template <>
+struct InlineValue<Vec3> {
+  static fb::Vec3d encode(const Vec3& v) { return toFb(v); }
+  static Vec3 decode(const fb::Vec3d* v) { return fromFb(v); }
+};
+template <>
+struct InlineValue<Quat> {
+  static fb::Quatd encode(const Quat& q) { return toFb(q); }
+  static Quat decode(const fb::Quatd* q) { return fromFb(q); }
+};
+
+/// A field whose tables and vectors are built, waiting for the record's table to be started
+/// (FlatBuffers builds no table inside another). `size` is flatc's size class of the field: 8
+/// for 64-bit scalars, 4 for offsets and structs, 1 for bytes.
+template <typename Add>
+struct PendingField {
+  int size;
+  Add add;  ///< void(RecordBuilder&)
+};
+
+/// A column kept in one of the record's own fields: `Add` and `Get` are the field's builder
+/// setter and table getter; InlineValue of the column's type converts it.
+template <auto Add, auto Get>
+struct InlineField {
+  template <typename T>
+  static auto prepare(Builder&, const T& value, EntityKind) {
+    auto v = InlineValue<T>::encode(value);
+    constexpr bool is_struct = std::is_class_v<decltype(v)>;
+    auto add = [v](RecordBuilder& rb) {
+      if constexpr (is_struct) {
+        (rb.*Add)(&v);
+      } else {
+        (rb.*Add)(v);
+      }
+    };
+    return PendingField<decltype(add)>{is_struct ? 4 : int(sizeof(v)), add};
+  }
+  template <typename T>
+  static void decode(const Record& e, T& value) {
+    value = InlineValue<T>::decode((e.*Get)());
+  }
+};
+
+/// A column kept in a table of its own: `Encode` builds it (a null offset where the entity has
+/// none), `Decode` reads it where the record has one.
+template <auto Add, auto Get, auto Encode, auto Decode>
+struct TableField {
+  template <typename T>
+  static auto prepare(Builder& b, const T& value, EntityKind kind) {
+    auto add = [table = Encode(b, value, kind)](RecordBuilder& rb) { (rb.*Add)(table); };
+    return PendingField<decltype(add)>{4, add};
+  }
+  template <typename T>
+  static void decode(const Record& e, T& value) {
+    if (const auto* t = (e.*Get)()) Decode(*t, value);
+  }
+};
+
+template <auto>
+constexpr bool kNoSchemaField = false;
+
+/// The schema field of the column whose record member is RecordMember.
+template <auto RecordMember>
+struct SchemaField {
+  static_assert(kNoSchemaField<RecordMember>,
+                "an entity column without a schema field: add its field at the end of "
+                "EntityRecord in idl/entity_record.fbs and a SchemaField<&EntityRecordData::NAME> "
+                "(an InlineField or a TableField) in zone_node/cluster/entity_codec.cpp");
+};
+
+// clang-format off
+template <> struct SchemaField<&EntityRecordData::id> : InlineField<&RecordBuilder::add_id, &Record::id> {};
+template <> struct SchemaField<&EntityRecordData::kind> : InlineField<&RecordBuilder::add_kind, &Record::kind> {};
+template <> struct SchemaField<&EntityRecordData::pos> : InlineField<&RecordBuilder::add_pos, &Record::pos> {};
+template <> struct SchemaField<&EntityRecordData::vel> : InlineField<&RecordBuilder::add_vel, &Record::vel> {};
+template <> struct SchemaField<&EntityRecordData::rot> : InlineField<&RecordBuilder::add_rot, &Record::rot> {};
+template <> struct SchemaField<&EntityRecordData::rng_state> : InlineField<&RecordBuilder::add_rng_state, &Record::rng_state> {};
+template <> struct SchemaField<&EntityRecordData::npc> : TableField<&RecordBuilder::add_npc, &Record::npc, encodeNpc, decodeNpc> {};
+template <> struct SchemaField<&EntityRecordData::avatar> : TableField<&RecordBuilder::add_avatar, &Record::avatar, encodeAvatar, decodeAvatar> {};
+template <> struct SchemaField<&EntityRecordData::body> : TableField<&RecordBuilder::add_body, &Record::body, encodeBody, decodeBody> {};
+template <> struct SchemaField<&EntityRecordData::emitter> : TableField<&RecordBuilder::add_emitter, &Record::emitter, encodeEmitter, decodeEmitter> {};
+template <> struct SchemaField<&EntityRecordData::agent> : TableField<&RecordBuilder::add_agent, &Record::agent, encodeAgent, decodeAgent> {};
+// clang-format on
+
+/// The schema field of a column of kEntityColumns.
+template <typename Column>
+using FieldOf = SchemaField<std::remove_cvref_t<Column>::record>;
+
+flatbuffers::Offset<Record> encodeEntity(Builder& b, const EntityRecordData& r) {
+  // In column order, so the component tables are built in the order the old encoder built them.
+  auto pending = std::apply(
+      [&](const auto&... c) {
+        return std::tuple{FieldOf<decltype(c)>::prepare(b, r.*c.record, r.kind)...};
+      },
+      kEntityColumns);
+  RecordBuilder rb(b);
+  // The fields go in as flatc's own CreateEntityRecord adds them (widest first, the last declared
+  // first): no padding between them, and a record's bytes are what they were before the columns
+  // drove the codec (checkpoint hashes do not change).
+  constexpr std::size_t n = std::tuple_size_v<decltype(pending)>;
+  auto add_sized = [&]<std::size_t... I>(int size, std::index_sequence<I...>) {
+    auto add_if = [&](const auto& field) {
+      if (field.size == size) field.add(rb);
+    };
+    (add_if(std::get<n - 1 - I>(pending)), ...);
+  };
+  for (int size : {8, 4, 2, 1}) add_sized(size, std::make_index_sequence<n>{});
+  return rb.Finish();
+}
+
+EntityRecordData decodeEntity(const Record& e) {
   EntityRecordData r;
-  r.id = EntityId{e.id()};
-  auto kind = std::uint8_t(e.kind());
-  if (kind >= kEntityKindCount) throw CodecError("entity record with unknown kind");
-  r.kind = EntityKind(kind);
-  r.pos = fromFb(e.pos());
-  r.vel = fromFb(e.vel());
-  r.rot = fromFb(e.rot());
-  r.rng_state = e.rng_state();
-  if (const fb::NpcState* n = e.npc()) {
-    r.npc.waypoint = fromFb(n->waypoint());
-    r.npc.max_speed = n->max_speed();
-    r.npc.accel = n->accel();
-    r.npc.waypoint_radius = n->waypoint_radius();
-    r.npc.arrive_distance = n->arrive_distance();
-    r.npc.separation_radius = n->separation_radius();
-    r.npc.separation_weight = n->separation_weight();
-    if (n->gather_point()) r.npc.gather_point = fromFb(n->gather_point());
-    r.npc.gather_radius = n->gather_radius();
-    r.npc.gather_start = n->gather_start();
-    r.npc.gather_end = n->gather_end();
-    r.npc.gathering = n->gathering();
-    r.npc.population = n->flock();
-    decodeCrowd(*n, r.npc.crowd);
-  }
-  if (const fb::AvatarState* a = e.avatar()) {
-    r.avatar = {a->player_id(), a->last_input_seq(), a->move_x(),
-                a->move_z(),    a->max_speed(),      a->announced()};
-  }
-  if (const fb::BodyState* s = e.body()) {
-    if (s->shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
-    r.body = {s->radius(),   s->mass(),  s->restitution(),          fromFb(s->angular_velocity()),
-              s->sleeping(), s->shape(), fromFb(s->half_extents()), s->half_height(),
-              s->friction()};
-    r.body.linear_damping = s->linear_damping();
-    r.body.angular_damping = s->angular_damping();
-  }
-  if (const fb::EmitterState* m = e.emitter()) {
-    r.emitter = {m->rate(), m->lifetime(),    m->speed(),        m->spawn_accumulator(),
-                 m->drag(), m->restitution(), m->max_particles()};
-  }
-  if (const fb::AgentState* g = e.agent()) decodeAgent(*g, r.agent);
+  forEachEntityColumn([&](const auto& c) { FieldOf<decltype(c)>::decode(e, r.*c.record); });
   if (!r.id) throw CodecError("entity record without id");
   return r;
 }
@@ -229,8 +355,8 @@ EntityRecordData decodeEntity(const fb::EntityRecord& e) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeMigration(const MigrationPayload& p) {
-  flatbuffers::FlatBufferBuilder b(256 + 256 * p.entities.size());
-  std::vector<flatbuffers::Offset<fb::EntityRecord>> entities;
+  Builder b(256 + 256 * p.entities.size());
+  std::vector<flatbuffers::Offset<Record>> entities;
   entities.reserve(p.entities.size());
   for (const EntityRecordData& r : p.entities) entities.push_back(encodeEntity(b, r));
   std::vector<flatbuffers::Offset<fb::ForwardedInput>> inputs;
@@ -264,7 +390,7 @@ MigrationPayload decodeMigration(std::span<const std::uint8_t> bytes) {
   p.from_rank = m->from_rank();
   if (const auto* es = m->entities()) {
     p.entities.reserve(es->size());
-    for (const fb::EntityRecord* e : *es) p.entities.push_back(decodeEntity(*e));
+    for (const Record* e : *es) p.entities.push_back(decodeEntity(*e));
   }
   if (const auto* ins = m->inputs()) {
     for (const fb::ForwardedInput* in : *ins)
