@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #include "zone_node/cluster/entity_codec.h"
 
@@ -26,14 +27,52 @@ const char* kindName(EntityKind k) {
   return "unknown";
 }
 
+// How the dump writes each value type, as JSON; %.17g round-trips doubles exactly: equal text
+// means bitwise-equal state.
+void writeValue(std::FILE* f, EntityId id) {
+  std::fprintf(f, "%llu", (unsigned long long)id.value);
+}
+void writeValue(std::FILE* f, EntityKind k) {
+  std::fprintf(f, "\"%s\"", kindName(k));
+}
+void writeValue(std::FILE* f, const Vec3& v) {
+  std::fprintf(f, "[%.17g,%.17g,%.17g]", v.x(), v.y(), v.z());
+}
+void writeValue(std::FILE* f, const Quat& q) {
+  std::fprintf(f, "[%.17g,%.17g,%.17g,%.17g]", q.x(), q.y(), q.z(), q.w());
+}
+
+/// The columns of kEntityColumns that the dump prints, under their names and in that list's
+/// order: identity and motion, which every kind has. A column added here changes every dump,
+/// and golden_states.py compares dumps byte for byte with reference dumps of the old code.
+template <auto RecordMember>
+constexpr bool kDumped = false;
+// clang-format off
+template <> constexpr bool kDumped<&EntityRecordData::id> = true;
+template <> constexpr bool kDumped<&EntityRecordData::kind> = true;
+template <> constexpr bool kDumped<&EntityRecordData::pos> = true;
+template <> constexpr bool kDumped<&EntityRecordData::vel> = true;
+template <> constexpr bool kDumped<&EntityRecordData::rot> = true;
+// clang-format on
+
 void writeLine(std::FILE* f, const EntityRecordData& e) {
-  // %.17g round-trips doubles exactly: equal text means bitwise-equal state.
-  std::fprintf(
-      f,
-      "{\"id\":%llu,\"kind\":\"%s\",\"pos\":[%.17g,%.17g,%.17g],\"vel\":[%.17g,%.17g,%.17g],"
-      "\"rot\":[%.17g,%.17g,%.17g,%.17g]}\n",
-      (unsigned long long)e.id.value, kindName(e.kind), e.pos.x(), e.pos.y(), e.pos.z(), e.vel.x(),
-      e.vel.y(), e.vel.z(), e.rot.x(), e.rot.y(), e.rot.z(), e.rot.w());
+  const char* separator = "{";
+  forEachEntityColumn([&](const auto& c) {
+    if constexpr (kDumped<std::remove_cvref_t<decltype(c)>::record>) {
+      std::fprintf(f, "%s\"%s\":", separator, c.name);
+      writeValue(f, e.*c.record);
+      separator = ",";
+    }
+  });
+  std::fputs("}\n", f);
+}
+
+void writeParticle(std::FILE* f, const std::array<double, 6>& q) {
+  std::fputs("{\"kind\":\"particle\",\"pos\":", f);
+  writeValue(f, Vec3(q[0], q[1], q[2]));
+  std::fputs(",\"vel\":", f);
+  writeValue(f, Vec3(q[3], q[4], q[5]));
+  std::fputs("}\n", f);
 }
 
 }  // namespace
@@ -91,10 +130,7 @@ void dumpState(MPI_Comm comm, const EntityStore& store,
   if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   for (const EntityRecordData& e : entities) writeLine(f, e);
   std::sort(all_particles.begin(), all_particles.end());
-  for (const auto& q : all_particles)
-    std::fprintf(
-        f, "{\"kind\":\"particle\",\"pos\":[%.17g,%.17g,%.17g],\"vel\":[%.17g,%.17g,%.17g]}\n",
-        q[0], q[1], q[2], q[3], q[4], q[5]);
+  for (const auto& q : all_particles) writeParticle(f, q);
   std::fclose(f);
 }
 
