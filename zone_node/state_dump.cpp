@@ -44,7 +44,7 @@ void writeValue(std::FILE* f, const Quat& q) {
 
 /// The columns of kEntityColumns that the dump prints, under their names and in that list's
 /// order: identity and motion, which every kind has. A column added here changes every dump,
-/// and golden_states.py compares dumps byte for byte with reference dumps of the old code.
+/// and golden_states.py compares dumps byte for byte with reference dumps of earlier commits.
 template <auto RecordMember>
 constexpr bool kDumped = false;
 // clang-format off

@@ -324,7 +324,8 @@ template <typename Column>
 using FieldOf = SchemaField<std::remove_cvref_t<Column>::record>;
 
 flatbuffers::Offset<Record> encodeEntity(Builder& b, const EntityRecordData& r) {
-  // In column order, so the component tables are built in the order the old encoder built them.
+  // Component tables first (FlatBuffers cannot build them inside the open record), in column
+  // order.
   auto pending = std::apply(
       [&](const auto&... c) {
         return std::tuple{FieldOf<decltype(c)>::prepare(b, r.*c.record, r.kind)...};
@@ -332,8 +333,8 @@ flatbuffers::Offset<Record> encodeEntity(Builder& b, const EntityRecordData& r) 
       kEntityColumns);
   RecordBuilder rb(b);
   // The fields go in as flatc's own CreateEntityRecord adds them (widest first, the last declared
-  // first): no padding between them, and a record's bytes are what they were before the columns
-  // drove the codec (checkpoint hashes do not change).
+  // first): no padding between them, and the same bytes as flatc's builder, so checkpoints
+  // written by code that used it still compare equal.
   constexpr std::size_t n = std::tuple_size_v<decltype(pending)>;
   auto add_sized = [&]<std::size_t... I>(int size, std::index_sequence<I...>) {
     auto add_if = [&](const auto& field) {
