@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/zone_layout.h"
 
 namespace zonesim::zone {

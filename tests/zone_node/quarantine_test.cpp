@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/population.h"
 

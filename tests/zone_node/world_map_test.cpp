@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 
 namespace zonesim::zone {
 namespace {

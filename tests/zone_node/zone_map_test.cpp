@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common/scene.h"
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/zone_node.h"
 
 namespace zonesim::zone {

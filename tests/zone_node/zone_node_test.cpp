@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 
 namespace zonesim::zone {
 namespace {

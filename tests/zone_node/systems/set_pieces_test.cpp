@@ -9,7 +9,7 @@
 #include <string>
 
 #include "common/scene.h"
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/rigid_bodies.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "common/scene.h"
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/systems/lone_zone.h"

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/neighbourhood.h"

@@ -11,7 +11,7 @@
 
 #include "idl/dds_qos.h"
 #include "support/dds_test_domain.h"
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 
 namespace zonesim::zone {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "common/rng.h"
 #include "gpu/backend.h"
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/systems/flock_movement.h"
 
 namespace zonesim::zone {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/scene.h"
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "zone_fixture.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/avatar_movement.h"
 #include "zone_node/systems/lone_zone.h"
