@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 
+#include "wire/datagram_checksum.h"
+
 namespace zonesim::gateway {
 
 namespace {
@@ -12,7 +14,10 @@ Bytes finish(flatbuffers::FlatBufferBuilder& fbb, std::uint64_t token, proto::Me
              flatbuffers::Offset<T> msg) {
   auto root = proto::CreateDatagram(fbb, token, type, msg.Union());
   proto::FinishDatagramBuffer(fbb, root);
-  Bytes out(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  Bytes out;
+  out.reserve(fbb.GetSize() + kChecksumBytes);
+  out.assign(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  appendChecksum(out);
   assert(out.size() <= kMaxDatagramBytes);
   return out;
 }

@@ -16,7 +16,8 @@ namespace zonesim::gateway {
 /// One encoded datagram.
 using Bytes = std::vector<std::uint8_t>;
 
-/// Room left for the Datagram and message tables, vtables and vector headers (measured < 100).
+/// Room left for the Datagram and message tables, vtables and vector headers (measured < 100)
+/// and the checksum trailer.
 inline constexpr std::size_t kChunkOverheadBytes = 128;
 /// Packed state bytes per StateBatch or Spawn datagram.
 inline constexpr std::size_t kPackedBytesPerDatagram = kMaxDatagramBytes - kChunkOverheadBytes;

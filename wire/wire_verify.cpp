@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "wire/datagram_checksum.h"
+
 namespace zonesim::gateway {
 
 namespace {
@@ -126,6 +128,8 @@ const char* dropReasonName(DropReason reason) {
       return "stale_input";
     case DropReason::SessionLimit:
       return "session_limit";
+    case DropReason::BadChecksum:
+      return "bad_checksum";
     case DropReason::RateLimited:
       return "rate_limited";
     case DropReason::Count:
@@ -161,7 +165,9 @@ bool validCodec(const proto::CodecParams& c) {
 
 Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction) {
   if (bytes.size() > kMaxDatagramBytes) return {nullptr, DropReason::TooLarge};
-  if (bytes.size() < kMinDatagramBytes) return {nullptr, DropReason::Truncated};
+  if (bytes.size() < kMinDatagramBytes + kChecksumBytes) return {nullptr, DropReason::Truncated};
+  if (!checksumMatches(bytes)) return {nullptr, DropReason::BadChecksum};
+  bytes = bytes.first(bytes.size() - kChecksumBytes);
   if (!proto::DatagramBufferHasIdentifier(bytes.data()))
     return {nullptr, DropReason::BadIdentifier};
   flatbuffers::Verifier::Options opts;

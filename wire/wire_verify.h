@@ -15,7 +15,7 @@ namespace zonesim::gateway {
 
 /// Largest datagram either side sends or accepts (fits one Ethernet MTU with headers).
 inline constexpr std::size_t kMaxDatagramBytes = 1400;
-/// Smallest buffer that can hold a root offset and a file identifier.
+/// Smallest buffer that can hold a root offset and a file identifier (before the checksum).
 inline constexpr std::size_t kMinDatagramBytes = 8;
 /// Longest player name accepted in a Hello.
 inline constexpr std::size_t kMaxNameBytes = 64;
@@ -43,6 +43,7 @@ enum class DropReason : std::uint8_t {
   StaleInput,      ///< input seq not newer than the last forwarded one
   SessionLimit,    ///< Hello refused: too many sessions
   RateLimited,     ///< a session sending faster than its per-client rate limit
+  BadChecksum,     ///< the CRC-32C trailer does not match (corrupted on the way)
   Count
 };
 
@@ -71,7 +72,8 @@ struct Verified {
   bool ok() const { return datagram != nullptr; }
 };
 
-/// Runs all checks in order; the returned pointer aliases bytes. bytes must be 4-byte aligned.
+/// Runs all checks in order (sizes, the checksum trailer, the Verifier on the bytes before it,
+/// values); the returned pointer aliases bytes. bytes must be 4-byte aligned.
 Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction);
 
 /// True if codec parameters describe a grid and steps a client can work with.

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "common/timer.h"
+#include "wire/datagram_checksum.h"
 
 namespace zonesim::clients {
 namespace {
@@ -155,7 +156,9 @@ TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
   proto::FinishDatagramBuffer(
       fbb, proto::CreateDatagram(fbb, token, proto::Message::Spawn,
                                  proto::CreateSpawn(fbb, 50, sp->count(), v).Union()));
-  toPlayer(Bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()));
+  gateway::Bytes crafted(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  gateway::appendChecksum(crafted);
+  toPlayer(crafted);
   EXPECT_EQ(dropped(DropReason::OutOfRange), 1u);
   toPlayer(gateway::encodeInput(token, 1, 0, 0));  // a gateway-bound message
   EXPECT_EQ(dropped(DropReason::UnexpectedType), 1u);

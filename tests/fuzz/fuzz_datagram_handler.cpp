@@ -1,6 +1,7 @@
 // libFuzzer target: the gateway's datagram handler, fed arbitrary bytes from three addresses,
-// one of which owns a live session, plus well-formed inputs carrying that session's token with
-// fuzzed values (to reach the range checks behind the Verifier). It must never crash, hang or
+// one of which owns a live session, raw or with a valid checksum appended (to get past it),
+// plus well-formed inputs carrying that session's token with fuzzed values (to reach the range
+// checks behind the Verifier). It must never crash, hang or
 // trip a sanitizer; every datagram is either accepted or dropped and counted.
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +11,7 @@
 
 #include "gateway/datagram_handler.h"
 #include "gateway/session_table.h"
+#include "wire/datagram_checksum.h"
 #include "wire/wire_encode.h"
 
 namespace {
@@ -66,6 +68,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::memcpy(&mz, rest.data() + 8, 4);
     Bytes input = encodeInput(h.token, seq, mx, mz);
     h.handler.handle(input, from, std::int64_t(seq), h.out);
+  } else if (mode & 0x40) {
+    // The fuzzed bytes with a valid checksum appended, to reach the checks behind it.
+    Bytes sealed(rest.begin(), rest.end());
+    appendChecksum(sealed);
+    h.handler.handle(sealed, from, 0, h.out);
   } else {
     h.handler.handle(rest, from, 0, h.out);
   }

@@ -6,6 +6,8 @@
 
 #include <limits>
 
+#include "wire/datagram_checksum.h"
+
 namespace zonesim::gateway {
 namespace {
 
@@ -87,6 +89,14 @@ TEST_F(HandlerTest, MalformedDatagramsAreCountedByReason) {
   feed(Bytes(hello.begin(), hello.begin() + 6));
   Bytes wrong_id = hello;
   wrong_id[5] = '!';
+  feed(wrong_id);
+  EXPECT_EQ(dropped(DropReason::BadChecksum), 2u);  // the garbage and the changed byte
+  // Sealed again, the same bytes reach the identifier check.
+  garbage.resize(garbage.size() - kChecksumBytes);
+  appendChecksum(garbage);
+  feed(garbage);
+  wrong_id.resize(wrong_id.size() - kChecksumBytes);
+  appendChecksum(wrong_id);
   feed(wrong_id);
   EXPECT_EQ(dropped(DropReason::BadIdentifier), 2u);  // garbage has no ZSCP identifier either
   EXPECT_EQ(dropped(DropReason::Truncated), 1u);
@@ -230,10 +240,13 @@ TEST(HandlerFuzz, CorruptedDatagramsAreAcceptedOrCountedNeverFatal) {
   Outbox out;
   constexpr int kRuns = 20000;
   for (int i = 0; i < kRuns; ++i) {
+    // The body mutated and sealed again, so the checks behind the checksum see it.
     Bytes b = seeds[rng.next() % seeds.size()];
+    b.resize(b.size() - kChecksumBytes);
     int flips = 1 + int(rng.next() % 4);
     for (int f = 0; f < flips; ++f) b[rng.next() % b.size()] = std::uint8_t(rng.next());
     if (rng.next() % 8 == 0) b.resize(rng.next() % (b.size() + 1));
+    appendChecksum(b);
     out.clear();
     handler.handle(b, from, i, out);
   }

@@ -203,14 +203,14 @@ TEST_F(GatewayLoopback, AHandoffIsResentUntilAcknowledged) {
 }
 
 TEST_F(GatewayLoopback, ForgedTrafficIsCountedAndHarmless) {
-  client_.sendTo(gateway_addr_, Bytes{0xde, 0xad, 0xbe, 0xef, 1, 2, 3, 4, 5, 6});
+  client_.sendTo(gateway_addr_, Bytes{0xde, 0xad, 0xbe, 0xef, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
   client_.sendTo(gateway_addr_, encodeInput(12345, 1, 0, 1));
   client_.sendTo(gateway_addr_, Bytes(kMaxDatagramBytes + 100, 0x5a));
   // The datagrams wait in the socket; short runs on this thread read them, for as long as a
   // loaded machine takes to schedule it (one fixed-length run may end before the first read).
   std::int64_t deadline = nowNs() + kTimeoutNs;
   while (gateway_->counters().datagrams_in < 3 && nowNs() < deadline) gateway_->run(stop_, 0.05);
-  EXPECT_EQ(gateway_->drops()[DropReason::BadIdentifier], 1u);
+  EXPECT_EQ(gateway_->drops()[DropReason::BadChecksum], 1u);
   EXPECT_EQ(gateway_->drops()[DropReason::BadToken], 1u);
   EXPECT_EQ(gateway_->drops()[DropReason::TooLarge], 1u);
   EXPECT_EQ(gateway_->counters().datagrams_in, 3u);

@@ -5,11 +5,22 @@
 #include <limits>
 
 #include "common/rng.h"
+#include "wire/datagram_checksum.h"
 #include "wire/wire_encode.h"
 #include "wire/wire_verify.h"
 
 namespace zonesim::gateway {
 namespace {
+
+// A datagram body (no trailer) with its checksum appended, so the checks behind it see it.
+Bytes sealed(Bytes body) {
+  appendChecksum(body);
+  return body;
+}
+// The body of an encoded datagram, without its checksum.
+Bytes bodyOf(const Bytes& b) {
+  return Bytes(b.begin(), b.end() - long(kChecksumBytes));
+}
 
 DropReason reasonOf(const Bytes& b, Direction d = Direction::ToGateway) {
   Verified v = verifyDatagram(b, d);
@@ -41,7 +52,7 @@ Bytes batchOf(std::uint16_t count, std::vector<std::uint8_t> packed) {
   proto::FinishDatagramBuffer(
       fbb, proto::CreateDatagram(fbb, 3, proto::Message::StateBatch,
                                  proto::CreateStateBatch(fbb, 1, count, v).Union()));
-  return Bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  return sealed(Bytes(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize()));
 }
 
 TEST(Wire, ValidHelloAndInputPass) {
@@ -54,11 +65,12 @@ TEST(Wire, ValidHelloAndInputPass) {
 TEST(Wire, GarbageIsMalformedOrBadIdentifier) {
   Bytes garbage(64);
   for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = std::uint8_t(i * 37 + 11);
-  DropReason r = reasonOf(garbage);
+  EXPECT_EQ(reasonOf(garbage), DropReason::BadChecksum);
+  DropReason r = reasonOf(sealed(garbage));
   EXPECT_TRUE(r == DropReason::BadIdentifier || r == DropReason::Malformed);
   // Garbage that happens to carry the identifier still fails the Verifier.
   garbage[4] = 'Z', garbage[5] = 'S', garbage[6] = 'C', garbage[7] = 'P';
-  EXPECT_EQ(reasonOf(garbage), DropReason::Malformed);
+  EXPECT_EQ(reasonOf(sealed(garbage)), DropReason::Malformed);
 }
 
 TEST(Wire, TruncatedBuffers) {
@@ -66,13 +78,14 @@ TEST(Wire, TruncatedBuffers) {
   EXPECT_EQ(reasonOf(Bytes(hello.begin(), hello.begin() + 5)), DropReason::Truncated);
   EXPECT_EQ(reasonOf(Bytes{}), DropReason::Truncated);
   Bytes half(hello.begin(), hello.begin() + long(hello.size() / 2));
-  EXPECT_EQ(reasonOf(half), DropReason::Malformed);
+  EXPECT_EQ(reasonOf(half), DropReason::BadChecksum);
+  EXPECT_EQ(reasonOf(sealed(half)), DropReason::Malformed);
 }
 
 TEST(Wire, WrongFileIdentifier) {
-  Bytes b = encodeHello(7, "p");
+  Bytes b = bodyOf(encodeHello(7, "p"));
   b[4] = 'X';
-  EXPECT_EQ(reasonOf(b), DropReason::BadIdentifier);
+  EXPECT_EQ(reasonOf(sealed(b)), DropReason::BadIdentifier);
 }
 
 TEST(Wire, OversizeDatagram) {
@@ -102,7 +115,7 @@ TEST(Wire, EmptyUnionIsNoMessage) {
   flatbuffers::FlatBufferBuilder fbb;
   proto::FinishDatagramBuffer(fbb, proto::CreateDatagram(fbb, 5));
   Bytes b(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
-  EXPECT_EQ(reasonOf(b), DropReason::NoMessage);
+  EXPECT_EQ(reasonOf(sealed(b)), DropReason::NoMessage);
 }
 
 TEST(Wire, PackedCountsTheBytesCannotHoldAreRejectedAtTheClient) {
@@ -188,8 +201,9 @@ TEST(Wire, CorruptedClientBoundDatagramsNeverPassBadStates) {
   Pcg32 rng(77, 3);
   int passed = 0;
   for (int i = 0; i < 20000; ++i) {
-    Bytes b = seeds[rng.next() % seeds.size()];
+    Bytes b = bodyOf(seeds[rng.next() % seeds.size()]);
     for (int f = 0; f < 3; ++f) b[rng.next() % b.size()] = std::uint8_t(rng.next());
+    b = sealed(b);
     Verified v = verifyDatagram(b, Direction::ToClient);
     if (!v.ok()) continue;
     ++passed;
