@@ -19,8 +19,15 @@ constexpr std::int64_t kSecondNs = 1'000'000'000;
 
 ClientFleet::ClientFleet(const FleetConfig& config) : config_(config), start_ns_(nowNs()) {
   players_.reserve(std::size_t(config.players));
-  for (int i = 0; i < config.players; ++i)
-    players_.push_back(std::make_unique<SimPlayer>(config.player, std::uint32_t(i), start_ns_));
+  for (int i = 0; i < config.players; ++i) {
+    PlayerConfig player = config.player;
+    if (!config.links.empty()) {
+      std::size_t share =
+          gateway::linkShareOf(config.links, std::size_t(i), std::size_t(config.players));
+      player.impairment.out = player.impairment.in = config.links[share].profile;
+    }
+    players_.push_back(std::make_unique<SimPlayer>(player, std::uint32_t(i), start_ns_));
+  }
   if (!config.metrics_path.empty()) metrics_ = MetricsWriter(config.metrics_path);
 }
 

@@ -11,12 +11,16 @@
 
 #include "clients/sim_player.h"
 #include "common/metrics.h"
+#include "wire/link_profile.h"
 
 namespace zonesim::clients {
 
 /// How the fleet runs.
 struct FleetConfig {
   PlayerConfig player;
+  /// Link profiles shared out over the players (each gets one for its uplink and downlink, by
+  /// linkShareOf); empty: every player has player.impairment.
+  std::vector<gateway::LinkShare> links;
   int players = 32;
   double duration_s = 10;
   std::string metrics_path;     ///< clients.jsonl; empty = none

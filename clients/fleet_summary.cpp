@@ -58,6 +58,20 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("dr_error_m_p99", percentile(c.dr_error_m.samples(), 99));
 }
 
+// The player's link profile and what its models did to the datagrams each way.
+void addLink(JsonLine& j, const gateway::Impairment& imp) {
+  if (!imp.active()) return;
+  gateway::ImpairmentCounters c = imp.counters();
+  j.add("link", imp.settings().out.name)
+      .add("link_out_lost", c.out.lost)
+      .add("link_out_tail_dropped", c.out.tail_dropped)
+      .add("link_in_lost", c.in.lost)
+      .add("link_in_tail_dropped", c.in.tail_dropped)
+      .add("link_corrupted", c.out.corrupted + c.in.corrupted)
+      .add("link_duplicated", c.out.duplicated + c.in.duplicated)
+      .add("link_reordered", c.out.reordered + c.in.reordered);
+}
+
 std::string clientJson(const SimPlayer& p, double s) {
   JsonLine j;
   j.add("player_id", p.playerId())
@@ -69,6 +83,7 @@ std::string clientJson(const SimPlayer& p, double s) {
   j.add("visible_entities", std::uint64_t(p.view().size()))
       .add("ghosts", std::uint64_t(p.ghosts(nowNs())))
       .add("unspawned", std::uint64_t(p.unspawned()));
+  addLink(j, p.impairment());
   return j.str();
 }
 

@@ -29,15 +29,28 @@ int main(int argc, char** argv) {
   app.add_option("--metrics", metrics_dir,
                  "write DIR/clients.jsonl (a line per second) and DIR/own_stream.csv");
   app.add_option("--summary", summary_path, "write the summary JSON here");
-  zonesim::gateway::ImpairmentSettings impair;
+  double inject_loss = 0, inject_delay_ms = 0, inject_jitter_ms = 0;
   bool snap = false;
-  app.add_option("--inject-loss", impair.loss, "drop this fraction of datagrams (testing)")
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--inject-delay-ms", impair.delay_ms, "delay outgoing datagrams (testing)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--inject-jitter-ms", impair.jitter_ms,
-                 "plus uniform jitter, which reorders (testing)")
-      ->check(CLI::NonNegativeNumber);
+  auto* loss_opt =
+      app.add_option("--inject-loss", inject_loss, "drop this fraction of datagrams (testing)")
+          ->check(CLI::Range(0.0, 1.0));
+  auto* delay_opt =
+      app.add_option("--inject-delay-ms", inject_delay_ms, "delay outgoing datagrams (testing)")
+          ->check(CLI::NonNegativeNumber);
+  auto* jitter_opt = app.add_option("--inject-jitter-ms", inject_jitter_ms,
+                                    "plus uniform jitter, which reorders (testing)")
+                         ->check(CLI::NonNegativeNumber);
+  std::string link, link_mix;
+  auto* link_opt = app.add_option("--link", link,
+                                  "every player's uplink and downlink: a preset (lan, wifi, 4g, "
+                                  "congested, satellite) or a profile file (docs/networking.md)");
+  auto* mix_opt = app.add_option("--link-mix", link_mix,
+                                 "profiles shared out over the players, e.g. lan:0.5,4g:0.5");
+  link_opt->excludes(mix_opt);
+  for (auto* inject : {loss_opt, delay_opt, jitter_opt}) {
+    link_opt->excludes(inject);
+    mix_opt->excludes(inject);
+  }
   std::uint32_t truth_every = 0;
   app.add_option("--truth-every", truth_every,
                  "with --metrics: write DIR/display.csv, where every K-th entity id was shown "
@@ -65,7 +78,16 @@ int main(int argc, char** argv) {
     cfg.player.input_hz = scene.clients.input_hz;
     cfg.player.retarget_seconds = scene.clients.retarget_seconds;
     cfg.player.seed = seed;
-    cfg.player.impairment = impair;
+    cfg.player.impairment =
+        zonesim::gateway::injectedImpairment(inject_loss, inject_delay_ms, inject_jitter_ms);
+    cfg.player.impairment.seed = seed;
+    try {
+      if (!link.empty()) cfg.links = {{zonesim::gateway::loadLinkProfile(link), 1.0}};
+      if (!link_mix.empty()) cfg.links = zonesim::gateway::parseLinkMix(link_mix);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string(link.empty() ? "--link-mix" : "--link") + ": " +
+                                  e.what());
+    }
     cfg.player.blend = !snap;
     cfg.player.truth_every = truth_every;
     cfg.player.max_lead_s = max_lead_s;

@@ -51,7 +51,10 @@ void SimPlayer::send(const gateway::Bytes& bytes) {
 }
 
 std::int64_t SimPlayer::act(std::int64_t now_ns) {
-  if (impairment_.active()) counters_.send_failures += impairment_.flush(socket_, now_ns);
+  if (impairment_.active()) {
+    deliverHeld(now_ns);
+    counters_.send_failures += impairment_.flush(socket_, now_ns);
+  }
   std::int64_t held = impairment_.nextDueNs();
   std::int64_t due = std::min(held, actDue(now_ns));
   return config_.truth_every > 0 ? std::min(due, logDisplay(now_ns)) : due;
@@ -145,13 +148,22 @@ void SimPlayer::receive(std::int64_t now_ns) {
     if (!got) return;
     ++counters_.datagrams_in;
     counters_.bytes_in += got->size;
-    if (impairment_.active() && impairment_.dropIncoming()) continue;
     if (got->truncated || got->size > gateway::kMaxDatagramBytes) {
       counters_.drops.add(gateway::DropReason::TooLarge);
       continue;
     }
-    handle(std::span(rx_buffer_.data(), got->size), got->from, now_ns);
+    std::span<const std::uint8_t> bytes(rx_buffer_.data(), got->size);
+    if (impairment_.active())
+      impairment_.receive(bytes, got->from, now_ns);  // the downlink: lost, or held a while
+    else
+      handle(bytes, got->from, now_ns);
   }
+}
+
+void SimPlayer::deliverHeld(std::int64_t now_ns) {
+  impairment_.deliver(now_ns, [&](std::span<const std::uint8_t> bytes, const Endpoint& from) {
+    handle(bytes, from, now_ns);
+  });
 }
 
 void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from,

@@ -35,7 +35,7 @@ struct PlayerConfig {
   double hello_retry_s = 0.5;
   double ping_every_s = 1.0;
   std::uint64_t seed = 1;
-  gateway::ImpairmentSettings impairment;  ///< loss / delay / reordering injected here
+  gateway::ImpairmentSettings impairment;  ///< the player's uplink (out) and downlink (in)
   bool blend = true;      ///< projective velocity blending of corrections; false: snap
   double blend_s = 0.25;  ///< blend time, seconds
   double stale_after_s =
@@ -83,7 +83,8 @@ class SimPlayer {
   int fd() const { return socket_.fd(); }
   /// Sends whatever is due at now_ns; returns when it next has something to send.
   std::int64_t act(std::int64_t now_ns);
-  /// Reads and handles every pending datagram.
+  /// Reads every pending datagram and handles it, or, with impairment, hands it to the
+  /// player's downlink, which delivers it when due (act()).
   void receive(std::int64_t now_ns);
   /// Sends Bye if a session is open.
   void bye();
@@ -115,12 +116,16 @@ class SimPlayer {
   std::size_t unspawned() const;
   /// The acknowledgement window of gateway datagrams.
   const gateway::AckWindow& acks() const { return acks_; }
+  /// The player's link impairment (its profiles and what they did).
+  const gateway::Impairment& impairment() const { return impairment_; }
 
   /// Handles one datagram from `from` (public so tests can feed crafted bytes).
   void handle(std::span<const std::uint8_t> bytes, const Endpoint& from, std::int64_t now_ns);
 
  private:
   void send(const gateway::Bytes& bytes);
+  /// Handles the datagrams the impaired downlink releases by now_ns.
+  void deliverHeld(std::int64_t now_ns);
   std::int64_t actDue(std::int64_t now_ns);
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <system_error>
 
 #include "common/log.h"
@@ -67,6 +68,10 @@ Gateway::Gateway(GatewayConfig config)
       codec_(dr::codecParams(config_.scene)),
       impairment_(config_.impairment, 0x9a7e) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
+  // The gateway handles each datagram as it arrives: it can lose incoming ones, not hold them.
+  if (!config_.impairment.in.lossOnly())
+    throw std::invalid_argument("gateway: incoming impairment can only lose datagrams, not '" +
+                                config_.impairment.in.name + "'");
 }
 
 void Gateway::run(const std::atomic<bool>& stop, double duration_s) {

@@ -70,13 +70,20 @@ int main(int argc, char** argv) {
   app.add_flag("--resend-early", resend_early,
                "resend as soon as a datagram of a later tick is acknowledged, not only after "
                "the retransmission timeout (for comparison: more resends, no less error)");
-  app.add_option("--inject-loss", cfg.impairment.loss, "drop this fraction of datagrams (testing)")
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--inject-delay-ms", cfg.impairment.delay_ms, "delay outgoing datagrams (testing)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--inject-jitter-ms", cfg.impairment.jitter_ms,
-                 "plus uniform jitter, which reorders (testing)")
-      ->check(CLI::NonNegativeNumber);
+  double inject_loss = 0, inject_delay_ms = 0, inject_jitter_ms = 0;
+  std::string link;
+  auto* link_opt = app.add_option("--link", link,
+                                  "impair every client's downlink: a preset (lan, wifi, 4g, "
+                                  "congested, satellite) or a profile file (docs/networking.md)");
+  link_opt->excludes(
+      app.add_option("--inject-loss", inject_loss, "drop this fraction of datagrams (testing)")
+          ->check(CLI::Range(0.0, 1.0)));
+  link_opt->excludes(
+      app.add_option("--inject-delay-ms", inject_delay_ms, "delay outgoing datagrams (testing)")
+          ->check(CLI::NonNegativeNumber));
+  link_opt->excludes(app.add_option("--inject-jitter-ms", inject_jitter_ms,
+                                    "plus uniform jitter, which reorders (testing)")
+                         ->check(CLI::NonNegativeNumber));
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
@@ -93,6 +100,15 @@ int main(int argc, char** argv) {
     }
     if (port >= 0 && bind_text.find(':') != std::string::npos)
       throw std::runtime_error(bind_option + ": the port is given twice; use one of them");
+    cfg.impairment =
+        zonesim::gateway::injectedImpairment(inject_loss, inject_delay_ms, inject_jitter_ms);
+    if (!link.empty()) {
+      try {
+        cfg.impairment.out = zonesim::gateway::loadLinkProfile(link);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string("--link: ") + e.what());
+      }
+    }
     if (resend_early) cfg.loss_detection = zonesim::gateway::LossDetection::LaterAck;
     cfg.spawn_seed = seed >= 0 ? std::uint64_t(seed) : cfg.scene.seed;
     if (!metrics_dir.empty()) {
