@@ -55,8 +55,10 @@ std::int64_t SimPlayer::act(std::int64_t now_ns) {
     deliverHeld(now_ns);
     counters_.send_failures += impairment_.flush(socket_, now_ns);
   }
-  std::int64_t held = impairment_.nextDueNs();
-  std::int64_t due = std::min(held, actDue(now_ns));
+  std::int64_t due = actDue(now_ns);
+  // After actDue: what it just sent may be held on the uplink, and must go out when due, not
+  // at the next input.
+  due = std::min(due, impairment_.nextDueNs());
   return config_.truth_every > 0 ? std::min(due, logDisplay(now_ns)) : due;
 }
 

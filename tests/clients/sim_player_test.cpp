@@ -165,6 +165,31 @@ TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
   EXPECT_EQ(player_->view().size(), 0u) << "nothing dropped reached the view";
 }
 
+TEST(SimPlayerLink, WhatTheUplinkHoldsIsDueBeforeTheNextInput) {
+  gateway::UdpSocket gateway;
+  PlayerConfig c;
+  c.gateway = Endpoint::loopback(gateway.localPort());
+  c.world = {{0, 0, 0}, {100, 10, 100}};
+  c.impairment.out.delay_ms = 5;
+  c.impairment.in.delay_ms = 5;
+  std::int64_t t0 = nowNs();
+  SimPlayer player(c, 0, t0);
+  // The Hello goes onto the uplink; the player must wake when it is due, not at its retry.
+  std::int64_t next = player.act(t0);
+  EXPECT_GE(next, t0 + 5'000'000);
+  EXPECT_LT(next, t0 + 250'000'000) << "not at the Hello retry, 0.5 s on";
+  EXPECT_EQ(player.impairment().counters().out.delivered, 1u);
+  player.act(next);
+  std::vector<std::uint8_t> buf(gateway::kMaxDatagramBytes);
+  pollfd p{gateway.fd(), POLLIN, 0};
+  ASSERT_EQ(::poll(&p, 1, 2000), 1) << "released when due";
+  auto got = gateway.receive(buf);
+  ASSERT_TRUE(got);
+  auto v = gateway::verifyDatagram(std::span(buf.data(), got->size), gateway::Direction::ToGateway);
+  ASSERT_TRUE(v.ok());
+  EXPECT_EQ(v.datagram->msg_type(), proto::Message::Hello);
+}
+
 TEST_F(SimPlayerTest, SpawnUpdateDespawnAndHandoffAreCounted) {
   std::uint64_t token = welcome();
   std::vector<dr::WireEntity> two{state(5, 1), state(77, 2)};
