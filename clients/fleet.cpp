@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include "clients/fleet_summary.h"
 #include "common/timer.h"
@@ -62,6 +64,15 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
   }
   elapsed_s_ = double(nowNs() - start_ns_) * 1e-9;
   for (auto& p : players_) p->bye();
+  // A Bye held on an impaired uplink goes out when due, as on the real link; left behind, it
+  // would leave the gateway resending to a closed player until the session timed out.
+  for (;;) {
+    std::int64_t next = INT64_MAX;
+    for (auto& p : players_) next = std::min(next, p->flushUplink(nowNs()));
+    if (next == INT64_MAX) break;
+    std::this_thread::sleep_for(
+        std::chrono::nanoseconds(std::max<std::int64_t>(0, next - nowNs())));
+  }
   writeMetrics(nowNs());
   metrics_.flush();
   writeOwnStream();

@@ -144,6 +144,12 @@ void SimPlayer::bye() {
   if (welcomed()) send(gateway::encodeBye(token_));
 }
 
+std::int64_t SimPlayer::flushUplink(std::int64_t now_ns) {
+  if (!impairment_.active()) return INT64_MAX;
+  counters_.send_failures += impairment_.flush(socket_, now_ns);
+  return impairment_.nextOutgoingDueNs();
+}
+
 void SimPlayer::receive(std::int64_t now_ns) {
   for (;;) {
     auto got = socket_.receive(rx_buffer_);

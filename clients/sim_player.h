@@ -88,6 +88,9 @@ class SimPlayer {
   void receive(std::int64_t now_ns);
   /// Sends Bye if a session is open.
   void bye();
+  /// Sends what the impaired uplink holds that is due by now_ns (a Bye, after the run); returns
+  /// when the next held datagram is due (INT64_MAX: none).
+  std::int64_t flushUplink(std::int64_t now_ns);
 
   bool welcomed() const { return token_ != 0; }
   std::uint64_t playerId() const { return player_id_; }

@@ -78,8 +78,12 @@ bool Impairment::dropIncoming() {
   return fate.copies == 0;
 }
 
+std::int64_t Impairment::nextOutgoingDueNs() const {
+  return outbound_.empty() ? INT64_MAX : outbound_.top().due_ns;
+}
+
 std::int64_t Impairment::nextDueNs() const {
-  std::int64_t out = outbound_.empty() ? INT64_MAX : outbound_.top().due_ns;
+  std::int64_t out = nextOutgoingDueNs();
   std::int64_t in = inbound_.empty() ? INT64_MAX : inbound_.top().due_ns;
   return std::min(out, in);
 }

@@ -63,6 +63,8 @@ class Impairment {
 
   /// When the next held datagram, either way, is due (INT64_MAX if none).
   std::int64_t nextDueNs() const;
+  /// When the next held outgoing datagram is due (INT64_MAX if none).
+  std::int64_t nextOutgoingDueNs() const;
   bool active() const { return s_.active(); }
   const ImpairmentSettings& settings() const { return s_; }
   /// Sums over every destination's link.

@@ -165,7 +165,19 @@ TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
   EXPECT_EQ(player_->view().size(), 0u) << "nothing dropped reached the view";
 }
 
-TEST(SimPlayerLink, WhatTheUplinkHoldsIsDueBeforeTheNextInput) {
+// The next datagram the "gateway" socket receives, verified (nullptr if none within 2 s).
+const proto::Datagram* nextAt(gateway::UdpSocket& gateway, std::vector<std::uint8_t>& buf,
+                              Endpoint* from = nullptr) {
+  pollfd p{gateway.fd(), POLLIN, 0};
+  if (::poll(&p, 1, 2000) != 1) return nullptr;
+  auto got = gateway.receive(buf);
+  if (!got) return nullptr;
+  if (from != nullptr) *from = got->from;
+  return gateway::verifyDatagram(std::span(buf.data(), got->size), gateway::Direction::ToGateway)
+      .datagram;
+}
+
+TEST(SimPlayerLink, HeldDatagramsGoWhenDueEachWayTheByeIncluded) {
   gateway::UdpSocket gateway;
   PlayerConfig c;
   c.gateway = Endpoint::loopback(gateway.localPort());
@@ -181,13 +193,32 @@ TEST(SimPlayerLink, WhatTheUplinkHoldsIsDueBeforeTheNextInput) {
   EXPECT_EQ(player.impairment().counters().out.delivered, 1u);
   player.act(next);
   std::vector<std::uint8_t> buf(gateway::kMaxDatagramBytes);
-  pollfd p{gateway.fd(), POLLIN, 0};
-  ASSERT_EQ(::poll(&p, 1, 2000), 1) << "released when due";
-  auto got = gateway.receive(buf);
-  ASSERT_TRUE(got);
-  auto v = gateway::verifyDatagram(std::span(buf.data(), got->size), gateway::Direction::ToGateway);
-  ASSERT_TRUE(v.ok());
-  EXPECT_EQ(v.datagram->msg_type(), proto::Message::Hello);
+  Endpoint player_addr;
+  const proto::Datagram* hello = nextAt(gateway, buf, &player_addr);
+  ASSERT_TRUE(hello && hello->msg_type() == proto::Message::Hello) << "released when due";
+  // The Welcome waits on the downlink until due.
+  gateway::WelcomeInfo w;
+  w.client_nonce = hello->msg_as_Hello()->client_nonce();
+  w.token = 0x5eed;
+  w.avatar_id = 9;
+  w.world_max = proto::Vec3f(100, 10, 100);
+  gateway.sendTo(player_addr, gateway::encodeWelcome(w));
+  pollfd p{player.fd(), POLLIN, 0};
+  ASSERT_EQ(::poll(&p, 1, 2000), 1);
+  std::int64_t t1 = nowNs();
+  player.receive(t1);
+  EXPECT_FALSE(player.welcomed()) << "held on the downlink";
+  player.act(t1 + 5'000'000);
+  ASSERT_TRUE(player.welcomed());
+  // A Bye held on the uplink goes out when flushUplink reaches its time.
+  player.bye();
+  std::int64_t due = player.flushUplink(nowNs());
+  ASSERT_NE(due, INT64_MAX) << "held";
+  for (int flushes = 0; due != INT64_MAX && flushes < 10; ++flushes) due = player.flushUplink(due);
+  EXPECT_EQ(due, INT64_MAX) << "the uplink drained (the Welcome's first input and ping first)";
+  const proto::Datagram* d = nextAt(gateway, buf);
+  while (d != nullptr && d->msg_type() != proto::Message::Bye) d = nextAt(gateway, buf);
+  ASSERT_TRUE(d) << "the Bye went out";
 }
 
 TEST_F(SimPlayerTest, SpawnUpdateDespawnAndHandoffAreCounted) {
