@@ -29,6 +29,10 @@ from cluster_file import ROOT, ClusterError, load, plan  # noqa: E402  (deploy/c
 ZONE_SAFETY_S = 300
 
 
+def ssh_argv(host):
+    return ["ssh", "-o", "BatchMode=yes", *host.ssh_options, host.target]
+
+
 def on_host(host, argv, env=None):
     """argv run on host, with env (a dict) set there."""
     env = dict(env or {})
@@ -46,7 +50,7 @@ def on_host(host, argv, env=None):
                 'hostname "$0" && exec "$@"', host.name, "env", *assignments, *argv]
     if host.reach == "ssh":
         remote = f"cd {shlex.quote(str(ROOT))} && exec env {' '.join(map(shlex.quote, assignments + argv))}"
-        return ["ssh", "-o", "BatchMode=yes", host.target, remote]
+        return [*ssh_argv(host), remote]
     return ["srun", "--nodes=1", "--ntasks=1", "--overlap", "-w", host.target, "env", *assignments, *argv]
 
 
@@ -58,7 +62,7 @@ def mpi_agent(cluster, path):
         if h.reach == "slurm":
             continue  # Open MPI starts its daemons with srun itself
         if h.reach == "ssh":  # as Open MPI calls ssh by default
-            lines.append(f"  {shlex.quote(h.name)}) exec ssh -o BatchMode=yes {shlex.quote(h.target)} \"$@\" ;;")
+            lines.append(f"  {shlex.quote(h.name)}) exec {shlex.join(ssh_argv(h))} \"$@\" ;;")
             continue
         lines.append(f"  {shlex.quote(h.name)}) exec {shlex.join(on_host(h, ['sh', '-c']))} \"$*\" ;;")
     lines += ['  *) echo "mpi agent: $host is not a host of the cluster file" >&2; exit 1 ;;', "esac"]

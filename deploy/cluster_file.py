@@ -6,7 +6,9 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
   [cluster]   scene, duration (seconds of player traffic), network (CIDR that MPI's TCP uses,
               needed with several hosts), btl, yield (auto | on | off), dds_domain (default:
               $ZONESIM_DDS_DOMAIN or random), truth_every, zone_args, client_args,
-              shared_storage (yes | no: copy each ssh host's run folder back at the end)
+              shared_storage (yes | no: copy each ssh host's run folder back at the end),
+              ssh_options (added to every ssh the launcher and Open MPI's daemons run, e.g.
+              -i KEY -o UserKnownHostsFile=/dev/null; ssh's own ~/.ssh/config is the other way)
   [host NAME] reach (local | netns NAMESPACE | ssh [USER@]HOST | slurm NODE), address (IPv4 on
               the cluster network; default 127.0.0.1 for local, else NAME resolved), zones
               (ranks there, default 0), cores (default: nproc there)
@@ -29,7 +31,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 KEYS = {
     "cluster": {"scene", "duration", "network", "btl", "yield", "dds_domain", "truth_every",
-                "zone_args", "client_args", "shared_storage"},
+                "zone_args", "client_args", "shared_storage", "ssh_options"},
     "host": {"reach", "address", "zones", "cores"},
     "gateway": {"host", "bind", "id", "args"},
     "fleet": {"host", "gateway", "players", "args"},
@@ -51,6 +53,7 @@ class Host:
     zones: int
     cores: int = 0
     tmp: str = ""  # TMPDIR (Open MPI's session folder) of processes there; "" = theirs
+    ssh_options: list = field(default_factory=list)  # [cluster] ssh_options, for reach = ssh
 
     def machine(self):
         """Hosts on the same machine share its cores."""
@@ -180,6 +183,12 @@ def load(path):
                            number(v.get("cores", "0"), f"{w} cores"))
     if not hosts:
         raise ClusterError(f"{path}: no [host NAME] section")
+    try:
+        ssh_options = shlex.split(c.get("ssh_options", ""))
+    except ValueError as e:
+        raise ClusterError(f"{where} ssh_options: {e}")
+    for h in hosts.values():
+        h.ssh_options = ssh_options if h.reach == "ssh" else []
     reaches = {h.reach for h in hosts.values()}
     if sum(h.reach == "local" for h in hosts.values()) > 1:
         raise ClusterError(f"{path}: more than one host with reach = local")

@@ -53,6 +53,8 @@ with tempfile.TemporaryDirectory(prefix="zs_cluster_file_") as tmp:
     refused(tmp, "unset_variable", GOOD_HEAD + LOCAL.replace("players = 2", "players = ${ZONESIM_NO_SUCH_VAR}"),
             "${ZONESIM_NO_SUCH_VAR} is not set")
     refused(tmp, "bad_section", GOOD_HEAD + LOCAL + "[router r]\n", "[router r]: unknown section")
+    refused(tmp, "bad_ssh_options", GOOD_HEAD + "ssh_options = -i 'key\n" + LOCAL,
+            "[cluster] ssh_options: No closing quotation")
 
     # The batch script under a fake allocation of two nodes (scontrol and the launcher replaced
     # by stand-ins that print what they were given).
