@@ -29,12 +29,22 @@ from cluster_file import ROOT, ClusterError, load, plan  # noqa: E402  (deploy/c
 ZONE_SAFETY_S = 300
 
 
+# A command run over ssh without a terminal is not signalled when its connection goes: a SIGTERM
+# to the local ssh stops only ssh, and the gateway would run on, its summary unwritten. So a
+# process started over ssh watches the ssh's stdin, which the launcher holds open: at its end
+# (the launcher closes it to stop the process, or the launcher died) the process gets SIGTERM.
+STOP_AT_EOF = ('exec 3<&0 </dev/null; "$@" 3<&- & pid=$!; '
+               '(while read -r _ <&3; do :; done; kill -TERM "$pid" 2>/dev/null) & watch=$!; '
+               'wait "$pid"; rc=$?; kill "$watch" 2>/dev/null; exit "$rc"')
+
+
 def ssh_argv(host):
     return ["ssh", "-o", "BatchMode=yes", *host.ssh_options, host.target]
 
 
-def on_host(host, argv, env=None):
-    """argv run on host, with env (a dict) set there."""
+def on_host(host, argv, env=None, stop_at_eof=False):
+    """argv run on host, with env (a dict) set there. stop_at_eof (ssh hosts): SIGTERM it when
+    the stdin of the returned command ends (STOP_AT_EOF)."""
     env = dict(env or {})
     if host.tmp:
         env["TMPDIR"] = host.tmp
@@ -49,8 +59,10 @@ def on_host(host, argv, env=None):
         return ["ip", "netns", "exec", host.target, "unshare", "--uts", "sh", "-c",
                 'hostname "$0" && exec "$@"', host.name, "env", *assignments, *argv]
     if host.reach == "ssh":
-        remote = f"cd {shlex.quote(str(ROOT))} && exec env {' '.join(map(shlex.quote, assignments + argv))}"
-        return [*ssh_argv(host), remote]
+        command = ["env", *assignments, *argv]
+        if stop_at_eof:
+            command = ["sh", "-c", STOP_AT_EOF, "sh", *command]
+        return [*ssh_argv(host), f"cd {shlex.quote(str(ROOT))} && exec {shlex.join(command)}"]
     return ["srun", "--nodes=1", "--ntasks=1", "--overlap", "-w", host.target, "env", *assignments, *argv]
 
 
@@ -113,9 +125,11 @@ class Launch:
     def log(self, msg):
         print(msg, flush=True)
 
-    def start(self, what, argv, log_path):
+    def start(self, what, argv, log_path, held_stdin=False):
+        """held_stdin: a pipe that stop() closes to end the process (STOP_AT_EOF)."""
         log = open(log_path, "w")
-        p = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+        p = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT,
+                             stdin=subprocess.PIPE if held_stdin else subprocess.DEVNULL,
                              start_new_session=True)
         self.procs.append((p, what, log_path))
         return p
@@ -225,7 +239,8 @@ class Launch:
                     "--duration", int(self.c.duration + ZONE_SAFETY_S), *g.args]
             g.log = self.run / f"gateway-{g.name}.log"
             g.proc = self.start(f"{g.host.describe()}, gateway {g.name}",
-                                on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}), g.log)
+                                on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}, stop_at_eof=True),
+                                g.log, held_stdin=g.host.reach == "ssh")
         for g in self.c.gateways:
             what = f"{g.host.describe()}, gateway {g.name}"
             deadline = time.monotonic() + 120  # a loaded 2-core machine can take long to start one
@@ -255,7 +270,8 @@ class Launch:
                     *self.c.client_args, *f.args]
             f.log = self.run / f"fleet-{f.name}.log"
             self.log(f"== fleet {f.name} on {f.host.name}: {f.players} players for {self.c.duration:g} s against {address}:{port}")
-            f.proc = self.start(f"{f.host.describe()}, fleet {f.name}", on_host(f.host, argv), f.log)
+            f.proc = self.start(f"{f.host.describe()}, fleet {f.name}", on_host(f.host, argv, stop_at_eof=True), f.log,
+                                held_stdin=f.host.reach == "ssh")
 
     def wait_fleets(self):
         report = ROOT / "deploy" / "report.py"
@@ -278,7 +294,10 @@ class Launch:
         if p.poll() is not None:
             return p.returncode
         try:
-            os.killpg(p.pid, signal.SIGTERM)
+            if p.stdin:  # over ssh: ending its stdin SIGTERMs the remote process, and ssh returns once it is done
+                p.stdin.close()
+            else:
+                os.killpg(p.pid, signal.SIGTERM)
             return p.wait(timeout=grace)
         except (ProcessLookupError, subprocess.TimeoutExpired):
             try:
