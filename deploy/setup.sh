@@ -17,6 +17,7 @@ PACKAGES=(
   libbullet-dev
   clang libclang-rt-14-dev
   iproute2  # ip netns, veth and bridge for the multi_host test (deploy/netns.sh)
+  openssh-server openssh-client  # sshd in each namespace for the multi_host_ssh test; ssh for reach = ssh
 )
 
 missing=()
