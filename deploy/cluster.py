@@ -24,6 +24,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from cluster_file import ROOT, ClusterError, load, plan  # noqa: E402  (deploy/cluster_file.py)
+import process_group  # noqa: E402  (deploy/process_group.py)
 
 # Zones outlive the players by this much at most: they are stopped once the fleets are done.
 ZONE_SAFETY_S = 300
@@ -291,20 +292,8 @@ class Launch:
                 self.fail(f"{f.host.describe()}, fleet {f.name}", f"exited with {f.proc.returncode}", f.log)
 
     def stop(self, p, grace):
-        if p.poll() is not None:
-            return p.returncode
-        try:
-            if p.stdin:  # over ssh: ending its stdin SIGTERMs the remote process, and ssh returns once it is done
-                p.stdin.close()
-            else:
-                os.killpg(p.pid, signal.SIGTERM)
-            return p.wait(timeout=grace)
-        except (ProcessLookupError, subprocess.TimeoutExpired):
-            try:
-                os.killpg(p.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            return p.wait()
+        # Over ssh, ending its stdin SIGTERMs the remote process, and ssh returns once it is done.
+        return process_group.stop(p, grace, close_stdin=p.stdin is not None)
 
     def finish(self):
         time.sleep(2)  # 60 ticks for the last goodbyes and despawns to reach the zones
@@ -319,6 +308,14 @@ class Launch:
         written = len(list(self.run.glob("zone_*_summary.json")))
         if written != ranks:
             self.fail(self.procs[0][1], f"{written} of {ranks} ranks wrote their summary", self.run / "zones.log")
+        # A process that ran but wrote no summary would leave the report with a hole that looks
+        # like a quiet run: name it instead.
+        for g in self.c.gateways:
+            if not (g.folder / "gateway_summary.json").exists():
+                self.fail(f"{g.host.describe()}, gateway {g.name}", "wrote no gateway_summary.json", g.log)
+        for f in self.c.fleets:
+            if not (f.folder / "clients_summary.json").exists():
+                self.fail(f"{f.host.describe()}, fleet {f.name}", "wrote no clients_summary.json", f.log)
 
     def fetch_remote_folders(self):
         used = {p.host.name for p in self.c.gateways + self.c.fleets} | {h.name for h in self.c.hosts.values() if h.zones}

@@ -9,7 +9,6 @@ import fcntl
 import json
 import os
 import random
-import signal
 import subprocess
 import sys
 import tempfile
@@ -17,6 +16,9 @@ import time
 from pathlib import Path
 
 SOURCE_DIR = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(SOURCE_DIR / "deploy"))
+import process_group  # noqa: E402  (deploy/process_group.py)
+
 _children = []
 
 
@@ -94,17 +96,7 @@ def run(cmd, log_path, env, timeout):
 
 def stop(p, grace=5.0):
     """SIGTERM the process group, then SIGKILL what is left."""
-    if p.poll() is not None:
-        return p.returncode
-    try:
-        os.killpg(p.pid, signal.SIGTERM)
-        return p.wait(timeout=grace)
-    except (ProcessLookupError, subprocess.TimeoutExpired):
-        try:
-            os.killpg(p.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        return p.wait()
+    return process_group.stop(p, grace)
 
 
 @atexit.register
