@@ -44,7 +44,7 @@ def ssh_argv(host):
 
 
 def on_host(host, argv, env=None, stop_at_eof=False):
-    """argv run on host, with env (a dict) set there. stop_at_eof (ssh hosts): SIGTERM it when
+    """argv run on host, with env (a dict) set there. stop_at_eof (ssh, slurm): SIGTERM it when
     the stdin of the returned command ends (STOP_AT_EOF)."""
     env = dict(env or {})
     if host.tmp:
@@ -64,7 +64,12 @@ def on_host(host, argv, env=None, stop_at_eof=False):
         if stop_at_eof:
             command = ["sh", "-c", STOP_AT_EOF, "sh", *command]
         return [*ssh_argv(host), f"cd {shlex.quote(str(ROOT))} && exec {shlex.join(command)}"]
-    return ["srun", "--nodes=1", "--ntasks=1", "--overlap", "-w", host.target, "env", *assignments, *argv]
+    # srun answers a SIGTERM by killing the step (SIGKILL after KillWait), so a gateway would
+    # write no summary; srun hands its stdin to the task, so STOP_AT_EOF works as over ssh.
+    command = ["env", *assignments, *argv]
+    if stop_at_eof:
+        command = ["sh", "-c", STOP_AT_EOF, "sh", *command]
+    return ["srun", "--nodes=1", "--ntasks=1", "--overlap", "-w", host.target, *command]
 
 
 def mpi_agent(cluster, path):
@@ -241,7 +246,7 @@ class Launch:
             g.log = self.run / f"gateway-{g.name}.log"
             g.proc = self.start(f"{g.host.describe()}, gateway {g.name}",
                                 on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}, stop_at_eof=True),
-                                g.log, held_stdin=g.host.reach == "ssh")
+                                g.log, held_stdin=g.host.reach in ("ssh", "slurm"))
         for g in self.c.gateways:
             what = f"{g.host.describe()}, gateway {g.name}"
             deadline = time.monotonic() + 120  # a loaded 2-core machine can take long to start one
@@ -272,7 +277,7 @@ class Launch:
             f.log = self.run / f"fleet-{f.name}.log"
             self.log(f"== fleet {f.name} on {f.host.name}: {f.players} players for {self.c.duration:g} s against {address}:{port}")
             f.proc = self.start(f"{f.host.describe()}, fleet {f.name}", on_host(f.host, argv, stop_at_eof=True), f.log,
-                                held_stdin=f.host.reach == "ssh")
+                                held_stdin=f.host.reach in ("ssh", "slurm"))
 
     def wait_fleets(self):
         report = ROOT / "deploy" / "report.py"
@@ -292,7 +297,8 @@ class Launch:
                 self.fail(f"{f.host.describe()}, fleet {f.name}", f"exited with {f.proc.returncode}", f.log)
 
     def stop(self, p, grace):
-        # Over ssh, ending its stdin SIGTERMs the remote process, and ssh returns once it is done.
+        # Over ssh or srun, ending its stdin SIGTERMs the remote process, and ssh or srun returns once
+        # it is done.
         return process_group.stop(p, grace, close_stdin=p.stdin is not None)
 
     def finish(self):
