@@ -18,6 +18,7 @@ PACKAGES=(
   clang libclang-rt-14-dev
   iproute2  # ip netns, veth and bridge for the multi_host test (deploy/netns.sh)
   openssh-server openssh-client  # sshd in each namespace for the multi_host_ssh test; ssh for reach = ssh
+  slurmctld slurmd slurm-client munge  # a one-node Slurm for the slurm_cluster test; srun for reach = slurm
 )
 
 missing=()

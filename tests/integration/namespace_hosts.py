@@ -61,6 +61,15 @@ def check_run(run, log_text):
         return sum(n for z in zones for to, n in z[key].items() if host_of[int(to)] != z["host"])
     h.check(across("migrated_out_to") > 0, f"entities migrated between hosts ({across('migrated_out_to')})")
     h.check(across("avatars_out_to") > 0, f"avatars handed off between hosts ({across('avatars_out_to')})")
+    check_conservation(zones)
+    h.check("gateway g1 on h3 listening on 0.0.0.0:" in log_text and "against 10.77.0.3:" in log_text,
+            "the gateway bound every interface of h3 and the players reached it at h3's address")
+    check_players(run, zones, PLAYERS)
+
+
+def check_conservation(zones):
+    """Every migration received once, and the entities and their ids conserved (slurm_cluster's
+    one node shares these checks and check_players)."""
     out_total, in_total = sum(z["migrated_out"] for z in zones), sum(z["migrated_in"] for z in zones)
     h.check(out_total == in_total, f"every migration sent was received once ({out_total} out, {in_total} in)")
     h.check(all(z["conservation_checks"] > 0 and z["conservation_failures"] == 0 for z in zones),
@@ -68,11 +77,12 @@ def check_run(run, log_text):
     h.check(sum(z["entities_start"] for z in zones) == sum(z["entities_end"] for z in zones),
             "the world ends with the entities it started with")
 
-    h.check("gateway g1 on h3 listening on 0.0.0.0:" in log_text and "against 10.77.0.3:" in log_text,
-            "the gateway bound every interface of h3 and the players reached it at h3's address")
+
+def check_players(run, zones, players):
+    """That many players welcomed, given state and told of handoffs; every input forwarded applied once."""
     clients = h.load_json(run / "clients_summary.json")["clients"]
-    h.check(len(clients) == PLAYERS and all(c.get("avatar_id", 0) != 0 for c in clients),
-            f"{PLAYERS} players welcomed with an avatar")
+    h.check(len(clients) == players and all(c.get("avatar_id", 0) != 0 for c in clients),
+            f"{players} players welcomed with an avatar")
     h.check(all(c["updates_per_s"] > 0 for c in clients), "every player received entity state")
     h.check(sum(c.get("handoffs", 0) for c in clients) >= 1, "players were told of handoffs")
     forwarded = h.load_json(run / "gateway_summary.json")["inputs_forwarded"]
