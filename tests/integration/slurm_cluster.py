@@ -59,10 +59,16 @@ PartitionName=zs Nodes={node} Default=YES MaxTime=10 State=UP
 """
 
 
-def free_port():
-    with socket.socket() as s:
-        s.bind(("", 0))
-        return s.getsockname()[1]
+def free_ports(count):
+    """count distinct ports free now: all held open until each is known, so none comes twice."""
+    sockets = [socket.socket() for _ in range(count)]
+    try:
+        for s in sockets:
+            s.bind(("", 0))
+        return [s.getsockname()[1] for s in sockets]
+    finally:
+        for s in sockets:
+            s.close()
 
 
 def daemon_path(name):
@@ -125,8 +131,9 @@ try:
     start_daemon("munged", "--foreground", "--force", f"--socket={tmp}/munge.socket", f"--key-file={key}",
                  f"--pid-file={tmp}/munged.pid", f"--log-file={tmp}/munged.log", f"--seed-file={tmp}/munged.seed")
     wait_for("munged's socket", lambda: Path(tmp, "munge.socket").exists(), daemons, time.monotonic() + 30)
-    Path(env["SLURM_CONF"]).write_text(SLURM_CONF.format(
-        pid=os.getpid(), node=NODE, tmp=tmp, cpus=max(os.cpu_count(), RANKS), ctld_port=free_port(), slurmd_port=free_port()))
+    ctld_port, slurmd_port = free_ports(2)
+    Path(env["SLURM_CONF"]).write_text(SLURM_CONF.format(pid=os.getpid(), node=NODE, tmp=tmp, cpus=max(os.cpu_count(), RANKS),
+                                                         ctld_port=ctld_port, slurmd_port=slurmd_port))
     start_daemon("slurmctld", "-D", "-i")  # -i: no state from an earlier run
     start_daemon("slurmd", "-D", "-N", NODE)
 
@@ -139,9 +146,13 @@ try:
     env.update(ZONESIM_ROOT=str(h.SOURCE_DIR), ZONESIM_RUNS=f"{tmp}/runs", ZONESIM_SECONDS=str(SECONDS),
                ZONESIM_PLAYERS=str(PLAYERS))
     # One node, RANKS zone ranks, and the gateway and the players beside them (srun --overlap).
-    job = slurm("sbatch", "--wait", "--parsable", "--nodes=1", f"--ntasks-per-node={RANKS}",
-                "--time=2", f"--output={tmp}/job-%j.out", f"--chdir={tmp}",
-                h.SOURCE_DIR / "deploy/zonesim.sbatch", "scenes/test_e2e.yaml", timeout=150)
+    try:
+        job = slurm("sbatch", "--wait", "--parsable", "--nodes=1", f"--ntasks-per-node={RANKS}",
+                    "--time=2", f"--output={tmp}/job-%j.out", f"--chdir={tmp}",
+                    h.SOURCE_DIR / "deploy/zonesim.sbatch", "scenes/test_e2e.yaml", timeout=150)
+    except subprocess.TimeoutExpired:
+        h.fail("sbatch --wait deploy/zonesim.sbatch: the job had not ended after 150 s\n"
+               + "".join(h.tail(p, 20) for p in sorted(Path(tmp).glob("job-*.out"))))
     outputs = sorted(Path(tmp).glob("job-*.out"))
     job_log = outputs[0].read_text(errors="replace") if outputs else ""
     if job.returncode != 0:
