@@ -356,12 +356,15 @@ void readDeadReckoning(const SceneMap& root, DeadReckoning& dr) {
 }
 
 void readClients(const SceneMap& root, ClientProfile& clients) {
-  SceneMap m = root.section("clients", {"players", "speed", "input_hz", "nimbus", "retarget_s"});
+  SceneMap m = root.section("clients", {"players", "speed", "input_hz", "nimbus", "retarget_s",
+                                        "downlink_kbps", "downlink_error_angle_deg"});
   m.read("players", clients.players, Limit::atLeast(0));
   m.read("speed", clients.speed, Limit::atLeast(0));
   m.read("input_hz", clients.input_hz, Limit::above(0));
   m.read("nimbus", clients.nimbus, Limit::above(0));
   m.read("retarget_s", clients.retarget_seconds, Limit::above(0));
+  m.read("downlink_kbps", clients.downlink_kbps, Limit::atLeast(0));
+  m.read("downlink_error_angle_deg", clients.downlink_error_angle_deg, Limit::between(0, 85));
 }
 
 Scene readScene(const SceneNode& document, const std::string& file) {

@@ -33,6 +33,12 @@ class ClientView {
   /// Diffs visible (any order, no duplicates) against what was sent and records the new state.
   ViewDiff diff(const std::vector<VisibleEntity>& visible);
   bool knows(std::uint64_t id) const { return known_.contains(id); }
+  /// An update held back: the next diff lists the entity's state again (versions start at 1).
+  void defer(std::uint64_t id) {
+    if (auto it = known_.find(id); it != known_.end()) it->second.version = 0;
+  }
+  /// A spawn held back: the next diff lists the entity as a spawn again.
+  void forget(std::uint64_t id) { known_.erase(id); }
   std::size_t size() const { return known_.size(); }
 
  private:

@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 #include <system_error>
+#include <tuple>
 
 #include "common/log.h"
 #include "common/timer.h"
@@ -68,6 +69,21 @@ Gateway::Gateway(GatewayConfig config)
       codec_(dr::codecParams(config_.scene)),
       impairment_(config_.impairment, 0x9a7e) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
+  checkBudget(config_.budget, 0, config_.budget_names.first, config_.budget_names.second);
+  if (config_.budget.enabled()) {
+    // The least a second must carry: one spawn of the largest record (second order, rotating).
+    dr::WireEntity widest;
+    widest.id = ~std::uint64_t{0} >> 1;
+    widest.model = {dr::Order::Second, dr::Spin::Rotating};
+    ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
+    std::size_t one_spawn = encodeSpawnChunks(~std::uint64_t{0}, ~std::uint64_t{0} >> 1, codec_,
+                                              {&widest, 1}, numbered)[0]
+                                .size();
+    checkBudget(config_.budget, one_spawn, config_.budget_names.first, config_.budget_names.second);
+    budget_bytes_per_tick_ = config_.budget.bytesPerTick(config_.scene.tick_rate);
+    // Below one datagram a tick, tokens are saved up until a spawn fits.
+    budget_cap_bytes_ = std::max(budget_bytes_per_tick_, double(one_spawn));
+  }
   // The gateway handles each datagram as it arrives: it can lose incoming ones, not hold them.
   if (!config_.impairment.in.lossOnly())
     throw std::invalid_argument("gateway: incoming impairment can only lose datagrams, not '" +
@@ -308,10 +324,12 @@ void Gateway::sendViews(std::int64_t now_ns) {
     at.self = s.avatar_id;
     at.sim_now = sim_now;
     ViewDiff diff = s.view.diff(selectVisible(cache_, grid_, at, s.view));
+    if (config_.budget.enabled()) s.budget.refill(budget_bytes_per_tick_, budget_cap_bytes_);
     if (config_.resend) {
       addResends(s, diff, now_ns);
       resendHandoff(s, now_ns);
     }
+    if (config_.budget.enabled()) budgetDiff(s, diff, at);
     std::uint64_t tick = clock_.tick();
     if (!diff.empty()) {
       sendView(s, diff, now_ns);
@@ -356,6 +374,126 @@ void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {
   counters_.resent += after - before;
 }
 
+std::pair<std::vector<std::uint64_t>, std::size_t> Gateway::fitting(
+    const Session& s, const std::vector<std::uint64_t>& forced,
+    const std::vector<std::uint64_t>& ranked, bool spawns, double available) const {
+  // Encodes exactly what sendView will send (seq is a fixed-width field, the batch tick the
+  // newest of the set), so the size measured here is the size sent.
+  ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
+  auto take = [&](std::size_t k) {
+    std::vector<std::uint64_t> ids = forced;
+    ids.insert(ids.end(), ranked.begin(), ranked.begin() + std::ptrdiff_t(k));
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  auto bytes = [&](const std::vector<std::uint64_t>& ids) {
+    if (ids.empty()) return std::size_t{0};
+    std::vector<dr::WireEntity> states;
+    std::uint64_t tick = clock_.tick();
+    for (std::uint64_t id : ids) {
+      states.push_back(wireEntity(*cache_.find(id)));
+      tick = std::max(tick, states.back().tick);
+    }
+    std::size_t total = 0;
+    for (const Bytes& b : spawns ? encodeSpawnChunks(s.token, tick, codec_, states, numbered)
+                                 : encodeStateChunks(s.token, tick, codec_, states, numbered))
+      total += b.size();
+    return total;
+  };
+  // The largest prefix that fits (sizes grow with the prefix): a binary search.
+  std::size_t lo = 0, hi = available > 0 ? ranked.size() : 0;
+  while (lo < hi) {
+    std::size_t mid = (lo + hi + 1) / 2;
+    if (double(bytes(take(mid))) <= available)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  std::vector<std::uint64_t> ids = take(lo);
+  return {ids, bytes(ids)};
+}
+
+void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at) {
+  const DeadReckoning& drs = config_.scene.dead_reckoning;
+  // The zone's own thresholds are the floor: nearer than floor / angle, every state the zone
+  // sent is worth sending, so the near band keeps the zone's precision.
+  double floor = std::max(drs.position_threshold, 1e-6);
+  double rot_floor = std::max(drs.orientation_threshold_deg * M_PI / 180.0, 1e-6);
+  auto distanceOf = [&](std::uint64_t id) {
+    dr::V3 p = predictedPosition(*cache_.find(id), at.sim_now);
+    return std::hypot(p.x - at.x, p.z - at.z);
+  };
+  auto rest = [](const std::vector<std::uint64_t>& all, const std::vector<std::uint64_t>& kept) {
+    std::vector<std::uint64_t> out;
+    std::set_difference(all.begin(), all.end(), kept.begin(), kept.end(), std::back_inserter(out));
+    return out;
+  };
+  double available = s.budget.tokens();
+  if (!diff.despawns.empty()) {
+    ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
+    for (const Bytes& b : encodeDespawnChunks(s.token, clock_.tick(), diff.despawns, numbered))
+      available -= double(b.size());
+  }
+  // Spawns: the avatar always, the others nearest first while they fit.
+  std::vector<std::uint64_t> forced, ranked;
+  std::vector<std::pair<double, std::uint64_t>> order;
+  for (std::uint64_t id : diff.spawns)
+    if (id == at.self)
+      forced.push_back(id);
+    else
+      order.emplace_back(distanceOf(id), id);
+  std::sort(order.begin(), order.end());
+  for (auto& [d, id] : order) ranked.push_back(id);
+  auto [spawns, spawn_bytes] = fitting(s, forced, ranked, true, available);
+  available -= double(spawn_bytes);
+  for (std::uint64_t id : rest(diff.spawns, spawns)) {
+    s.view.forget(id);
+    ++s.traffic.deferred;
+    ++counters_.deferred;
+  }
+  diff.spawns = std::move(spawns);
+  // Updates: the avatar always; the near band (where angle * distance is within the zone's
+  // threshold) next; then the others whose error shown exceeds the angle, highest
+  // accumulated priority (error in units of the allowed error, summed over ticks) first.
+  forced.clear();
+  ranked.clear();
+  std::vector<std::tuple<int, double, std::uint64_t>> ranked_updates;
+  for (std::uint64_t id : diff.updates) {
+    const CachedEntity* sent = s.budget.lastSent(id);
+    if (id == at.self || sent == nullptr) {
+      forced.push_back(id);
+      continue;
+    }
+    const CachedEntity& newest = *cache_.find(id);
+    double d = distanceOf(id);
+    double limit = std::max(floor, config_.budget.error_angle_rad * d);
+    bool near = limit <= floor;
+    ShownError err = shownError(*sent, newest, at.sim_now);
+    double ratio = std::max(err.position / limit, err.orientation * floor / (rot_floor * limit));
+    bool heartbeat = at.sim_now - sent->sim_time >= drs.heartbeat_seconds;
+    if (!near && !heartbeat && ratio <= 1) {
+      s.view.defer(id);
+      ++s.traffic.held;
+      ++counters_.held;
+      continue;
+    }
+    // The near band first, then the rest; each by accumulated priority.
+    double acc = s.budget.accumulate(id, std::max(ratio, 1.0));
+    ranked_updates.push_back({near ? 0 : 1, -acc, id});
+  }
+  std::sort(ranked_updates.begin(), ranked_updates.end());
+  for (auto& [band, key, id] : ranked_updates) ranked.push_back(id);
+  std::vector<std::uint64_t> updates = fitting(s, forced, ranked, false, available).first;
+  std::vector<std::uint64_t> all = diff.updates;
+  for (std::uint64_t id : rest(all, updates)) {
+    if (std::find(ranked.begin(), ranked.end(), id) == ranked.end()) continue;  // held above
+    s.view.defer(id);
+    ++s.traffic.deferred;
+    ++counters_.deferred;
+  }
+  diff.updates = std::move(updates);
+}
+
 void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   // States go out as the zones sampled them, with their tick: the client runs the same model
   // from the same state, so nothing is extrapolated here.
@@ -398,6 +536,11 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   first = s.resend.upcoming();
   send(first, encodeStateChunks(s.token, newest(updates), codec_, updates, seq), diff.updates,
        Carried::Update);
+  if (config_.budget.enabled()) {
+    for (std::uint64_t id : diff.despawns) s.budget.forget(id);
+    for (std::uint64_t id : diff.spawns) s.budget.sent(id, *cache_.find(id));
+    for (std::uint64_t id : diff.updates) s.budget.sent(id, *cache_.find(id));
+  }
   s.traffic.despawns_sent += diff.despawns.size();
   s.traffic.spawns_sent += diff.spawns.size();
   s.traffic.updates_sent += diff.updates.size();
@@ -409,6 +552,7 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
 void Gateway::sendTo(Session& s, const Bytes& bytes) {
   ++s.traffic.datagrams_out;
   s.traffic.bytes_out += bytes.size();
+  if (config_.budget.enabled()) s.budget.spend(bytes.size());
   sendTo(s.address, bytes);
 }
 
@@ -438,7 +582,18 @@ GatewayGauges Gateway::gauges(std::int64_t now_ns) {
 
 void Gateway::writeMetrics(std::int64_t now_ns) {
   if (!metrics_.enabled()) return;
-  metrics_.write(metricsLine(counters_, handler_.drops(), gauges(now_ns)));
+  GatewayGauges g = gauges(now_ns);
+  std::vector<double> kbps;
+  sessions_.forEach([&](SlotHandle, Session& s) {
+    kbps.push_back(double(s.traffic.bytes_out - s.bytes_out_at_second) * 8.0 / 1000.0);
+    s.bytes_out_at_second = s.traffic.bytes_out;
+  });
+  if (!kbps.empty()) {
+    std::sort(kbps.begin(), kbps.end());
+    g.client_kbps_p50 = kbps[kbps.size() / 2];
+    g.client_kbps_max = kbps.back();
+  }
+  metrics_.write(metricsLine(counters_, handler_.drops(), g));
 }
 
 std::string Gateway::summaryJson() {

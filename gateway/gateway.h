@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/interest_grid.h"
@@ -29,7 +30,7 @@ namespace zonesim::gateway {
 struct GatewayConfig {
   Scene scene;
   Endpoint bind = Endpoint::loopback(0);  ///< UDP address for players; port 0 = ephemeral
-  std::uint32_t gateway_id = 1;  ///< 1..65535, bits 32-47 of the player ids issued here
+  std::uint32_t gateway_id = 1;           ///< 1..65535, bits 32-47 of the player ids issued here
   int dds_domain = 0;
   std::uint64_t spawn_seed = 1;   ///< seeds avatar spawn positions
   int expected_zones = 0;         ///< readers awaited before spawning; 0 = the scene's grid
@@ -47,6 +48,10 @@ struct GatewayConfig {
   /// the current tick, so its clock (bounded to run a little past the newest tick it heard,
   /// clients/sim_player.h) keeps running while its view is quiet. 0: never.
   int clock_every_ticks = 6;
+  /// Downlink budget per client (kbps 0: none, every update goes out as the zones sent it).
+  BudgetSettings budget;
+  /// How an error about the budget names its two settings (an option, or a scene key).
+  std::pair<std::string, std::string> budget_names{"budget_kbps", "budget_error_angle_deg"};
 };
 
 class Gateway {
@@ -77,6 +82,14 @@ class Gateway {
   /// Adds to diff what the client has not acknowledged within the timeout.
   void addResends(Session& s, ViewDiff& diff, std::int64_t now_ns);
   void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
+  /// Under a budget: the spawns and updates of diff that go out this tick, deferring the rest
+  /// in the view; despawns and the avatar always go.
+  void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at);
+  /// The first ids (priority order) after `forced` whose encoding fits the session's tokens.
+  /// Returns them (ascending) and their encoded size; `forced` always goes.
+  std::pair<std::vector<std::uint64_t>, std::size_t> fitting(
+      const Session& s, const std::vector<std::uint64_t>& forced,
+      const std::vector<std::uint64_t>& ranked, bool spawns, double available) const;
   /// Sends the session's pending Handoff notice under a new seq.
   void sendHandoff(Session& s, std::int64_t now_ns);
   /// Forgets the pending Handoff once acknowledged; sends it again after the timeout.
@@ -114,6 +127,7 @@ class Gateway {
   dr::StateCodec codec_;
   Impairment impairment_;  // packs states for clients exactly as the zones quantised them
   std::int64_t next_metrics_ns_ = 0;
+  double budget_bytes_per_tick_ = 0, budget_cap_bytes_ = 0;  // under a budget
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
 };
 

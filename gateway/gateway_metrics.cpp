@@ -28,7 +28,9 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("sessions_expired", c.sessions_expired)
       .add("dds_samples", c.dds_samples)
       .add("ownership_foreign", c.ownership_foreign)
-      .add("ownership_stale", c.ownership_stale);
+      .add("ownership_stale", c.ownership_stale)
+      .add("deferred", c.deferred)
+      .add("held", c.held);
 }
 
 void addGauges(JsonLine& j, const GatewayGauges& g) {
@@ -41,7 +43,9 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("zone_tick", g.zone_tick)
       .add("ticks", g.tick_ms.count)
       .add("tick_ms_mean", g.tick_ms.meanMs())
-      .add("tick_ms_max", g.tick_ms.max_ms);
+      .add("tick_ms_max", g.tick_ms.max_ms)
+      .add("client_kbps_p50", g.client_kbps_p50)
+      .add("client_kbps_max", g.client_kbps_max);
 }
 
 JsonLine dropsObject(const DropCounters& drops) {
@@ -68,7 +72,9 @@ std::string playerJson(const PlayerRecord& p) {
       .add("despawns_sent", t.despawns_sent)
       .add("inputs_forwarded", t.inputs_forwarded)
       .add("handoffs", t.handoffs)
-      .add("handoffs_resent", t.handoffs_resent);
+      .add("handoffs_resent", t.handoffs_resent)
+      .add("deferred", t.deferred)
+      .add("held", t.held);
   return j.str();
 }
 

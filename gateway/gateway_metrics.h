@@ -24,6 +24,8 @@ struct GatewayCounters {
   std::uint64_t clock_ticks = 0;      ///< empty StateBatches sent to quiet views
   std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;
   std::uint64_t dds_samples = 0, ownership_foreign = 0, ownership_stale = 0;
+  std::uint64_t deferred = 0;  ///< spawns and updates held back a tick for want of budget
+  std::uint64_t held = 0;      ///< updates not sent: the error shown stayed within the angle
 };
 
 /// Wall time of gateway ticks (everything but receiving datagrams), in milliseconds.
@@ -45,6 +47,8 @@ struct GatewayGauges {
   std::size_t held_spawns = 0;
   std::uint64_t zone_tick = 0;
   TickTimes tick_ms;
+  /// UDP payload bytes sent to each client over the last metrics second, as kbit/s.
+  double client_kbps_p50 = 0, client_kbps_max = 0;
 };
 
 /// Traffic of one player, kept after the session ends for the summary.

@@ -1,9 +1,11 @@
 // gateway: UDP server for simulated players, DDS client of the zones. Prints
-// "gateway listening on ADDR:PORT" once ready (the bound address: --bind, 127.0.0.1 by default); exits cleanly on SIGINT/SIGTERM or after
+// "gateway listening on ADDR:PORT" once ready (the bound address: --bind, 127.0.0.1 by default);
+// exits cleanly on SIGINT/SIGTERM or after
 // --duration, printing a JSON summary line; exits non-zero with a message on any error.
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +86,13 @@ int main(int argc, char** argv) {
   link_opt->excludes(app.add_option("--inject-jitter-ms", inject_jitter_ms,
                                     "plus uniform jitter, which reorders (testing)")
                          ->check(CLI::NonNegativeNumber));
+  std::optional<double> budget_kbps, budget_angle_deg;
+  app.add_option("--budget-kbps", budget_kbps,
+                 "downlink budget per client, kbit/s of UDP payload (default: the scene's "
+                 "clients.downlink_kbps; 0 = none)");
+  app.add_option("--budget-error-angle-deg", budget_angle_deg,
+                 "under a budget, hold the error each player sees as this angle (default: the "
+                 "scene's clients.downlink_error_angle_deg)");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
@@ -92,7 +101,8 @@ int main(int argc, char** argv) {
     zonesim::applyCommonOptions(common, "gateway");
     cfg.scene = zonesim::loadScene(scene_path);
     // What the user typed, so an error names the options at fault.
-    std::string bind_option = "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
+    std::string bind_option =
+        "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
     try {
       cfg.bind = zonesim::gateway::parseBindAddress(bind_text, std::uint16_t(std::max(port, 0)));
     } catch (const std::invalid_argument& e) {
@@ -109,6 +119,14 @@ int main(int argc, char** argv) {
         throw std::invalid_argument(std::string("--link: ") + e.what());
       }
     }
+    // The scene's budget, unless the command line gives one; a bad one names its option.
+    bool budget_from_cli = budget_kbps.has_value(), angle_from_cli = budget_angle_deg.has_value();
+    cfg.budget.kbps = budget_kbps.value_or(cfg.scene.clients.downlink_kbps);
+    double angle_deg = budget_angle_deg.value_or(cfg.scene.clients.downlink_error_angle_deg);
+    cfg.budget.error_angle_rad = angle_deg * M_PI / 180.0;
+    cfg.budget_names = {
+        budget_from_cli ? "--budget-kbps" : "clients.downlink_kbps",
+        angle_from_cli ? "--budget-error-angle-deg" : "clients.downlink_error_angle_deg"};
     if (resend_early) cfg.loss_detection = zonesim::gateway::LossDetection::LaterAck;
     cfg.spawn_seed = seed >= 0 ? std::uint64_t(seed) : cfg.scene.seed;
     if (!metrics_dir.empty()) {

@@ -10,6 +10,7 @@
 
 #include "common/generational_pool.h"
 #include "gateway/client_view.h"
+#include "gateway/downlink_budget.h"
 #include "wire/ack_window.h"
 #include "wire/udp_socket.h"
 #include "wire/wire_encode.h"
@@ -24,6 +25,8 @@ struct SessionTraffic {
   std::uint64_t inputs_forwarded = 0, handoffs = 0;
   std::uint64_t resent = 0;           ///< spawns, states and despawns sent again for want of an ack
   std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
+  std::uint64_t deferred = 0;         ///< spawns and updates held back a tick for want of budget
+  std::uint64_t held = 0;             ///< updates not sent: the error shown stayed within the angle
 };
 
 /// The newest Handoff notice of a session, until the client acknowledges it.
@@ -51,6 +54,8 @@ struct Session {
   std::uint64_t told_tick = 0;  ///< the newest server tick a datagram to the client carried
   double rate_tokens = -1;      ///< per-client rate limit bucket; < 0: not started (full)
   std::int64_t rate_ns = 0;     ///< when the bucket was last refilled
+  DownlinkBudget budget;        ///< used when the gateway has a downlink budget
+  std::uint64_t bytes_out_at_second = 0;  ///< traffic.bytes_out when the metrics second began
   SessionTraffic traffic;
 };
 

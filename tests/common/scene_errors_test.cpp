@@ -127,6 +127,8 @@ const InlineCase kInlineCases[] = {
      "5: dead_reckoning.heartbeat_s: expected a finite number, got '.nan'"},
     {"overflow", withBase("dead_reckoning: {position_threshold: 1e999}\n"),
      "5: dead_reckoning.position_threshold: expected a finite number, got '1e999'"},
+    {"negative_budget", withBase("clients: {downlink_kbps: -20}\n"),
+     "5: clients.downlink_kbps: must be >= 0, got -20"},
     {"section_not_mapping", withBase("clients: 4\n"), "5: clients: expected a mapping, got '4'"},
     {"populations_not_list", withBase("populations: {kind: npc}\n"),
      "5: populations: expected a list, got a mapping"},

@@ -173,7 +173,8 @@ TEST(SceneDefaults, ExplicitValuesOverrideThem) {
       "interest: {cell_size: 2.5, keyframe_every: 1}\n"
       "halo: {width: 0}\n"
       "dead_reckoning: {position_threshold: 0, heartbeat_s: 0.5}\n"
-      "clients: {players: 0, speed: 0, input_hz: 1, nimbus: 4, retarget_s: 2}\n",
+      "clients: {players: 0, speed: 0, input_hz: 1, nimbus: 4, retarget_s: 2, downlink_kbps: 20,\n"
+      "          downlink_error_angle_deg: 1}\n",
       "x");
   EXPECT_EQ(s.name, "custom");
   EXPECT_DOUBLE_EQ(s.tick_rate, 10);
@@ -186,6 +187,8 @@ TEST(SceneDefaults, ExplicitValuesOverrideThem) {
   EXPECT_DOUBLE_EQ(s.clients.input_hz, 1);
   EXPECT_DOUBLE_EQ(s.clients.nimbus, 4);
   EXPECT_DOUBLE_EQ(s.clients.retarget_seconds, 2);
+  EXPECT_DOUBLE_EQ(s.clients.downlink_kbps, 20);
+  EXPECT_DOUBLE_EQ(s.clients.downlink_error_angle_deg, 1);
 }
 
 TEST(SceneDefaults, DeadReckoningModelsAndQuantisation) {

@@ -1,0 +1,68 @@
+#include "gateway/downlink_budget.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace zonesim::gateway {
+
+namespace {
+std::string number(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+}  // namespace
+
+void checkBudget(const BudgetSettings& b, std::size_t min_datagram_bytes,
+                 const std::string& kbps_name, const std::string& angle_name) {
+  if (!std::isfinite(b.kbps) || b.kbps < 0)
+    throw std::invalid_argument(kbps_name + ": must be a number >= 0 (0 = no budget), not " +
+                                number(b.kbps));
+  if (!std::isfinite(b.error_angle_rad) || b.error_angle_rad < 0 ||
+      b.error_angle_rad > 85.0 * M_PI / 180.0 + 1e-12)
+    throw std::invalid_argument(angle_name + ": must be between 0 and 85 degrees");
+  if (!b.enabled()) return;
+  double per_second = b.kbps * 1000.0 / 8.0;
+  if (per_second < double(min_datagram_bytes)) {
+    double least = double(min_datagram_bytes) * 8.0 / 1000.0;
+    throw std::invalid_argument(kbps_name + ": " + number(b.kbps) +
+                                " kbit/s cannot carry one spawn a second; at least " +
+                                std::to_string(int(std::ceil(least))) + " kbit/s");
+  }
+}
+
+ShownError shownError(const CachedEntity& sent, const CachedEntity& newest, double at) {
+  dr::WireEntity a = wireEntity(sent), b = wireEntity(newest);
+  // The client's clock may run ahead of the newest sample; neither side extrapolates backwards.
+  double da = std::max(0.0, at - sent.sim_time), db = std::max(0.0, at - newest.sim_time);
+  ShownError e;
+  e.position = dr::distance(dr::predictPosition(a.state, a.model.order, da),
+                            dr::predictPosition(b.state, b.model.order, db));
+  e.orientation = dr::angleBetween(dr::predictRotation(a.state, a.model.spin, da),
+                                   dr::predictRotation(b.state, b.model.spin, db));
+  return e;
+}
+
+void DownlinkBudget::refill(double bytes_per_tick, double cap_bytes) {
+  tokens_ = std::min(tokens_ + bytes_per_tick, cap_bytes);
+}
+
+const CachedEntity* DownlinkBudget::lastSent(std::uint64_t id) const {
+  auto it = entities_.find(id);
+  return it != entities_.end() && it->second.has_sent ? &it->second.sent : nullptr;
+}
+
+double DownlinkBudget::accumulate(std::uint64_t id, double priority) {
+  return entities_[id].accumulator += priority;
+}
+
+void DownlinkBudget::sent(std::uint64_t id, const CachedEntity& e) {
+  Tracked& t = entities_[id];
+  t.sent = e;
+  t.has_sent = true;
+  t.accumulator = 0;
+}
+
+}  // namespace zonesim::gateway
