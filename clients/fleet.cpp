@@ -83,12 +83,12 @@ void ClientFleet::writeDisplayed() const {
   if (config_.display_path.empty()) return;
   std::FILE* f = std::fopen(config_.display_path.c_str(), "w");
   if (f == nullptr) throw std::runtime_error("cannot write " + config_.display_path);
-  std::fprintf(f, "player,tick,id,order,x,y,z\n");
+  std::fprintf(f, "player,tick,id,order,x,y,z,distance\n");
   for (std::size_t i = 0; i < players_.size(); ++i)
     for (const DisplaySample& d : players_[i]->displayed())
-      std::fprintf(f, "%zu,%llu,%llu,%d,%.4f,%.4f,%.4f\n", i,
+      std::fprintf(f, "%zu,%llu,%llu,%d,%.4f,%.4f,%.4f,%.2f\n", i,
                    static_cast<unsigned long long>(d.tick), static_cast<unsigned long long>(d.id),
-                   int(d.order), d.x, d.y, d.z);
+                   int(d.order), d.x, d.y, d.z, d.distance);
   std::fclose(f);
 }
 

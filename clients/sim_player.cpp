@@ -1,6 +1,7 @@
 #include "clients/sim_player.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/splitmix.h"
 #include "common/timer.h"
@@ -68,12 +69,16 @@ std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
   auto tick = std::int64_t(now_tick);
   if (tick > displayed_tick_ && displayed_.size() < kMaxDisplaySamples) {
     displayed_tick_ = tick;
+    // Distances are from where the player draws itself: the band an error falls in.
+    auto self = avatar_id_ != 0 ? view_.shown(avatar_id_, double(tick)) : std::nullopt;
     view_.forEach([&](std::uint64_t id, const dr::WireEntity& e) {
       if (!dr::truthSampled(id, config_.truth_every)) return;
       // What the player would draw for that tick, with what it knows now.
-      if (auto p = view_.shown(id, double(tick)))
-        displayed_.push_back(
-            {std::uint64_t(tick), id, e.model.order, float(p->x), float(p->y), float(p->z)});
+      auto p = view_.shown(id, double(tick));
+      if (!p) return;
+      float distance = self ? float(std::hypot(p->x - self->x, p->z - self->z)) : -1.0f;
+      displayed_.push_back({std::uint64_t(tick), id, e.model.order, float(p->x), float(p->y),
+                            float(p->z), distance});
     });
   }
   return now_ns + std::int64_t((double(tick + 1) - now_tick) / tick_rate_ * 1e9) + 1;

@@ -52,6 +52,7 @@ struct DisplaySample {
   std::uint64_t tick = 0, id = 0;
   dr::Order order = dr::Order::First;
   float x = 0, y = 0, z = 0;
+  float distance = -1;  ///< planar, from the player's avatar as shown then; -1: not shown yet
 };
 
 /// One event of a player's own stream: a new state of its avatar arrived, or a Handoff notice.

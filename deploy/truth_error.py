@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Client-side error against the truth (issue 6): joins what the zones say sampled entities
 were (truth_<rank>.csv: tick, id, kind, x, y, z, written by zone_node --truth-every K) with
-what the clients showed of them (display.csv: player, tick, id, order, x, y, z, written by
-client_stub --truth-every K) on (tick, id), and prints the distance's p50/p99/max per
-dead-reckoning order.
+what the clients showed of them (display.csv: player, tick, id, order, x, y, z, distance,
+written by client_stub --truth-every K) on (tick, id), and prints the distance's p50/p99/max per
+dead-reckoning order, and per band of distance from the viewer (as the player drew itself).
 
 Usage: deploy/truth_error.py RUN_DIR   (prints the table; --json prints the figures as JSON)
 """
@@ -14,6 +14,19 @@ import sys
 from pathlib import Path
 
 ORDERS = {0: "static", 1: "first", 2: "second"}
+# Distance from the viewer (m): a budget holds error as an angle, so error grows with it.
+BANDS = [(0, 25), (25, 50), (50, 100), (100, math.inf)]
+
+
+def band_name(lo, hi):
+    return f"{lo}-{hi} m" if hi != math.inf else f"{lo}+ m"
+
+
+def band_of(distance):
+    for lo, hi in BANDS:
+        if lo <= distance < hi:
+            return band_name(lo, hi)
+    return None
 
 
 def pct(v, p):
@@ -31,13 +44,14 @@ def load_truth(zone_dir):
 
 
 def join(zone_dir, display=None):
-    """Per order: the errors (m) of every shown sample with a truth; and the unmatched count.
-    display defaults to zone_dir/display.csv (a run folder holds both)."""
+    """Per order and per distance band: the errors (m) of every shown sample with a truth;
+    and the unmatched count. display defaults to zone_dir/display.csv (a run folder holds
+    both). Bands leave out static entities and samples shown before the player saw itself."""
     truth = load_truth(zone_dir)
-    errors, unmatched = {}, 0
+    errors, bands, unmatched = {}, {}, 0
     path = Path(display) if display else Path(zone_dir) / "display.csv"
     if not truth or not path.exists():
-        return errors, unmatched
+        return errors, bands, unmatched
     with open(path) as f:
         for r in csv.DictReader(f):
             t = truth.get((int(r["tick"]), int(r["id"])))
@@ -46,13 +60,21 @@ def join(zone_dir, display=None):
                 continue
             d = math.dist(t, (float(r["x"]), float(r["y"]), float(r["z"])))
             errors.setdefault(ORDERS.get(int(r["order"]), r["order"]), []).append(d)
-    return errors, unmatched
+            distance = float(r.get("distance", -1))
+            if int(r["order"]) != 0 and distance >= 0:
+                bands.setdefault(band_of(distance), []).append(d)
+    return errors, bands, unmatched
 
 
-def figures(errors, unmatched):
+def summary(v):
+    return {"samples": len(v), "p50_m": pct(v, 50), "p99_m": pct(v, 99), "max_m": max(v)}
+
+
+def figures(errors, bands, unmatched):
+    order = [band_name(lo, hi) for lo, hi in BANDS]
     return {"unmatched": unmatched,
-            "orders": {o: {"samples": len(v), "p50_m": pct(v, 50), "p99_m": pct(v, 99),
-                           "max_m": max(v)} for o, v in sorted(errors.items())}}
+            "orders": {o: summary(v) for o, v in sorted(errors.items())},
+            "bands": {b: summary(bands[b]) for b in order if b in bands}}
 
 
 def print_table(fig, out=sys.stdout):
@@ -62,6 +84,12 @@ def print_table(fig, out=sys.stdout):
     for o, f in fig["orders"].items():
         print(f"{o:>8} {f['samples']:>9} {f['p50_m']:>8.3f} {f['p99_m']:>8.3f} {f['max_m']:>8.3f}",
               file=out)
+    if fig.get("bands"):
+        print("moving entities by distance from the viewer", file=out)
+        print(f"{'band':>8} {'samples':>9} {'p50 m':>8} {'p99 m':>8} {'max m':>8}", file=out)
+        for b, f in fig["bands"].items():
+            print(f"{b:>8} {f['samples']:>9} {f['p50_m']:>8.3f} {f['p99_m']:>8.3f} "
+                  f"{f['max_m']:>8.3f}", file=out)
 
 
 if __name__ == "__main__":

@@ -33,6 +33,13 @@ void checkBudget(const BudgetSettings& b, std::size_t min_datagram_bytes,
   }
 }
 
+int BudgetSettings::ticksPerSend(double tick_rate) const {
+  if (!enabled()) return 1;
+  double per_tick = kbps * 1000.0 / 8.0 / (tick_rate + 1);
+  int most = std::max(1, int(tick_rate / 3));
+  return std::clamp(int(std::ceil(kGatherBytes / per_tick)), 1, most);
+}
+
 ShownError shownError(const CachedEntity& sent, const CachedEntity& newest, double at) {
   dr::WireEntity a = wireEntity(sent), b = wireEntity(newest);
   // The client's clock may run ahead of the newest sample; neither side extrapolates backwards.
@@ -63,6 +70,25 @@ void DownlinkBudget::sent(std::uint64_t id, const CachedEntity& e) {
   t.sent = e;
   t.has_sent = true;
   t.accumulator = 0;
+  waiting_next_.erase(id);
+}
+
+void DownlinkBudget::adaptRadius(bool pressed, double nimbus, double least) {
+  double r = std::min(view_radius_, nimbus);
+  r = pressed ? r * kShrink : r * kGrow;
+  view_radius_ = std::clamp(r, std::min(least, nimbus), nimbus);
+}
+
+double DownlinkBudget::accumulateSpawn(std::uint64_t id, double priority) {
+  auto it = waiting_.find(id);
+  double acc = (it != waiting_.end() ? it->second : 0.0) + priority;
+  waiting_next_[id] = acc;
+  return acc;
+}
+
+void DownlinkBudget::endTick() {
+  std::swap(waiting_, waiting_next_);
+  waiting_next_.clear();
 }
 
 }  // namespace zonesim::gateway

@@ -2,11 +2,13 @@
 // A per-client downlink budget (Fiedler's priority accumulator, BigWorld's per-client priority
 // queue): each gateway tick a client may be sent bytes_per_tick; guaranteed traffic (despawns,
 // its own avatar, Welcome, Handoff, Pong, clock ticks) goes out regardless and is charged as
-// debt; spawns (nearest first) and then updates (highest accumulated priority first) take what
-// is left. An update is only worth sending when the error the client sees exceeds an angle at
-// the viewer: max(zone threshold, angle * distance), so near entities stay at the zone's
-// precision and far ones go coarse. Bytes are UDP payload bytes.
+// debt. Spawns and updates share what is left, highest accumulated priority first; priority
+// is the error as an angle seen by the viewer, so a near entity outranks a far one with the
+// same error, and a spawn counts as an entity missing by kMissingEntityM. An update is only
+// worth sending when the error the client sees exceeds max(zone threshold, angle * distance),
+// so near entities stay at the zone's precision and far ones go coarse. Bytes are UDP payload.
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -20,9 +22,18 @@ struct BudgetSettings {
   double kbps = 0;                  ///< kbit/s of UDP payload per client
   double error_angle_rad = 0.0087;  ///< error held as this angle seen from the viewer (0.5 deg)
   bool enabled() const { return kbps > 0; }
-  /// Bytes each client may be sent per gateway tick: a second's bytes over tick_rate + 1 ticks,
-  /// since a 1 s window that starts with one tick's datagrams can hold tick_rate + 1 ticks'.
-  double bytesPerTick(double tick_rate) const { return kbps * 1000.0 / 8.0 / (tick_rate + 1); }
+  /// Ticks over which a client's spawns and updates are gathered into one send: enough for
+  /// about kGatherBytes (a datagram's framing is about 100 bytes, so at a low rate a datagram
+  /// a tick would be mostly framing), at most a third of a second.
+  int ticksPerSend(double tick_rate) const;
+  /// Bytes each client may be sent per gateway tick: a second's bytes over tick_rate +
+  /// ticksPerSend ticks, since a 1 s window that starts with one send can hold that many
+  /// ticks' bytes.
+  double bytesPerTick(double tick_rate) const {
+    return kbps * 1000.0 / 8.0 / (tick_rate + ticksPerSend(tick_rate));
+  }
+  /// What a client's spawns and updates are gathered to, bytes.
+  static constexpr double kGatherBytes = 400;
 };
 
 /// Throws std::invalid_argument naming `kbps_name` / `angle_name` when a setting is negative,
@@ -37,7 +48,19 @@ struct ShownError {
 };
 ShownError shownError(const CachedEntity& sent, const CachedEntity& newest, double at);
 
-/// One client's budget: tokens, and per entity the state last sent and its accumulator.
+/// What not showing an entity at all counts as when ranked against errors: about a body's size.
+inline constexpr double kMissingEntityM = 1.0;
+/// Nearer than this, priority stops growing (an entity on top of the viewer).
+inline constexpr double kNearestM = 1.0;
+
+/// Priority a tick adds for an error of error_m at distance_m from the viewer: the error as an
+/// angle, radians.
+inline double errorPriority(double error_m, double distance_m) {
+  return error_m / std::max(distance_m, kNearestM);
+}
+
+/// One client's budget: tokens, per entity the state last sent and its accumulator, and the
+/// accumulators of spawns still waiting.
 class DownlinkBudget {
  public:
   /// Adds one tick's bytes, holding at most cap_bytes (one tick's worth, or one spawn datagram
@@ -56,6 +79,18 @@ class DownlinkBudget {
   void sent(std::uint64_t id, const CachedEntity& e);
   /// The client no longer holds the entity.
   void forget(std::uint64_t id) { entities_.erase(id); }
+  /// The radius the client is shown under this budget (+inf until first pressed).
+  double viewRadius() const { return view_radius_; }
+  /// After a send: shrinks the view radius by kShrink when something ranked did not fit
+  /// (pressed), else grows it by kGrow, within [least, nimbus]. Fewer entities shown is the
+  /// price of keeping the shown ones current: a far entity never updated drifts by metres.
+  void adaptRadius(bool pressed, double nimbus, double least);
+  static constexpr double kShrink = 0.97, kGrow = 1.003;
+  /// A spawn waiting its turn: its accumulated priority after adding priority this tick.
+  double accumulateSpawn(std::uint64_t id, double priority);
+  /// Ends a tick: a waiting spawn not accumulated in it (sent, or out of view) stops waiting.
+  void endTick();
+  std::size_t waitingSpawns() const { return waiting_.size(); }
 
  private:
   struct Tracked {
@@ -64,7 +99,11 @@ class DownlinkBudget {
     double accumulator = 0;
   };
   double tokens_ = 0;
+  double view_radius_ = 1e30;
   std::unordered_map<std::uint64_t, Tracked> entities_;
+  // Accumulators of spawns: last tick's, and this tick's (swapped at endTick, so nothing that
+  // left the view stays; clear() keeps the buckets, so no allocation in a steady state).
+  std::unordered_map<std::uint64_t, double> waiting_, waiting_next_;
 };
 
 }  // namespace zonesim::gateway

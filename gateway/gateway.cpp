@@ -19,6 +19,8 @@ namespace {
 constexpr std::int64_t kSecondNs = 1'000'000'000;
 // Bounded so a flood of datagrams cannot starve the tick.
 constexpr int kMaxDatagramsPerWake = 4096;
+// Under a budget, the view radius never narrows below this fraction of the nimbus.
+constexpr double kLeastViewFraction = 0.25;
 
 std::int64_t seconds(double s) {
   return std::int64_t(s * 1e9);
@@ -81,8 +83,11 @@ Gateway::Gateway(GatewayConfig config)
                                 .size();
     checkBudget(config_.budget, one_spawn, config_.budget_names.first, config_.budget_names.second);
     budget_bytes_per_tick_ = config_.budget.bytesPerTick(config_.scene.tick_rate);
-    // Below one datagram a tick, tokens are saved up until a spawn fits.
-    budget_cap_bytes_ = std::max(budget_bytes_per_tick_, double(one_spawn));
+    // Spawns and updates go when the bucket holds a send's worth (ticksPerSend ticks' bytes,
+    // or one spawn datagram where that is more); guaranteed traffic goes every tick.
+    budget_cap_bytes_ =
+        std::max(budget_bytes_per_tick_ * config_.budget.ticksPerSend(config_.scene.tick_rate),
+                 double(one_spawn));
   }
   // The gateway handles each datagram as it arrives: it can lose incoming ones, not hold them.
   if (!config_.impairment.in.lossOnly())
@@ -319,6 +324,8 @@ void Gateway::sendViews(std::int64_t now_ns) {
     avatarPosition(s, sim_now, at.x, at.z);
     const AuraNimbus& an = config_.scene.aura_nimbus;
     at.nimbus = nimbusOf(s);
+    // Under a budget the view may be narrowed (DownlinkBudget::adaptRadius).
+    if (config_.budget.enabled()) at.nimbus = std::min(at.nimbus, s.budget.viewRadius());
     at.keep = at.nimbus * 1.1;
     at.aura = {an.npc, an.avatar, an.rigid_body, an.emitter};
     at.self = s.avatar_id;
@@ -340,6 +347,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
       s.told_tick = tick;
       ++counters_.clock_ticks;
     }
+    if (config_.budget.enabled()) s.budget.endTick();
   });
 }
 
@@ -374,19 +382,21 @@ void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {
   counters_.resent += after - before;
 }
 
-std::pair<std::vector<std::uint64_t>, std::size_t> Gateway::fitting(
-    const Session& s, const std::vector<std::uint64_t>& forced,
-    const std::vector<std::uint64_t>& ranked, bool spawns, double available) const {
+Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
+                              const std::vector<std::pair<std::uint64_t, bool>>& ranked,
+                              double available) const {
   // Encodes exactly what sendView will send (seq is a fixed-width field, the batch tick the
   // newest of the set), so the size measured here is the size sent.
   ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
   auto take = [&](std::size_t k) {
-    std::vector<std::uint64_t> ids = forced;
-    ids.insert(ids.end(), ranked.begin(), ranked.begin() + std::ptrdiff_t(k));
-    std::sort(ids.begin(), ids.end());
-    return ids;
+    Fit f = forced;
+    for (std::size_t i = 0; i < k; ++i)
+      (ranked[i].second ? f.spawns : f.updates).push_back(ranked[i].first);
+    std::sort(f.spawns.begin(), f.spawns.end());
+    std::sort(f.updates.begin(), f.updates.end());
+    return f;
   };
-  auto bytes = [&](const std::vector<std::uint64_t>& ids) {
+  auto bytes = [&](const std::vector<std::uint64_t>& ids, bool spawns) {
     if (ids.empty()) return std::size_t{0};
     std::vector<dr::WireEntity> states;
     std::uint64_t tick = clock_.tick();
@@ -400,17 +410,19 @@ std::pair<std::vector<std::uint64_t>, std::size_t> Gateway::fitting(
       total += b.size();
     return total;
   };
-  // The largest prefix that fits (sizes grow with the prefix): a binary search.
+  auto size = [&](const Fit& f) { return bytes(f.spawns, true) + bytes(f.updates, false); };
+  // Forced traffic goes as debt: what the rest adds to it must fit. The largest prefix that
+  // fits (sizes grow with the prefix): a binary search.
+  double base = double(size(forced));
   std::size_t lo = 0, hi = available > 0 ? ranked.size() : 0;
   while (lo < hi) {
     std::size_t mid = (lo + hi + 1) / 2;
-    if (double(bytes(take(mid))) <= available)
+    if (double(size(take(mid))) - base <= available)
       lo = mid;
     else
       hi = mid - 1;
   }
-  std::vector<std::uint64_t> ids = take(lo);
-  return {ids, bytes(ids)};
+  return take(lo);
 }
 
 void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at) {
@@ -423,75 +435,80 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at) {
     dr::V3 p = predictedPosition(*cache_.find(id), at.sim_now);
     return std::hypot(p.x - at.x, p.z - at.z);
   };
-  auto rest = [](const std::vector<std::uint64_t>& all, const std::vector<std::uint64_t>& kept) {
-    std::vector<std::uint64_t> out;
-    std::set_difference(all.begin(), all.end(), kept.begin(), kept.end(), std::back_inserter(out));
-    return out;
-  };
-  double available = s.budget.tokens();
+  // Until the bucket is full, only guaranteed traffic goes (the rest waits, gathered).
+  double available = s.budget.tokens() >= budget_cap_bytes_ ? s.budget.tokens() : 0.0;
   if (!diff.despawns.empty()) {
     ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
     for (const Bytes& b : encodeDespawnChunks(s.token, clock_.tick(), diff.despawns, numbered))
       available -= double(b.size());
   }
-  // Spawns: the avatar always, the others nearest first while they fit.
-  std::vector<std::uint64_t> forced, ranked;
-  std::vector<std::pair<double, std::uint64_t>> order;
-  for (std::uint64_t id : diff.spawns)
-    if (id == at.self)
-      forced.push_back(id);
-    else
-      order.emplace_back(distanceOf(id), id);
-  std::sort(order.begin(), order.end());
-  for (auto& [d, id] : order) ranked.push_back(id);
-  auto [spawns, spawn_bytes] = fitting(s, forced, ranked, true, available);
-  available -= double(spawn_bytes);
-  for (std::uint64_t id : rest(diff.spawns, spawns)) {
-    s.view.forget(id);
-    ++s.traffic.deferred;
-    ++counters_.deferred;
+  // The avatar always goes (and a state whose reference the budget never saw). The near band
+  // (where angle * distance is within the zone's threshold) goes next, then the rest; within
+  // each, by accumulated priority: spawns as an entity missing by kMissingEntityM, updates by
+  // the error the client shows, both as angles at the viewer.
+  auto nearBand = [&](double d) { return config_.budget.error_angle_rad * d <= floor; };
+  Fit forced;
+  std::vector<std::tuple<int, double, std::uint64_t, bool>> order;  // band, -priority, id, spawn
+  for (std::uint64_t id : diff.spawns) {
+    if (id == at.self) {
+      forced.spawns.push_back(id);
+      continue;
+    }
+    double d = distanceOf(id);
+    double acc = s.budget.accumulateSpawn(id, errorPriority(kMissingEntityM, d));
+    order.emplace_back(nearBand(d) ? 0 : 1, -acc, id, true);
   }
-  diff.spawns = std::move(spawns);
-  // Updates: the avatar always; the near band (where angle * distance is within the zone's
-  // threshold) next; then the others whose error shown exceeds the angle, highest
-  // accumulated priority (error in units of the allowed error, summed over ticks) first.
-  forced.clear();
-  ranked.clear();
-  std::vector<std::tuple<int, double, std::uint64_t>> ranked_updates;
   for (std::uint64_t id : diff.updates) {
     const CachedEntity* sent = s.budget.lastSent(id);
     if (id == at.self || sent == nullptr) {
-      forced.push_back(id);
+      forced.updates.push_back(id);
       continue;
     }
-    const CachedEntity& newest = *cache_.find(id);
     double d = distanceOf(id);
     double limit = std::max(floor, config_.budget.error_angle_rad * d);
-    bool near = limit <= floor;
-    ShownError err = shownError(*sent, newest, at.sim_now);
-    double ratio = std::max(err.position / limit, err.orientation * floor / (rot_floor * limit));
+    ShownError err = shownError(*sent, *cache_.find(id), at.sim_now);
+    // Orientation error counted as the position error it is worth (floor per rot_floor).
+    double error = std::max(err.position, err.orientation * floor / rot_floor);
+    bool near = nearBand(d);
     bool heartbeat = at.sim_now - sent->sim_time >= drs.heartbeat_seconds;
-    if (!near && !heartbeat && ratio <= 1) {
+    if (!near && !heartbeat && error <= limit) {
       s.view.defer(id);
       ++s.traffic.held;
       ++counters_.held;
       continue;
     }
-    // The near band first, then the rest; each by accumulated priority.
-    double acc = s.budget.accumulate(id, std::max(ratio, 1.0));
-    ranked_updates.push_back({near ? 0 : 1, -acc, id});
+    double acc = s.budget.accumulate(id, errorPriority(std::max(error, floor), d));
+    order.emplace_back(near ? 0 : 1, -acc, id, false);
   }
-  std::sort(ranked_updates.begin(), ranked_updates.end());
-  for (auto& [band, key, id] : ranked_updates) ranked.push_back(id);
-  std::vector<std::uint64_t> updates = fitting(s, forced, ranked, false, available).first;
-  std::vector<std::uint64_t> all = diff.updates;
-  for (std::uint64_t id : rest(all, updates)) {
-    if (std::find(ranked.begin(), ranked.end(), id) == ranked.end()) continue;  // held above
-    s.view.defer(id);
+  std::sort(order.begin(), order.end());
+  std::vector<std::pair<std::uint64_t, bool>> ranked;
+  ranked.reserve(order.size());
+  for (auto& [band, key, id, spawn] : order) ranked.emplace_back(id, spawn);
+  Fit go = fitting(s, forced, ranked, available);
+  // On a send, the view narrows while the budget cannot carry what it ranked, and widens
+  // again when it can; it never narrows below a quarter of the nimbus.
+  if (available > 0) {
+    std::size_t went = go.spawns.size() + go.updates.size();
+    bool pressed = went - forced.spawns.size() - forced.updates.size() < ranked.size();
+    double nimbus = nimbusOf(s);
+    s.budget.adaptRadius(pressed, nimbus, nimbus * kLeastViewFraction);
+  }
+  // What did not fit waits: listed again next tick. A spawn never sent is forgotten (the
+  // client does not hold it); one sent but unacknowledged stays known, so that a despawn
+  // still follows if it leaves the view before its resend gets through.
+  for (std::size_t i = go.spawns.size() + go.updates.size() -
+                       forced.spawns.size() - forced.updates.size();
+       i < ranked.size(); ++i) {
+    auto [id, spawn] = ranked[i];
+    if (spawn && !s.resend.spawnPending(id))
+      s.view.forget(id);
+    else
+      s.view.defer(id);
     ++s.traffic.deferred;
     ++counters_.deferred;
   }
-  diff.updates = std::move(updates);
+  diff.spawns = std::move(go.spawns);
+  diff.updates = std::move(go.updates);
 }
 
 void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
@@ -581,9 +598,11 @@ GatewayGauges Gateway::gauges(std::int64_t now_ns) {
 }
 
 void Gateway::writeMetrics(std::int64_t now_ns) {
-  if (!metrics_.enabled()) return;
   GatewayGauges g = gauges(now_ns);
-  std::vector<double> kbps;
+  // Each client's bytes over the second just ended; the worst is kept for the summary, with
+  // or without a metrics file.
+  std::vector<double>& kbps = kbps_scratch_;
+  kbps.clear();
   sessions_.forEach([&](SlotHandle, Session& s) {
     kbps.push_back(double(s.traffic.bytes_out - s.bytes_out_at_second) * 8.0 / 1000.0);
     s.bytes_out_at_second = s.traffic.bytes_out;
@@ -592,8 +611,9 @@ void Gateway::writeMetrics(std::int64_t now_ns) {
     std::sort(kbps.begin(), kbps.end());
     g.client_kbps_p50 = kbps[kbps.size() / 2];
     g.client_kbps_max = kbps.back();
+    worst_client_kbps_ = std::max(worst_client_kbps_, g.client_kbps_max);
   }
-  metrics_.write(metricsLine(counters_, handler_.drops(), g));
+  if (metrics_.enabled()) metrics_.write(metricsLine(counters_, handler_.drops(), g));
 }
 
 std::string Gateway::summaryJson() {
@@ -606,6 +626,13 @@ std::string Gateway::summaryJson() {
             [](const auto& a, const auto& b) { return a.player_id < b.player_id; });
   GatewayGauges g = gauges(now);
   g.tick_ms = tick_total_;
+  // Over the run: the median player's mean rate, and the worst second of any player.
+  std::vector<double> kbps;
+  for (const PlayerRecord& p : players)
+    if (p.seconds > 0) kbps.push_back(double(p.traffic.bytes_out) * 8.0 / 1000.0 / p.seconds);
+  std::sort(kbps.begin(), kbps.end());
+  g.client_kbps_p50 = kbps.empty() ? 0.0 : kbps[kbps.size() / 2];
+  g.client_kbps_max = worst_client_kbps_;
   return gateway::summaryJson(counters_, handler_.drops(), g, players);
 }
 

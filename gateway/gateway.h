@@ -85,11 +85,14 @@ class Gateway {
   /// Under a budget: the spawns and updates of diff that go out this tick, deferring the rest
   /// in the view; despawns and the avatar always go.
   void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at);
-  /// The first ids (priority order) after `forced` whose encoding fits the session's tokens.
-  /// Returns them (ascending) and their encoded size; `forced` always goes.
-  std::pair<std::vector<std::uint64_t>, std::size_t> fitting(
-      const Session& s, const std::vector<std::uint64_t>& forced,
-      const std::vector<std::uint64_t>& ranked, bool spawns, double available) const;
+  /// Spawns and updates chosen to go out this tick (each list ascending).
+  struct Fit {
+    std::vector<std::uint64_t> spawns, updates;
+  };
+  /// `forced` and then the longest prefix of `ranked` (id, is a spawn) whose encoding adds at
+  /// most `available` bytes to forced's; `forced` always goes.
+  Fit fitting(const Session& s, const Fit& forced,
+              const std::vector<std::pair<std::uint64_t, bool>>& ranked, double available) const;
   /// Sends the session's pending Handoff notice under a new seq.
   void sendHandoff(Session& s, std::int64_t now_ns);
   /// Forgets the pending Handoff once acknowledged; sends it again after the timeout.
@@ -99,6 +102,7 @@ class Gateway {
   void closeSession(SlotHandle h, bool expired);
   /// Bookkeeping for a player whose session ended: its figures, its interest, its avatar.
   void retirePlayer(const Session& s, CellDelta& delta);
+  /// Ends a metrics second: each client's rate over it, and a gateway.jsonl line if enabled.
   void writeMetrics(std::int64_t now_ns);
   GatewayGauges gauges(std::int64_t now_ns);
   /// The avatar's position as last heard (extrapolated), or the spawn point before that.
@@ -129,6 +133,8 @@ class Gateway {
   std::int64_t next_metrics_ns_ = 0;
   double budget_bytes_per_tick_ = 0, budget_cap_bytes_ = 0;  // under a budget
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
+  double worst_client_kbps_ = 0;        // the most any client was sent in one second
+  std::vector<double> kbps_scratch_;    // per-second rates, reused
 };
 
 }  // namespace zonesim::gateway

@@ -47,7 +47,9 @@ struct GatewayGauges {
   std::size_t held_spawns = 0;
   std::uint64_t zone_tick = 0;
   TickTimes tick_ms;
-  /// UDP payload bytes sent to each client over the last metrics second, as kbit/s.
+  /// UDP payload bytes sent to clients as kbit/s: per line, over its second (median and most
+  /// of the clients); in the summary, the median client's mean over its session, and the
+  /// most any client was sent in one second of the run.
   double client_kbps_p50 = 0, client_kbps_max = 0;
 };
 
