@@ -5,7 +5,8 @@
 // each observer's per-tick batch, and a client RemoteView reconstructs. Truth and shown
 // positions are compared at the same server tick, which is what the report tool's join does.
 //
-// Usage: dr_bench [--seconds S] [--csv FILE]
+// Usage: dr_bench [--seconds S] [--csv FILE] [--only SET]...   (SET: sweep, orient3, blend,
+// loss10, loss10r, hb1s, radius, gather)
 
 #include <algorithm>
 #include <cmath>
@@ -46,6 +47,9 @@ struct Config {
   /// lost, is sent again with the newest state after this timeout; 0 = never resent.
   double resend_rto_s = 0;
   double radius = 100;
+  /// Ticks whose updates share one datagram per observer (the gateway gathering a send): only
+  /// the newest state of each entity goes, and the client gets it at the send's tick.
+  int ticks_per_datagram = 1;
 };
 
 struct Result {
@@ -138,6 +142,12 @@ Result run(const Config& c, double seconds) {
     resend_at[i] = c.resend_rto_s > 0 && (lost || ack_lost) ? tick + rto_ticks : -1;
   };
   std::vector<std::vector<char>> known(observers.size(), std::vector<char>(store.size(), 0));
+  // Gathering over ticks_per_datagram ticks: what the client gets at the next send (the
+  // newest state per entity, and whether it is a spawn), and each observer's gathered batch.
+  const int k = std::max(1, c.ticks_per_datagram);
+  std::vector<int> waiting(store.size(), 0);  // 0 none, 1 update, 2 spawn
+  std::vector<dr::WireEntity> newest(store.size());
+  std::vector<std::vector<dr::WireEntity>> gathered(observers.size());
   zone::WanderMovement wander(scene);
   zone::LoneZone lone{scene.dt};
   for (int tick = 0; tick < ticks; ++tick) {
@@ -161,7 +171,8 @@ Result run(const Config& c, double seconds) {
       if (!first && reckoner.due(d, store.id[i], store.kind[i], truth, t) == dr::Due::None) {
         if (resend_at[i] == tick) {  // unacknowledged: the newest state again
           sent.push_back(last[i]);
-          deliver(i, last[i], tick);
+          newest[i] = last[i];
+          waiting[i] = std::max(waiting[i], 1);
         }
         continue;
       }
@@ -177,25 +188,32 @@ Result run(const Config& c, double seconds) {
       sent.push_back(w);
       // The client; spawns are reliable, updates may be lost.
       last[i] = w;
-      if (first)
-        view.spawn(w, double(tick));
-      else
-        deliver(i, w, tick);
+      newest[i] = w;
+      waiting[i] = first ? 2 : std::max(waiting[i], 1);
     }
+    bool send_tick = (tick + 1) % k == 0;
+    if (send_tick)
+      for (std::size_t i = 0; i < store.size(); ++i) {
+        if (waiting[i] == 2)
+          view.spawn(newest[i], double(tick));
+        else if (waiting[i] == 1)
+          deliver(i, newest[i], tick);
+        waiting[i] = 0;
+      }
     if (tick < warmup) continue;
     updates += double(sent.size());
     std::sort(sent.begin(), sent.end(), [](auto& a, auto& b) { return a.id < b.id; });
     // Each observer's batch: the updates of entities within its interest radius.
     double r2 = c.radius * c.radius;
-    for (std::size_t k = 0; k < observers.size(); ++k) {
-      int o = observers[k];
+    for (std::size_t ob = 0; ob < observers.size(); ++ob) {
+      int o = observers[ob];
       double ox = store.pos[std::size_t(o)].x(), oz = store.pos[std::size_t(o)].z();
-      batch.clear();
+      std::vector<dr::WireEntity>& mine = gathered[ob];
       for (const dr::WireEntity& w : sent) {
         double dx = w.state.pos.x - ox, dz = w.state.pos.z - oz;
-        if (dx * dx + dz * dz <= r2) batch.push_back(w);
+        if (dx * dx + dz * dz <= r2) mine.push_back(w);
       }
-      std::vector<char>& seen = known[k];
+      std::vector<char>& seen = known[ob];
       for (std::size_t i = 0; i < store.size(); ++i) {
         double dx = store.pos[i].x() - ox, dz = store.pos[i].z() - oz;
         bool inside = dx * dx + dz * dz <= r2;
@@ -211,7 +229,14 @@ Result run(const Config& c, double seconds) {
         }
         seen[i] = inside;
       }
-      if (batch.empty()) continue;
+      if (!send_tick || mine.empty()) continue;
+      // The send: the newest state of each entity gathered (ascending ids, newest first).
+      std::sort(mine.begin(), mine.end(),
+                [](auto& a, auto& b) { return a.id != b.id ? a.id < b.id : a.tick > b.tick; });
+      batch.clear();
+      for (const dr::WireEntity& w : mine)
+        if (batch.empty() || batch.back().id != w.id) batch.push_back(w);
+      mine.clear();
       for (const dr::PackedChunk& ch :
            codec.pack(batch, std::uint64_t(tick), gateway::kPackedBytesPerDatagram)) {
         bits += 8.0 * double(ch.bytes.size());
@@ -309,6 +334,13 @@ int main(int argc, char** argv) {
     c.radius = radius;
     configs.push_back(c);
   }
+  // Several ticks' updates in one datagram: framing per visible entity against the latency.
+  for (int ticks : {1, 2, 3, 5}) {
+    c = base;
+    c.name = "gather";
+    c.ticks_per_datagram = ticks;
+    configs.push_back(c);
+  }
   if (!only.empty())
     std::erase_if(configs, [&](const Config& c) {
       return std::find(only.begin(), only.end(), c.name) == only.end();
@@ -317,29 +349,33 @@ int main(int argc, char** argv) {
   if (csv)
     std::fprintf(csv,
                  "set,order,threshold_m,blend,loss,radius_m,payload_bps,wire_bps,visible_moving,"
-                 "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s\n");
+                 "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s,ticks_per_datagram,"
+                 "wire_bps_per_visible\n");
   std::printf(
       "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
       "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
       kNpcs, kAvatars, seconds - 5);
-  std::printf("%-7s %-6s %6s %5s %5s %6s | %10s %10s %8s %9s | %8s %8s %8s | %7s\n", "set", "order",
-              "thr_m", "blend", "loss", "rad_m", "payload/s", "wire b/s", "visible", "b/s/vis",
-              "p50_m", "p99_m", "max_m", "upd/e/s");
+  std::printf("%-7s %-6s %6s %5s %5s %6s %3s | %10s %10s %8s %9s %9s | %8s %8s %8s | %7s\n",
+              "set", "order", "thr_m", "blend", "loss", "rad_m", "tpd", "payload/s", "wire b/s",
+              "visible", "b/s/vis", "wire/vis", "p50_m", "p99_m", "max_m", "upd/e/s");
   for (const Config& c : configs) {
     Result r = run(c, seconds);
     double per_visible = r.visible_moving > 0 ? r.bits_per_client_s / r.visible_moving : 0;
+    double wire_per_visible =
+        r.visible_moving > 0 ? r.wire_bits_per_client_s / r.visible_moving : 0;
     std::printf(
-        "%-7s %-6s %6.2f %5d %5.2f %6.0f | %10.0f %10.0f %8.1f %9.1f | %8.4f %8.4f %8.3f | "
-        "%7.3f\n",
+        "%-7s %-6s %6.2f %5d %5.2f %6.0f %3d | %10.0f %10.0f %8.1f %9.1f %9.1f | %8.4f %8.4f "
+        "%8.3f | %7.3f\n",
         c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
-        r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible, r.p50, r.p99,
-        r.max, r.updates_per_entity_s);
+        c.ticks_per_datagram, r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving,
+        per_visible, wire_per_visible, r.p50, r.p99, r.max, r.updates_per_entity_s);
     std::fflush(stdout);
     if (csv)
-      std::fprintf(csv, "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f\n",
+      std::fprintf(csv, "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f\n",
                    c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
                    r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible,
-                   r.p50, r.p99, r.max, r.updates_per_entity_s);
+                   r.p50, r.p99, r.max, r.updates_per_entity_s, c.ticks_per_datagram,
+                   wire_per_visible);
   }
   if (csv) std::fclose(csv);
   return 0;
