@@ -34,6 +34,12 @@ class InterestGrid {
   /// Cells whose square meets the disc of radius r around (x, z), touching included, in id order.
   std::vector<int> cellsWithin(double x, double z, double r) const {
     std::vector<int> out;
+    cellsWithin(x, z, r, out);
+    return out;
+  }
+  /// The same into `out` (cleared first): no allocation once its capacity suffices.
+  void cellsWithin(double x, double z, double r, std::vector<int>& out) const {
+    out.clear();
     // One cell of slack each way: a disc that just touches a cell's lower edge floors to the
     // next cell; the distance test below decides.
     int c0 = std::max(columnOf(x - r) - 1, 0), c1 = std::min(columnOf(x + r) + 1, columns_ - 1);
@@ -44,7 +50,6 @@ class InterestGrid {
         double cz = std::clamp(z, min_z_ + iz * cell_size_, min_z_ + (iz + 1) * cell_size_);
         if ((cx - x) * (cx - x) + (cz - z) * (cz - z) <= r * r) out.push_back(iz * columns_ + ix);
       }
-    return out;
   }
 
  private:

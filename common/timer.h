@@ -25,6 +25,13 @@ inline std::int64_t threadCpuNs() {
   return std::int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
 }
 
+/// CPU time the whole process (every thread) has used, in nanoseconds.
+inline std::int64_t processCpuNs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return std::int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
+}
+
 /// Microseconds since the Unix epoch (wall clock, for timestamps shared between processes).
 inline std::uint64_t wallTimeUs() {
   return std::uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(

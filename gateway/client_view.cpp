@@ -4,11 +4,18 @@
 #include <cmath>
 
 #include "gateway/world_cache.h"
+#include "gateway/world_snapshot.h"
 
 namespace zonesim::gateway {
 
 ViewDiff ClientView::diff(const std::vector<VisibleEntity>& visible) {
   ViewDiff d;
+  diff(visible, d);
+  return d;
+}
+
+void ClientView::diff(const std::vector<VisibleEntity>& visible, ViewDiff& d) {
+  d.clear();
   ++epoch_;
   for (const VisibleEntity& v : visible) {
     auto [it, inserted] = known_.try_emplace(v.id, Sent{v.version, epoch_});
@@ -33,36 +40,48 @@ ViewDiff ClientView::diff(const std::vector<VisibleEntity>& visible) {
   std::sort(d.spawns.begin(), d.spawns.end());
   std::sort(d.despawns.begin(), d.despawns.end());
   std::sort(d.updates.begin(), d.updates.end());
-  return d;
 }
 
-std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,
-                                         const ViewPoint& at, const ClientView& known) {
-  std::vector<VisibleEntity> out;
+void selectVisible(const WorldSnapshot& snapshot, const InterestGrid& grid, const ViewPoint& at,
+                   const ClientView& known, std::vector<VisibleEntity>& out) {
+  out.clear();
   double keep_factor = at.nimbus > 0 ? at.keep / at.nimbus : 1.0;
   // Entities are indexed by the cell their zone put them in; one cell of slack covers entities
   // that moved since their last sample without crossing into a cell we do not read.
   double reach = std::max(at.nimbus, at.keep) + grid.cell_size();
-  for (int cell : grid.cellsWithin(at.x, at.z, reach)) {
-    cache.forEachInCell(cell, [&](std::uint64_t id, const CachedEntity& e) {
-      if (id == at.self) {
-        out.push_back({id, e.version});
-        return;
+  bool self_listed = false;
+  thread_local std::vector<int> cells;  // reused: no allocation per view once warm
+  grid.cellsWithin(at.x, at.z, reach, cells);
+  for (int cell : cells) {
+    for (const SnapEntity& e : snapshot.cell(cell)) {
+      if (e.id == at.self) {
+        out.push_back({e.id, e.version});
+        self_listed = true;
+        continue;
       }
-      dr::V3 now = predictedPosition(e, at.sim_now);
-      double d = std::hypot(now.x - at.x, now.z - at.z);
-      double aura = at.aura[std::min<std::size_t>(e.state.kind, at.aura.size() - 1)];
-      bool shown = auraNimbusAllows(d, aura, at.nimbus);
-      bool kept = known.knows(id) && auraNimbusAllows(d, aura * keep_factor, at.keep);
-      if (shown || kept) out.push_back({id, e.version});
-    });
+      // Shown within the aura and nimbus, kept (if known) within both grown to keep; the hash
+      // lookup only for the band in between.
+      double dx = e.x - at.x, dz = e.z - at.z, d2 = dx * dx + dz * dz;
+      double aura = at.aura[std::min<std::size_t>(e.kind, at.aura.size() - 1)];
+      if (auraNimbusAllows(d2, aura, at.nimbus) ||
+          (auraNimbusAllows(d2, aura * keep_factor, at.keep) && known.knows(e.id)))
+        out.push_back({e.id, e.version});
+    }
   }
   // The avatar may sit in a cell outside the disc (it just teleported or the disc is tiny).
-  if (at.self != 0) {
-    const CachedEntity* self = cache.find(at.self);
-    bool listed = std::any_of(out.begin(), out.end(), [&](auto& v) { return v.id == at.self; });
-    if (self != nullptr && !listed) out.push_back({at.self, self->version});
-  }
+  if (at.self != 0 && !self_listed && at.self_version != 0)
+    out.push_back({at.self, at.self_version});
+}
+
+std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,
+                                         const ViewPoint& at, const ClientView& known) {
+  WorldSnapshot snapshot;
+  snapshot.rebuild(cache, grid.cellCount(), at.sim_now);
+  ViewPoint with_self = at;
+  const CachedEntity* self = at.self != 0 ? cache.find(at.self) : nullptr;
+  with_self.self_version = self != nullptr ? self->version : 0;
+  std::vector<VisibleEntity> out;
+  selectVisible(snapshot, grid, with_self, known, out);
   return out;
 }
 

@@ -14,6 +14,7 @@
 namespace zonesim::gateway {
 
 class WorldCache;
+class WorldSnapshot;
 
 /// An entity the client should see now, with the cache version of its state.
 struct VisibleEntity {
@@ -25,6 +26,12 @@ struct VisibleEntity {
 struct ViewDiff {
   std::vector<std::uint64_t> spawns, despawns, updates;
   bool empty() const { return spawns.empty() && despawns.empty() && updates.empty(); }
+  /// Empties the lists, keeping their storage.
+  void clear() {
+    spawns.clear();
+    despawns.clear();
+    updates.clear();
+  }
 };
 
 /// Entity id -> version last sent to one client.
@@ -32,6 +39,8 @@ class ClientView {
  public:
   /// Diffs visible (any order, no duplicates) against what was sent and records the new state.
   ViewDiff diff(const std::vector<VisibleEntity>& visible);
+  /// The same into `d` (cleared first), reusing its storage.
+  void diff(const std::vector<VisibleEntity>& visible, ViewDiff& d);
   bool knows(std::uint64_t id) const { return known_.contains(id); }
   /// An update held back: the next diff lists the entity's state again (versions start at 1).
   void defer(std::uint64_t id) {
@@ -54,9 +63,10 @@ class ClientView {
 using Auras = std::array<double, 4>;
 
 /// The seed's rule: A sees B when A is inside B's aura and B inside A's nimbus, i.e. when
-/// their distance is within both.
-inline bool auraNimbusAllows(double distance, double aura_of_b, double nimbus_of_a) {
-  return distance <= aura_of_b && distance <= nimbus_of_a;
+/// their distance is within both. Takes the squared distance (no square root per pair).
+inline bool auraNimbusAllows(double distance_sq, double aura_of_b, double nimbus_of_a) {
+  double r = std::min(aura_of_b, nimbus_of_a);
+  return distance_sq <= r * r;
 }
 
 /// A player's nimbus: the base grown by speed * per_speed, capped (a runner or a flyer sees
@@ -74,10 +84,16 @@ struct ViewPoint {
   /// min(aura, nimbus) * keep / nimbus. Default: no aura limit.
   Auras aura{1e30, 1e30, 1e30, 1e30};
   std::uint64_t self = 0;  ///< the player's avatar: always visible once known
+  std::uint64_t self_version = 0;  ///< its cache version (0: not cached yet)
   double sim_now = 0;      ///< positions are extrapolated to this time before measuring
 };
 
-/// The entities a player should see: within nimbus (or keep, if already known) of the point.
+/// The entities a player should see: within nimbus (or keep, if already known) of the point,
+/// at the snapshot's time (a gateway builds one snapshot a tick for all its players). Appends
+/// to `out` (cleared first), so a caller that keeps it allocates nothing once warm.
+void selectVisible(const WorldSnapshot& snapshot, const InterestGrid& grid, const ViewPoint& at,
+                   const ClientView& known, std::vector<VisibleEntity>& out);
+/// The same from the cache at at.sim_now, for one-off callers (a snapshot built for one view).
 std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,
                                          const ViewPoint& at, const ClientView& known);
 

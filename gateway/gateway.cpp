@@ -97,6 +97,7 @@ Gateway::Gateway(GatewayConfig config)
 
 void Gateway::run(const std::atomic<bool>& stop, double duration_s) {
   start_ns_ = nowNs();
+  start_process_cpu_ns_ = processCpuNs();
   std::int64_t end_ns = duration_s > 0 ? start_ns_ + seconds(duration_s) : INT64_MAX;
   std::int64_t next_tick = start_ns_;
   next_metrics_ns_ = start_ns_ + kSecondNs;
@@ -168,6 +169,7 @@ void Gateway::carryOut(Outbox& out) {
 }
 
 void Gateway::tick(std::int64_t now_ns) {
+  std::int64_t cpu_ns = threadCpuNs();
   for (const zonesim_dds_OwnershipEvent& e : link_.takeOwnership()) applyOwnership(e);
   link_.flushSpawns();
   counters_.dds_samples += link_.takeCells(cache_, clock_, now_ns);
@@ -175,12 +177,15 @@ void Gateway::tick(std::int64_t now_ns) {
   expireSessions(now_ns);
   updateInterest(now_ns);
   sendViews(now_ns);
-  double ms = double(nowNs() - now_ns) * 1e-6;
+  double ms = double(nowNs() - now_ns) * 1e-6, cpu_ms = double(threadCpuNs() - cpu_ns) * 1e-6;
   tick_window_.add(ms);
   tick_total_.add(ms);
+  tick_cpu_window_.add(cpu_ms);
+  tick_cpu_total_.add(cpu_ms);
   if (now_ns >= next_metrics_ns_) {
     writeMetrics(now_ns);
     tick_window_ = {};
+    tick_cpu_window_ = {};
     next_metrics_ns_ += kSecondNs;
   }
 }
@@ -318,6 +323,7 @@ void Gateway::applyCellDelta(const CellDelta& delta) {
 
 void Gateway::sendViews(std::int64_t now_ns) {
   double sim_now = clock_.simNow(now_ns);
+  snapshot_.rebuild(cache_, grid_.cellCount(), sim_now);
   sessions_.forEach([&](SlotHandle, Session& s) {
     if (!s.welcomed) return;
     ViewPoint at;
@@ -329,8 +335,12 @@ void Gateway::sendViews(std::int64_t now_ns) {
     at.keep = at.nimbus * 1.1;
     at.aura = {an.npc, an.avatar, an.rigid_body, an.emitter};
     at.self = s.avatar_id;
+    const CachedEntity* self = s.avatar_id != 0 ? cache_.find(s.avatar_id) : nullptr;
+    at.self_version = self != nullptr ? self->version : 0;
     at.sim_now = sim_now;
-    ViewDiff diff = s.view.diff(selectVisible(cache_, grid_, at, s.view));
+    selectVisible(snapshot_, grid_, at, s.view, visible_);
+    ViewDiff& diff = diff_;
+    s.view.diff(visible_, diff);
     if (config_.budget.enabled()) s.budget.refill(budget_bytes_per_tick_, budget_cap_bytes_);
     if (config_.resend) {
       addResends(s, diff, now_ns);
@@ -352,31 +362,34 @@ void Gateway::sendViews(std::int64_t now_ns) {
 }
 
 void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {
-  ResendDue due = s.resend.due(now_ns, config_.loss_detection);
+  ResendDue& due = due_;
+  s.resend.due(now_ns, config_.loss_detection, due);
   std::size_t before = diff.spawns.size() + diff.updates.size() + diff.despawns.size();
-  auto merge = [](std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& more) {
-    into.insert(into.end(), more.begin(), more.end());
+  // Resends carry the newest state; only what the view still holds (or no longer holds, for a
+  // despawn) is worth sending: a newer spawn or despawn of the same id supersedes it.
+  auto merge = [&](std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& more,
+                   bool check, bool known) {
+    std::size_t n = into.size();
+    for (std::uint64_t id : more)
+      if (!check || (s.view.knows(id) == known && (!known || cache_.find(id) != nullptr)))
+        into.push_back(id);
+    if (into.size() == n) return;
     std::sort(into.begin(), into.end());
     into.erase(std::unique(into.begin(), into.end()), into.end());
   };
-  // Resends carry the newest state; only what the view still holds (or no longer holds, for a
-  // despawn) is worth sending: a newer spawn or despawn of the same id supersedes it.
-  auto keep = [&](const std::vector<std::uint64_t>& ids, bool known) {
-    std::vector<std::uint64_t> out;
-    for (std::uint64_t id : ids)
-      if (s.view.knows(id) == known && (!known || cache_.find(id) != nullptr)) out.push_back(id);
-    return out;
-  };
   // A state of an entity whose spawn is unacknowledged goes as a Spawn: the client may not
   // know it yet and would drop a bare update.
-  std::vector<std::uint64_t> plain, as_spawn;
-  for (std::uint64_t id : diff.updates)
-    (s.resend.spawnPending(id) ? as_spawn : plain).push_back(id);
-  diff.updates = std::move(plain);
-  merge(diff.spawns, as_spawn);
-  merge(diff.spawns, keep(due.spawns, true));
-  merge(diff.updates, keep(due.updates, true));
-  merge(diff.despawns, keep(due.despawns, false));
+  std::vector<std::uint64_t>& as_spawn = scratch_ids_;
+  as_spawn.clear();
+  std::erase_if(diff.updates, [&](std::uint64_t id) {
+    if (!s.resend.spawnPending(id)) return false;
+    as_spawn.push_back(id);
+    return true;
+  });
+  merge(diff.spawns, as_spawn, false, true);
+  merge(diff.spawns, due.spawns, true, true);
+  merge(diff.updates, due.updates, true, true);
+  merge(diff.despawns, due.despawns, true, false);
   std::size_t after = diff.spawns.size() + diff.updates.size() + diff.despawns.size();
   s.traffic.resent += after - before;
   counters_.resent += after - before;
@@ -584,6 +597,12 @@ void Gateway::sendTo(const Endpoint& to, const Bytes& bytes) {
   counters_.bytes_out += bytes.size();
 }
 
+double Gateway::processCpuMsPerTick() const {
+  return tick_total_.count > 0
+             ? double(processCpuNs() - start_process_cpu_ns_) * 1e-6 / double(tick_total_.count)
+             : 0.0;
+}
+
 GatewayGauges Gateway::gauges(std::int64_t now_ns) {
   GatewayGauges g;
   g.elapsed_s = double(now_ns - start_ns_) * 1e-9;
@@ -594,6 +613,8 @@ GatewayGauges Gateway::gauges(std::int64_t now_ns) {
   g.held_spawns = link_.heldSpawns();
   g.zone_tick = clock_.tick();
   g.tick_ms = tick_window_;
+  g.tick_cpu_ms = tick_cpu_window_;
+  g.process_cpu_ms_per_tick = processCpuMsPerTick();
   return g;
 }
 
@@ -626,6 +647,7 @@ std::string Gateway::summaryJson() {
             [](const auto& a, const auto& b) { return a.player_id < b.player_id; });
   GatewayGauges g = gauges(now);
   g.tick_ms = tick_total_;
+  g.tick_cpu_ms = tick_cpu_total_;
   // Over the run: the median player's mean rate, and the worst second of any player.
   std::vector<double> kbps;
   for (const PlayerRecord& p : players)

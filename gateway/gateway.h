@@ -19,6 +19,7 @@
 #include "gateway/interest_manager.h"
 #include "gateway/session_table.h"
 #include "gateway/world_cache.h"
+#include "gateway/world_snapshot.h"
 #include "gateway/zone_clock.h"
 #include "gateway/zone_link.h"
 #include "wire/impairment.h"
@@ -105,6 +106,8 @@ class Gateway {
   /// Ends a metrics second: each client's rate over it, and a gateway.jsonl line if enabled.
   void writeMetrics(std::int64_t now_ns);
   GatewayGauges gauges(std::int64_t now_ns);
+  /// The process's CPU time since run() began, over the ticks run.
+  double processCpuMsPerTick() const;
   /// The avatar's position as last heard (extrapolated), or the spawn point before that.
   void avatarPosition(const Session& s, double sim_now, double& x, double& z) const;
   /// The avatar's planar speed as last heard (0 before it is known).
@@ -120,6 +123,11 @@ class Gateway {
   SessionTable sessions_;
   DatagramHandler handler_;
   WorldCache cache_;
+  WorldSnapshot snapshot_;                // the cache at this tick's sim time, for every view
+  std::vector<VisibleEntity> visible_;    // one player's visible set, reused
+  ViewDiff diff_;                         // one player's diff, reused
+  ResendDue due_;                         // one player's resends, reused
+  std::vector<std::uint64_t> scratch_ids_;
   ZoneClock clock_;
   InterestManager interest_;
   ZoneLink link_;
@@ -133,6 +141,8 @@ class Gateway {
   std::int64_t next_metrics_ns_ = 0;
   double budget_bytes_per_tick_ = 0, budget_cap_bytes_ = 0;  // under a budget
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
+  TickTimes tick_cpu_window_, tick_cpu_total_;  // the same in thread CPU time
+  std::int64_t start_process_cpu_ns_ = 0;
   double worst_client_kbps_ = 0;        // the most any client was sent in one second
   std::vector<double> kbps_scratch_;    // per-second rates, reused
 };

@@ -44,6 +44,9 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("ticks", g.tick_ms.count)
       .add("tick_ms_mean", g.tick_ms.meanMs())
       .add("tick_ms_max", g.tick_ms.max_ms)
+      .add("tick_cpu_ms_mean", g.tick_cpu_ms.meanMs())
+      .add("tick_cpu_ms_max", g.tick_cpu_ms.max_ms)
+      .add("process_cpu_ms_per_tick", g.process_cpu_ms_per_tick)
       .add("client_kbps_p50", g.client_kbps_p50)
       .add("client_kbps_max", g.client_kbps_max);
 }

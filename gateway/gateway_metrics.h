@@ -46,7 +46,10 @@ struct GatewayGauges {
   std::size_t sessions = 0, pending_sessions = 0, cells_subscribed = 0, entities_cached = 0;
   std::size_t held_spawns = 0;
   std::uint64_t zone_tick = 0;
-  TickTimes tick_ms;
+  TickTimes tick_ms;      ///< wall time of each tick (grows when the machine is oversubscribed)
+  TickTimes tick_cpu_ms;  ///< the gateway thread's CPU time in each tick: its own work
+  /// Whole-process CPU (every thread: receiving datagrams, DDS) per tick, ms.
+  double process_cpu_ms_per_tick = 0;
   /// UDP payload bytes sent to clients as kbit/s: per line, over its second (median and most
   /// of the clients); in the summary, the median client's mean over its session, and the
   /// most any client was sent in one second of the run.

@@ -58,6 +58,11 @@ class WorldCache {
   std::size_t size() const { return entities_.size(); }
   const CacheStats& stats() const { return stats_; }
 
+  /// Visits (id, entity) for every entity held, in no particular order.
+  template <typename F>
+  void forEach(F&& f) const {
+    for (const auto& [id, e] : entities_) f(id, e);
+  }
   /// Visits (id, entity) for every entity whose source is the cell.
   template <typename F>
   void forEachInCell(int cell, F&& f) const {

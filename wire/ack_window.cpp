@@ -35,6 +35,7 @@ void ResendTracker::sent(std::uint32_t seq, std::span<const std::uint64_t> ids, 
   f.acked = false;
   f.ids.assign(ids.begin(), ids.end());
   for (std::uint64_t id : ids) pending_.insert_or_assign(id, Pending{what, seq, now_ns});
+  if (!ids.empty()) oldest_pending_ns_ = std::min(oldest_pending_ns_, now_ns);
 }
 
 void ResendTracker::onAck(std::uint32_t ack, std::uint32_t bits, std::int64_t now_ns) {
@@ -81,9 +82,21 @@ std::int64_t ResendTracker::rtoNs() const {
 
 ResendDue ResendTracker::due(std::int64_t now_ns, LossDetection how) const {
   ResendDue d;
+  due(now_ns, how, d);
+  return d;
+}
+
+void ResendTracker::due(std::int64_t now_ns, LossDetection how, ResendDue& d) const {
+  d.clear();
   std::int64_t rto = rtoNs();
   bool later_acks = how == LossDetection::LaterAck;
+  // Nothing pending was sent long enough ago, or before the newest acknowledged datagram.
+  if (now_ns - oldest_pending_ns_ < rto &&
+      !(later_acks && oldest_pending_ns_ < newest_acked_sent_ns_))
+    return;
+  std::int64_t oldest = INT64_MAX;
   for (const auto& [id, p] : pending_) {
+    oldest = std::min(oldest, p.sent_ns);
     bool overtaken = later_acks && p.sent_ns < newest_acked_sent_ns_;
     if (!overtaken && now_ns - p.sent_ns < rto) continue;
     (p.what == Carried::Spawn    ? d.spawns
@@ -91,10 +104,10 @@ ResendDue ResendTracker::due(std::int64_t now_ns, LossDetection how) const {
                                  : d.despawns)
         .push_back(id);
   }
+  oldest_pending_ns_ = oldest;
   std::sort(d.spawns.begin(), d.spawns.end());
   std::sort(d.updates.begin(), d.updates.end());
   std::sort(d.despawns.begin(), d.despawns.end());
-  return d;
 }
 
 }  // namespace zonesim::gateway

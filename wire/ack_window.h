@@ -37,6 +37,12 @@ enum class Carried : std::uint8_t { Spawn, Update, Despawn };
 struct ResendDue {
   std::vector<std::uint64_t> spawns, updates, despawns;
   bool empty() const { return spawns.empty() && updates.empty() && despawns.empty(); }
+  /// Empties the lists, keeping their storage.
+  void clear() {
+    spawns.clear();
+    updates.clear();
+    despawns.clear();
+  }
 };
 
 /// How the sender recognises a lost datagram.
@@ -71,6 +77,8 @@ class ResendTracker {
   /// Entities to send again now: their newest state (or despawn) is not acknowledged and went
   /// out over rto() ago or (LaterAck) before a datagram that is acknowledged.
   ResendDue due(std::int64_t now_ns, LossDetection how = LossDetection::Timeout) const;
+  /// The same into `out` (cleared first), reusing its storage.
+  void due(std::int64_t now_ns, LossDetection how, ResendDue& out) const;
   /// The retransmission timeout now, nanoseconds: smoothed ack RTT + 4 deviations, bounded.
   std::int64_t rtoNs() const;
   /// Entities with something unacknowledged.
@@ -97,6 +105,9 @@ class ResendTracker {
   static constexpr std::size_t kFlights = 1024;
   std::vector<Flight> flights_;
   std::unordered_map<std::uint64_t, Pending> pending_;
+  // No pending entry was sent before this (a lower bound: acks only raise the true one), so
+  // due() skips its scan while nothing can have timed out or been overtaken.
+  mutable std::int64_t oldest_pending_ns_ = INT64_MAX;
   std::uint32_t next_seq_ = 1;
   double srtt_s_ = -1, rttvar_s_ = 0;
   double min_rto_s_, max_rto_s_;

@@ -1,8 +1,11 @@
 #!/usr/bin/python3
 """How many players one gateway serves at 30 Hz on one core: a zone rank, a gateway and a
 client_stub fleet of N players on this machine for each N; prints the gateway's own tick time
-(everything it does per 33 ms tick: DDS takes, interest, per-player diffs, packing, sends),
-its traffic per player and the linear extrapolation of N to a full 33 ms tick.
+(everything it does per 33 ms tick: DDS takes, interest, per-player diffs, packing, sends) as
+wall time and as the gateway thread's own CPU time (the fleet and the zone share the machine:
+wall time grows with their load, CPU time does not), the whole gateway process's CPU per tick
+(receiving inputs, DDS threads too), its traffic per player and the linear extrapolation of N
+to a full 33 ms tick of the gateway thread's CPU.
 Usage: bench/net/gateway_capacity.py [N ...]   (ZONESIM_BIN: the build's bin/ directory)"""
 import json
 import sys
@@ -16,8 +19,9 @@ import harness as h  # noqa: E402
 SCENE = Path(__file__).resolve().parent / "capacity.yaml"
 SECONDS = 8
 counts = [int(a) for a in sys.argv[1:]] or [25, 50, 100, 200]
-print(f"{'players':>7} {'tick ms mean':>12} {'tick ms max':>11} {'kbit/s out per player':>21} "
-      f"{'welcomed':>8} {'players at 33 ms (linear)':>25}")
+print(f"{'players':>7} {'tick ms mean':>12} {'tick ms max':>11} {'tick cpu ms':>11} "
+      f"{'process cpu ms':>14} {'kbit/s out per player':>21} {'welcomed':>8} "
+      f"{'players at 33 ms cpu (linear)':>29}")
 for n in counts:
     with tempfile.TemporaryDirectory(prefix="zs_cap_") as tmp:
         out = Path(tmp)
@@ -40,6 +44,8 @@ for n in counts:
         c = h.load_json(out / "clients.json")
         welcomed = sum(1 for p in c["clients"] if p.get("avatar_id", 0) != 0)
         per_player = g["bytes_out"] * 8 / 1000 / max(1, n) / g["t"]
-        mean = g["tick_ms_mean"]
-        print(f"{n:>7} {mean:>12.2f} {g['tick_ms_max']:>11.1f} {per_player:>21.1f} {welcomed:>8} "
-              f"{n * 33.3 / mean if mean > 0 else 0:>25.0f}", flush=True)
+        # A gateway built before CPU time was reported (for A/B runs) shows nan there.
+        cpu = g.get("tick_cpu_ms_mean", float("nan"))
+        print(f"{n:>7} {g['tick_ms_mean']:>12.2f} {g['tick_ms_max']:>11.1f} {cpu:>11.2f} "
+              f"{g.get('process_cpu_ms_per_tick', float('nan')):>14.2f} {per_player:>21.1f} "
+              f"{welcomed:>8} {n * 33.3 / cpu if cpu > 0 else 0:>29.0f}", flush=True)

@@ -5,6 +5,7 @@
 #include "gateway/client_view.h"
 #include "gateway/interest_manager.h"
 #include "gateway/world_cache.h"
+#include "gateway/world_snapshot.h"
 
 namespace zonesim::gateway {
 namespace {
@@ -52,12 +53,77 @@ TEST(SelectVisible, NimbusWithHysteresisAndTheAvatarAlways) {
   EXPECT_EQ(seen, (Ids{1, 2, 3}));
 }
 
+TEST(WorldSnapshot, GroupsByCellAndPredictsToItsTime) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 50);
+  // Moving 2 m/s along x, sampled at t = 1: at t = 2 it is 2 m on.
+  c.upsert(grid.cellOf(10, 10), 0, 1.0, entity(1, 0, 10, 10, 2, 0));
+  c.upsert(grid.cellOf(120, 10), 0, 1.0, entity(2, 0, 120, 10));
+  c.upsert(grid.cellOf(130, 20), 0, 1.0, entity(3, 2, 130, 20));
+  WorldSnapshot snap;
+  snap.rebuild(c, grid.cellCount(), 2.0);
+  EXPECT_EQ(snap.size(), 3u);
+  ASSERT_EQ(snap.cell(grid.cellOf(10, 10)).size(), 1u);
+  EXPECT_NEAR(snap.cell(grid.cellOf(10, 10))[0].x, 12.0, 1e-3);
+  EXPECT_EQ(snap.cell(grid.cellOf(120, 10)).size(), 2u);
+  EXPECT_TRUE(snap.cell(grid.cellOf(190, 190)).empty());
+  EXPECT_TRUE(snap.cell(-1).empty());
+  EXPECT_TRUE(snap.cell(grid.cellCount()).empty());
+  // Rebuilt after a removal, nothing stale stays.
+  c.dropCell(grid.cellOf(120, 10));
+  snap.rebuild(c, grid.cellCount(), 2.0);
+  EXPECT_EQ(snap.size(), 1u);
+  EXPECT_TRUE(snap.cell(grid.cellOf(120, 10)).empty());
+}
+
+TEST(SelectVisible, ASnapshotGivesTheRuleAtPredictedPositionsAndReusesItsOutput) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 25);
+  for (std::uint64_t id = 1; id <= 400; ++id) {
+    float x = float((id * 37) % 400), z = float((id * 91) % 400);
+    c.upsert(grid.cellOf(x, z), 0, 1.0, entity(id, std::uint8_t(id % 3), x, z, 1, -1));
+  }
+  ViewPoint at;
+  at.x = 200, at.z = 180, at.nimbus = 60, at.keep = 66, at.self = 5, at.sim_now = 1.5;
+  at.aura = {80, 40, 100, 100};
+  ClientView view;
+  view.diff(selectVisible(c, grid, at, view));  // known: keep applies
+  WorldSnapshot snap;
+  snap.rebuild(c, grid.cellCount(), at.sim_now);
+  std::vector<VisibleEntity> out{{999, 9}};  // stale content is cleared
+  at.self_version = c.find(5)->version;
+  selectVisible(snap, grid, at, view, out);
+  auto ids = [](const std::vector<VisibleEntity>& v) {
+    Ids r;
+    for (auto& e : v) r.push_back(e.id);
+    std::sort(r.begin(), r.end());
+    return r;
+  };
+  // Against every entity tested by hand: the rule, at the predicted positions.
+  Ids expected;
+  for (std::uint64_t id = 1; id <= 400; ++id) {
+    const CachedEntity& e = *c.find(id);
+    dr::V3 p = predictedPosition(e, at.sim_now);
+    double d2 = (p.x - at.x) * (p.x - at.x) + (p.z - at.z) * (p.z - at.z);
+    double aura = at.aura[e.state.kind];
+    if (id == at.self || auraNimbusAllows(d2, aura, at.nimbus) ||
+        (view.knows(id) && auraNimbusAllows(d2, aura * 1.1, at.keep)))
+      expected.push_back(id);
+  }
+  EXPECT_EQ(ids(out), expected);
+  EXPECT_EQ(ids(selectVisible(c, grid, at, view)), expected);
+  EXPECT_GT(expected.size(), 20u);
+  EXPECT_LT(expected.size(), 200u);
+  EXPECT_TRUE(std::binary_search(expected.begin(), expected.end(), 5u)) << "the avatar, always";
+}
+
 TEST(AuraNimbus, BothRangesMustHold) {
   // A sees B when A is inside B's aura and B inside A's nimbus.
-  EXPECT_TRUE(auraNimbusAllows(50, 80, 60));
-  EXPECT_FALSE(auraNimbusAllows(70, 80, 60)) << "outside A's nimbus";
-  EXPECT_FALSE(auraNimbusAllows(50, 40, 60)) << "A outside B's aura";
-  EXPECT_TRUE(auraNimbusAllows(60, 60, 60));
+  // Distances are given squared.
+  EXPECT_TRUE(auraNimbusAllows(50 * 50, 80, 60));
+  EXPECT_FALSE(auraNimbusAllows(70 * 70, 80, 60)) << "outside A's nimbus";
+  EXPECT_FALSE(auraNimbusAllows(50 * 50, 40, 60)) << "A outside B's aura";
+  EXPECT_TRUE(auraNimbusAllows(60 * 60, 60, 60));
   // The nimbus grows with speed, within its cap, never shrinking below the base.
   EXPECT_DOUBLE_EQ(grownNimbus(60, 0, 4, 150), 60);
   EXPECT_DOUBLE_EQ(grownNimbus(60, 5, 4, 150), 80);

@@ -78,6 +78,40 @@ TEST(ResendTracker, LostDatagramIsResentAfterTimeoutOnly) {
   EXPECT_TRUE(d.updates.empty() && d.despawns.empty());
 }
 
+TEST(ResendTracker, SkippedScansMissNothingThatComesDue) {
+  // due() skips its scan while nothing pending can have timed out; the bound it keeps must
+  // follow sends, acks and resends without hiding an entity that is due.
+  ResendTracker t(0.05, 0.05);  // rto fixed at 50 ms
+  std::uint32_t s1 = t.nextSeq();
+  t.sent(s1, ids({1}), Carried::Update, 0);
+  EXPECT_TRUE(t.due(49 * kMs).empty());
+  EXPECT_EQ(t.due(50 * kMs).updates, ids({1}));
+  t.onAck(s1, 0, 60 * kMs);
+  EXPECT_TRUE(t.due(200 * kMs).empty());  // a scan: nothing pending, nothing due
+  std::uint32_t s2 = t.nextSeq();
+  t.sent(s2, ids({2}), Carried::Update, 300 * kMs);
+  EXPECT_TRUE(t.due(340 * kMs).empty());
+  std::uint32_t s3 = t.nextSeq();
+  t.sent(s3, ids({3}), Carried::Spawn, 330 * kMs);
+  EXPECT_EQ(t.due(350 * kMs).updates, ids({2}));
+  EXPECT_TRUE(t.due(350 * kMs).spawns.empty());
+  // The same into a reused result, cleared first.
+  ResendDue d;
+  d.despawns = ids({42});
+  t.due(380 * kMs, LossDetection::Timeout, d);
+  EXPECT_EQ(d.updates, ids({2}));
+  EXPECT_EQ(d.spawns, ids({3}));
+  EXPECT_TRUE(d.despawns.empty());
+  // Overtaken: a later datagram's ack marks an earlier one lost before its timeout.
+  ResendTracker u(0.05, 0.05);
+  std::uint32_t a = u.nextSeq(), b = u.nextSeq();
+  u.sent(a, ids({5}), Carried::Update, 0);
+  u.sent(b, ids({6}), Carried::Update, 10 * kMs);
+  u.onAck(b, 0, 20 * kMs);
+  EXPECT_TRUE(u.due(25 * kMs, LossDetection::Timeout).empty());
+  EXPECT_EQ(u.due(25 * kMs, LossDetection::LaterAck).updates, ids({5}));
+}
+
 TEST(ResendTracker, AnAckOfALaterTicksDatagramMarksEarlierOnesLost) {
   ResendTracker t(0.05, 1.0);
   auto lost = ids({4, 6}), later = ids({5});

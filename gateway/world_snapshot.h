@@ -1,0 +1,40 @@
+#pragma once
+// The world cache's entities predicted to one sim time and bucketed by the cell their zone put
+// them in. Built once a gateway tick, so that each player's visibility scan reads flat arrays
+// instead of hash maps, and no entity is extrapolated once per player.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace zonesim::gateway {
+
+class WorldCache;
+
+/// One entity as visibility needs it.
+struct SnapEntity {
+  std::uint64_t id = 0;
+  std::uint64_t version = 0;  ///< the cache's version of its state
+  double x = 0, z = 0;        ///< where its own model puts it at the snapshot's time
+  std::uint8_t kind = 0;
+};
+
+class WorldSnapshot {
+ public:
+  /// Predicts every cached entity to sim_now; entities of cells outside [0, cell_count) are
+  /// left out (no grid reads them). Reuses its storage: no allocation once warm.
+  void rebuild(const WorldCache& cache, int cell_count, double sim_now);
+  /// The entities whose source is `cell` (empty for a cell out of range).
+  std::span<const SnapEntity> cell(int cell) const;
+  /// The sim time positions were predicted to.
+  double simNow() const { return sim_now_; }
+  std::size_t size() const { return entities_.size(); }
+
+ private:
+  std::vector<SnapEntity> entities_;  // grouped by cell
+  std::vector<std::uint32_t> begin_;  // cell c holds [begin_[c], begin_[c + 1])
+  std::vector<std::uint32_t> fill_;   // next free slot per cell, while rebuilding
+  double sim_now_ = 0;
+};
+
+}  // namespace zonesim::gateway
