@@ -1,0 +1,65 @@
+#include "auth/connect_token.h"
+
+#include <chrono>
+
+#include "auth/hmac.h"
+
+namespace zonesim::auth {
+
+namespace {
+
+void put(std::uint8_t* p, std::uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) p[i] = std::uint8_t(v >> (8 * i));
+}
+
+std::uint64_t get(const std::uint8_t* p, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= std::uint64_t(p[i]) << (8 * i);
+  return v;
+}
+
+}  // namespace
+
+TokenBytes signToken(const ConnectToken& t, const AuthKey& key) {
+  TokenBytes b{};
+  b[0] = kConnectTokenVersion;
+  put(&b[1], t.gateway_id, 2);
+  put(&b[3], t.client_port, 2);
+  put(&b[5], t.client_address, 4);
+  put(&b[9], t.player_id, 8);
+  put(&b[17], t.expiry_unix_ms, 8);
+  Digest tag = hmacSha256(key.bytes(), std::span(b).first(kConnectTokenBodyBytes));
+  std::copy(tag.begin(), tag.end(), b.begin() + kConnectTokenBodyBytes);
+  return b;
+}
+
+TokenVerdict checkToken(std::span<const std::uint8_t> bytes, const AuthKey& key,
+                        std::uint16_t gateway_id, std::uint32_t from_address,
+                        std::uint16_t from_port, std::uint64_t now_unix_ms) {
+  TokenVerdict v;
+  if (bytes.size() != kConnectTokenBytes || bytes[0] != kConnectTokenVersion) return v;
+  Digest tag = hmacSha256(key.bytes(), bytes.first(kConnectTokenBodyBytes));
+  if (!constantTimeEqual(tag, bytes.subspan(kConnectTokenBodyBytes))) return v;
+  const std::uint8_t* p = bytes.data();
+  v.token.gateway_id = std::uint16_t(get(p + 1, 2));
+  v.token.client_port = std::uint16_t(get(p + 3, 2));
+  v.token.client_address = std::uint32_t(get(p + 5, 4));
+  v.token.player_id = get(p + 9, 8);
+  v.token.expiry_unix_ms = get(p + 17, 8);
+  if (v.token.gateway_id != gateway_id)
+    v.check = TokenCheck::WrongGateway;
+  else if (now_unix_ms >= v.token.expiry_unix_ms)
+    v.check = TokenCheck::Expired;
+  else if (v.token.client_address != from_address || v.token.client_port != from_port)
+    v.check = TokenCheck::WrongAddress;
+  else
+    v.check = TokenCheck::Ok;
+  return v;
+}
+
+std::uint64_t unixNowMs() {
+  using namespace std::chrono;
+  return std::uint64_t(duration_cast<milliseconds>(system_clock::now().time_since_epoch()).count());
+}
+
+}  // namespace zonesim::auth
