@@ -14,7 +14,9 @@ void Outbox::clear() {
 }
 
 DatagramHandler::DatagramHandler(SessionTable& sessions, const HandlerConfig& config)
-    : sessions_(sessions), config_(config), spawn_rng_(config.spawn_seed, 0x5a17) {}
+    : sessions_(sessions), config_(config), spawn_rng_(config.spawn_seed, 0x5a17) {
+  if (config_.auth_key) gate_.emplace(*config_.auth_key, config_.gateway_id);
+}
 
 Bytes DatagramHandler::welcomeFor(const Session& s) const {
   WelcomeInfo w;
@@ -124,11 +126,26 @@ void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, st
     ++accepted_;
     return;
   }
-  auto created = sessions_.create(from, nonce, now_ns);
+  // After the retry check: a lost Welcome is resent to the address the token was checked for.
+  std::optional<Admitted> admitted;
+  if (gate_) {
+    const flatbuffers::Vector<std::uint8_t>* t = d.msg_as_Hello()->connect_token();
+    std::span<const std::uint8_t> token;
+    if (t != nullptr) token = {t->data(), t->size()};
+    DropReason refused = DropReason::TokenForged;
+    admitted = gate_->check(token, from, config_.unix_now_ms(), refused);
+    if (!admitted) {
+      drops_.add(refused);
+      return;
+    }
+  }
+  auto created = sessions_.create(from, nonce, now_ns,
+                                  admitted ? std::optional(admitted->player_id) : std::nullopt);
   if (!created) {
     drops_.add(DropReason::SessionLimit);
     return;
   }
+  if (admitted) gate_->consume(*admitted);
   Session* s = sessions_.get(*created);
   const SceneBox& b = config_.world;
   s->spawn_x = spawn_rng_.uniform(b.min.x, b.max.x);

@@ -5,12 +5,18 @@
 // the wrong address is dropped and counted by reason.
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <span>
 #include <vector>
+
+#include "auth/auth_key.h"
+#include "auth/connect_token.h"
 
 #include "common/rng.h"
 #include "common/scene_geometry.h"
 #include "gateway/session_table.h"
+#include "gateway/token_gate.h"
 #include "wire/wire_encode.h"
 #include "wire/wire_verify.h"
 
@@ -56,6 +62,12 @@ struct HandlerConfig {
   float sim_dt = 1.0f / 30;      ///< simulated seconds per zone tick
   double rate_per_s = 100;       ///< datagrams per second a session may send (sustained)
   double rate_burst = 50;        ///< and in a burst
+  /// The cluster's key: a Hello then needs the lobby's connect token for this gateway
+  /// (gateway/token_gate.h). nullopt: any Hello opens a session, as without a lobby.
+  std::optional<auth::AuthKey> auth_key{};
+  std::uint16_t gateway_id = 0;  ///< the gateway tokens must be signed for
+  /// The wall clock (Unix ms) tokens expire by; tests set their own.
+  std::function<std::uint64_t()> unix_now_ms = auth::unixNowMs;
 };
 
 class DatagramHandler {
@@ -72,6 +84,8 @@ class DatagramHandler {
   /// Counts an oversize datagram the socket truncated before it reached handle().
   void countTooLarge() { drops_.add(DropReason::TooLarge); }
   std::uint64_t accepted() const { return accepted_; }
+  /// The connect-token check, when the gateway has a key (nullptr otherwise).
+  const TokenGate* tokenGate() const { return gate_ ? &*gate_ : nullptr; }
 
  private:
   void onHello(const proto::Datagram& d, const Endpoint& from, std::size_t size,
@@ -85,6 +99,7 @@ class DatagramHandler {
   SessionTable& sessions_;
   HandlerConfig config_;
   Pcg32 spawn_rng_;
+  std::optional<TokenGate> gate_;
   DropCounters drops_;
   std::uint64_t accepted_ = 0;
 };

@@ -27,8 +27,11 @@ std::int64_t seconds(double s) {
 }
 
 HandlerConfig handlerConfig(const GatewayConfig& c) {
-  return {c.scene.world, float(c.scene.tick_rate), c.spawn_seed, dr::codecParams(c.scene),
-          float(c.scene.dt)};
+  HandlerConfig h{c.scene.world, float(c.scene.tick_rate), c.spawn_seed, dr::codecParams(c.scene),
+                  float(c.scene.dt)};
+  h.auth_key = c.auth_key;
+  h.gateway_id = std::uint16_t(c.gateway_id);
+  return h;
 }
 
 /// A random non-zero 16-bit number per gateway process: player ids of a restarted gateway (and
@@ -71,6 +74,13 @@ Gateway::Gateway(GatewayConfig config)
       codec_(dr::codecParams(config_.scene)),
       impairment_(config_.impairment, 0x9a7e) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
+  if (config_.auth_key) {
+    LoadIdentity id{std::uint16_t(config_.gateway_id), randomIncarnation(),
+                    publicAddress(config_.public_address, socket_.local()),
+                    std::uint32_t(config_.max_sessions)};
+    load_report_.emplace(link_.participant(), link_.topics().gateway_load.get(), id);
+    load_report_->publish(0, 0);  // known to the lobby before the first player asks
+  }
   checkBudget(config_.budget, 0, config_.budget_names.first, config_.budget_names.second);
   if (config_.budget.enabled()) {
     // The least a second must carry: one spawn of the largest record (second order, rotating).
@@ -183,6 +193,7 @@ void Gateway::tick(std::int64_t now_ns) {
   tick_cpu_window_.add(cpu_ms);
   tick_cpu_total_.add(cpu_ms);
   if (now_ns >= next_metrics_ns_) {
+    if (load_report_) load_report_->publish(sessions_.size(), handler_.tokenGate()->admitted());
     writeMetrics(now_ns);
     tick_window_ = {};
     tick_cpu_window_ = {};

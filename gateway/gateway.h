@@ -17,6 +17,7 @@
 #include "gateway/datagram_handler.h"
 #include "gateway/gateway_metrics.h"
 #include "gateway/interest_manager.h"
+#include "gateway/load_report.h"
 #include "gateway/session_table.h"
 #include "gateway/world_cache.h"
 #include "gateway/world_snapshot.h"
@@ -53,6 +54,12 @@ struct GatewayConfig {
   BudgetSettings budget;
   /// How an error about the budget names its two settings (an option, or a scene key).
   std::pair<std::string, std::string> budget_names{"budget_kbps", "budget_error_angle_deg"};
+  /// The cluster's key (--auth-key-file): every Hello needs the lobby's connect token, and the
+  /// gateway reports its load to the lobby once a second. nullopt: no lobby, as before.
+  std::optional<auth::AuthKey> auth_key{};
+  /// Where players reach this gateway, told to the lobby: address 0 means the bound address,
+  /// port 0 the bound port (a gateway bound to 0.0.0.0 must name its address).
+  Endpoint public_address{0, 0};
 };
 
 class Gateway {
@@ -131,6 +138,7 @@ class Gateway {
   ZoneClock clock_;
   InterestManager interest_;
   ZoneLink link_;
+  std::optional<LoadReport> load_report_;  // with a key: what the lobby knows of us
   MetricsWriter metrics_;
   GatewayCounters counters_;
   std::vector<PlayerRecord> finished_players_;

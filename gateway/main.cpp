@@ -11,6 +11,7 @@
 #include <fstream>
 #include <optional>
 
+#include "auth/auth_key.h"
 #include "common/cli.h"
 #include "common/log.h"
 #include "common/scene.h"
@@ -93,6 +94,13 @@ int main(int argc, char** argv) {
   app.add_option("--budget-error-angle-deg", budget_angle_deg,
                  "under a budget, hold the error each player sees as this angle (default: the "
                  "scene's clients.downlink_error_angle_deg)");
+  std::string auth_key_file, public_address;
+  app.add_option("--auth-key-file", auth_key_file,
+                 "the cluster's key (at least 32 random bytes, shared with the lobby): every "
+                 "Hello then needs the lobby's connect token, and the load goes to the lobby");
+  app.add_option("--public-address", public_address,
+                 "ADDR[:PORT] players reach this gateway at, told to the lobby (default: the "
+                 "bound address and port; needed with --bind 0.0.0.0)");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
@@ -127,6 +135,16 @@ int main(int argc, char** argv) {
     cfg.budget_names = {
         budget_from_cli ? "--budget-kbps" : "clients.downlink_kbps",
         angle_from_cli ? "--budget-error-angle-deg" : "clients.downlink_error_angle_deg"};
+    if (!auth_key_file.empty()) cfg.auth_key = zonesim::auth::loadAuthKey(auth_key_file);
+    if (!public_address.empty()) {
+      if (auth_key_file.empty())
+        throw std::runtime_error("--public-address is told to the lobby: it needs --auth-key-file");
+      try {
+        cfg.public_address = zonesim::gateway::parseBindAddress(public_address, 0);
+      } catch (const std::invalid_argument& e) {
+        throw std::runtime_error("--public-address " + public_address + ": " + e.what());
+      }
+    }
     if (resend_early) cfg.loss_detection = zonesim::gateway::LossDetection::LaterAck;
     cfg.spawn_seed = seed >= 0 ? std::uint64_t(seed) : cfg.scene.seed;
     if (!metrics_dir.empty()) {

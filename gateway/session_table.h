@@ -67,9 +67,11 @@ class SessionTable {
   /// random incarnation), never issue the same id.
   SessionTable(std::uint32_t gateway_id, std::size_t max_sessions, std::uint16_t incarnation = 0);
 
-  /// A new pending session for a Hello; nullopt when max_sessions are open.
+  /// A new pending session for a Hello; nullopt when max_sessions are open. player_id: the id
+  /// a connect token grants (the lobby's, unique in the cluster); nullopt: one issued here.
   std::optional<SlotHandle> create(const Endpoint& address, std::uint64_t client_nonce,
-                                   std::int64_t now_ns);
+                                   std::int64_t now_ns,
+                                   std::optional<std::uint64_t> player_id = std::nullopt);
   /// The session a (repeated) Hello from this address with this nonce created.
   std::optional<SlotHandle> findByHello(const Endpoint& address, std::uint64_t client_nonce) const;
   std::optional<SlotHandle> findByToken(std::uint64_t token) const;

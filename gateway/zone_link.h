@@ -43,6 +43,9 @@ class ZoneLink {
 
   /// Takes every pending ownership event.
   std::vector<zonesim_dds_OwnershipEvent> takeOwnership();
+  /// The participant and topics, for the gateway's other publications (its load report).
+  dds_entity_t participant() const { return participant_.get(); }
+  const dds::Topics& topics() const { return topics_; }
   /// Takes every pending cell sample into the cache and the clock; returns samples taken.
   std::size_t takeCells(WorldCache& cache, ZoneClock& clock, std::int64_t now_ns);
 

@@ -30,4 +30,12 @@ Qos reliableKeepAllQos() {
   return q;
 }
 
+Qos gatewayLoadQos() {
+  Qos q(dds_create_qos());
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, kMaxBlocking);
+  dds_qset_durability(q.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, 1);
+  return q;
+}
+
 }  // namespace zonesim::dds

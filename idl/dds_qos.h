@@ -18,5 +18,8 @@ Qos cellUpdateQos();
 Qos cellKeyframeQos();
 /// Commands that must not be dropped (inputs, spawn requests, ownership events): KEEP_ALL.
 Qos reliableKeepAllQos();
+/// Gateway load reports: only the newest counts, and a lobby started later gets it at once
+/// (reliable, TRANSIENT_LOCAL, KEEP_LAST 1 per gateway).
+Qos gatewayLoadQos();
 
 }  // namespace zonesim::dds

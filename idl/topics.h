@@ -6,6 +6,7 @@
 //   zs_player_input    PlayerInput      partition z.<rank>     gateway -> zone, reliableKeepAll
 //   zs_spawn_requests  SpawnRequest     default partition      gateway -> zones, reliableKeepAll
 //   zs_despawn_requests DespawnRequest  default partition      gateway -> zones, reliableKeepAll
+//   zs_gateway_load    GatewayLoad      default partition      gateway -> lobby, gatewayLoadQos
 
 #include "idl/dds_entity.h"
 
@@ -18,6 +19,7 @@ struct Topics {
   Entity player_input;
   Entity spawn_requests;
   Entity despawn_requests;
+  Entity gateway_load;
 };
 
 /// Creates all zonesim topics on the participant.

@@ -38,10 +38,14 @@ std::vector<Bytes> chunked(std::span<const Item> items, std::size_t per_chunk, M
 
 }  // namespace
 
-Bytes encodeHello(std::uint64_t client_nonce, std::string_view name) {
-  flatbuffers::FlatBufferBuilder fbb(128);
+Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
+                  std::span<const std::uint8_t> connect_token) {
+  flatbuffers::FlatBufferBuilder fbb(128 + connect_token.size());
+  // No token, no field: a Hello without one is the same bytes as before tokens existed.
+  flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> t;
+  if (!connect_token.empty()) t = fbb.CreateVector(connect_token.data(), connect_token.size());
   auto n = fbb.CreateString(name.data(), name.size());
-  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n));
+  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n, t));
 }
 
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,

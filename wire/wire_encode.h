@@ -52,7 +52,9 @@ struct HandoffInfo {
   std::uint32_t seq = 0;  ///< the session's datagram seq (0: unnumbered)
 };
 
-Bytes encodeHello(std::uint64_t client_nonce, std::string_view name);
+/// connect_token: the lobby's token, opaque here (empty: none, for a gateway without a key).
+Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
+                  std::span<const std::uint8_t> connect_token = {});
 /// ack / ack_bits: the client's acknowledgement of gateway datagrams (wire/ack_window.h).
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
                   std::uint32_t ack = 0, std::uint32_t ack_bits = 0);

@@ -40,7 +40,9 @@ bool checkToGateway(const proto::Datagram& d) {
   switch (d.msg_type()) {
     case proto::Message::Hello: {
       const proto::Hello* h = d.msg_as_Hello();
-      return h->client_nonce() != 0 && (h->name() == nullptr || h->name()->size() <= kMaxNameBytes);
+      return h->client_nonce() != 0 &&
+             (h->name() == nullptr || h->name()->size() <= kMaxNameBytes) &&
+             (h->connect_token() == nullptr || h->connect_token()->size() <= kMaxConnectTokenBytes);
     }
     case proto::Message::Input: {
       const proto::Input* in = d.msg_as_Input();
@@ -132,6 +134,18 @@ const char* dropReasonName(DropReason reason) {
       return "bad_checksum";
     case DropReason::RateLimited:
       return "rate_limited";
+    case DropReason::TokenMissing:
+      return "token_missing";
+    case DropReason::TokenForged:
+      return "token_forged";
+    case DropReason::TokenExpired:
+      return "token_expired";
+    case DropReason::TokenWrongGateway:
+      return "token_wrong_gateway";
+    case DropReason::TokenWrongAddress:
+      return "token_wrong_address";
+    case DropReason::TokenReused:
+      return "token_reused";
     case DropReason::Count:
       break;
   }
