@@ -19,16 +19,33 @@ namespace {
 constexpr std::int64_t kSecondNs = 1'000'000'000;
 }
 
-ClientFleet::ClientFleet(const FleetConfig& config) : config_(config), start_ns_(nowNs()) {
-  players_.reserve(std::size_t(config.players));
-  for (int i = 0; i < config.players; ++i) {
+ClientFleet::ClientFleet(const FleetConfig& config, const std::atomic<bool>& stop)
+    : config_(config), start_ns_(nowNs()) {
+  std::vector<gateway::UdpSocket> sockets;
+  int players = config.players;
+  if (config.lobby) {
+    sockets.reserve(std::size_t(players));
+    for (int i = 0; i < players; ++i) sockets.emplace_back(gateway::Endpoint::any(0));
+    tickets_ = loginAll(sockets, *config.lobby, stop, &login_stats_);
+    players = int(tickets_.size());
+  }
+  players_.reserve(std::size_t(players));
+  for (int i = 0; i < players; ++i) {
     PlayerConfig player = config.player;
     if (!config.links.empty()) {
       std::size_t share =
           gateway::linkShareOf(config.links, std::size_t(i), std::size_t(config.players));
       player.impairment.out = player.impairment.in = config.links[share].profile;
     }
-    players_.push_back(std::make_unique<SimPlayer>(player, std::uint32_t(i), start_ns_));
+    if (config.lobby) {
+      // It plays from the socket it logged in from: the token names that address and port.
+      player.gateway = tickets_[std::size_t(i)].gateway;
+      player.connect_token = tickets_[std::size_t(i)].connect_token;
+      players_.push_back(std::make_unique<SimPlayer>(player, std::uint32_t(i), start_ns_,
+                                                     std::move(sockets[std::size_t(i)])));
+    } else {
+      players_.push_back(std::make_unique<SimPlayer>(player, std::uint32_t(i), start_ns_));
+    }
   }
   if (!config.metrics_path.empty()) metrics_ = MetricsWriter(config.metrics_path);
 }

@@ -6,11 +6,14 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "clients/lobby_login.h"
 #include "clients/sim_player.h"
 #include "common/metrics.h"
+#include "common/stop_signal.h"
 #include "wire/link_profile.h"
 
 namespace zonesim::clients {
@@ -26,18 +29,27 @@ struct FleetConfig {
   std::string metrics_path;     ///< clients.jsonl; empty = none
   std::string own_stream_path;  ///< own_stream.csv: own states and handoffs; empty = none
   std::string display_path;     ///< display.csv: sampled entities as shown; empty = none
+  /// Log in through this lobby first: each player then says Hello, with its connect token, to
+  /// the gateway the lobby gave it (player.gateway is unused). nullopt: player.gateway, no token.
+  std::optional<LobbyLoginSettings> lobby;
 };
 
 class ClientFleet {
  public:
-  /// Opens one socket per player; throws on failure.
-  explicit ClientFleet(const FleetConfig& config);
+  /// Opens one socket per player and, with config.lobby, logs each in (if stop is set first,
+  /// no player plays); throws on failure.
+  explicit ClientFleet(const FleetConfig& config,
+                       const std::atomic<bool>& stop = zonesim::stopRequested());
 
   /// Runs until duration_s passes or stop is set, then says Bye for every player.
   void run(const std::atomic<bool>& stop);
   /// The summary JSON (players, duration_s, clients[], totals).
   std::string summaryJson() const;
   const std::vector<std::unique_ptr<SimPlayer>>& players() const { return players_; }
+  /// Where the lobby sent each player, in player order (empty without a lobby).
+  const std::vector<LoginTicket>& tickets() const { return tickets_; }
+  /// What logging in through the lobby counted.
+  const LoginStats& loginStats() const { return login_stats_; }
   /// Players that completed the handshake.
   int welcomed() const;
 
@@ -52,6 +64,8 @@ class ClientFleet {
   std::int64_t start_ns_;
   double elapsed_s_ = 0;
   std::vector<std::unique_ptr<SimPlayer>> players_;
+  std::vector<LoginTicket> tickets_;
+  LoginStats login_stats_;
   MetricsWriter metrics_;
   PlayerCounters last_totals_;
 };

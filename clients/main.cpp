@@ -1,5 +1,6 @@
-// client_stub: N simulated players against one gateway. Exits cleanly on SIGINT/SIGTERM or
-// after --duration, writing the summary JSON; exits non-zero with a message on any error.
+// client_stub: N simulated players against one gateway, or logged in through the lobby to the
+// gateways it names. Exits cleanly on SIGINT/SIGTERM or after --duration, writing the summary
+// JSON; exits non-zero with a message on any error.
 
 #include <atomic>
 #include <cstdio>
@@ -21,7 +22,17 @@ int main(int argc, char** argv) {
   double duration = 10;
   std::uint64_t seed = 1;
   app.add_option("--scene", scene_path, "scene file")->required();
-  app.add_option("--gateway", gateway_addr, "gateway address HOST:PORT (IPv4: a dotted address or a host name)")->required();
+  std::string lobby_addr;
+  auto* gateway_opt = app.add_option("--gateway", gateway_addr,
+                                     "gateway address HOST:PORT (IPv4: a dotted address or a host name)");
+  auto* lobby_opt = app.add_option("--lobby", lobby_addr,
+                                   "log each player in through the lobby at HOST:PORT, then say Hello "
+                                   "with its connect token to the gateway it was given");
+  gateway_opt->excludes(lobby_opt);
+  double login_timeout = zonesim::clients::LobbyLoginSettings{}.timeout_s;
+  app.add_option("--login-timeout", login_timeout,
+                 "with --lobby: give up if a player has no gateway after this many seconds")
+      ->check(CLI::PositiveNumber);
   app.add_option("--players", players, "simulated players (default: the scene's clients.players)")
       ->check(CLI::Range(1, 100000));
   app.add_option("--duration", duration, "seconds to run")->check(CLI::PositiveNumber);
@@ -69,10 +80,24 @@ int main(int argc, char** argv) {
     zonesim::applyCommonOptions(common, "clients");
     zonesim::Scene scene = zonesim::loadScene(scene_path);
     zonesim::clients::FleetConfig cfg;
+    if (gateway_addr.empty() && lobby_addr.empty())
+      throw std::runtime_error("--gateway or --lobby is required: where the players connect");
     try {
-      cfg.player.gateway = zonesim::gateway::resolveEndpoint(gateway_addr);
+      if (!gateway_addr.empty())
+        cfg.player.gateway = zonesim::gateway::resolveEndpoint(gateway_addr);
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error("--gateway " + gateway_addr + ": " + e.what());
+    }
+    if (!lobby_addr.empty()) {
+      zonesim::clients::LobbyLoginSettings login;
+      try {
+        login.lobby = zonesim::gateway::resolveEndpoint(lobby_addr);
+      } catch (const std::invalid_argument& e) {
+        throw std::runtime_error("--lobby " + lobby_addr + ": " + e.what());
+      }
+      login.timeout_s = login_timeout;
+      login.seed = seed;
+      cfg.lobby = login;
     }
     cfg.player.world = scene.world;
     cfg.player.input_hz = scene.clients.input_hz;
@@ -111,6 +136,9 @@ int main(int argc, char** argv) {
       if (!f) throw std::runtime_error("cannot write " + summary_path);
       f << summary << '\n';
     }
+    if (cfg.lobby)
+      std::printf("clients logged in %zu of %d through lobby %s\n", fleet.tickets().size(),
+                  cfg.players, cfg.lobby->lobby.str().c_str());
     std::printf("clients welcomed %d of %d\n", fleet.welcomed(), cfg.players);
     std::fflush(stdout);
   } catch (const std::exception& e) {

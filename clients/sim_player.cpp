@@ -20,7 +20,12 @@ constexpr std::size_t kMaxDisplaySamples = 100'000;
 }  // namespace
 
 SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns)
+    : SimPlayer(config, index, start_ns, gateway::UdpSocket(gateway::Endpoint::any(0))) {}
+
+SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns,
+                     gateway::UdpSocket socket)
     : config_(config),
+      socket_(std::move(socket)),
       // Nonces only match replies to requests; mixing in the port keeps two runs apart.
       nonce_(splitmix64(config.seed ^ (std::uint64_t{index} << 32)) ^
              std::uint64_t(socket_.localPort())),
@@ -87,7 +92,7 @@ std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
 std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
   if (!welcomed()) {
     if (now_ns >= next_hello_ns_) {
-      send(gateway::encodeHello(nonce_, "player"));
+      send(gateway::encodeHello(nonce_, "player", config_.connect_token));
       ++counters_.hellos;
       if (first_hello_ns_ < 0) first_hello_ns_ = now_ns;
       next_hello_ns_ = now_ns + seconds(config_.hello_retry_s);

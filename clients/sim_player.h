@@ -45,6 +45,8 @@ struct PlayerConfig {
   /// so that stalled zones freeze the view instead of flinging entities along their last
   /// motion; the gateway tells a quiet view the tick more often than this. 0: unbounded.
   double max_lead_s = 0.25;
+  /// The lobby's connect token for `gateway`, carried in every Hello (empty: none, no lobby).
+  std::vector<std::uint8_t> connect_token;
 };
 
 /// Where a player showed a sampled entity (dr/truth_sample.h) at a server tick.
@@ -80,6 +82,10 @@ class SimPlayer {
  public:
   /// index selects the player's nonce stream and wander generator; start_ns staggers its inputs.
   SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns);
+  /// The same, playing from `socket`: the one the player logged in from, since its connect
+  /// token names that socket's address and port (clients/lobby_login.h).
+  SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64_t start_ns,
+            gateway::UdpSocket socket);
 
   int fd() const { return socket_.fd(); }
   /// Sends whatever is due at now_ns; returns when it next has something to send.
@@ -150,7 +156,7 @@ class SimPlayer {
 
   PlayerConfig config_;
   // Every interface, so a gateway on another host is reached through the route's source address.
-  gateway::UdpSocket socket_{gateway::Endpoint::any(0)};
+  gateway::UdpSocket socket_;
   std::uint64_t nonce_;
   std::uint64_t token_ = 0, player_id_ = 0, avatar_id_ = 0;
   int zone_ = -1;

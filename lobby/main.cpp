@@ -1,0 +1,110 @@
+// lobby: where players log in. Hands each one a connect token, signed with the cluster's key,
+// for the least-loaded gateway that reports on DDS. Prints "lobby listening on ADDR:PORT" once
+// ready; exits cleanly on SIGINT/SIGTERM or after --duration, printing a JSON summary line;
+// exits non-zero with a message on any error.
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <random>
+
+#include "auth/auth_key.h"
+#include "common/cli.h"
+#include "common/log.h"
+#include "common/stop_signal.h"
+#include "lobby/lobby.h"
+
+namespace {
+
+// Written to a temporary name and renamed, so a script polling for the file never reads it half
+// written.
+void writeFile(const std::string& path, const std::string& text) {
+  std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+    f << text << '\n';
+    if (!f.flush()) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"zonesim lobby: hands players signed connect tokens for the least-loaded gateway"};
+  zonesim::CommonOptions common;
+  zonesim::addCommonOptions(app, common);
+  zonesim::lobby::LobbyConfig cfg;
+  std::string bind_text = "127.0.0.1", port_file, metrics_dir, key_file;
+  int port = -1;
+  double duration = 0, lifetime_s = 30;
+  app.add_option("--bind", bind_text,
+                 "UDP address for players, ADDR or ADDR:PORT (0.0.0.0 = every interface, an "
+                 "interface name or a host name; default 127.0.0.1)");
+  app.add_option("--port", port, "UDP port, when --bind gives none (default 0 = ephemeral)")
+      ->check(CLI::Range(0, 65535));
+  app.add_option("--port-file", port_file, "write the bound port to this file");
+  app.add_option("--auth-key-file", key_file,
+                 "the cluster's key, shared with the gateways (at least 32 random bytes: "
+                 "head -c 32 /dev/urandom > FILE)")
+      ->required();
+  app.add_option("--dds-domain", cfg.dds_domain, "DDS domain id of the gateways' load reports")
+      ->check(CLI::Range(0, 232));
+  app.add_option("--token-lifetime", lifetime_s,
+                 "seconds a connect token opens a session after it is granted")
+      ->check(CLI::Range(1.0, 3600.0));
+  app.add_option("--gateway-stale", cfg.stale_after_s,
+                 "seconds without a load report after which a gateway gets no more players")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--expect-gateways", cfg.login.expect_gateways,
+                 "hold logins (refused, to retry) until this many gateways have reported "
+                 "(default 1)")
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--metrics", metrics_dir, "write DIR/lobby_summary.json at exit");
+  app.add_option("--duration", duration, "exit after this many seconds (0 = until signalled)")
+      ->check(CLI::NonNegativeNumber);
+  CLI11_PARSE(app, argc, argv);
+  zonesim::installStopSignals();
+
+  try {
+    zonesim::applyCommonOptions(common, "lobby");
+    std::string bind_option =
+        "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
+    if (port >= 0 && bind_text.find(':') != std::string::npos)
+      throw std::runtime_error(bind_option + ": the port is given twice; use one of them");
+    try {
+      cfg.bind = zonesim::gateway::parseBindAddress(bind_text, std::uint16_t(std::max(port, 0)));
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(bind_option + ": " + e.what());
+    }
+    zonesim::auth::AuthKey key = zonesim::auth::loadAuthKey(key_file);
+    cfg.login.token_lifetime_ms = std::uint64_t(lifetime_s * 1000);
+    // Player ids of a restarted lobby differ from the ones it issued before.
+    cfg.login.incarnation = std::uint16_t(1 + std::random_device{}() % 0xFFFF);
+    std::optional<zonesim::lobby::Lobby> bound;
+    try {
+      bound.emplace(cfg, std::move(key));
+    } catch (const zonesim::gateway::BindError& e) {
+      throw std::runtime_error(bind_option + ": " + e.what());
+    }
+    zonesim::lobby::Lobby& lobby = *bound;
+    if (!port_file.empty()) writeFile(port_file, std::to_string(lobby.local().port));
+    std::printf("lobby listening on %s\n", lobby.local().str().c_str());
+    std::fflush(stdout);
+    lobby.run(zonesim::stopRequested(), duration);
+    std::string summary = lobby.summaryJson();
+    std::printf("lobby summary %s\n", summary.c_str());
+    std::fflush(stdout);
+    if (!metrics_dir.empty()) {
+      std::filesystem::create_directories(metrics_dir);
+      writeFile(metrics_dir + "/lobby_summary.json", summary);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lobby: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
