@@ -127,6 +127,7 @@ class Launch:
         self.procs = []  # (Popen, what, log), stopped in reverse order
         self.zones = None
         self.tmp = None
+        self.key = None  # the cluster's key file, with a lobby
 
     def log(self, msg):
         print(msg, flush=True)
@@ -169,7 +170,7 @@ class Launch:
             m = h.machine()
             load[m] = load.get(m, 0) + h.zones
             cores[m] = min(cores.get(m, h.cores), h.cores)
-        for p in self.c.gateways + self.c.fleets:
+        for p in self.c.gateways + self.c.fleets + ([self.c.lobby] if self.c.lobby else []):
             load[p.host.machine()] += 1
         return [f"{m}: {load[m]} processes on {cores[m]} cores" for m in load if load[m] > cores[m]]
 
@@ -177,9 +178,11 @@ class Launch:
         hosts = list(self.c.hosts.values())
         if all(h.reach == "local" for h in hosts):
             return {h.name: ROOT / "deploy" / "cyclonedds.xml" for h in hosts}
+        lobby_host = self.c.lobby.host if self.c.lobby else None
         users = {g.host.name for g in self.c.gateways} | {h.name for h in hosts if h.zones}
+        users |= {lobby_host.name} if lobby_host else set()
         peers = sorted({self.c.hosts[n].address for n in users})
-        per_host = [h.zones + sum(g.host is h for g in self.c.gateways) for h in hosts]
+        per_host = [h.zones + sum(g.host is h for g in self.c.gateways) + (h is lobby_host) for h in hosts]
         # Cyclone probes every index up to the cap on every peer: enough for this cluster's
         # processes on one host, plus a few for tools (ddsls, ddsperf) run beside it.
         max_index = max(per_host) + 4
@@ -243,6 +246,12 @@ class Launch:
             argv = [self.bin / "gateway", "--scene", self.c.scene, "--bind", g.bind, "--dds-domain",
                     self.c.dds_domain, "--gateway-id", g.id, "--metrics", g.folder, "--expect-zones", expect,
                     "--duration", int(self.c.duration + ZONE_SAFETY_S), *g.args]
+            if self.c.lobby:
+                # The lobby tells players where the gateway is: one bound to every interface
+                # names its host's cluster address.
+                argv += ["--auth-key-file", self.key]
+                if g.bind.split(":")[0] == "0.0.0.0":
+                    argv += ["--public-address", g.host.address]
             g.log = self.run / f"gateway-{g.name}.log"
             g.proc = self.start(f"{g.host.describe()}, gateway {g.name}",
                                 on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}, stop_at_eof=True),
@@ -264,18 +273,62 @@ class Launch:
                     time.sleep(0.1)
             self.log(f"== gateway {g.name} on {g.host.name} listening on {g.address}")
 
+    def write_key(self):
+        """The cluster's key: 32 random bytes in the run folder, copied to the hosts that do not
+        share it (shared_storage = no) and run a gateway or the lobby."""
+        self.key = self.run / "auth.key"
+        fd = os.open(self.key, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+        with os.fdopen(fd, "wb") as f:
+            f.write(os.urandom(32))
+        if self.c.shared_storage:
+            return
+        for h in {p.host.name: p.host for p in [*self.c.gateways, self.c.lobby]}.values():
+            if h.reach in ("ssh", "slurm"):
+                line = f"mkdir -p {shlex.quote(str(self.run))} && umask 077 && cat > {shlex.quote(str(self.key))}"
+                with open(self.key, "rb") as f:
+                    r = subprocess.run(on_host(h, ["sh", "-c", line]), stdin=f, capture_output=True, text=True)
+                if r.returncode != 0:
+                    raise ClusterError(f"{h.describe()}: cannot copy the cluster key there "
+                                       f"({(r.stderr.strip().splitlines() or ['no output'])[-1]})")
+
+    def start_lobby(self, dds):
+        lobby = self.c.lobby
+        argv = [self.bin / "lobby", "--bind", lobby.bind, "--auth-key-file", self.key,
+                "--dds-domain", self.c.dds_domain, "--expect-gateways", len(self.c.gateways),
+                "--metrics", self.run, "--duration", int(self.c.duration + ZONE_SAFETY_S), *lobby.args]
+        lobby.log = self.run / f"lobby-{lobby.name}.log"
+        what = f"{lobby.host.describe()}, lobby {lobby.name}"
+        lobby.proc = self.start(what, on_host(lobby.host, argv, {"CYCLONEDDS_URI": f"file://{dds[lobby.host.name]}"},
+                                              stop_at_eof=True),
+                                lobby.log, held_stdin=lobby.host.reach in ("ssh", "slurm"))
+        deadline = time.monotonic() + 120
+        while not lobby.address:
+            m = re.search(r"lobby listening on (\S+)", lobby.log.read_text(errors="replace"))
+            if m:
+                lobby.address = m.group(1)
+            elif lobby.proc.poll() is not None:
+                self.fail(what, f"exited with {lobby.proc.returncode} before listening", lobby.log)
+            elif time.monotonic() > deadline:
+                self.fail(what, "not listening after 120 s", lobby.log)
+            else:
+                time.sleep(0.1)
+        self.log(f"== lobby {lobby.name} on {lobby.host.name} listening on {lobby.address}")
+
     def start_fleets(self):
         for f in self.c.fleets:
             f.folder = self.folder("fleet", f.name, len(self.c.fleets))
-            address, port = f.gateway.address.rsplit(":", 1)
+            server = f.gateway or self.c.lobby
+            address, port = server.address.rsplit(":", 1)
             if address == "0.0.0.0":
-                address = f.gateway.host.address
-            argv = [self.bin / "client_stub", "--scene", self.c.scene, "--gateway", f"{address}:{port}",
+                address = server.host.address
+            option = "--gateway" if f.gateway else "--lobby"
+            argv = [self.bin / "client_stub", "--scene", self.c.scene, option, f"{address}:{port}",
                     "--players", f.players, "--duration", self.c.duration, "--metrics", f.folder,
                     "--summary", f.folder / "clients_summary.json", "--truth-every", self.c.truth_every,
                     *self.c.client_args, *f.args]
             f.log = self.run / f"fleet-{f.name}.log"
-            self.log(f"== fleet {f.name} on {f.host.name}: {f.players} players for {self.c.duration:g} s against {address}:{port}")
+            to = "against" if f.gateway else "logging in at lobby"
+            self.log(f"== fleet {f.name} on {f.host.name}: {f.players} players for {self.c.duration:g} s {to} {address}:{port}")
             f.proc = self.start(f"{f.host.describe()}, fleet {f.name}", on_host(f.host, argv, stop_at_eof=True), f.log,
                                 held_stdin=f.host.reach in ("ssh", "slurm"))
 
@@ -305,6 +358,8 @@ class Launch:
         time.sleep(2)  # 60 ticks for the last goodbyes and despawns to reach the zones
         for g in self.c.gateways:
             self.stop(g.proc, 10)
+        if self.c.lobby:
+            self.stop(self.c.lobby.proc, 10)
         # SIGTERM: the ranks finish their tick and write their summaries; mpirun then reports
         # the signal in its own status, so the summaries are what is checked.
         self.stop(self.zones, 30)
@@ -319,12 +374,16 @@ class Launch:
         for g in self.c.gateways:
             if not (g.folder / "gateway_summary.json").exists():
                 self.fail(f"{g.host.describe()}, gateway {g.name}", "wrote no gateway_summary.json", g.log)
+        if self.c.lobby and not (self.run / "lobby_summary.json").exists():
+            self.fail(f"{self.c.lobby.host.describe()}, lobby {self.c.lobby.name}", "wrote no lobby_summary.json",
+                      self.c.lobby.log)
         for f in self.c.fleets:
             if not (f.folder / "clients_summary.json").exists():
                 self.fail(f"{f.host.describe()}, fleet {f.name}", "wrote no clients_summary.json", f.log)
 
     def fetch_remote_folders(self):
         used = {p.host.name for p in self.c.gateways + self.c.fleets} | {h.name for h in self.c.hosts.values() if h.zones}
+        used |= {self.c.lobby.host.name} if self.c.lobby else set()
         for h in (self.c.hosts[n] for n in sorted(used)):
             if h.reach in ("ssh", "slurm"):
                 pack = subprocess.Popen(on_host(h, ["tar", "-C", self.run, "-cf", "-", "."]), stdout=subprocess.PIPE)
@@ -345,7 +404,11 @@ class Launch:
             self.log(f"== run folder: {self.run} (DDS domain {self.c.dds_domain}, hosts "
                      + ", ".join(f"{h.name}={h.address}" for h in self.c.hosts.values()) + ")")
             self.start_zones(dds)
+            if self.c.lobby:
+                self.write_key()
             self.start_gateways(dds)
+            if self.c.lobby:
+                self.start_lobby(dds)
             time.sleep(2)  # let DDS discovery between zones and gateways settle before players ask for avatars
             self.start_fleets()
             self.wait_fleets()
@@ -374,7 +437,7 @@ def main():
         signal.signal(s, lambda n, _: sys.exit(f"cluster.sh: stopped by signal {n}"))
     try:
         cluster = load(sys.argv[1])
-        for prog in ("zone_node", "gateway", "client_stub"):
+        for prog in ("zone_node", "gateway", "client_stub") + (("lobby",) if cluster.lobby else ()):
             if not (bin_dir / prog).is_file():
                 raise ClusterError(f"{bin_dir / prog}: not built (set ZONESIM_BIN or build first)")
         Launch(cluster, run_dir, bin_dir).go()

@@ -13,7 +13,12 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
               the cluster network; default 127.0.0.1 for local, else NAME resolved), zones
               (ranks there, default 0), cores (default: nproc there)
   [gateway NAME]  host, bind (ADDR[:PORT], default the host's address), id (default 1, 2, ...)
-  [fleet NAME]    host, gateway, players, args
+  [lobby NAME]    (at most one) host, bind (ADDR[:PORT], default the host's address), args: the
+              players log in there for a connect token to the least-loaded gateway; the
+              launcher writes a random cluster key into the run folder and starts every
+              gateway with it, so a gateway then takes only players the lobby sent
+  [fleet NAME]    host, gateway (not with a lobby: its players go where the lobby sends them),
+              players, args
 
 Every mistake is a ClusterError whose message names the file, the section and the key.
 """
@@ -34,6 +39,7 @@ KEYS = {
                 "zone_args", "client_args", "shared_storage", "ssh_options"},
     "host": {"reach", "address", "zones", "cores"},
     "gateway": {"host", "bind", "id", "args"},
+    "lobby": {"host", "bind", "args"},
     "fleet": {"host", "gateway", "players", "args"},
 }
 REACHES = ("local", "netns", "ssh", "slurm")
@@ -77,10 +83,21 @@ class Gateway:
 
 
 @dataclass
+class Lobby:
+    name: str
+    host: Host
+    bind: str
+    args: list
+    proc: subprocess.Popen = None
+    log: Path = None
+    address: str = ""  # ADDR:PORT it listens on
+
+
+@dataclass
 class Fleet:
     name: str
     host: Host
-    gateway: Gateway
+    gateway: Gateway  # None with a lobby
     players: int
     args: list
     folder: Path = None
@@ -103,6 +120,7 @@ class Cluster:
     hosts: dict
     gateways: list
     fleets: list = field(default_factory=list)
+    lobby: Lobby = None
 
 
 def expand(text, where):
@@ -145,13 +163,13 @@ def load(path):
             parser.read_file(f)
     except (OSError, configparser.Error) as e:
         raise ClusterError(f"{path}: {str(e).splitlines()[0]}")
-    sections = {"cluster": {}, "host": {}, "gateway": {}, "fleet": {}}
+    sections = {"cluster": {}, "host": {}, "gateway": {}, "lobby": {}, "fleet": {}}
     for title in parser.sections():
         kind, _, name = title.partition(" ")
         where = f"{path} [{title}]"
         if kind not in sections or (kind == "cluster") != (name == ""):
             raise ClusterError(f"{where}: unknown section (expected [cluster], [host NAME], "
-                               f"[gateway NAME] or [fleet NAME])")
+                               f"[gateway NAME], [lobby NAME] or [fleet NAME])")
         values = {k: expand(v, f"{where} {k}") for k, v in parser.items(title)}
         unknown = set(values) - KEYS[kind]
         if unknown:
@@ -207,9 +225,24 @@ def load(path):
         h = host_of(v, w)
         gateways[name] = Gateway(name, h, v.get("bind", h.address), number(v.get("id", str(i + 1)), f"{w} id", low=1),
                                  shlex.split(v.get("args", "")))
+    lobby = None
+    if len(sections["lobby"]) > 1:
+        raise ClusterError(f"{path}: more than one [lobby NAME] section (one lobby per cluster)")
+    for name, (v, w) in sections["lobby"].items():
+        if not gateways:
+            raise ClusterError(f"{w}: a lobby needs at least one [gateway NAME] to send players to")
+        h = host_of(v, w)
+        lobby = Lobby(name, h, v.get("bind", h.address), shlex.split(v.get("args", "")))
     fleets = []
     for name, (v, w) in sections["fleet"].items():
         h = host_of(v, w)
+        if lobby is not None:
+            if "gateway" in v:
+                raise ClusterError(f"{w} gateway: with a [lobby] the players log in there and go "
+                                   f"to the gateway it names; remove this key")
+            fleets.append(Fleet(name, h, None, number(v.get("players", "32"), f"{w} players", low=1),
+                                shlex.split(v.get("args", ""))))
+            continue
         g = v.get("gateway", next(iter(gateways), None) if len(gateways) == 1 else None)
         if g not in gateways:
             raise ClusterError(f"{w} gateway: '{v.get('gateway')}' is not a [gateway NAME] of this file")
@@ -237,7 +270,7 @@ def load(path):
     return Cluster(scene, number(c.get("duration", "20"), f"{where} duration", float, 1), network,
                    c.get("btl", ""), yield_mode, domain, number(c.get("truth_every", "0"), f"{where} truth_every"),
                    shlex.split(c.get("zone_args", "")), shlex.split(c.get("client_args", "")),
-                   storage == "yes", hosts, list(gateways.values()), fleets)
+                   storage == "yes", hosts, list(gateways.values()), fleets, lobby)
 
 
 def plan(cluster):
@@ -248,6 +281,10 @@ def plan(cluster):
         lines.append(f"{h.describe()} at {h.address}: {h.zones} zone ranks")
     for g in cluster.gateways:
         lines.append(f"gateway {g.name} (id {g.id}) on {g.host.name}, --bind {g.bind}")
+    if cluster.lobby:
+        lines.append(f"lobby {cluster.lobby.name} on {cluster.lobby.host.name}, --bind {cluster.lobby.bind}; "
+                     f"gateways take its connect tokens only")
     for f in cluster.fleets:
-        lines.append(f"fleet {f.name} on {f.host.name}: {f.players} players to gateway {f.gateway.name}")
+        to = f"logging in at lobby {cluster.lobby.name}" if f.gateway is None else f"to gateway {f.gateway.name}"
+        lines.append(f"fleet {f.name} on {f.host.name}: {f.players} players {to}")
     return "\n".join(lines)

@@ -38,6 +38,10 @@ h.check("host h2 (netns zsq-h2) at 10.77.0.2: 2 zone ranks" in netns.stdout,
 with tempfile.TemporaryDirectory(prefix="zs_cluster_file_") as tmp:
     refused(tmp, "unknown_key", GOOD_HEAD + LOCAL + "colour = red\n", "[fleet f]: unknown key colour")
     refused(tmp, "no_scene", "[cluster]\nduration = 4\n" + LOCAL, "[cluster]: scene is missing")
+    refused(tmp, "lobby_fleet_gateway", GOOD_HEAD + LOCAL.replace("players = 2", "gateway = g") +
+            "[lobby l]\nhost = a\n", "[fleet f] gateway: with a [lobby]")
+    refused(tmp, "two_lobbies", GOOD_HEAD + LOCAL + "[lobby l]\nhost = a\n[lobby m]\nhost = a\n",
+            "more than one [lobby NAME]")
     refused(tmp, "missing_scene", "[cluster]\nscene = scenes/nope.yaml\n" + LOCAL, "no such file")
     refused(tmp, "bad_reach", GOOD_HEAD + LOCAL.replace("reach = local", "reach = telnet x"), "[host a] reach")
     refused(tmp, "no_zones", GOOD_HEAD + LOCAL.replace("zones = 2", "zones = 0"), "no host runs zones")
