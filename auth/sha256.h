@@ -20,6 +20,7 @@ using Digest = std::array<std::uint8_t, kSha256Bytes>;
 /// Incremental SHA-256 over a byte stream.
 class Sha256 {
  public:
+  /// The initial hash value of FIPS 180-4 section 5.3.3.
   Sha256();
   /// Appends bytes to the message.
   void update(std::span<const std::uint8_t> bytes);

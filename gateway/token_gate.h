@@ -23,6 +23,7 @@ struct Admitted {
 /// Checks connect tokens and remembers the ones used until they expire.
 class TokenGate {
  public:
+  /// Checks tokens signed with key for gateway_id.
   TokenGate(auth::AuthKey key, std::uint16_t gateway_id);
 
   /// The player the token admits, or why it is refused. `token` empty: TokenMissing.

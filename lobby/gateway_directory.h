@@ -32,6 +32,7 @@ struct GatewayEntry {
   std::uint64_t granted = 0;            ///< grants the lobby made for it since start
 };
 
+/// The gateways heard of, by id, and the choice among them.
 class GatewayDirectory {
  public:
   /// A gateway silent for stale_after_ns (three report periods, say) is not chosen.

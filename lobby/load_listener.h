@@ -11,6 +11,7 @@
 
 namespace zonesim::lobby {
 
+/// Reads zs_gateway_load on its own participant.
 class LoadListener {
  public:
   /// Joins the domain; throws dds::DdsError on failure.

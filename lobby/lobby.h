@@ -18,12 +18,13 @@ namespace zonesim::lobby {
 
 /// Everything a lobby is configured with.
 struct LobbyConfig {
-  gateway::Endpoint bind = gateway::Endpoint::loopback(0);
-  int dds_domain = 0;
-  LoginSettings login;
+  gateway::Endpoint bind = gateway::Endpoint::loopback(0);  ///< UDP address for players
+  int dds_domain = 0;                                       ///< where the gateways report
+  LoginSettings login;       ///< token lifetime, player id incarnation, gateways to wait for
   double stale_after_s = 3;  ///< a gateway silent this long gets no more players
 };
 
+/// The lobby's socket, login service, directory and load reader, and its loop.
 class Lobby {
  public:
   /// Binds the socket and joins the DDS domain; throws on failure.
@@ -35,7 +36,9 @@ class Lobby {
   void run(const std::atomic<bool>& stop, double duration_s = 0);
   /// Counters, drops and what each gateway was granted, as one JSON object.
   std::string summaryJson() const;
+  /// The login service (its counters), for tests and the summary.
   const LoginService& service() const { return service_; }
+  /// What the lobby knows of the gateways.
   const GatewayDirectory& directory() const { return directory_; }
 
  private:
@@ -46,7 +49,7 @@ class Lobby {
   LoginService service_;
   LoadListener listener_;
   std::vector<std::uint8_t> rx_buffer_;
-  std::uint64_t send_failures_ = 0;
+  std::uint64_t send_failures_ = 0;  // replies the kernel had no room for
 };
 
 }  // namespace zonesim::lobby

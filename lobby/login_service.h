@@ -35,8 +35,10 @@ struct LoginCounters {
   std::uint64_t refused_starting = 0;    ///< fewer than expect_gateways have reported yet
 };
 
+/// Answers login requests from the directory's choice, signing tokens with the cluster key.
 class LoginService {
  public:
+  /// Grants from directory, which the caller keeps fed with load reports.
   LoginService(auth::AuthKey key, GatewayDirectory& directory, const LoginSettings& settings);
 
   /// The reply to one datagram from `from` (nullopt: dropped, counted in drops()).
@@ -44,7 +46,9 @@ class LoginService {
                                        const gateway::Endpoint& from, std::int64_t now_ns,
                                        std::uint64_t now_unix_ms);
 
+  /// Requests, grants and refusals since start.
   const LoginCounters& counters() const { return counters_; }
+  /// Datagrams dropped by the checks, by reason.
   const gateway::DropCounters& drops() const { return drops_; }
 
  private:

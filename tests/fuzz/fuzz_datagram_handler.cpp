@@ -1,14 +1,18 @@
 // libFuzzer target: the gateway's datagram handler, fed arbitrary bytes from three addresses,
 // one of which owns a live session, raw or with a valid checksum appended (to get past it),
 // plus well-formed inputs carrying that session's token with fuzzed values (to reach the range
-// checks behind the Verifier). It must never crash, hang or
-// trip a sanitizer; every datagram is either accepted or dropped and counted.
+// checks behind the Verifier), plus Hellos to a gateway with the cluster key carrying fuzzed
+// connect tokens, raw or signed with fuzzed fields (to reach the checks behind the tag). It
+// must never crash, hang or trip a sanitizer; every datagram is either accepted or dropped
+// and counted.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <memory>
 #include <span>
 
+#include "auth/connect_token.h"
 #include "gateway/datagram_handler.h"
 #include "gateway/session_table.h"
 #include "wire/datagram_checksum.h"
@@ -51,6 +55,55 @@ std::unique_ptr<Harness>& harness() {
   return h;
 }
 
+auth::AuthKey fuzzKey() {
+  return auth::AuthKey(std::vector<std::uint8_t>(32, 0x5c), "fuzz key");
+}
+
+/// A gateway (id 1) that requires connect tokens, its clock fixed.
+struct KeyedHarness {
+  SessionTable sessions{1, 64};
+  DatagramHandler handler{sessions, config()};
+  Outbox out;
+
+  static HandlerConfig config() {
+    HandlerConfig c;
+    c.world = {{0, 0, 0}, {100, 10, 100}};
+    c.auth_key = fuzzKey();
+    c.gateway_id = 1;
+    c.unix_now_ms = [] { return std::uint64_t{1'800'000'000'000}; };
+    return c;
+  }
+};
+
+KeyedHarness& keyed() {
+  static KeyedHarness h;
+  return h;
+}
+
+/// A Hello to the keyed gateway: rest as the token, or a token signed from fields in rest.
+void fuzzTokenHello(std::span<const std::uint8_t> rest, bool sign, const Endpoint& from) {
+  KeyedHarness& k = keyed();
+  if (sign && rest.size() >= 24) {
+    auth::ConnectToken t;
+    std::memcpy(&t.player_id, rest.data(), 8);
+    std::memcpy(&t.expiry_unix_ms, rest.data() + 8, 8);
+    std::memcpy(&t.gateway_id, rest.data() + 16, 2);
+    std::memcpy(&t.client_port, rest.data() + 18, 2);
+    std::memcpy(&t.client_address, rest.data() + 20, 4);
+    // Half the time from the address it names, to get past the address check.
+    if (rest.size() > 24 && (rest[24] & 1)) {
+      t.client_address = from.address;
+      t.client_port = from.port;
+    }
+    auth::TokenBytes b = auth::signToken(t, fuzzKey());
+    k.handler.handle(encodeHello(t.player_id | 1, "fuzz", b), from, 0, k.out);
+  } else {
+    k.handler.handle(encodeHello(7, "fuzz", rest.first(std::min<std::size_t>(rest.size(), 128))),
+                     from, 0, k.out);
+  }
+  k.out.clear();
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -59,6 +112,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t mode = data[0];
   std::span<const std::uint8_t> rest(data + 1, size - 1);
   const Endpoint& from = (mode & 3) == 0 ? h.player : (mode & 3) == 1 ? h.stranger : h.other;
+  if ((mode & 0xe0) == 0x20) {
+    fuzzTokenHello(rest, mode & 0x10, from);
+    return 0;
+  }
   if ((mode & 0x80) && rest.size() >= 12) {
     // A datagram with the live token and fuzzed values: NaN, infinities, huge moves, any seq.
     std::uint32_t seq;
