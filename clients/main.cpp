@@ -23,11 +23,13 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   app.add_option("--scene", scene_path, "scene file")->required();
   std::string lobby_addr;
-  auto* gateway_opt = app.add_option("--gateway", gateway_addr,
-                                     "gateway address HOST:PORT (IPv4: a dotted address or a host name)");
-  auto* lobby_opt = app.add_option("--lobby", lobby_addr,
-                                   "log each player in through the lobby at HOST:PORT, then say Hello "
-                                   "with its connect token to the gateway it was given");
+  auto* gateway_opt =
+      app.add_option("--gateway", gateway_addr,
+                     "gateway address HOST:PORT (IPv4: a dotted address or a host name)");
+  auto* lobby_opt =
+      app.add_option("--lobby", lobby_addr,
+                     "log each player in through the lobby at HOST:PORT, then say Hello "
+                     "with its connect token to the gateway it was given");
   gateway_opt->excludes(lobby_opt);
   double login_timeout = zonesim::clients::LobbyLoginSettings{}.timeout_s;
   app.add_option("--login-timeout", login_timeout,

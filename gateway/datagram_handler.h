@@ -12,7 +12,6 @@
 
 #include "auth/auth_key.h"
 #include "auth/connect_token.h"
-
 #include "common/rng.h"
 #include "common/scene_geometry.h"
 #include "gateway/session_table.h"

@@ -13,7 +13,8 @@ Topics makeTopics(dds_entity_t participant) {
   t.spawn_requests = makeTopic(participant, &zonesim_dds_SpawnRequest_desc, "zs_spawn_requests", nullptr);
   t.despawn_requests =
       makeTopic(participant, &zonesim_dds_DespawnRequest_desc, "zs_despawn_requests", nullptr);
-  t.gateway_load = makeTopic(participant, &zonesim_dds_GatewayLoad_desc, "zs_gateway_load", nullptr);
+  t.gateway_load =
+      makeTopic(participant, &zonesim_dds_GatewayLoad_desc, "zs_gateway_load", nullptr);
   return t;
 }
 
