@@ -18,25 +18,22 @@ void ClientView::diff(const std::vector<VisibleEntity>& visible, ViewDiff& d) {
   d.clear();
   ++epoch_;
   for (const VisibleEntity& v : visible) {
-    auto [it, inserted] = known_.try_emplace(v.id, Sent{v.version, epoch_});
+    auto [sent, inserted] = known_.tryEmplace(v.id, Sent{v.version, epoch_});
     if (inserted) {
       d.spawns.push_back(v.id);
       continue;
     }
-    it->second.epoch = epoch_;
-    if (v.version > it->second.version) {
-      it->second.version = v.version;
+    sent->epoch = epoch_;
+    if (v.version > sent->version) {
+      sent->version = v.version;
       d.updates.push_back(v.id);
     }
   }
-  for (auto it = known_.begin(); it != known_.end();) {
-    if (it->second.epoch != epoch_) {
-      d.despawns.push_back(it->first);
-      it = known_.erase(it);
-    } else {
-      ++it;
-    }
-  }
+  known_.eraseIf([&](std::uint64_t id, const Sent& sent) {
+    if (sent.epoch == epoch_) return false;
+    d.despawns.push_back(id);
+    return true;
+  });
   std::sort(d.spawns.begin(), d.spawns.end());
   std::sort(d.despawns.begin(), d.despawns.end());
   std::sort(d.updates.begin(), d.updates.end());
@@ -46,9 +43,9 @@ void selectVisible(const WorldSnapshot& snapshot, const InterestGrid& grid, cons
                    const ClientView& known, std::vector<VisibleEntity>& out) {
   out.clear();
   double keep_factor = at.nimbus > 0 ? at.keep / at.nimbus : 1.0;
-  // Entities are indexed by the cell their zone put them in; one cell of slack covers entities
-  // that moved since their last sample without crossing into a cell we do not read.
-  double reach = std::max(at.nimbus, at.keep) + grid.cell_size();
+  // The snapshot files entities by where they are predicted to be: the cells that meet the
+  // disc are all there is to read.
+  double reach = std::max(at.nimbus, at.keep);
   bool self_listed = false;
   thread_local std::vector<int> cells;  // reused: no allocation per view once warm
   grid.cellsWithin(at.x, at.z, reach, cells);
@@ -76,7 +73,7 @@ void selectVisible(const WorldSnapshot& snapshot, const InterestGrid& grid, cons
 std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,
                                          const ViewPoint& at, const ClientView& known) {
   WorldSnapshot snapshot;
-  snapshot.rebuild(cache, grid.cellCount(), at.sim_now);
+  snapshot.rebuild(cache, grid, at.sim_now);
   ViewPoint with_self = at;
   const CachedEntity* self = at.self != 0 ? cache.find(at.self) : nullptr;
   with_self.self_version = self != nullptr ? self->version : 0;

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
+#include "common/flat_id_map.h"
 #include "common/interest_grid.h"
 
 namespace zonesim::gateway {
@@ -44,7 +44,7 @@ class ClientView {
   bool knows(std::uint64_t id) const { return known_.contains(id); }
   /// An update held back: the next diff lists the entity's state again (versions start at 1).
   void defer(std::uint64_t id) {
-    if (auto it = known_.find(id); it != known_.end()) it->second.version = 0;
+    if (Sent* s = known_.find(id)) s->version = 0;
   }
   /// A spawn held back: the next diff lists the entity as a spawn again.
   void forget(std::uint64_t id) { known_.erase(id); }
@@ -55,7 +55,7 @@ class ClientView {
     std::uint64_t version;
     std::uint64_t epoch;  // diff() call that last saw it visible
   };
-  std::unordered_map<std::uint64_t, Sent> known_;
+  FlatIdMap<Sent> known_;
   std::uint64_t epoch_ = 0;
 };
 

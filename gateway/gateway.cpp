@@ -334,7 +334,7 @@ void Gateway::applyCellDelta(const CellDelta& delta) {
 
 void Gateway::sendViews(std::int64_t now_ns) {
   double sim_now = clock_.simNow(now_ns);
-  snapshot_.rebuild(cache_, grid_.cellCount(), sim_now);
+  snapshot_.rebuild(cache_, grid_, sim_now);
   sessions_.forEach([&](SlotHandle, Session& s) {
     if (!s.welcomed) return;
     ViewPoint at;

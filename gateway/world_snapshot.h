@@ -1,11 +1,17 @@
 #pragma once
-// The world cache's entities predicted to one sim time and bucketed by the cell their zone put
-// them in. Built once a gateway tick, so that each player's visibility scan reads flat arrays
-// instead of hash maps, and no entity is extrapolated once per player.
+// The world cache's entities predicted to one sim time and bucketed by the cell of that
+// predicted position. Built once a gateway tick, so that each player's visibility scan reads
+// flat arrays instead of hash maps, no entity is extrapolated once per player, and a scan reads
+// exactly the cells that meet its disc (an entity that moved on from the cell its zone sampled
+// it in is found where it is now).
 
 #include <cstdint>
 #include <span>
 #include <vector>
+
+namespace zonesim {
+class InterestGrid;
+}  // namespace zonesim
 
 namespace zonesim::gateway {
 
@@ -21,16 +27,21 @@ struct SnapEntity {
 
 class WorldSnapshot {
  public:
-  /// Predicts every cached entity to sim_now; entities of cells outside [0, cell_count) are
-  /// left out (no grid reads them). Reuses its storage: no allocation once warm.
-  void rebuild(const WorldCache& cache, int cell_count, double sim_now);
-  /// The entities whose source is `cell` (empty for a cell out of range).
+  /// Predicts every cached entity to sim_now and files it under the grid cell of that position
+  /// (clamped into the grid). Reuses its storage: no allocation once warm.
+  void rebuild(const WorldCache& cache, const InterestGrid& grid, double sim_now);
+  /// The entities predicted to be in `cell` (empty for a cell out of range).
   std::span<const SnapEntity> cell(int cell) const;
   /// The sim time positions were predicted to.
   double simNow() const { return sim_now_; }
   std::size_t size() const { return entities_.size(); }
 
  private:
+  struct Placed {
+    SnapEntity entity;
+    int cell;
+  };
+  std::vector<Placed> predicted_;     // while rebuilding: in the cache's order
   std::vector<SnapEntity> entities_;  // grouped by cell
   std::vector<std::uint32_t> begin_;  // cell c holds [begin_[c], begin_[c + 1])
   std::vector<std::uint32_t> fill_;   // next free slot per cell, while rebuilding

@@ -34,7 +34,7 @@ void ResendTracker::sent(std::uint32_t seq, std::span<const std::uint64_t> ids, 
   f.sent_ns = now_ns;
   f.acked = false;
   f.ids.assign(ids.begin(), ids.end());
-  for (std::uint64_t id : ids) pending_.insert_or_assign(id, Pending{what, seq, now_ns});
+  for (std::uint64_t id : ids) pending_.insertOrAssign(id, Pending{what, seq, now_ns});
   if (!ids.empty()) oldest_pending_ns_ = std::min(oldest_pending_ns_, now_ns);
 }
 
@@ -64,15 +64,15 @@ void ResendTracker::ackOne(std::uint32_t seq, std::int64_t now_ns) {
   // Only the datagram holding an entity's newest state (or despawn) settles it: an ack of an
   // older one says nothing about the newer state.
   for (std::uint64_t id : f.ids) {
-    auto it = pending_.find(id);
-    if (it != pending_.end() && it->second.seq == seq) pending_.erase(it);
+    const Pending* p = pending_.find(id);
+    if (p != nullptr && p->seq == seq) pending_.erase(id);
   }
   f.ids.clear();
 }
 
 bool ResendTracker::spawnPending(std::uint64_t id) const {
-  auto it = pending_.find(id);
-  return it != pending_.end() && it->second.what == Carried::Spawn;
+  const Pending* p = pending_.find(id);
+  return p != nullptr && p->what == Carried::Spawn;
 }
 
 std::int64_t ResendTracker::rtoNs() const {
@@ -95,15 +95,15 @@ void ResendTracker::due(std::int64_t now_ns, LossDetection how, ResendDue& d) co
       !(later_acks && oldest_pending_ns_ < newest_acked_sent_ns_))
     return;
   std::int64_t oldest = INT64_MAX;
-  for (const auto& [id, p] : pending_) {
+  pending_.forEach([&](std::uint64_t id, const Pending& p) {
     oldest = std::min(oldest, p.sent_ns);
     bool overtaken = later_acks && p.sent_ns < newest_acked_sent_ns_;
-    if (!overtaken && now_ns - p.sent_ns < rto) continue;
+    if (!overtaken && now_ns - p.sent_ns < rto) return;
     (p.what == Carried::Spawn    ? d.spawns
      : p.what == Carried::Update ? d.updates
                                  : d.despawns)
         .push_back(id);
-  }
+  });
   oldest_pending_ns_ = oldest;
   std::sort(d.spawns.begin(), d.spawns.end());
   std::sort(d.updates.begin(), d.updates.end());

@@ -10,8 +10,9 @@
 #include <array>
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <vector>
+
+#include "common/flat_id_map.h"
 
 namespace zonesim::gateway {
 
@@ -104,7 +105,7 @@ class ResendTracker {
   // timeout anyway (the timeout is per entity, not per datagram).
   static constexpr std::size_t kFlights = 1024;
   std::vector<Flight> flights_;
-  std::unordered_map<std::uint64_t, Pending> pending_;
+  FlatIdMap<Pending> pending_;  // entity id (never 0) -> what of it is unacknowledged
   // No pending entry was sent before this (a lower bound: acks only raise the true one), so
   // due() skips its scan while nothing can have timed out or been overtaken.
   mutable std::int64_t oldest_pending_ns_ = INT64_MAX;

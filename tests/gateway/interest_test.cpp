@@ -61,7 +61,7 @@ TEST(WorldSnapshot, GroupsByCellAndPredictsToItsTime) {
   c.upsert(grid.cellOf(120, 10), 0, 1.0, entity(2, 0, 120, 10));
   c.upsert(grid.cellOf(130, 20), 0, 1.0, entity(3, 2, 130, 20));
   WorldSnapshot snap;
-  snap.rebuild(c, grid.cellCount(), 2.0);
+  snap.rebuild(c, grid, 2.0);
   EXPECT_EQ(snap.size(), 3u);
   ASSERT_EQ(snap.cell(grid.cellOf(10, 10)).size(), 1u);
   EXPECT_NEAR(snap.cell(grid.cellOf(10, 10))[0].x, 12.0, 1e-3);
@@ -69,9 +69,16 @@ TEST(WorldSnapshot, GroupsByCellAndPredictsToItsTime) {
   EXPECT_TRUE(snap.cell(grid.cellOf(190, 190)).empty());
   EXPECT_TRUE(snap.cell(-1).empty());
   EXPECT_TRUE(snap.cell(grid.cellCount()).empty());
+  // Filed where it is predicted to be, not where its zone sampled it: 45 m at 10 m/s is 55 m.
+  c.upsert(grid.cellOf(45, 80), 0, 1.0, entity(4, 0, 45, 80, 10, 0));
+  snap.rebuild(c, grid, 2.0);
+  EXPECT_TRUE(snap.cell(grid.cellOf(45, 80)).empty());
+  ASSERT_EQ(snap.cell(grid.cellOf(55, 80)).size(), 1u);
+  EXPECT_EQ(snap.cell(grid.cellOf(55, 80))[0].id, 4u);
+  c.dropCell(grid.cellOf(45, 80));
   // Rebuilt after a removal, nothing stale stays.
   c.dropCell(grid.cellOf(120, 10));
-  snap.rebuild(c, grid.cellCount(), 2.0);
+  snap.rebuild(c, grid, 2.0);
   EXPECT_EQ(snap.size(), 1u);
   EXPECT_TRUE(snap.cell(grid.cellOf(120, 10)).empty());
 }
@@ -89,7 +96,7 @@ TEST(SelectVisible, ASnapshotGivesTheRuleAtPredictedPositionsAndReusesItsOutput)
   ClientView view;
   view.diff(selectVisible(c, grid, at, view));  // known: keep applies
   WorldSnapshot snap;
-  snap.rebuild(c, grid.cellCount(), at.sim_now);
+  snap.rebuild(c, grid, at.sim_now);
   std::vector<VisibleEntity> out{{999, 9}};  // stale content is cleared
   at.self_version = c.find(5)->version;
   selectVisible(snap, grid, at, view, out);
