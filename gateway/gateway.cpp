@@ -70,7 +70,7 @@ Gateway::Gateway(GatewayConfig config)
       clock_(config_.scene.tick_rate * config_.scene.dt),
       interest_(grid_, interestRadius(config_), grid_.cell_size() * 0.5),
       link_(config_.dds_domain, expectedZones(config_)),
-      rx_buffer_(kMaxDatagramBytes + 1),
+      rx_batch_(kMaxDatagramBytes + 1),
       codec_(dr::codecParams(config_.scene)),
       impairment_(config_.impairment, 0x9a7e) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
@@ -133,20 +133,33 @@ void Gateway::run(const std::atomic<bool>& stop, double duration_s) {
 }
 
 void Gateway::receiveAll(std::int64_t now_ns) {
-  for (int i = 0; i < kMaxDatagramsPerWake; ++i) {
-    auto got = socket_.receive(rx_buffer_);
-    if (!got) break;
-    ++counters_.datagrams_in;
-    counters_.bytes_in += got->size;
-    if (impairment_.active() && impairment_.dropIncoming()) continue;
-    // The buffer holds kMaxDatagramBytes + 1: anything that filled it is over the limit.
-    if (got->truncated || got->size > kMaxDatagramBytes) {
-      handler_.countTooLarge();
-      continue;
+  for (int taken = 0; taken < kMaxDatagramsPerWake;) {
+    std::size_t n = rx_batch_.receive(socket_);
+    if (n == 0) break;
+    taken += int(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Received& got = rx_batch_.received(i);
+      ++counters_.datagrams_in;
+      counters_.bytes_in += got.size;
+      if (impairment_.active() && impairment_.dropIncoming()) continue;
+      // The buffers hold kMaxDatagramBytes + 1: anything that filled one is over the limit.
+      if (got.truncated || got.size > kMaxDatagramBytes) {
+        handler_.countTooLarge();
+        continue;
+      }
+      handler_.handle(rx_batch_.bytes(i), got.from, now_ns, outbox_);
     }
-    handler_.handle(std::span(rx_buffer_.data(), got->size), got->from, now_ns, outbox_);
   }
   carryOut(outbox_);
+  flushSends();
+}
+
+void Gateway::flushSends() {
+  if (send_queue_.empty()) return;
+  FlushResult r = send_queue_.flush(socket_);
+  counters_.datagrams_out += r.sent;
+  counters_.bytes_out += r.bytes_sent;
+  counters_.send_failures += r.failed;
 }
 
 void Gateway::carryOut(Outbox& out) {
@@ -187,6 +200,7 @@ void Gateway::tick(std::int64_t now_ns) {
   expireSessions(now_ns);
   updateInterest(now_ns);
   sendViews(now_ns);
+  flushSends();
   double ms = double(nowNs() - now_ns) * 1e-6, cpu_ms = double(threadCpuNs() - cpu_ns) * 1e-6;
   tick_window_.add(ms);
   tick_total_.add(ms);
@@ -598,9 +612,12 @@ void Gateway::sendTo(Session& s, const Bytes& bytes) {
 }
 
 void Gateway::sendTo(const Endpoint& to, const Bytes& bytes) {
-  bool ok = impairment_.active() ? impairment_.send(socket_, to, bytes, nowNs())
-                                 : socket_.sendTo(to, bytes);
-  if (!ok) {
+  // Unimpaired, datagrams wait for one sendmmsg at the end of the tick (or of the wake).
+  if (!impairment_.active()) {
+    send_queue_.push(to, bytes);
+    return;
+  }
+  if (!impairment_.send(socket_, to, bytes, nowNs())) {
     ++counters_.send_failures;
     return;
   }

@@ -23,6 +23,7 @@
 #include "gateway/world_snapshot.h"
 #include "gateway/zone_clock.h"
 #include "gateway/zone_link.h"
+#include "wire/datagram_batch.h"
 #include "wire/impairment.h"
 #include "wire/udp_socket.h"
 
@@ -81,6 +82,8 @@ class Gateway {
  private:
   void receiveAll(std::int64_t now_ns);
   void carryOut(Outbox& out);
+  /// Hands the queued datagrams to the kernel and counts what it took.
+  void flushSends();
   void tick(std::int64_t now_ns);
   void applyOwnership(const zonesim_dds_OwnershipEvent& e);
   void expireSessions(std::int64_t now_ns);
@@ -143,7 +146,8 @@ class Gateway {
   GatewayCounters counters_;
   std::vector<PlayerRecord> finished_players_;
   Outbox outbox_;
-  std::vector<std::uint8_t> rx_buffer_;
+  ReceiveBatch rx_batch_;  // recvmmsg buffers
+  SendQueue send_queue_;   // datagrams of this tick or wake, sent with sendmmsg
   dr::StateCodec codec_;
   Impairment impairment_;  // packs states for clients exactly as the zones quantised them
   std::int64_t next_metrics_ns_ = 0;
