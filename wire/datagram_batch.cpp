@@ -57,7 +57,8 @@ FlushResult SendQueue::flush(UdpSocket& socket) {
 
 ReceiveBatch::ReceiveBatch(std::size_t buffer_bytes)
     : buffer_bytes_(buffer_bytes),
-      buffers_(buffer_bytes * kBatch),
+      stride_((buffer_bytes + 7) / 8 * 8),
+      buffers_(stride_ * kBatch),
       from_(kBatch),
       iovecs_(kBatch),
       headers_(kBatch),
@@ -65,7 +66,7 @@ ReceiveBatch::ReceiveBatch(std::size_t buffer_bytes)
 
 std::size_t ReceiveBatch::receive(UdpSocket& socket) {
   for (std::size_t i = 0; i < kBatch; ++i) {
-    iovecs_[i] = {buffers_.data() + i * buffer_bytes_, buffer_bytes_};
+    iovecs_[i] = {buffers_.data() + i * stride_, buffer_bytes_};
     msghdr& h = headers_[i].msg_hdr;
     h = {};
     h.msg_name = &from_[i];
@@ -94,7 +95,7 @@ std::size_t ReceiveBatch::receive(UdpSocket& socket) {
 
 std::span<const std::uint8_t> ReceiveBatch::bytes(std::size_t i) const {
   std::size_t n = std::min(received_[i].size, buffer_bytes_);
-  return std::span(buffers_.data() + i * buffer_bytes_, n);
+  return std::span(buffers_.data() + i * stride_, n);
 }
 
 }  // namespace zonesim::gateway

@@ -61,6 +61,7 @@ class ReceiveBatch {
 
  private:
   std::size_t buffer_bytes_;
+  std::size_t stride_;  // buffer_bytes_ rounded up to 8: FlatBuffers reads need alignment
   std::vector<std::uint8_t> buffers_;
   std::vector<sockaddr_in> from_;
   std::vector<iovec> iovecs_;

@@ -83,10 +83,13 @@ TEST(ReceiveBatch, ReportsRealSizesOfOversizeDatagramsAndNothingWhenEmpty) {
         EXPECT_FALSE(r.truncated);
         EXPECT_EQ(std::vector<std::uint8_t>(rx.bytes(i).begin(), rx.bytes(i).end()),
                   datagram(60, 1));
+        // Every buffer starts 8-aligned: FlatBuffers reads 4- and 8-byte fields in place.
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(rx.bytes(i).data()) % 8, 0u);
       } else {
         EXPECT_EQ(r.size, 300u);  // its real size, though only 100 bytes were kept
         EXPECT_TRUE(r.truncated);
         EXPECT_EQ(rx.bytes(i).size(), 100u);
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(rx.bytes(i).data()) % 8, 0u);
       }
     }
   }
