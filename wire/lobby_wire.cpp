@@ -49,18 +49,9 @@ bool checkValues(const lobby_proto::LobbyDatagram& d) {
 }  // namespace
 
 LobbyVerified verifyLobbyDatagram(std::span<const std::uint8_t> bytes, LobbyDirection direction) {
-  if (bytes.size() > kMaxDatagramBytes) return {nullptr, DropReason::TooLarge};
-  if (bytes.size() < kMinDatagramBytes + kChecksumBytes) return {nullptr, DropReason::Truncated};
-  if (!checksumMatches(bytes)) return {nullptr, DropReason::BadChecksum};
-  bytes = bytes.first(bytes.size() - kChecksumBytes);
-  if (!lobby_proto::LobbyDatagramBufferHasIdentifier(bytes.data()))
-    return {nullptr, DropReason::BadIdentifier};
-  flatbuffers::Verifier::Options opts;
-  opts.max_depth = kMaxDepth;
-  opts.max_tables = kMaxTables;
-  opts.check_alignment = true;
-  flatbuffers::Verifier verifier(bytes.data(), bytes.size(), opts);
-  if (!lobby_proto::VerifyLobbyDatagramBuffer(verifier)) return {nullptr, DropReason::Malformed};
+  if (auto drop = checkFraming(bytes, &lobby_proto::LobbyDatagramBufferHasIdentifier,
+                               &lobby_proto::VerifyLobbyDatagramBuffer, {kMaxDepth, kMaxTables}))
+    return {nullptr, *drop};
   const lobby_proto::LobbyDatagram* d = lobby_proto::GetLobbyDatagram(bytes.data());
   lobby_proto::LobbyMessage type = d->msg_type();
   if (type == lobby_proto::LobbyMessage::NONE || type > lobby_proto::LobbyMessage::MAX ||

@@ -177,19 +177,28 @@ bool validCodec(const proto::CodecParams& c) {
          c.cell_size() / c.position_resolution() < float(1u << 30);
 }
 
-Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction) {
-  if (bytes.size() > kMaxDatagramBytes) return {nullptr, DropReason::TooLarge};
-  if (bytes.size() < kMinDatagramBytes + kChecksumBytes) return {nullptr, DropReason::Truncated};
-  if (!checksumMatches(bytes)) return {nullptr, DropReason::BadChecksum};
+std::optional<DropReason> checkFraming(std::span<const std::uint8_t>& bytes,
+                                       bool (*has_identifier)(const void*),
+                                       bool (*verify)(flatbuffers::Verifier&),
+                                       VerifierLimits limits) {
+  if (bytes.size() > kMaxDatagramBytes) return DropReason::TooLarge;
+  if (bytes.size() < kMinDatagramBytes + kChecksumBytes) return DropReason::Truncated;
+  if (!checksumMatches(bytes)) return DropReason::BadChecksum;
   bytes = bytes.first(bytes.size() - kChecksumBytes);
-  if (!proto::DatagramBufferHasIdentifier(bytes.data()))
-    return {nullptr, DropReason::BadIdentifier};
+  if (!has_identifier(bytes.data())) return DropReason::BadIdentifier;
   flatbuffers::Verifier::Options opts;
-  opts.max_depth = kMaxDepth;
-  opts.max_tables = kMaxTables;
+  opts.max_depth = limits.max_depth;
+  opts.max_tables = limits.max_tables;
   opts.check_alignment = true;
   flatbuffers::Verifier verifier(bytes.data(), bytes.size(), opts);
-  if (!proto::VerifyDatagramBuffer(verifier)) return {nullptr, DropReason::Malformed};
+  if (!verify(verifier)) return DropReason::Malformed;
+  return std::nullopt;
+}
+
+Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction) {
+  if (auto drop = checkFraming(bytes, &proto::DatagramBufferHasIdentifier,
+                               &proto::VerifyDatagramBuffer, {kMaxDepth, kMaxTables}))
+    return {nullptr, *drop};
   const proto::Datagram* d = proto::GetDatagram(bytes.data());
   proto::Message type = d->msg_type();
   // The Verifier accepts union types it does not know (forward compatibility): we do not.

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "client_protocol_generated.h"
@@ -81,6 +82,19 @@ struct Verified {
   DropReason reason = DropReason::Malformed;
   bool ok() const { return datagram != nullptr; }
 };
+
+/// Limits handed to the FlatBuffers Verifier: nesting depth and tables per buffer.
+struct VerifierLimits {
+  unsigned max_depth = 4, max_tables = 8;
+};
+
+/// The checks every protocol's datagram gets before its own, in order: size limits, the
+/// CRC-32C trailer (dropped from bytes on success), the file identifier, the FlatBuffers
+/// Verifier (with alignment checks). Returns the reason to drop, or nullopt.
+std::optional<DropReason> checkFraming(std::span<const std::uint8_t>& bytes,
+                                       bool (*has_identifier)(const void*),
+                                       bool (*verify)(flatbuffers::Verifier&),
+                                       VerifierLimits limits);
 
 /// Runs all checks in order (sizes, the checksum trailer, the Verifier on the bytes before it,
 /// values); the returned pointer aliases bytes. bytes must be 4-byte aligned.
