@@ -8,32 +8,16 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
+#include <stdexcept>
 
 #include "auth/auth_key.h"
 #include "common/cli.h"
 #include "common/log.h"
 #include "common/scene.h"
 #include "common/stop_signal.h"
+#include "common/text_file.h"
 #include "gateway/gateway.h"
-
-namespace {
-
-// Written to a temporary name and renamed, so a script polling for the file never reads it half
-// written.
-void writeFile(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-    f << text << '\n';
-    if (!f.flush()) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"zonesim gateway: connects simulated players to the zone cluster"};
@@ -109,15 +93,8 @@ int main(int argc, char** argv) {
     zonesim::applyCommonOptions(common, "gateway");
     cfg.scene = zonesim::loadScene(scene_path);
     // What the user typed, so an error names the options at fault.
-    std::string bind_option =
-        "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
-    try {
-      cfg.bind = zonesim::gateway::parseBindAddress(bind_text, std::uint16_t(std::max(port, 0)));
-    } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(bind_option + ": " + e.what());
-    }
-    if (port >= 0 && bind_text.find(':') != std::string::npos)
-      throw std::runtime_error(bind_option + ": the port is given twice; use one of them");
+    std::string bind_option = zonesim::gateway::bindOptionText(bind_text, port);
+    cfg.bind = zonesim::gateway::bindFromOptions(bind_text, port);
     cfg.impairment =
         zonesim::gateway::injectedImpairment(inject_loss, inject_delay_ms, inject_jitter_ms);
     if (!link.empty()) {
@@ -158,14 +135,14 @@ int main(int argc, char** argv) {
       throw std::runtime_error(bind_option + ": " + e.what());
     }
     zonesim::gateway::Gateway& gateway = *bound;
-    if (!port_file.empty()) writeFile(port_file, std::to_string(gateway.port()));
+    if (!port_file.empty()) zonesim::writeTextFileAtomically(port_file, std::to_string(gateway.port()));
     std::printf("gateway listening on %s\n", gateway.local().str().c_str());
     std::fflush(stdout);
     gateway.run(zonesim::stopRequested(), duration);
     std::string summary = gateway.summaryJson();
     std::printf("gateway summary %s\n", summary.c_str());
     std::fflush(stdout);
-    if (!metrics_dir.empty()) writeFile(metrics_dir + "/gateway_summary.json", summary);
+    if (!metrics_dir.empty()) zonesim::writeTextFileAtomically(metrics_dir + "/gateway_summary.json", summary);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gateway: error: %s\n", e.what());
     return 1;

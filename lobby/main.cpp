@@ -6,32 +6,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
+#include <stdexcept>
 #include <random>
 
 #include "auth/auth_key.h"
 #include "common/cli.h"
 #include "common/log.h"
 #include "common/stop_signal.h"
+#include "common/text_file.h"
 #include "lobby/lobby.h"
-
-namespace {
-
-// Written to a temporary name and renamed, so a script polling for the file never reads it half
-// written.
-void writeFile(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-    f << text << '\n';
-    if (!f.flush()) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"zonesim lobby: hands players signed connect tokens for the least-loaded gateway"};
@@ -71,15 +55,8 @@ int main(int argc, char** argv) {
 
   try {
     zonesim::applyCommonOptions(common, "lobby");
-    std::string bind_option =
-        "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
-    if (port >= 0 && bind_text.find(':') != std::string::npos)
-      throw std::runtime_error(bind_option + ": the port is given twice; use one of them");
-    try {
-      cfg.bind = zonesim::gateway::parseBindAddress(bind_text, std::uint16_t(std::max(port, 0)));
-    } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(bind_option + ": " + e.what());
-    }
+    std::string bind_option = zonesim::gateway::bindOptionText(bind_text, port);
+    cfg.bind = zonesim::gateway::bindFromOptions(bind_text, port);
     zonesim::auth::AuthKey key = zonesim::auth::loadAuthKey(key_file);
     cfg.login.token_lifetime_ms = std::uint64_t(lifetime_s * 1000);
     // Player ids of a restarted lobby differ from the ones it issued before.
@@ -91,7 +68,7 @@ int main(int argc, char** argv) {
       throw std::runtime_error(bind_option + ": " + e.what());
     }
     zonesim::lobby::Lobby& lobby = *bound;
-    if (!port_file.empty()) writeFile(port_file, std::to_string(lobby.local().port));
+    if (!port_file.empty()) zonesim::writeTextFileAtomically(port_file, std::to_string(lobby.local().port));
     std::printf("lobby listening on %s\n", lobby.local().str().c_str());
     std::fflush(stdout);
     lobby.run(zonesim::stopRequested(), duration);
@@ -100,7 +77,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     if (!metrics_dir.empty()) {
       std::filesystem::create_directories(metrics_dir);
-      writeFile(metrics_dir + "/lobby_summary.json", summary);
+      zonesim::writeTextFileAtomically(metrics_dir + "/lobby_summary.json", summary);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lobby: error: %s\n", e.what());

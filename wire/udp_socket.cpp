@@ -176,6 +176,21 @@ void UdpSocket::close() {
   fd_ = -1;
 }
 
+std::string bindOptionText(const std::string& bind_text, int port) {
+  return "--bind " + bind_text + (port >= 0 ? " --port " + std::to_string(port) : "");
+}
+
+Endpoint bindFromOptions(const std::string& bind_text, int port) {
+  if (port >= 0 && bind_text.find(':') != std::string::npos)
+    throw std::runtime_error(bindOptionText(bind_text, port) +
+                             ": the port is given twice; use one of them");
+  try {
+    return parseBindAddress(bind_text, std::uint16_t(std::max(port, 0)));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(bindOptionText(bind_text, port) + ": " + e.what());
+  }
+}
+
 bool UdpSocket::sendTo(const Endpoint& to, std::span<const std::uint8_t> bytes) {
   sockaddr_in sa = to.toSockaddr();
   for (;;) {

@@ -41,6 +41,14 @@ Endpoint resolveEndpoint(const std::string& text);
 /// std::invalid_argument as resolveEndpoint does; whether the address is local shows at bind.
 Endpoint parseBindAddress(const std::string& text, std::uint16_t default_port);
 
+/// How a program's --bind and --port options read as typed (port < 0: --port not given), for
+/// errors about them: "--bind ADDR[ --port P]".
+std::string bindOptionText(const std::string& bind_text, int port);
+/// The address to bind from those options: parseBindAddress(bind_text, port). Throws
+/// std::runtime_error starting with bindOptionText when the text is bad or the port is given
+/// both ways.
+Endpoint bindFromOptions(const std::string& bind_text, int port);
+
 /// A bind that failed (address in use, not a local address, no permission): what() is one line
 /// naming the address, e.g. "cannot bind 10.0.0.9:4000: Cannot assign requested address".
 class BindError : public std::system_error {
