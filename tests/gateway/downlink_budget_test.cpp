@@ -17,6 +17,7 @@
 #include "common/timer.h"
 #include "gateway/gateway.h"
 #include "gateway_fixture.h"
+#include "loopback_gateway_test.h"
 
 namespace zonesim::gateway {
 namespace {
@@ -168,24 +169,14 @@ Scene crowdScene() {
   return s;
 }
 
-class BudgetLoopback : public ::testing::Test {
+class BudgetLoopback : public LoopbackGatewayTest {
  protected:
   void SetUp() override {
-    int domain = testing::privateDdsDomain();
     GatewayConfig cfg;
     cfg.scene = crowdScene();
-    cfg.dds_domain = domain;
-    cfg.gateway_id = testing::privateGatewayId();
-    cfg.expected_zones = 1;
     cfg.budget = {kKbps, kAngle};
-    gateway_ = std::make_unique<Gateway>(cfg);
-    zone_ = std::make_unique<testing::ZoneEmulator>(domain, cfg.scene, cfg.gateway_id);
-    gateway_addr_ = Endpoint::loopback(gateway_->port());
-    thread_ = std::thread([this] { gateway_->run(stop_); });
-  }
-  void TearDown() override {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
+    openGateway(cfg);
+    startGateway();
   }
 
   // NPC i circles a centre at distance 3 + i (metres) from the avatar, 3 m/s on a 4 m
@@ -367,12 +358,7 @@ class BudgetLoopback : public ::testing::Test {
   std::size_t near_samples_ = 0, near_overtaken_ = 0;
   std::optional<dr::StateCodec> codec_;
   AckWindow acks_;
-  std::unique_ptr<Gateway> gateway_;
-  std::unique_ptr<testing::ZoneEmulator> zone_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
   UdpSocket client_;
-  Endpoint gateway_addr_;
   std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(2048);
 };
 

@@ -9,6 +9,7 @@
 #include "common/timer.h"
 #include "gateway/gateway.h"
 #include "gateway_fixture.h"
+#include "loopback_gateway_test.h"
 
 namespace zonesim::gateway {
 namespace {
@@ -17,25 +18,12 @@ using testing::entity;
 
 constexpr std::int64_t kTimeoutNs = 15'000'000'000;
 
-class GatewayLoopback : public ::testing::Test {
+class GatewayLoopback : public LoopbackGatewayTest {
  protected:
   void SetUp() override {
-    int domain = testing::privateDdsDomain();
     GatewayConfig cfg;
     cfg.scene = testing::smallScene();
-    cfg.dds_domain = domain;
-    cfg.gateway_id = testing::privateGatewayId();
-    cfg.expected_zones = 1;
-    gateway_ = std::make_unique<Gateway>(cfg);
-    zone_ = std::make_unique<testing::ZoneEmulator>(domain, cfg.scene, cfg.gateway_id);
-    gateway_addr_ = Endpoint::loopback(gateway_->port());
-  }
-  void TearDown() override {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
-  }
-  void startGateway() {
-    thread_ = std::thread([this] { gateway_->run(stop_); });
+    openGateway(cfg);
   }
 
   // Receives one verified datagram for the client within 20 ms, if any.
@@ -140,12 +128,7 @@ class GatewayLoopback : public ::testing::Test {
   bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
   std::optional<dr::StateCodec> codec_;
   AckWindow acks_;
-  std::unique_ptr<Gateway> gateway_;
-  std::unique_ptr<testing::ZoneEmulator> zone_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
   UdpSocket client_;
-  Endpoint gateway_addr_;
   std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(2048);
 };
 
