@@ -70,11 +70,7 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
       writeMetrics(now);
       next_metrics += kSecondNs;
     }
-    std::int64_t wait_ns = next - nowNs();
-    int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
-    int r = ::poll(fds.data(), fds.size(), timeout_ms);
-    if (r < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "poll");
-    if (r <= 0) continue;
+    if (gateway::pollUntil(fds, next) == 0) continue;
     now = nowNs();
     for (std::size_t i = 0; i < fds.size(); ++i)
       if (fds[i].revents & POLLIN) players_[i]->receive(now);

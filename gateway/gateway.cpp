@@ -121,12 +121,9 @@ void Gateway::run(const std::atomic<bool>& stop, double duration_s) {
       if (next_tick <= now) next_tick = now + tick_ns_;
     }
     if (impairment_.active()) counters_.send_failures += impairment_.flush(socket_, nowNs());
-    std::int64_t wait_ns = std::min({next_tick, end_ns, impairment_.nextDueNs()}) - nowNs();
-    int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
     pollfd p{socket_.fd(), POLLIN, 0};
-    int r = ::poll(&p, 1, timeout_ms);
-    if (r < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "poll");
-    if (r > 0) receiveAll(nowNs());
+    if (pollUntil({&p, 1}, std::min({next_tick, end_ns, impairment_.nextDueNs()})) > 0)
+      receiveAll(nowNs());
   }
   writeMetrics(nowNs());
   metrics_.flush();
@@ -354,9 +351,9 @@ void Gateway::sendViews(std::int64_t now_ns) {
     ViewPoint at;
     avatarPosition(s, sim_now, at.x, at.z);
     const AuraNimbus& an = config_.scene.aura_nimbus;
-    at.nimbus = nimbusOf(s);
+    double nimbus = nimbusOf(s);
     // Under a budget the view may be narrowed (DownlinkBudget::adaptRadius).
-    if (config_.budget.enabled()) at.nimbus = std::min(at.nimbus, s.budget.viewRadius());
+    at.nimbus = config_.budget.enabled() ? std::min(nimbus, s.budget.viewRadius()) : nimbus;
     at.keep = at.nimbus * 1.1;
     at.aura = {an.npc, an.avatar, an.rigid_body, an.emitter};
     at.self = s.avatar_id;
@@ -371,7 +368,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
       addResends(s, diff, now_ns);
       resendHandoff(s, now_ns);
     }
-    if (config_.budget.enabled()) budgetDiff(s, diff, at);
+    if (config_.budget.enabled()) budgetDiff(s, diff, at, nimbus);
     std::uint64_t tick = clock_.tick();
     if (!diff.empty()) {
       sendView(s, diff, now_ns);
@@ -463,7 +460,7 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
   return take(lo);
 }
 
-void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at) {
+void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus) {
   const DeadReckoning& drs = config_.scene.dead_reckoning;
   // The zone's own thresholds are the floor: nearer than floor / angle, every state the zone
   // sent is worth sending, so the near band keeps the zone's precision.
@@ -523,20 +520,17 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at) {
   ranked.reserve(order.size());
   for (auto& [band, key, id, spawn] : order) ranked.emplace_back(id, spawn);
   Fit go = fitting(s, forced, ranked, available);
+  // How many of ranked went (a prefix: fitting takes the longest that fits).
+  std::size_t taken = go.spawns.size() + go.updates.size() - forced.spawns.size() -
+                      forced.updates.size();
   // On a send, the view narrows while the budget cannot carry what it ranked, and widens
   // again when it can; it never narrows below a quarter of the nimbus.
-  if (available > 0) {
-    std::size_t went = go.spawns.size() + go.updates.size();
-    bool pressed = went - forced.spawns.size() - forced.updates.size() < ranked.size();
-    double nimbus = nimbusOf(s);
-    s.budget.adaptRadius(pressed, nimbus, nimbus * kLeastViewFraction);
-  }
+  if (available > 0)
+    s.budget.adaptRadius(taken < ranked.size(), nimbus, nimbus * kLeastViewFraction);
   // What did not fit waits: listed again next tick. A spawn never sent is forgotten (the
   // client does not hold it); one sent but unacknowledged stays known, so that a despawn
   // still follows if it leaves the view before its resend gets through.
-  for (std::size_t i = go.spawns.size() + go.updates.size() -
-                       forced.spawns.size() - forced.updates.size();
-       i < ranked.size(); ++i) {
+  for (std::size_t i = taken; i < ranked.size(); ++i) {
     auto [id, spawn] = ranked[i];
     if (spawn && !s.resend.spawnPending(id))
       s.view.forget(id);

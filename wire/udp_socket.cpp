@@ -13,6 +13,8 @@
 #include <system_error>
 #include <utility>
 
+#include "common/timer.h"
+
 namespace zonesim::gateway {
 
 namespace {
@@ -174,6 +176,14 @@ UdpSocket& UdpSocket::operator=(UdpSocket&& other) noexcept {
 void UdpSocket::close() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
+}
+
+int pollUntil(std::span<pollfd> fds, std::int64_t deadline_ns) {
+  std::int64_t wait_ns = deadline_ns - nowNs();
+  int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
+  int r = ::poll(fds.data(), nfds_t(fds.size()), timeout_ms);
+  if (r < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "poll");
+  return r < 0 ? 0 : r;
 }
 
 std::string bindOptionText(const std::string& bind_text, int port) {

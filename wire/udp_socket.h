@@ -5,6 +5,7 @@
 // std::invalid_argument (bad text), std::system_error or BindError; nothing here exits.
 
 #include <netinet/in.h>
+#include <poll.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -73,6 +74,11 @@ struct Received {
   bool truncated = false;
   Endpoint from;
 };
+
+/// Waits in poll() until one of fds is ready or the steady clock (common/timer.h nowNs())
+/// reaches deadline_ns, rounding the wait up to whole milliseconds so it never wakes early.
+/// Returns poll's count: 0 on timeout or a signal; throws std::system_error on other errors.
+int pollUntil(std::span<pollfd> fds, std::int64_t deadline_ns);
 
 /// Owns a non-blocking UDP socket.
 class UdpSocket {
