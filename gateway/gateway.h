@@ -95,7 +95,8 @@ class Gateway {
   void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
   /// Under a budget: the spawns and updates of diff that go out this tick, deferring the rest
   /// in the view; despawns and the avatar always go.
-  void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at);
+  /// `nimbus` is the player's full nimbus, before the budget narrowed the view.
+  void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus);
   /// Spawns and updates chosen to go out this tick (each list ascending).
   struct Fit {
     std::vector<std::uint64_t> spawns, updates;
