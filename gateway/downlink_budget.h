@@ -23,8 +23,8 @@ struct BudgetSettings {
   double error_angle_rad = 0.0087;  ///< error held as this angle seen from the viewer (0.5 deg)
   bool enabled() const { return kbps > 0; }
   /// Ticks over which a client's spawns and updates are gathered into one send: enough for
-  /// about kGatherBytes (a datagram's framing is about 100 bytes, so at a low rate a datagram
-  /// a tick would be mostly framing), at most a third of a second.
+  /// about kGatherBytes (a datagram's framing is 80 bytes, as dr_bench prints, so at a low
+  /// rate a datagram a tick would be mostly framing), at most a third of a second.
   int ticksPerSend(double tick_rate) const;
   /// Bytes each client may be sent per gateway tick: a second's bytes over tick_rate +
   /// ticksPerSend ticks, since a 1 s window that starts with one send can hold that many

@@ -355,6 +355,8 @@ int main(int argc, char** argv) {
       "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
       "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
       kNpcs, kAvatars, seconds - 5);
+  std::printf("framing: %zu B per datagram around its packed records, plus %.0f B of UDP/IP\n",
+              framingBytes(dr::StateCodec(dr::codecParams(benchScene()))), kUdpIpHeaderBytes);
   std::printf("%-7s %-6s %6s %5s %5s %6s %3s | %10s %10s %8s %9s %9s | %8s %8s %8s | %7s\n",
               "set", "order", "thr_m", "blend", "loss", "rad_m", "tpd", "payload/s", "wire b/s",
               "visible", "b/s/vis", "wire/vis", "p50_m", "p99_m", "max_m", "upd/e/s");
