@@ -52,24 +52,21 @@ ShownError shownError(const CachedEntity& sent, const CachedEntity& newest, doub
   return e;
 }
 
-void DownlinkBudget::refill(double bytes_per_tick, double cap_bytes) {
-  tokens_ = std::min(tokens_ + bytes_per_tick, cap_bytes);
+void DownlinkBudget::refill(double bytes, double cap_bytes) {
+  tokens_ = std::min(tokens_ + bytes, cap_bytes);
 }
 
 const CachedEntity* DownlinkBudget::lastSent(std::uint64_t id) const {
-  auto it = entities_.find(id);
-  return it != entities_.end() && it->second.has_sent ? &it->second.sent : nullptr;
+  const Tracked* t = entities_.find(id);
+  return t != nullptr && t->has_sent ? &t->sent : nullptr;
 }
 
 double DownlinkBudget::accumulate(std::uint64_t id, double priority) {
-  return entities_[id].accumulator += priority;
+  return entities_.tryEmplace(id, Tracked{}).first->accumulator += priority;
 }
 
 void DownlinkBudget::sent(std::uint64_t id, const CachedEntity& e) {
-  Tracked& t = entities_[id];
-  t.sent = e;
-  t.has_sent = true;
-  t.accumulator = 0;
+  entities_.insertOrAssign(id, Tracked{e, true, 0.0});
   waiting_next_.erase(id);
 }
 
@@ -80,9 +77,9 @@ void DownlinkBudget::adaptRadius(bool pressed, double nimbus, double least) {
 }
 
 double DownlinkBudget::accumulateSpawn(std::uint64_t id, double priority) {
-  auto it = waiting_.find(id);
-  double acc = (it != waiting_.end() ? it->second : 0.0) + priority;
-  waiting_next_[id] = acc;
+  const double* was = waiting_.find(id);
+  double acc = (was != nullptr ? *was : 0.0) + priority;
+  waiting_next_.insertOrAssign(id, acc);
   return acc;
 }
 

@@ -11,8 +11,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
-#include <unordered_map>
-
+#include "common/flat_id_map.h"
 #include "gateway/world_cache.h"
 
 namespace zonesim::gateway {
@@ -63,10 +62,10 @@ inline double errorPriority(double error_m, double distance_m) {
 /// accumulators of spawns still waiting.
 class DownlinkBudget {
  public:
-  /// Adds one tick's bytes, holding at most cap_bytes (one tick's worth, or one spawn datagram
-  /// where that is more): any window of n ticks then carries at most n ticks' bytes plus the cap
-  /// plus the guaranteed traffic's overdraft.
-  void refill(double bytes_per_tick, double cap_bytes);
+  /// Adds the bytes of the time since the last refill, holding at most cap_bytes (a send's
+  /// worth, or one spawn datagram where that is more): any window of t seconds then carries at
+  /// most t seconds' bytes plus the cap plus the guaranteed traffic's overdraft.
+  void refill(double bytes, double cap_bytes);
   double tokens() const { return tokens_; }
   /// Charges bytes sent (may go negative: guaranteed traffic is never held back).
   void spend(std::size_t bytes) { tokens_ -= double(bytes); }
@@ -100,10 +99,11 @@ class DownlinkBudget {
   };
   double tokens_ = 0;
   double view_radius_ = 1e30;
-  std::unordered_map<std::uint64_t, Tracked> entities_;
+  // Flat maps: these are looked up for every entity in every player's view each tick.
+  FlatIdMap<Tracked> entities_;
   // Accumulators of spawns: last tick's, and this tick's (swapped at endTick, so nothing that
-  // left the view stays; clear() keeps the buckets, so no allocation in a steady state).
-  std::unordered_map<std::uint64_t, double> waiting_, waiting_next_;
+  // left the view stays; clear() keeps the slots, so no allocation in a steady state).
+  FlatIdMap<double> waiting_, waiting_next_;
 };
 
 }  // namespace zonesim::gateway

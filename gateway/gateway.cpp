@@ -95,9 +95,8 @@ Gateway::Gateway(GatewayConfig config)
     budget_bytes_per_tick_ = config_.budget.bytesPerTick(config_.scene.tick_rate);
     // Spawns and updates go when the bucket holds a send's worth (ticksPerSend ticks' bytes,
     // or one spawn datagram where that is more); guaranteed traffic goes every tick.
-    budget_cap_bytes_ =
-        std::max(budget_bytes_per_tick_ * config_.budget.ticksPerSend(config_.scene.tick_rate),
-                 double(one_spawn));
+    budget_ticks_per_send_ = config_.budget.ticksPerSend(config_.scene.tick_rate);
+    budget_cap_bytes_ = std::max(budget_bytes_per_tick_ * budget_ticks_per_send_, double(one_spawn));
   }
   // The gateway handles each datagram as it arrives: it can lose incoming ones, not hold them.
   if (!config_.impairment.in.lossOnly())
@@ -345,6 +344,14 @@ void Gateway::applyCellDelta(const CellDelta& delta) {
 
 void Gateway::sendViews(std::int64_t now_ns) {
   double sim_now = clock_.simNow(now_ns);
+  // The bucket fills by the time that passed, not by the tick: a gateway that falls behind its
+  // cadence (an overloaded machine) still hands each player its budget. At most a send's worth
+  // of ticks at once, so the bound on every 1 s window holds as at the nominal cadence.
+  double refill_ticks =
+      last_views_ns_ > 0 ? std::clamp(double(now_ns - last_views_ns_) / double(tick_ns_), 0.0,
+                                      double(budget_ticks_per_send_))
+                         : 1.0;
+  last_views_ns_ = now_ns;
   snapshot_.rebuild(cache_, grid_, sim_now);
   sessions_.forEach([&](SlotHandle, Session& s) {
     if (!s.welcomed) return;
@@ -363,7 +370,8 @@ void Gateway::sendViews(std::int64_t now_ns) {
     selectVisible(snapshot_, grid_, at, s.view, visible_);
     ViewDiff& diff = diff_;
     s.view.diff(visible_, diff);
-    if (config_.budget.enabled()) s.budget.refill(budget_bytes_per_tick_, budget_cap_bytes_);
+    if (config_.budget.enabled())
+      s.budget.refill(budget_bytes_per_tick_ * refill_ticks, budget_cap_bytes_);
     if (config_.resend) {
       addResends(s, diff, now_ns);
       resendHandoff(s, now_ns);

@@ -153,6 +153,8 @@ class Gateway {
   Impairment impairment_;  // packs states for clients exactly as the zones quantised them
   std::int64_t next_metrics_ns_ = 0;
   double budget_bytes_per_tick_ = 0, budget_cap_bytes_ = 0;  // under a budget
+  int budget_ticks_per_send_ = 1;
+  std::int64_t last_views_ns_ = 0;  // when sendViews last ran (the budget refills by time)
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
   TickTimes tick_cpu_window_, tick_cpu_total_;  // the same in thread CPU time
   std::int64_t start_process_cpu_ns_ = 0;
