@@ -28,7 +28,9 @@ def refused(tmp, name, text, expect):
             and str(path) in message, f"{name}: refused with '{message}'")
 
 
-for shipped in sorted((h.SOURCE_DIR / "deploy" / "clusters").glob("*.cluster")):
+# The launcher's own cluster files and the benchmarks' (bench/cluster/world_eighth.cluster).
+for shipped in sorted([*(h.SOURCE_DIR / "deploy" / "clusters").glob("*.cluster"),
+                       *(h.SOURCE_DIR / "bench" / "cluster").glob("*.cluster")]):
     r = dry_run(shipped)
     h.check(r.returncode == 0 and "zone ranks" in r.stdout, f"{shipped.name} parses {r.stderr.strip()}")
 netns = dry_run(h.SOURCE_DIR / "deploy/clusters/netns3.cluster", {"ZONESIM_NETNS": "zsq"})
