@@ -48,6 +48,10 @@ class ClientView {
   }
   /// A spawn held back: the next diff lists the entity as a spawn again.
   void forget(std::uint64_t id) { known_.erase(id); }
+  /// A despawn held back: the client still holds the entity, so the next diff lists it as a
+  /// despawn again, or as an update if it is visible again by then (epoch 0 is never current:
+  /// diff counts from 1; version 0 is older than any state).
+  void holdDespawn(std::uint64_t id) { known_.insertOrAssign(id, Sent{0, 0}); }
   std::size_t size() const { return known_.size(); }
 
  private:

@@ -468,6 +468,29 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
   return take(lo);
 }
 
+std::size_t Gateway::despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const {
+  if (ids.empty()) return 0;
+  ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
+  std::size_t total = 0;
+  for (const Bytes& b : encodeDespawnChunks(s.token, clock_.tick(), ids, numbered))
+    total += b.size();
+  return total;
+}
+
+std::size_t Gateway::fittingDespawns(const Session& s, const std::vector<std::uint64_t>& ids,
+                                     double available) const {
+  // The longest prefix whose datagrams fit (sizes grow with the prefix): a binary search.
+  std::size_t lo = 0, hi = ids.size();
+  while (lo < hi) {
+    std::size_t mid = (lo + hi + 1) / 2;
+    if (double(despawnBytes(s, std::span(ids).first(mid))) <= available)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
+}
+
 void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus) {
   const DeadReckoning& drs = config_.scene.dead_reckoning;
   // The zone's own thresholds are the floor: nearer than floor / angle, every state the zone
@@ -478,13 +501,23 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
     dr::V3 p = predictedPosition(*cache_.find(id), at.sim_now);
     return std::hypot(p.x - at.x, p.z - at.z);
   };
-  // Until the bucket is full, only guaranteed traffic goes (the rest waits, gathered).
-  double available = s.budget.tokens() >= budget_cap_bytes_ ? s.budget.tokens() : 0.0;
+  // Despawns go first, as far as the tokens reach, full bucket or not; the rest stay in the
+  // view and are listed again next tick. A client shows a departed entity a few ticks longer
+  // rather than the budget overrun: a view that narrows or a walk out of a town of resting
+  // bodies can leave hundreds at once.
+  double tokens = s.budget.tokens();
   if (!diff.despawns.empty()) {
-    ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
-    for (const Bytes& b : encodeDespawnChunks(s.token, clock_.tick(), diff.despawns, numbered))
-      available -= double(b.size());
+    std::size_t fit = fittingDespawns(s, diff.despawns, std::max(tokens, 0.0));
+    for (std::size_t i = fit; i < diff.despawns.size(); ++i) {
+      s.view.holdDespawn(diff.despawns[i]);
+      ++s.traffic.deferred;
+      ++counters_.deferred;
+    }
+    diff.despawns.resize(fit);
+    tokens -= double(despawnBytes(s, diff.despawns));
   }
+  // Until the bucket is full, only guaranteed traffic goes (the rest waits, gathered).
+  double available = s.budget.tokens() >= budget_cap_bytes_ ? tokens : 0.0;
   // The avatar always goes (and a state whose reference the budget never saw). The near band
   // (where angle * distance is within the zone's threshold) goes next, then the rest; within
   // each, by accumulated priority: spawns as an entity missing by kMissingEntityM, updates by

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -93,8 +94,8 @@ class Gateway {
   /// Adds to diff what the client has not acknowledged within the timeout.
   void addResends(Session& s, ViewDiff& diff, std::int64_t now_ns);
   void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
-  /// Under a budget: the spawns and updates of diff that go out this tick, deferring the rest
-  /// in the view; despawns and the avatar always go.
+  /// Under a budget: what of diff goes out this tick, holding the rest in the view: despawns
+  /// first as far as the tokens reach, the avatar always, then spawns and updates by rank.
   /// `nimbus` is the player's full nimbus, before the budget narrowed the view.
   void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus);
   /// Spawns and updates chosen to go out this tick (each list ascending).
@@ -105,6 +106,11 @@ class Gateway {
   /// most `available` bytes to forced's; `forced` always goes.
   Fit fitting(const Session& s, const Fit& forced,
               const std::vector<std::pair<std::uint64_t, bool>>& ranked, double available) const;
+  /// Bytes of the Despawn datagrams carrying ids.
+  std::size_t despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const;
+  /// How many of ids (a prefix) fit in `available` bytes of Despawn datagrams.
+  std::size_t fittingDespawns(const Session& s, const std::vector<std::uint64_t>& ids,
+                              double available) const;
   /// Sends the session's pending Handoff notice under a new seq.
   void sendHandoff(Session& s, std::int64_t now_ns);
   /// Forgets the pending Handoff once acknowledged; sends it again after the timeout.

@@ -24,7 +24,7 @@ struct GatewayCounters {
   std::uint64_t clock_ticks = 0;      ///< empty StateBatches sent to quiet views
   std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;
   std::uint64_t dds_samples = 0, ownership_foreign = 0, ownership_stale = 0;
-  std::uint64_t deferred = 0;  ///< spawns and updates held back a tick for want of budget
+  std::uint64_t deferred = 0;  ///< spawns, updates and despawns held back a tick for want of budget
   std::uint64_t held = 0;      ///< updates not sent: the error shown stayed within the angle
 };
 

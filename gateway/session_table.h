@@ -25,7 +25,7 @@ struct SessionTraffic {
   std::uint64_t inputs_forwarded = 0, handoffs = 0;
   std::uint64_t resent = 0;           ///< spawns, states and despawns sent again for want of an ack
   std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
-  std::uint64_t deferred = 0;         ///< spawns and updates held back a tick for want of budget
+  std::uint64_t deferred = 0;         ///< spawns, updates and despawns held back a tick for want of budget
   std::uint64_t held = 0;             ///< updates not sent: the error shown stayed within the angle
 };
 

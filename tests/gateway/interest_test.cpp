@@ -28,6 +28,22 @@ TEST(ClientView, SpawnsDespawnsAndUpdates) {
   EXPECT_EQ(v.size(), 3u);
 }
 
+TEST(ClientView, AHeldDespawnIsListedAgainOrBecomesAnUpdateIfTheEntityCameBack) {
+  ClientView v;
+  v.diff({{1, 1}, {2, 1}});
+  ViewDiff d = v.diff({});
+  EXPECT_EQ(d.despawns, (Ids{1, 2}));
+  v.holdDespawn(1);  // no room this tick: the client still holds 1
+  v.holdDespawn(2);
+  EXPECT_EQ(v.size(), 2u);
+  d = v.diff({{2, 1}});
+  EXPECT_EQ(d.despawns, (Ids{1})) << "still gone: listed again";
+  EXPECT_EQ(d.updates, (Ids{2})) << "back in view: the client holds it, so it gets the state";
+  EXPECT_TRUE(d.spawns.empty());
+  d = v.diff({{2, 1}});
+  EXPECT_TRUE(d.empty());
+}
+
 TEST(SelectVisible, NimbusWithHysteresisAndTheAvatarAlways) {
   WorldCache c(1);
   InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 25);
