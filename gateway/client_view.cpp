@@ -39,6 +39,33 @@ void ClientView::diff(const std::vector<VisibleEntity>& visible, ViewDiff& d) {
   std::sort(d.updates.begin(), d.updates.end());
 }
 
+void ClientView::diffKnown(const std::vector<VisibleEntity>& changed, ViewDiff& d) {
+  d.clear();
+  for (const VisibleEntity& v : changed) {
+    Sent* sent = known_.find(v.id);
+    if (sent == nullptr || v.version <= sent->version) continue;
+    sent->version = v.version;
+    d.updates.push_back(v.id);
+  }
+  std::sort(d.updates.begin(), d.updates.end());
+}
+
+void selectChanged(const WorldSnapshot& snapshot, const InterestGrid& grid, const ViewPoint& at,
+                   const ClientView& known, std::vector<VisibleEntity>& out) {
+  out.clear();
+  thread_local std::vector<int> cells;  // reused: no allocation per view once warm
+  grid.cellsWithin(at.x, at.z, std::max(at.nimbus, at.keep), cells);
+  bool self_listed = false;
+  for (int cell : cells)
+    for (const SnapEntity& e : snapshot.changedIn(cell))
+      if (known.knows(e.id)) {
+        out.push_back({e.id, e.version});
+        self_listed = self_listed || e.id == at.self;
+      }
+  if (at.self != 0 && !self_listed && at.self_version != 0 && known.knows(at.self))
+    out.push_back({at.self, at.self_version});
+}
+
 void selectVisible(const WorldSnapshot& snapshot, const InterestGrid& grid, const ViewPoint& at,
                    const ClientView& known, std::vector<VisibleEntity>& out) {
   out.clear();

@@ -41,6 +41,9 @@ class ClientView {
   ViewDiff diff(const std::vector<VisibleEntity>& visible);
   /// The same into `d` (cleared first), reusing its storage.
   void diff(const std::vector<VisibleEntity>& visible, ViewDiff& d);
+  /// Between full scans: lists as updates the entities of `changed` that the client holds and
+  /// was sent an older version of; no spawns, no despawns (into `d`, cleared first).
+  void diffKnown(const std::vector<VisibleEntity>& changed, ViewDiff& d);
   bool knows(std::uint64_t id) const { return known_.contains(id); }
   /// An update held back: the next diff lists the entity's state again (versions start at 1).
   void defer(std::uint64_t id) {
@@ -96,6 +99,11 @@ struct ViewPoint {
 /// at the snapshot's time (a gateway builds one snapshot a tick for all its players). Appends
 /// to `out` (cleared first), so a caller that keeps it allocates nothing once warm.
 void selectVisible(const WorldSnapshot& snapshot, const InterestGrid& grid, const ViewPoint& at,
+                   const ClientView& known, std::vector<VisibleEntity>& out);
+/// Between full scans: the entities that changed since the snapshot before and that the
+/// player holds, from the cells that meet its disc (the avatar wherever it is). Appends to
+/// `out` (cleared first).
+void selectChanged(const WorldSnapshot& snapshot, const InterestGrid& grid, const ViewPoint& at,
                    const ClientView& known, std::vector<VisibleEntity>& out);
 /// The same from the cache at at.sim_now, for one-off callers (a snapshot built for one view).
 std::vector<VisibleEntity> selectVisible(const WorldCache& cache, const InterestGrid& grid,

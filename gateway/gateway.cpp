@@ -98,6 +98,9 @@ Gateway::Gateway(GatewayConfig config)
     budget_ticks_per_send_ = config_.budget.ticksPerSend(config_.scene.tick_rate);
     budget_cap_bytes_ = std::max(budget_bytes_per_tick_ * budget_ticks_per_send_, double(one_spawn));
   }
+  if (config_.full_scan_every_ticks < 1)
+    throw std::invalid_argument("gateway: --full-scan-every must be at least 1, not " +
+                                std::to_string(config_.full_scan_every_ticks));
   // The gateway handles each datagram as it arrives: it can lose incoming ones, not hold them.
   if (!config_.impairment.in.lossOnly())
     throw std::invalid_argument("gateway: incoming impairment can only lose datagrams, not '" +
@@ -352,6 +355,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
                                       double(budget_ticks_per_send_))
                          : 1.0;
   last_views_ns_ = now_ns;
+  ++views_;
   snapshot_.rebuild(cache_, grid_, sim_now);
   sessions_.forEach([&](SlotHandle, Session& s) {
     if (!s.welcomed) return;
@@ -367,9 +371,19 @@ void Gateway::sendViews(std::int64_t now_ns) {
     const CachedEntity* self = s.avatar_id != 0 ? cache_.find(s.avatar_id) : nullptr;
     at.self_version = self != nullptr ? self->version : 0;
     at.sim_now = sim_now;
-    selectVisible(snapshot_, grid_, at, s.view, visible_);
     ViewDiff& diff = diff_;
-    s.view.diff(visible_, diff);
+    // A player's full scan falls on its own tick of every full_scan_every_ticks (by token, so
+    // the scans spread over the ticks); the avatar's first appearance does not wait.
+    std::uint64_t every = std::uint64_t(config_.full_scan_every_ticks);
+    bool full_scan = config_.budget.enabled() || every <= 1 ||
+                     (views_ + s.token) % every == 0 || !s.view.knows(s.avatar_id);
+    if (full_scan) {
+      selectVisible(snapshot_, grid_, at, s.view, visible_);
+      s.view.diff(visible_, diff);
+    } else {
+      selectChanged(snapshot_, grid_, at, s.view, visible_);
+      s.view.diffKnown(visible_, diff);
+    }
     if (config_.budget.enabled())
       s.budget.refill(budget_bytes_per_tick_ * refill_ticks, budget_cap_bytes_);
     if (config_.resend) {

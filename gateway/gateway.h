@@ -52,6 +52,12 @@ struct GatewayConfig {
   /// the current tick, so its clock (bounded to run a little past the newest tick it heard,
   /// clients/sim_player.h) keeps running while its view is quiet. 0: never.
   int clock_every_ticks = 6;
+  /// Without a budget, a player's visibility (spawns, despawns) is scanned every this many
+  /// ticks, staggered over the players; the ticks between send the updates of what it holds
+  /// from each cell's list of changed entities, shared by everyone who sees the cell.
+  /// 1: a full scan every tick. (Under a budget every tick scans: waiting spawns are ranked
+  /// each tick.)
+  int full_scan_every_ticks = 4;
   /// Downlink budget per client (kbps 0: none, every update goes out as the zones sent it).
   BudgetSettings budget;
   /// How an error about the budget names its two settings (an option, or a scene key).
@@ -161,6 +167,7 @@ class Gateway {
   double budget_bytes_per_tick_ = 0, budget_cap_bytes_ = 0;  // under a budget
   int budget_ticks_per_send_ = 1;
   std::int64_t last_views_ns_ = 0;  // when sendViews last ran (the budget refills by time)
+  std::uint64_t views_ = 0;         // sendViews calls: full scans are staggered by it
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
   TickTimes tick_cpu_window_, tick_cpu_total_;  // the same in thread CPU time
   std::int64_t start_process_cpu_ns_ = 0;

@@ -78,6 +78,11 @@ int main(int argc, char** argv) {
   app.add_option("--budget-error-angle-deg", budget_angle_deg,
                  "under a budget, hold the error each player sees as this angle (default: the "
                  "scene's clients.downlink_error_angle_deg)");
+  app.add_option("--full-scan-every", cfg.full_scan_every_ticks,
+                 "without a budget, scan each player's visibility every N ticks (staggered); "
+                 "the ticks between send only what changed of what it holds (default 4; 1 = "
+                 "every tick)")
+      ->check(CLI::PositiveNumber);
   std::string auth_key_file, public_address;
   app.add_option("--auth-key-file", auth_key_file,
                  "the cluster's key (at least 32 random bytes, shared with the lobby): every "

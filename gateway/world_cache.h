@@ -56,6 +56,9 @@ class WorldCache {
 
   const CachedEntity* find(std::uint64_t id) const;
   std::size_t size() const { return entities_.size(); }
+  /// The newest version handed out (versions are one counter over all entities, so an entity
+  /// changed since a moment iff its version exceeds the counter's value then).
+  std::uint64_t newestVersion() const { return version_counter_; }
   const CacheStats& stats() const { return stats_; }
 
   /// Visits (id, entity) for every entity held, in no particular order.

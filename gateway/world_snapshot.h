@@ -32,19 +32,32 @@ class WorldSnapshot {
   void rebuild(const WorldCache& cache, const InterestGrid& grid, double sim_now);
   /// The entities predicted to be in `cell` (empty for a cell out of range).
   std::span<const SnapEntity> cell(int cell) const;
+  /// Those of them whose state changed since the previous rebuild (a new version): the same
+  /// list for every player who sees the cell, so a player's tick between full visibility scans
+  /// reads only what changed (selectChanged).
+  std::span<const SnapEntity> changedIn(int cell) const;
   /// The sim time positions were predicted to.
   double simNow() const { return sim_now_; }
-  std::size_t size() const { return entities_.size(); }
+  std::size_t size() const { return all_.entities.size(); }
 
  private:
   struct Placed {
     SnapEntity entity;
     int cell;
   };
-  std::vector<Placed> predicted_;     // while rebuilding: in the cache's order
-  std::vector<SnapEntity> entities_;  // grouped by cell
-  std::vector<std::uint32_t> begin_;  // cell c holds [begin_[c], begin_[c + 1])
-  std::vector<std::uint32_t> fill_;   // next free slot per cell, while rebuilding
+  // Entities grouped by cell: cell c holds [begin[c], begin[c + 1]).
+  struct ByCell {
+    std::vector<SnapEntity> entities;
+    std::vector<std::uint32_t> begin;
+    std::vector<std::uint32_t> fill;  // next free slot per cell, while filing
+    /// Files the placed entities that pass keep(), by cell (a counting sort).
+    template <typename Keep>
+    void file(const std::vector<Placed>& placed, int cells, Keep keep);
+    std::span<const SnapEntity> of(int cell) const;
+  };
+  std::vector<Placed> predicted_;  // while rebuilding: in the cache's order
+  ByCell all_, changed_;
+  std::uint64_t seen_version_ = 0;  // the cache's newest version at the previous rebuild
   double sim_now_ = 0;
 };
 

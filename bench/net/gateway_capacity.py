@@ -6,8 +6,11 @@ wall time and as the gateway thread's own CPU time (the fleet and the zone share
 wall time grows with their load, CPU time does not), the whole gateway process's CPU per tick
 (receiving inputs, DDS threads too), its traffic per player and the linear extrapolation of N
 to a full 33 ms tick of the gateway thread's CPU.
-Usage: bench/net/gateway_capacity.py [N ...]   (ZONESIM_BIN: the build's bin/ directory)"""
+Usage: bench/net/gateway_capacity.py [N ...]   (ZONESIM_BIN: the build's bin/ directory;
+ZONESIM_CAPACITY_GATEWAY_ARGS: more gateway options, e.g. "--full-scan-every 1" to compare)"""
 import json
+import os
+import shlex
 import sys
 import tempfile
 import time
@@ -32,7 +35,7 @@ for n in counts:
                         out / "zones.log", env)
         gw = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
                       out / "port", "--dds-domain", domain, "--metrics", out, "--max-sessions",
-                      100000], out / "gateway.log", env)
+                      100000, *shlex.split(os.environ.get("ZONESIM_CAPACITY_GATEWAY_ARGS", ""))], out / "gateway.log", env)
         port = h.wait_for_port(out / "port", gw, out / "gateway.log")
         time.sleep(2)
         h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway", f"127.0.0.1:{port}",

@@ -99,6 +99,64 @@ TEST(WorldSnapshot, GroupsByCellAndPredictsToItsTime) {
   EXPECT_TRUE(snap.cell(grid.cellOf(120, 10)).empty());
 }
 
+TEST(WorldSnapshot, ListsPerCellWhatChangedSinceTheRebuildBefore) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {200, 10, 200}}, 50);
+  for (std::uint64_t id = 1; id <= 4; ++id)
+    c.upsert(grid.cellOf(10, 10), 0, 1.0, entity(id, 0, 10, float(id)));
+  WorldSnapshot snap;
+  snap.rebuild(c, grid, 1.0);
+  EXPECT_EQ(snap.changedIn(grid.cellOf(10, 10)).size(), 4u) << "the first rebuild: all new";
+  snap.rebuild(c, grid, 1.1);
+  EXPECT_TRUE(snap.changedIn(grid.cellOf(10, 10)).empty()) << "nothing arrived in between";
+  c.upsert(grid.cellOf(10, 10), 0, 1.2, entity(3, 0, 10, 3.5f));
+  c.upsert(grid.cellOf(120, 10), 0, 1.2, entity(9, 0, 120, 10));
+  snap.rebuild(c, grid, 1.2);
+  ASSERT_EQ(snap.changedIn(grid.cellOf(10, 10)).size(), 1u);
+  EXPECT_EQ(snap.changedIn(grid.cellOf(10, 10))[0].id, 3u);
+  ASSERT_EQ(snap.changedIn(grid.cellOf(120, 10)).size(), 1u);
+  EXPECT_EQ(snap.changedIn(grid.cellOf(120, 10))[0].id, 9u);
+  EXPECT_EQ(snap.cell(grid.cellOf(10, 10)).size(), 4u) << "the full list is unchanged";
+  EXPECT_TRUE(snap.changedIn(-1).empty());
+}
+
+TEST(SelectChanged, BetweenFullScansOnlyHeldEntitiesThatChangedAreUpdated) {
+  WorldCache c(1);
+  InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 25);
+  for (std::uint64_t id = 1; id <= 6; ++id)
+    c.upsert(grid.cellOf(100, 100), 0, 1.0, entity(id, 0, 100 + float(id), 100));
+  c.upsert(grid.cellOf(300, 300), 0, 1.0, entity(7, 0, 300, 300));  // far away
+  ViewPoint at;
+  at.x = 100, at.z = 100, at.nimbus = 60, at.keep = 66, at.sim_now = 1.0;
+  WorldSnapshot snap;
+  snap.rebuild(c, grid, at.sim_now);
+  ClientView view;
+  std::vector<VisibleEntity> visible;
+  selectVisible(snap, grid, at, view, visible);
+  ViewDiff d;
+  view.diff(visible, d);
+  EXPECT_EQ(d.spawns, (Ids{1, 2, 3, 4, 5, 6}));
+  view.forget(6);  // as a budget does with a spawn it held back: the client lacks 6
+  // New states of 2, of 6 (not held) and of the far 7; and a new entity 8 nearby.
+  for (std::uint64_t id : {2u, 6u})
+    c.upsert(grid.cellOf(100, 100), 0, 1.1, entity(id, 0, 100 + float(id), 101));
+  c.upsert(grid.cellOf(300, 300), 0, 1.1, entity(7, 0, 300, 301));
+  c.upsert(grid.cellOf(100, 100), 0, 1.1, entity(8, 0, 108, 100));
+  snap.rebuild(c, grid, 1.1);
+  selectChanged(snap, grid, at, view, visible);
+  view.diffKnown(visible, d);
+  EXPECT_EQ(d.updates, (Ids{2})) << "only what the client holds; spawns wait for a full scan";
+  EXPECT_TRUE(d.spawns.empty());
+  EXPECT_TRUE(d.despawns.empty());
+  view.diffKnown(visible, d);
+  EXPECT_TRUE(d.empty()) << "a version is sent once";
+  // The next full scan catches up on the rest.
+  selectVisible(snap, grid, at, view, visible);
+  view.diff(visible, d);
+  EXPECT_EQ(d.spawns, (Ids{6, 8}));
+  EXPECT_TRUE(d.updates.empty());
+}
+
 TEST(SelectVisible, ASnapshotGivesTheRuleAtPredictedPositionsAndReusesItsOutput) {
   WorldCache c(1);
   InterestGrid grid(SceneBox{{0, 0, 0}, {400, 10, 400}}, 25);
