@@ -32,9 +32,16 @@ void ResendTracker::sent(std::uint32_t seq, std::span<const std::uint64_t> ids, 
   Flight& f = flights_[seq % kFlights];
   f.seq = seq;
   f.sent_ns = now_ns;
+  f.what = what;
   f.acked = false;
   f.ids.assign(ids.begin(), ids.end());
-  for (std::uint64_t id : ids) pending_.insertOrAssign(id, Pending{what, seq, now_ns});
+  for (std::uint64_t id : ids) {
+    const Pending* was = pending_.find(id);
+    std::uint32_t from = what != Carried::Spawn                           ? 0
+                         : was != nullptr && was->what == Carried::Spawn ? was->spawn_from
+                                                                          : seq;
+    pending_.insertOrAssign(id, Pending{what, seq, now_ns, from});
+  }
   if (!ids.empty()) oldest_pending_ns_ = std::min(oldest_pending_ns_, now_ns);
 }
 
@@ -62,10 +69,17 @@ void ResendTracker::ackOne(std::uint32_t seq, std::int64_t now_ns) {
     srtt_s_ = 0.875 * srtt_s_ + 0.125 * rtt;
   }
   // Only the datagram holding an entity's newest state (or despawn) settles it: an ack of an
-  // older one says nothing about the newer state.
+  // older one says nothing about the newer state. But an ack of an older Spawn of the same run
+  // says the client holds the entity: the newer state in flight is then an update. Without
+  // this, an entity that changes every tick over a link whose ack takes longer than a tick
+  // would go as a Spawn for ever (each tick's Spawn overtaking the last before its ack).
   for (std::uint64_t id : f.ids) {
-    const Pending* p = pending_.find(id);
-    if (p != nullptr && p->seq == seq) pending_.erase(id);
+    Pending* p = pending_.find(id);
+    if (p == nullptr) continue;
+    if (p->seq == seq)
+      pending_.erase(id);
+    else if (f.what == Carried::Spawn && p->what == Carried::Spawn && seq >= p->spawn_from)
+      p->what = Carried::Update;
   }
   f.ids.clear();
 }

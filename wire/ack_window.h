@@ -92,10 +92,14 @@ class ResendTracker {
     Carried what;
     std::uint32_t seq;
     std::int64_t sent_ns;
+    // While `what` is Spawn: the first datagram of this run of Spawns (since the entity was
+    // last sent any other way). An ack of any of them means the client holds the entity.
+    std::uint32_t spawn_from = 0;
   };
   struct Flight {
     std::uint32_t seq = 0;  // 0: slot empty
     std::int64_t sent_ns = 0;
+    Carried what = Carried::Update;
     bool acked = false;
     std::vector<std::uint64_t> ids;
   };

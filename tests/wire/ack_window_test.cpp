@@ -149,6 +149,31 @@ TEST(ResendTracker, OnlyTheNewestCarrierSettlesAnEntity) {
   EXPECT_EQ(t.acked(), 2u);
 }
 
+TEST(ResendTracker, AnAckOfAnEarlierSpawnOfTheRunEndsTheSpawnButNotTheNewestState) {
+  // An entity that changes every tick goes as a Spawn while its spawn is unacknowledged; each
+  // tick's Spawn is sent before the last one's ack returns.
+  ResendTracker t(0.05, 1.0);
+  auto e = ids({8});
+  std::uint32_t s1 = t.nextSeq(), s2 = t.nextSeq();
+  t.sent(s1, e, Carried::Spawn, 0);
+  t.sent(s2, e, Carried::Spawn, 33 * kMs);
+  t.onAck(s1, 0, 50 * kMs);
+  EXPECT_FALSE(t.spawnPending(8)) << "the client holds it: its next state is an update";
+  EXPECT_EQ(t.pending(), 1u) << "the newest state is still in flight";
+  ResendDue d = t.due(33 * kMs + t.rtoNs());
+  EXPECT_EQ(d.updates, ids({8}));
+  EXPECT_TRUE(d.spawns.empty());
+
+  // A Spawn from before a despawn says nothing about the entity's new spawn.
+  auto f = ids({9});
+  std::uint32_t a = t.nextSeq(), b = t.nextSeq(), c = t.nextSeq();
+  t.sent(a, f, Carried::Spawn, 100 * kMs);
+  t.sent(b, f, Carried::Despawn, 133 * kMs);
+  t.sent(c, f, Carried::Spawn, 166 * kMs);
+  t.onAck(a, 0, 180 * kMs);
+  EXPECT_TRUE(t.spawnPending(9));
+}
+
 TEST(ResendTracker, DespawnSupersedesSpawnAndDuplicateAcksCountOnce) {
   ResendTracker t(0.05, 1.0);
   auto e = ids({3});
