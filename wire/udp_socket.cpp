@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -178,10 +179,17 @@ void UdpSocket::close() {
   fd_ = -1;
 }
 
+int timeoutMsUntil(std::int64_t deadline_ns) {
+  std::int64_t now = nowNs();
+  if (deadline_ns <= now) return 0;
+  std::int64_t wait_ns = deadline_ns - now;
+  // Rounded up without adding first: deadline_ns may be INT64_MAX ("no deadline").
+  std::int64_t ms = wait_ns / 1'000'000 + (wait_ns % 1'000'000 != 0 ? 1 : 0);
+  return int(std::min<std::int64_t>(ms, INT_MAX));
+}
+
 int pollUntil(std::span<pollfd> fds, std::int64_t deadline_ns) {
-  std::int64_t wait_ns = deadline_ns - nowNs();
-  int timeout_ms = wait_ns <= 0 ? 0 : int((wait_ns + 999'999) / 1'000'000);
-  int r = ::poll(fds.data(), nfds_t(fds.size()), timeout_ms);
+  int r = ::poll(fds.data(), nfds_t(fds.size()), timeoutMsUntil(deadline_ns));
   if (r < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "poll");
   return r < 0 ? 0 : r;
 }

@@ -75,9 +75,13 @@ struct Received {
   Endpoint from;
 };
 
-/// Waits in poll() until one of fds is ready or the steady clock (common/timer.h nowNs())
-/// reaches deadline_ns, rounding the wait up to whole milliseconds so it never wakes early.
-/// Returns poll's count: 0 on timeout or a signal; throws std::system_error on other errors.
+/// The wait from now to deadline_ns on the steady clock (common/timer.h nowNs()) as a poll or
+/// epoll_wait timeout: whole milliseconds rounded up, so it never wakes early; 0 when past.
+int timeoutMsUntil(std::int64_t deadline_ns);
+
+/// Waits in poll() until one of fds is ready or the steady clock reaches deadline_ns
+/// (timeoutMsUntil). Returns poll's count: 0 on timeout or a signal; throws std::system_error
+/// on other errors.
 int pollUntil(std::span<pollfd> fds, std::int64_t deadline_ns);
 
 /// Owns a non-blocking UDP socket.
