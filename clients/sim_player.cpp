@@ -161,21 +161,30 @@ std::int64_t SimPlayer::flushUplink(std::int64_t now_ns) {
 }
 
 void SimPlayer::receive(std::int64_t now_ns) {
+  while (auto got = socket_.receive(rx_buffer_))
+    take(std::span(rx_buffer_.data(), std::min(got->size, rx_buffer_.size())), *got, now_ns);
+}
+
+void SimPlayer::receive(std::int64_t now_ns, gateway::ReceiveBatch& batch) {
   for (;;) {
-    auto got = socket_.receive(rx_buffer_);
-    if (!got) return;
-    ++counters_.datagrams_in;
-    counters_.bytes_in += got->size;
-    if (got->truncated || got->size > gateway::kMaxDatagramBytes) {
-      counters_.drops.add(gateway::DropReason::TooLarge);
-      continue;
-    }
-    std::span<const std::uint8_t> bytes(rx_buffer_.data(), got->size);
-    if (impairment_.active())
-      impairment_.receive(bytes, got->from, now_ns);  // the downlink: lost, or held a while
-    else
-      handle(bytes, got->from, now_ns);
+    std::size_t n = batch.receive(socket_);
+    for (std::size_t i = 0; i < n; ++i) take(batch.bytes(i), batch.received(i), now_ns);
+    if (n < gateway::ReceiveBatch::kBatch) return;  // short: the socket was empty when read
   }
+}
+
+void SimPlayer::take(std::span<const std::uint8_t> bytes, const gateway::Received& got,
+                     std::int64_t now_ns) {
+  ++counters_.datagrams_in;
+  counters_.bytes_in += got.size;
+  if (got.truncated || got.size > gateway::kMaxDatagramBytes) {
+    counters_.drops.add(gateway::DropReason::TooLarge);
+    return;
+  }
+  if (impairment_.active())
+    impairment_.receive(bytes, got.from, now_ns);  // the downlink: lost, or held a while
+  else
+    handle(bytes, got.from, now_ns);
 }
 
 void SimPlayer::deliverHeld(std::int64_t now_ns) {

@@ -16,6 +16,7 @@
 #include "common/scene_geometry.h"
 #include "dr/state_codec.h"
 #include "wire/ack_window.h"
+#include "wire/datagram_batch.h"
 #include "wire/impairment.h"
 #include "wire/udp_socket.h"
 #include "wire/wire_encode.h"
@@ -93,6 +94,9 @@ class SimPlayer {
   /// Reads every pending datagram and handles it, or, with impairment, hands it to the
   /// player's downlink, which delivers it when due (act()).
   void receive(std::int64_t now_ns);
+  /// The same, up to ReceiveBatch::kBatch datagrams per system call into `batch`: one batch
+  /// serves a whole fleet (a batch's buffers per player would be 90 KB each).
+  void receive(std::int64_t now_ns, gateway::ReceiveBatch& batch);
   /// Sends Bye if a session is open.
   void bye();
   /// Sends what the impaired uplink holds that is due by now_ns (a Bye, after the run); returns
@@ -134,6 +138,8 @@ class SimPlayer {
 
  private:
   void send(const gateway::Bytes& bytes);
+  /// Counts one datagram read from the socket and handles it or hands it to the downlink.
+  void take(std::span<const std::uint8_t> bytes, const gateway::Received& got, std::int64_t now_ns);
   /// Handles the datagrams the impaired downlink releases by now_ns.
   void deliverHeld(std::int64_t now_ns);
   std::int64_t actDue(std::int64_t now_ns);
