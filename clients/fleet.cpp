@@ -10,6 +10,7 @@
 #include <system_error>
 #include <thread>
 
+#include "clients/fd_limit.h"
 #include "clients/fleet_summary.h"
 #include "common/timer.h"
 
@@ -21,6 +22,8 @@ constexpr std::int64_t kSecondNs = 1'000'000'000;
 
 ClientFleet::ClientFleet(const FleetConfig& config, const std::atomic<bool>& stop)
     : config_(config), start_ns_(nowNs()) {
+  // Before the first socket: past the hard limit, nothing is created.
+  raiseFdLimit(fleetDescriptors(std::size_t(std::max(config.players, 0))));
   std::vector<gateway::UdpSocket> sockets;
   int players = config.players;
   if (config.lobby) {

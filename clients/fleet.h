@@ -36,8 +36,9 @@ struct FleetConfig {
 
 class ClientFleet {
  public:
-  /// Opens one socket per player and, with config.lobby, logs each in (if stop is set first,
-  /// no player plays); throws on failure.
+  /// Raises the open-file limit for config.players sockets (FdLimitError past the hard limit,
+  /// before any is opened), opens one socket per player and, with config.lobby, logs each in
+  /// (if stop is set first, no player plays); throws on failure.
   explicit ClientFleet(const FleetConfig& config,
                        const std::atomic<bool>& stop = zonesim::stopRequested());
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "clients/fd_limit.h"
 #include "clients/fleet.h"
 #include "common/cli.h"
 #include "common/log.h"
@@ -78,10 +79,10 @@ int main(int argc, char** argv) {
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
 
+  zonesim::clients::FleetConfig cfg;
   try {
     zonesim::applyCommonOptions(common, "clients");
     zonesim::Scene scene = zonesim::loadScene(scene_path);
-    zonesim::clients::FleetConfig cfg;
     if (gateway_addr.empty() && lobby_addr.empty())
       throw std::runtime_error("--gateway or --lobby is required: where the players connect");
     try {
@@ -143,6 +144,12 @@ int main(int argc, char** argv) {
                   cfg.players, cfg.lobby->lobby.str().c_str());
     std::printf("clients welcomed %d of %d\n", fleet.welcomed(), cfg.players);
     std::fflush(stdout);
+  } catch (const zonesim::clients::FdLimitError& e) {
+    std::fprintf(stderr,
+                 "client_stub: error: --players %d needs %zu file descriptors, above the hard "
+                 "limit of %llu (RLIMIT_NOFILE); raise it (ulimit -Hn) or run fewer players\n",
+                 cfg.players, e.needed(), static_cast<unsigned long long>(e.hard()));
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "client_stub: error: %s\n", e.what());
     return 1;
