@@ -1,18 +1,17 @@
 #include "clients/fleet.h"
 
-#include <poll.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
-#include <system_error>
 #include <thread>
 
 #include "clients/fd_limit.h"
 #include "clients/fleet_summary.h"
+#include "common/due_queue.h"
 #include "common/timer.h"
+#include "wire/datagram_batch.h"
+#include "wire/epoll_set.h"
 
 namespace zonesim::clients {
 
@@ -62,37 +61,62 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
   start_ns_ = nowNs();
   std::int64_t end_ns = start_ns_ + std::int64_t(config_.duration_s * 1e9);
   std::int64_t next_metrics = start_ns_ + kSecondNs;
-  std::vector<pollfd> fds(players_.size());
-  for (std::size_t i = 0; i < players_.size(); ++i) fds[i] = {players_[i]->fd(), POLLIN, 0};
+  gateway::EpollSet ready;
+  for (std::size_t i = 0; i < players_.size(); ++i) ready.add(players_[i]->fd(), i);
+  gateway::ReceiveBatch batch(gateway::kMaxDatagramBytes);
+  DueQueue due(players_.size());
+  for (std::size_t i = 0; i < players_.size(); ++i) due.arm(i, start_ns_);
+  std::vector<std::size_t> acting;
   while (!stop.load(std::memory_order_relaxed)) {
     std::int64_t now = nowNs();
     if (now >= end_ns) break;
-    std::int64_t next = std::min(end_ns, next_metrics);
-    for (auto& p : players_) next = std::min(next, p->act(now));
+    acting.clear();
+    due.popDue(now, acting);
+    // In player order, as the scan of every player was; act() says when each is next due,
+    // held datagrams either way included.
+    std::sort(acting.begin(), acting.end());
+    for (std::size_t i : acting) due.arm(i, players_[i]->act(now));
     if (now >= next_metrics) {
       writeMetrics(now);
       next_metrics += kSecondNs;
     }
-    if (gateway::pollUntil(fds, next) == 0) continue;
+    int n = ready.wait(std::min({end_ns, next_metrics, due.nextDue()}));
     now = nowNs();
-    for (std::size_t i = 0; i < fds.size(); ++i)
-      if (fds[i].revents & POLLIN) players_[i]->receive(now);
+    for (int k = 0; k < n; ++k) {
+      std::size_t i = std::size_t(ready.key(k));
+      players_[i]->receive(now, batch);
+      // What arrived can bring its next action forward (a Welcome starts the inputs, a held
+      // datagram joins the downlink, a new server tick moves the display log): it acts at the
+      // next wake-up, as every player did when all of them were asked.
+      due.arm(i, now);
+    }
   }
   elapsed_s_ = double(nowNs() - start_ns_) * 1e-9;
   for (auto& p : players_) p->bye();
-  // A Bye held on an impaired uplink goes out when due, as on the real link; left behind, it
-  // would leave the gateway resending to a closed player until the session timed out.
-  for (;;) {
-    std::int64_t next = INT64_MAX;
-    for (auto& p : players_) next = std::min(next, p->flushUplink(nowNs()));
-    if (next == INT64_MAX) break;
-    std::this_thread::sleep_for(
-        std::chrono::nanoseconds(std::max<std::int64_t>(0, next - nowNs())));
-  }
+  flushByes();
   writeMetrics(nowNs());
   metrics_.flush();
   writeOwnStream();
   writeDisplayed();
+}
+
+void ClientFleet::flushByes() {
+  // A Bye held on an impaired uplink goes out when due, as on the real link; left behind, it
+  // would leave the gateway resending to a closed player until the session timed out.
+  DueQueue held(players_.size());
+  std::int64_t now = nowNs();
+  for (std::size_t i = 0; i < players_.size(); ++i)
+    if (std::int64_t next = players_[i]->flushUplink(now); next != INT64_MAX) held.arm(i, next);
+  std::vector<std::size_t> due;
+  while (!held.empty()) {
+    std::this_thread::sleep_for(
+        std::chrono::nanoseconds(std::max<std::int64_t>(0, held.nextDue() - nowNs())));
+    now = nowNs();
+    due.clear();
+    held.popDue(now, due);
+    for (std::size_t i : due)
+      if (std::int64_t next = players_[i]->flushUplink(now); next != INT64_MAX) held.arm(i, next);
+  }
 }
 
 void ClientFleet::writeDisplayed() const {

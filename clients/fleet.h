@@ -1,7 +1,9 @@
 #pragma once
-// N simulated players in one process, driven by one single-threaded loop: poll() over every
-// player's socket with a timeout to the earliest thing any player must send next. Writes one
-// metrics line per second and, at the end, a JSON summary per player and in total.
+// N simulated players in one process, driven by one single-threaded loop: epoll over the
+// players' sockets, each ready one drained in recvmmsg batches, and a queue of each player's
+// next due time, so a wake-up costs the players that have something to read or to send, not
+// all N. Writes one metrics line per second and, at the end, a JSON summary per player and in
+// total.
 
 #include <atomic>
 #include <cstdint>
@@ -56,6 +58,8 @@ class ClientFleet {
 
  private:
   void writeMetrics(std::int64_t now_ns);
+  /// Sends the Byes the impaired uplinks still hold, each when due.
+  void flushByes();
   /// Writes every player's own stream as CSV (player, event, t_ms, tick, server_tick).
   void writeOwnStream() const;
   /// Writes what every player showed of the sampled entities (player, tick, id, order, x, y, z).
