@@ -59,6 +59,7 @@ int ClientFleet::welcomed() const {
 
 void ClientFleet::run(const std::atomic<bool>& stop) {
   start_ns_ = nowNs();
+  std::int64_t cpu_start_ns = threadCpuNs(), process_start_ns = processCpuNs();
   std::int64_t end_ns = start_ns_ + std::int64_t(config_.duration_s * 1e9);
   std::int64_t next_metrics = start_ns_ + kSecondNs;
   gateway::EpollSet ready;
@@ -67,6 +68,7 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
   DueQueue due(players_.size());
   for (std::size_t i = 0; i < players_.size(); ++i) due.arm(i, start_ns_);
   std::vector<std::size_t> acting;
+  std::uint64_t wakeups = 0;
   while (!stop.load(std::memory_order_relaxed)) {
     std::int64_t now = nowNs();
     if (now >= end_ns) break;
@@ -81,6 +83,7 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
       next_metrics += kSecondNs;
     }
     int n = ready.wait(std::min({end_ns, next_metrics, due.nextDue()}));
+    ++wakeups;
     now = nowNs();
     for (int k = 0; k < n; ++k) {
       std::size_t i = std::size_t(ready.key(k));
@@ -92,6 +95,8 @@ void ClientFleet::run(const std::atomic<bool>& stop) {
     }
   }
   elapsed_s_ = double(nowNs() - start_ns_) * 1e-9;
+  cost_ = {elapsed_s_, double(threadCpuNs() - cpu_start_ns) * 1e-9,
+           double(processCpuNs() - process_start_ns) * 1e-9, wakeups};
   for (auto& p : players_) p->bye();
   flushByes();
   writeMetrics(nowNs());
@@ -157,7 +162,7 @@ void ClientFleet::writeMetrics(std::int64_t now_ns) {
 
 std::string ClientFleet::summaryJson() const {
   double s = elapsed_s_ > 0 ? elapsed_s_ : double(nowNs() - start_ns_) * 1e-9;
-  return fleetSummaryJson(players_, s);
+  return fleetSummaryJson(players_, s, cost());
 }
 
 }  // namespace zonesim::clients

@@ -3,7 +3,7 @@
 // players' sockets, each ready one drained in recvmmsg batches, and a queue of each player's
 // next due time, so a wake-up costs the players that have something to read or to send, not
 // all N. Writes one metrics line per second and, at the end, a JSON summary per player and in
-// total.
+// total, with the fleet's own CPU time per player.
 
 #include <atomic>
 #include <cstdint>
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "clients/fleet_summary.h"
 #include "clients/lobby_login.h"
 #include "clients/sim_player.h"
 #include "common/metrics.h"
@@ -55,6 +56,8 @@ class ClientFleet {
   const LoginStats& loginStats() const { return login_stats_; }
   /// Players that completed the handshake.
   int welcomed() const;
+  /// What the run's loop cost: its CPU time and wake-ups (zero before run()).
+  const FleetCost& cost() const { return cost_; }
 
  private:
   void writeMetrics(std::int64_t now_ns);
@@ -68,6 +71,7 @@ class ClientFleet {
   FleetConfig config_;
   std::int64_t start_ns_;
   double elapsed_s_ = 0;
+  FleetCost cost_;
   std::vector<std::unique_ptr<SimPlayer>> players_;
   std::vector<LoginTicket> tickets_;
   LoginStats login_stats_;

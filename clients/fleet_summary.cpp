@@ -126,8 +126,17 @@ JsonLine fleetMetricsLine(const std::vector<std::unique_ptr<SimPlayer>>& players
   return j;
 }
 
+double cpuUsPerPlayerSecond(const FleetCost& cost, std::size_t players) {
+  if (players == 0 || cost.run_s <= 0) return 0;
+  return cost.cpu_s * 1e6 / (double(players) * cost.run_s);
+}
+
+double wakeupsPerSecond(const FleetCost& cost) {
+  return rate(cost.wakeups, cost.run_s);
+}
+
 std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& players,
-                             double duration_s) {
+                             double duration_s, const FleetCost& cost) {
   std::string list = "[";
   std::uint64_t visible = 0, welcomed = 0;
   for (std::size_t i = 0; i < players.size(); ++i) {
@@ -144,6 +153,10 @@ std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& play
   JsonLine j;
   j.add("players", std::uint64_t(players.size()))
       .add("duration_s", duration_s)
+      .add("fleet_cpu_s", cost.cpu_s)
+      .add("fleet_process_cpu_s", cost.process_cpu_s)
+      .add("fleet_cpu_us_per_player_s", cpuUsPerPlayerSecond(cost, players.size()))
+      .add("fleet_wakeups_per_s", wakeupsPerSecond(cost))
       .addRaw("clients", list)
       .addRaw("totals", totals.str());
   return j.str();

@@ -16,8 +16,22 @@ PlayerCounters totalCounters(const std::vector<std::unique_ptr<SimPlayer>>& play
 JsonLine fleetMetricsLine(const std::vector<std::unique_ptr<SimPlayer>>& players, double t,
                           const PlayerCounters& now, const PlayerCounters& before,
                           double interval_s);
-/// {"players", "duration_s", "clients": [...], "totals": {...}}.
+/// What the fleet's own loop cost over a run.
+struct FleetCost {
+  double run_s = 0;  ///< the loop's wall time
+  /// CPU time of the loop's thread: the fleet's own, even beside a gateway in one test process.
+  double cpu_s = 0;
+  double process_cpu_s = 0;   ///< every thread's, over the same span (client_stub has one)
+  std::uint64_t wakeups = 0;  ///< returns from the loop's readiness wait
+};
+/// CPU microseconds per player per second of run: what one more player costs the fleet.
+double cpuUsPerPlayerSecond(const FleetCost& cost, std::size_t players);
+/// Loop wake-ups per second of run.
+double wakeupsPerSecond(const FleetCost& cost);
+
+/// {"players", "duration_s", "fleet_cpu_s", "fleet_process_cpu_s", "fleet_cpu_us_per_player_s",
+/// "fleet_wakeups_per_s", "clients": [...], "totals": {...}}.
 std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& players,
-                             double duration_s);
+                             double duration_s, const FleetCost& cost);
 
 }  // namespace zonesim::clients

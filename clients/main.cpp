@@ -142,7 +142,13 @@ int main(int argc, char** argv) {
     if (cfg.lobby)
       std::printf("clients logged in %zu of %d through lobby %s\n", fleet.tickets().size(),
                   cfg.players, cfg.lobby->lobby.str().c_str());
-    std::printf("clients welcomed %d of %d\n", fleet.welcomed(), cfg.players);
+    const zonesim::clients::FleetCost& cost = fleet.cost();
+    std::printf(
+        "clients welcomed %d of %d; fleet cpu %.2f s, %.1f us per player-second, %.0f "
+        "wake-ups/s\n",
+        fleet.welcomed(), cfg.players, cost.cpu_s,
+        zonesim::clients::cpuUsPerPlayerSecond(cost, fleet.players().size()),
+        zonesim::clients::wakeupsPerSecond(cost));
     std::fflush(stdout);
   } catch (const zonesim::clients::FdLimitError& e) {
     std::fprintf(stderr,

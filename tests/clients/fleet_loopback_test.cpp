@@ -51,6 +51,13 @@ void checkSummary(const nlohmann::json& summary, int players) {
   }
   EXPECT_TRUE(summary["totals"].contains("handoffs"));
   EXPECT_EQ(summary["totals"]["welcomed"], players);
+  // The fleet's own cost: its thread's CPU, part of the process's (the gateway's too here).
+  double cpu_s = summary["fleet_cpu_s"].get<double>();
+  EXPECT_GT(cpu_s, 0);
+  EXPECT_GE(summary["fleet_process_cpu_s"].get<double>(), cpu_s - 1e-3);
+  EXPECT_NEAR(summary["fleet_cpu_us_per_player_s"].get<double>(),
+              cpu_s * 1e6 / (players * summary["duration_s"].get<double>()), 1e-6);
+  EXPECT_GT(summary["fleet_wakeups_per_s"].get<double>(), 0);
 }
 
 TEST(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
