@@ -1,7 +1,5 @@
 #include "clients/lobby_login.h"
 
-#include <poll.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <optional>
@@ -9,8 +7,10 @@
 #include <string>
 #include <system_error>
 
+#include "common/due_queue.h"
 #include "common/splitmix.h"
 #include "common/timer.h"
+#include "wire/epoll_set.h"
 #include "wire/lobby_wire.h"
 
 namespace zonesim::clients {
@@ -82,8 +82,16 @@ std::vector<LoginTicket> loginAll(std::span<gateway::UdpSocket> sockets,
     if (pending[i].nonce == 0) pending[i].nonce = 1;
     pending[i].next_send_ns = start;
   }
-  std::vector<pollfd> fds(sockets.size());
-  for (std::size_t i = 0; i < sockets.size(); ++i) fds[i] = {sockets[i].fd(), POLLIN, 0};
+  // Replies come one per socket, in any order: an epoll wait costs the sockets that answered,
+  // and the queue of next sends the requests that are due, where a scan of all was O(players)
+  // per reply.
+  gateway::EpollSet ready;
+  DueQueue sends(sockets.size());
+  for (std::size_t i = 0; i < sockets.size(); ++i) {
+    ready.add(sockets[i].fd(), i);
+    sends.arm(i, pending[i].next_send_ns);
+  }
+  std::vector<std::size_t> due;
   std::vector<std::uint8_t> buf(gateway::kMaxDatagramBytes + 1);
   std::string last_refusal;
   bool final_refusal = false;
@@ -97,27 +105,27 @@ std::vector<LoginTicket> loginAll(std::span<gateway::UdpSocket> sockets,
           std::to_string(sockets.size()) + " players got no gateway " +
           (final_refusal ? "" : "within " + std::to_string(s.timeout_s) + " s ") + "(" + why + ")");
     }
-    std::int64_t next = deadline;
-    for (std::size_t i = 0; i < sockets.size(); ++i) {
-      Pending& p = pending[i];
-      if (p.ticket) continue;
-      if (now >= p.next_send_ns) {
-        sockets[i].sendTo(s.lobby, gateway::encodeLoginRequest(p.nonce, "player"));
-        ++stats.requests;
-        p.next_send_ns = now + retry_ns;
-      }
-      next = std::min(next, p.next_send_ns);
+    due.clear();
+    sends.popDue(now, due);
+    for (std::size_t i : due) {
+      sockets[i].sendTo(s.lobby, gateway::encodeLoginRequest(pending[i].nonce, "player"));
+      ++stats.requests;
+      pending[i].next_send_ns = now + retry_ns;
+      sends.arm(i, pending[i].next_send_ns);
     }
-    if (gateway::pollUntil(fds, next) == 0) continue;
+    int n = ready.wait(std::min(deadline, sends.nextDue()));
     now = nowNs();
-    for (std::size_t i = 0; i < fds.size(); ++i) {
-      if (!(fds[i].revents & POLLIN)) continue;
-      bool had = pending[i].ticket.has_value();
-      receive(sockets[i], pending[i], s, now, buf, stats, last_refusal, final_refusal);
-      if (!had && pending[i].ticket) {
-        ++granted;
-        fds[i].events = 0;  // done: its socket is the player's from now on
+    for (int k = 0; k < n; ++k) {
+      std::size_t i = std::size_t(ready.key(k));
+      Pending& p = pending[i];
+      receive(sockets[i], p, s, now, buf, stats, last_refusal, final_refusal);
+      if (!p.ticket) {
+        sends.arm(i, p.next_send_ns);  // a refusal puts the next request off
+        continue;
       }
+      ++granted;
+      sends.disarm(i);
+      ready.remove(sockets[i].fd());  // done: its socket is the player's from now on
     }
   }
   std::vector<LoginTicket> out;

@@ -2,7 +2,8 @@
 // Logging players in through the lobby before they play: each player's socket asks the lobby
 // for a gateway (LoginRequest, retried until answered) and gets back the gateway's address and a
 // connect token bound to that socket's address and port. All players log in at once, over one
-// poll() loop, so a fleet of thousands is not serialised behind round trips.
+// epoll loop, so a fleet of thousands is not serialised behind round trips, and each reply
+// costs its own socket, not a pass over every player's.
 
 #include <atomic>
 #include <cstdint>
