@@ -22,7 +22,7 @@ ImpairmentSettings injectedImpairment(double loss, double delay_ms, double jitte
 }
 
 Impairment::Impairment(const ImpairmentSettings& s, std::uint64_t stream)
-    : s_(s), stream_(stream), in_link_(s.in, s.seed, splitmix64(stream) ^ 1) {
+    : s_(s), active_(s.active()), stream_(stream), in_link_(s.in, s.seed, splitmix64(stream) ^ 1) {
   validateLinkProfile(s_.out);
 }
 
