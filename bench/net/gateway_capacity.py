@@ -5,7 +5,8 @@ client_stub fleet of N players on this machine for each N; prints the gateway's 
 wall time and as the gateway thread's own CPU time (the fleet and the zone share the machine:
 wall time grows with their load, CPU time does not), the whole gateway process's CPU per tick
 (receiving inputs, DDS threads too), its traffic per player and the linear extrapolation of N
-to a full 33 ms tick of the gateway thread's CPU.
+to a full 33 ms tick of the gateway thread's CPU; beside them, the client_stub fleet's own CPU
+per player per second (bench/net/fleet_capacity.py measures that one further).
 Usage: bench/net/gateway_capacity.py [N ...]   (ZONESIM_BIN: the build's bin/ directory;
 ZONESIM_CAPACITY_GATEWAY_ARGS: more gateway options, e.g. "--full-scan-every 1" to compare)"""
 import json
@@ -24,7 +25,7 @@ SECONDS = 8
 counts = [int(a) for a in sys.argv[1:]] or [25, 50, 100, 200]
 print(f"{'players':>7} {'tick ms mean':>12} {'tick ms max':>11} {'tick cpu ms':>11} "
       f"{'process cpu ms':>14} {'kbit/s out per player':>21} {'welcomed':>8} "
-      f"{'players at 33 ms cpu (linear)':>29}")
+      f"{'players at 33 ms cpu (linear)':>29} {'fleet cpu us/player-s':>21}")
 for n in counts:
     with tempfile.TemporaryDirectory(prefix="zs_cap_") as tmp:
         out = Path(tmp)
@@ -51,4 +52,5 @@ for n in counts:
         cpu = g.get("tick_cpu_ms_mean", float("nan"))
         print(f"{n:>7} {g['tick_ms_mean']:>12.2f} {g['tick_ms_max']:>11.1f} {cpu:>11.2f} "
               f"{g.get('process_cpu_ms_per_tick', float('nan')):>14.2f} {per_player:>21.1f} "
-              f"{welcomed:>8} {n * 33.3 / cpu if cpu > 0 else 0:>29.0f}", flush=True)
+              f"{welcomed:>8} {n * 33.3 / cpu if cpu > 0 else 0:>29.0f} "
+              f"{c.get('fleet_cpu_us_per_player_s', float('nan')):>21.1f}", flush=True)
