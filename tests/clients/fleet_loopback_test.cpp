@@ -102,5 +102,52 @@ TEST(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
   EXPECT_GE(gw.counters().inputs_forwarded, 1u);
 }
 
+// With every datagram held 20 ms each way, what the players get comes off their downlinks only
+// when the loop wakes for it: the Welcome, the states and the Pongs all arrive, and no round
+// trip is shorter than the two delays.
+TEST(FleetLoopback, HeldDatagramsArriveThroughTheLoop) {
+  int domain = testing::privateDdsDomain();
+  Scene scene = testing::smallScene();
+  gateway::GatewayConfig gcfg;
+  gcfg.scene = scene;
+  gcfg.dds_domain = domain;
+  gcfg.gateway_id = testing::privateGatewayId();
+  gcfg.expected_zones = 1;
+  gateway::Gateway gw(gcfg);
+  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
+
+  constexpr double kDelayMs = 20;
+  FleetConfig fcfg;
+  fcfg.player.gateway = gateway::Endpoint::loopback(gw.port());
+  fcfg.player.world = scene.world;
+  fcfg.player.impairment.out.delay_ms = kDelayMs;
+  fcfg.player.impairment.in.delay_ms = kDelayMs;
+  fcfg.players = 3;
+  fcfg.duration_s = 2.5;
+  ClientFleet fleet(fcfg);
+
+  std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
+  std::thread gateway_thread([&] { gw.run(stop_gateway); });
+  std::thread fleet_thread([&] {
+    fleet.run(stop_fleet);
+    fleet_done = true;
+  });
+  runZone(zone, fleet_done);
+  fleet_thread.join();
+  stop_gateway = true;
+  gateway_thread.join();
+
+  EXPECT_EQ(fleet.welcomed(), 3);
+  nlohmann::json summary = nlohmann::json::parse(fleet.summaryJson());
+  checkSummary(summary, 3);
+  for (const auto& c : summary["clients"])
+    EXPECT_GE(c["rtt_ms_p50"].get<double>(), 2 * kDelayMs) << "each way held its delay";
+  for (const auto& p : fleet.players()) {
+    gateway::ImpairmentCounters c = p->impairment().counters();
+    EXPECT_GT(c.in.delivered, 0u);
+    EXPECT_GT(c.out.delivered, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace zonesim::clients
