@@ -20,12 +20,20 @@ constexpr std::array<std::uint32_t, 256> makeTable() {
 
 constexpr std::array<std::uint32_t, 256> kTable = makeTable();
 
+// The register after bytes, from register c (pre- and post-inversion left to the callers).
+std::uint32_t update(std::uint32_t c, std::span<const std::uint8_t> bytes) {
+  for (std::uint8_t b : bytes) c = kTable[(c ^ b) & 0xFFu] ^ (c >> 8);
+  return c;
+}
+
 }  // namespace
 
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes) {
-  std::uint32_t c = 0xFFFFFFFFu;
-  for (std::uint8_t b : bytes) c = kTable[(c ^ b) & 0xFFu] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
+  return update(0xFFFFFFFFu, bytes) ^ 0xFFFFFFFFu;
+}
+
+std::uint32_t crc32c(std::span<const std::uint8_t> key, std::span<const std::uint8_t> bytes) {
+  return update(update(0xFFFFFFFFu, key), bytes) ^ 0xFFFFFFFFu;
 }
 
 void appendChecksum(std::vector<std::uint8_t>& bytes) {

@@ -16,6 +16,9 @@ inline constexpr std::size_t kChecksumBytes = 4;
 
 /// CRC-32C (Castagnoli polynomial, reflected), as in iSCSI and SCTP.
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes);
+/// CRC-32C of key followed by bytes, as if they were one buffer: a key both ends hold (a
+/// session token) checks without travelling (wire/downlink_frame.h).
+std::uint32_t crc32c(std::span<const std::uint8_t> key, std::span<const std::uint8_t> bytes);
 /// Appends the checksum of the bytes so far.
 void appendChecksum(std::vector<std::uint8_t>& bytes);
 /// True if the last kChecksumBytes are the checksum of the bytes before them.

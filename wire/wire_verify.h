@@ -2,7 +2,8 @@
 // Checks every datagram from the network before anything reads it: size limits, the file
 // identifier, the FlatBuffers Verifier (bounded depth and table count), then value ranges, since
 // the Verifier checks structure only. Both the gateway and the clients use it: neither trusts
-// the other side.
+// the other side. The lean downlink frames (StateBatch, Spawn, Despawn) have their own parser
+// with the same order of checks and the same drop reasons (wire/downlink_frame.h).
 
 #include <array>
 #include <cstddef>
@@ -35,19 +36,20 @@ inline constexpr std::uint8_t kMaxEntityKind = 3;
 /// Why a datagram was dropped; each is counted separately.
 enum class DropReason : std::uint8_t {
   TooLarge,        ///< over kMaxDatagramBytes
-  Truncated,       ///< too short to be a FlatBuffer
-  BadIdentifier,   ///< not a ZSCP buffer
-  Malformed,       ///< the Verifier rejected its structure
+  Truncated,       ///< too short to be a FlatBuffer (or a lean frame)
+  BadIdentifier,   ///< not a ZSCP buffer (nor a lean frame of a known kind)
+  Malformed,       ///< the Verifier rejected its structure (a frame: its tick or count)
   NoMessage,       ///< union empty or of an unknown type
   UnexpectedType,  ///< a message that never travels in this direction
   OutOfRange,      ///< a value out of range (NaN, |move| > 1, ...)
   BadToken,        ///< no session has this token (forged or expired)
   WrongAddress,    ///< a real token sent from another address than the session's
-  NotReady,        ///< input for a session that has no avatar yet
+  NotReady,        ///< input for a session that has no avatar yet; a frame before the Welcome
   StaleInput,      ///< input seq not newer than the last forwarded one
   SessionLimit,    ///< Hello refused: too many sessions
   RateLimited,     ///< a session sending faster than its per-client rate limit
-  BadChecksum,     ///< the CRC-32C trailer does not match (corrupted on the way)
+  BadChecksum,     ///< the CRC-32C trailer does not match: corrupted on the way, or a lean
+                   ///< frame (keyed by the token) made for another session
   // Hellos refused by a gateway that requires connect tokens (started with a cluster key):
   TokenMissing,       ///< the Hello carries no connect token
   TokenForged,        ///< the token was not signed with the cluster's key (or is malformed)
