@@ -118,10 +118,10 @@ double SimPlayer::serverTick(std::int64_t now_ns) const {
   return std::min(run_on, newest_tick_ + config_.max_lead_s * tick_rate_);
 }
 
-std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(
-    std::uint64_t server_tick, std::uint16_t count, const flatbuffers::Vector<std::uint8_t>* bytes,
-    std::int64_t now_ns) {
-  auto got = codec_->unpack(std::span(bytes->data(), bytes->size()), count, server_tick);
+std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(const gateway::DownlinkFrame& f,
+                                                             std::int64_t now_ns) {
+  std::uint64_t server_tick = f.header.tick;
+  auto got = codec_->unpack(f.payload, f.header.count, server_tick);
   if (!got) {
     counters_.drops.add(gateway::DropReason::OutOfRange);
     return got;
@@ -200,6 +200,16 @@ void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from
     counters_.drops.add(DropReason::WrongAddress);
     return;
   }
+  if (gateway::isDownlinkFrame(bytes)) {
+    // Checked against our token (none before the Welcome: not_ready).
+    gateway::ParsedFrame f = gateway::parseFrame(bytes, token_);
+    if (!f.ok()) {
+      counters_.drops.add(*f.drop);
+      return;
+    }
+    onFrame(f.frame, now_ns);
+    return;
+  }
   gateway::Verified v = gateway::verifyDatagram(bytes, gateway::Direction::ToClient);
   if (!v.ok()) {
     counters_.drops.add(v.reason);
@@ -274,62 +284,71 @@ std::size_t SimPlayer::unspawned() const {
   return n;
 }
 
+void SimPlayer::onFrame(const gateway::DownlinkFrame& f, std::int64_t now_ns) {
+  if (!fresh(f.header.seq)) return;
+  switch (f.header.kind) {
+    case gateway::FrameKind::Spawn:
+      onSpawn(f, now_ns);
+      return;
+    case gateway::FrameKind::StateBatch:
+      onStates(f, now_ns);
+      return;
+    case gateway::FrameKind::Despawn:
+      onDespawn(f);
+      return;
+  }
+}
+
+void SimPlayer::onSpawn(const gateway::DownlinkFrame& f, std::int64_t now_ns) {
+  auto got = unpack(f, now_ns);
+  if (!got) return;
+  for (const dr::WireEntity& e : *got) {
+    if (!newerLifecycle(e.id, f.header.seq)) continue;
+    unknown_.erase(e.id);
+    // A resent spawn of an entity already shown is its newest state: blend, do not jump.
+    const dr::WireEntity* held = view_.find(e.id);
+    bool newer = held == nullptr || e.tick > held->tick;
+    counters_.repeats += newer ? 0 : 1;
+    if (held != nullptr)
+      view_.update(e, serverTick(now_ns));
+    else
+      view_.spawn(e, serverTick(now_ns));
+    if (e.id == avatar_id_ && newer) logOwn(now_ns, e.tick, false);
+    ++counters_.spawns;
+  }
+}
+
+void SimPlayer::onStates(const gateway::DownlinkFrame& f, std::int64_t now_ns) {
+  auto got = unpack(f, now_ns);
+  if (!got) return;
+  for (const dr::WireEntity& e : *got) {
+    if (auto err = view_.update(e, serverTick(now_ns))) {
+      counters_.dr_error_m.add(*err);
+      if (e.id == avatar_id_) logOwn(now_ns, e.tick, false);
+    } else if (view_.find(e.id) != nullptr) {
+      ++counters_.repeats;  // already held: a resend whose first copy arrived
+    } else {
+      // Updated after its last despawn here: the gateway thinks we know it.
+      auto l = lifecycle_.find(e.id);
+      if (l == lifecycle_.end() || l->second < f.header.seq) {
+        auto [u, _] = unknown_.try_emplace(e.id, Unknown{now_ns, now_ns});
+        u->second.last_ns = now_ns;
+      }
+    }
+    ++counters_.updates;
+  }
+}
+
+void SimPlayer::onDespawn(const gateway::DownlinkFrame& f) {
+  for (std::uint64_t id : f.ids) {
+    if (!newerLifecycle(id, f.header.seq)) continue;
+    unknown_.erase(id);
+    counters_.despawns += view_.despawn(id);
+  }
+}
+
 void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
   switch (d.msg_type()) {
-    case proto::Message::Spawn: {
-      const proto::Spawn* m = d.msg_as_Spawn();
-      if (!fresh(m->seq())) return;
-      auto got = unpack(m->server_tick(), m->count(), m->packed(), now_ns);
-      if (!got) return;
-      for (const dr::WireEntity& e : *got) {
-        if (!newerLifecycle(e.id, m->seq())) continue;
-        unknown_.erase(e.id);
-        // A resent spawn of an entity already shown is its newest state: blend, do not jump.
-        const dr::WireEntity* held = view_.find(e.id);
-        bool newer = held == nullptr || e.tick > held->tick;
-        counters_.repeats += newer ? 0 : 1;
-        if (held != nullptr)
-          view_.update(e, serverTick(now_ns));
-        else
-          view_.spawn(e, serverTick(now_ns));
-        if (e.id == avatar_id_ && newer) logOwn(now_ns, e.tick, false);
-        ++counters_.spawns;
-      }
-      return;
-    }
-    case proto::Message::StateBatch: {
-      const proto::StateBatch* m = d.msg_as_StateBatch();
-      if (!fresh(m->seq())) return;
-      auto got = unpack(m->server_tick(), m->count(), m->packed(), now_ns);
-      if (!got) return;
-      for (const dr::WireEntity& e : *got) {
-        if (auto err = view_.update(e, serverTick(now_ns))) {
-          counters_.dr_error_m.add(*err);
-          if (e.id == avatar_id_) logOwn(now_ns, e.tick, false);
-        } else if (view_.find(e.id) != nullptr) {
-          ++counters_.repeats;  // already held: a resend whose first copy arrived
-        } else {
-          // Updated after its last despawn here: the gateway thinks we know it.
-          auto l = lifecycle_.find(e.id);
-          if (l == lifecycle_.end() || l->second < m->seq()) {
-            auto [u, _] = unknown_.try_emplace(e.id, Unknown{now_ns, now_ns});
-            u->second.last_ns = now_ns;
-          }
-        }
-        ++counters_.updates;
-      }
-      return;
-    }
-    case proto::Message::Despawn: {
-      const proto::Despawn* m = d.msg_as_Despawn();
-      if (!fresh(m->seq())) return;
-      for (std::uint64_t id : *m->ids()) {
-        if (!newerLifecycle(id, m->seq())) continue;
-        unknown_.erase(id);
-        counters_.despawns += view_.despawn(id);
-      }
-      return;
-    }
     case proto::Message::Handoff: {
       // Resent under a new seq until acknowledged: the crossing tick tells a repeat (or a
       // notice overtaken by a newer handoff) from news.

@@ -1,8 +1,8 @@
 #pragma once
 // One simulated player: its own UDP socket, the Hello/Welcome handshake (retried until
 // answered), inputs at a fixed rate from the wander profile, a Ping a second for RTT, and a
-// RemoteView fed by Spawn/StateBatch/Despawn. Everything from the network is verified first:
-// the client does not trust the gateway either.
+// RemoteView fed by Spawn/StateBatch/Despawn (lean frames, checked with the session's token).
+// Everything from the network is verified first: the client does not trust the gateway either.
 
 #include <cstdint>
 #include <optional>
@@ -17,6 +17,7 @@
 #include "dr/state_codec.h"
 #include "wire/ack_window.h"
 #include "wire/datagram_batch.h"
+#include "wire/downlink_frame.h"
 #include "wire/impairment.h"
 #include "wire/udp_socket.h"
 #include "wire/wire_encode.h"
@@ -145,19 +146,25 @@ class SimPlayer {
   std::int64_t actDue(std::int64_t now_ns);
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
+  /// Handoff and Pong (FlatBuffers).
   void onMessage(const proto::Datagram& d, std::int64_t now_ns);
+  /// A checked lean frame: Spawn, StateBatch or Despawn (wire/downlink_frame.h).
+  void onFrame(const gateway::DownlinkFrame& f, std::int64_t now_ns);
+  void onSpawn(const gateway::DownlinkFrame& f, std::int64_t now_ns);
+  void onStates(const gateway::DownlinkFrame& f, std::int64_t now_ns);
+  void onDespawn(const gateway::DownlinkFrame& f);
   /// Whether a numbered datagram is new (acknowledging it); false for a duplicate.
   bool fresh(std::uint32_t seq);
   /// Whether a spawn or despawn in datagram seq is newer than the last one applied to id.
   bool newerLifecycle(std::uint64_t id, std::uint32_t seq);
-  /// Unpacks states; nullopt (counted as out of range) if the stream is bad.
   /// Logs the sampled entities as shown at the current whole server tick, once per tick;
   /// returns when the next tick starts.
   std::int64_t logDisplay(std::int64_t now_ns);
   /// Logs an own-avatar state or a handoff (up to kMaxOwnEvents).
   void logOwn(std::int64_t now_ns, std::uint64_t tick, bool handoff);
-  std::optional<std::vector<dr::WireEntity>> unpack(std::uint64_t server_tick, std::uint16_t count,
-                                                    const flatbuffers::Vector<std::uint8_t>* bytes,
+  /// Unpacks a frame's states and follows its server tick; nullopt (counted as out of range) if
+  /// the stream is bad.
+  std::optional<std::vector<dr::WireEntity>> unpack(const gateway::DownlinkFrame& f,
                                                     std::int64_t now_ns);
 
   PlayerConfig config_;

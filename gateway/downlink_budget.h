@@ -22,8 +22,9 @@ struct BudgetSettings {
   double error_angle_rad = 0.0087;  ///< error held as this angle seen from the viewer (0.5 deg)
   bool enabled() const { return kbps > 0; }
   /// Ticks over which a client's spawns and updates are gathered into one send: enough for
-  /// about kGatherBytes (a datagram's framing is 80 bytes, as dr_bench prints, so at a low
-  /// rate a datagram a tick would be mostly framing), at most a third of a second.
+  /// about kGatherBytes, at most a third of a second. Chosen when a datagram's framing was
+  /// 80 bytes, so that at a low rate a datagram a tick would not be mostly framing; the lean
+  /// frames' 13 (wire/downlink_frame.h) would allow smaller sends, not measured yet.
   int ticksPerSend(double tick_rate) const;
   /// Bytes each client may be sent per gateway tick: a second's bytes over tick_rate +
   /// ticksPerSend ticks, since a 1 s window that starts with one send can hold that many

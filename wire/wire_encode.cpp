@@ -1,7 +1,7 @@
 #include "wire/wire_encode.h"
 
-#include <algorithm>
 #include <cassert>
+#include <stdexcept>
 
 #include "wire/datagram_checksum.h"
 
@@ -19,20 +19,9 @@ Bytes finish(flatbuffers::FlatBufferBuilder& fbb, std::uint64_t token, proto::Me
   out.assign(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
   appendChecksum(out);
   assert(out.size() <= kMaxDatagramBytes);
-  return out;
-}
-
-// Splits items into runs of at most per_chunk and encodes each run with make(fbb, run).
-template <typename Item, typename Make>
-std::vector<Bytes> chunked(std::span<const Item> items, std::size_t per_chunk, Make make) {
-  std::vector<Bytes> out;
-  out.reserve((items.size() + per_chunk - 1) / per_chunk);
-  flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
-  for (std::size_t begin = 0; begin < items.size(); begin += per_chunk) {
-    fbb.Clear();
-    std::size_t n = std::min(per_chunk, items.size() - begin);
-    out.push_back(make(fbb, items.subspan(begin, n)));
-  }
+  // Byte 0 is the low byte of the root offset, just past the identifier and the root's vtable:
+  // were it ever 0x80 or more, the client would take the datagram for a lean frame.
+  if (isDownlinkFrame(out)) throw std::logic_error("FlatBuffers datagram starts like a frame");
   return out;
 }
 
@@ -115,23 +104,16 @@ Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h) {
 }
 
 Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick) {
-  flatbuffers::FlatBufferBuilder fbb(96);
-  auto none = fbb.CreateVector(static_cast<const std::uint8_t*>(nullptr), 0);
-  return finish(fbb, token, proto::Message::StateBatch,
-                proto::CreateStateBatch(fbb, tick, 0, none, 0));
+  return encodeFrame({FrameKind::StateBatch, 0, tick, 0}, {}, token);
 }
 
 namespace {
-template <typename Create>
-std::vector<Bytes> packed(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
-                          std::span<const dr::WireEntity> states, proto::Message type,
-                          const ChunkSeq& seq, Create create) {
+std::vector<Bytes> packed(FrameKind kind, std::uint64_t token, std::uint64_t tick,
+                          const dr::StateCodec& codec, std::span<const dr::WireEntity> states,
+                          const ChunkSeq& seq) {
   std::vector<Bytes> out;
-  flatbuffers::FlatBufferBuilder fbb(kMaxDatagramBytes);
   for (const dr::PackedChunk& c : codec.pack(states, tick, kPackedBytesPerDatagram)) {
-    fbb.Clear();
-    auto v = fbb.CreateVector(c.bytes.data(), c.bytes.size());
-    out.push_back(finish(fbb, token, type, create(fbb, std::uint16_t(c.count), v, seq.take())));
+    out.push_back(encodeFrame({kind, seq.take(), tick, c.count}, c.bytes, token));
     if (seq.counts != nullptr) seq.counts->push_back(c.count);
   }
   return out;
@@ -141,29 +123,38 @@ std::vector<Bytes> packed(std::uint64_t token, std::uint64_t tick, const dr::Sta
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq) {
-  return packed(token, tick, codec, states, proto::Message::StateBatch, seq,
-                [&](auto& fbb, std::uint16_t n, auto v, std::uint32_t q) {
-                  return proto::CreateStateBatch(fbb, tick, n, v, q);
-                });
+  return packed(FrameKind::StateBatch, token, tick, codec, states, seq);
 }
 
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq) {
-  return packed(token, tick, codec, states, proto::Message::Spawn, seq,
-                [&](auto& fbb, std::uint16_t n, auto v, std::uint32_t q) {
-                  return proto::CreateSpawn(fbb, tick, n, v, q);
-                });
+  return packed(FrameKind::Spawn, token, tick, codec, states, seq);
 }
 
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
                                        std::span<const std::uint64_t> ids, ChunkSeq seq) {
-  return chunked(ids, kIdsPerDatagram, [&](auto& fbb, auto run) {
-    auto v = fbb.CreateVector(run.data(), run.size());
-    if (seq.counts != nullptr) seq.counts->push_back(run.size());
-    return finish(fbb, token, proto::Message::Despawn,
-                  proto::CreateDespawn(fbb, tick, v, seq.take()));
-  });
+  std::vector<Bytes> out;
+  Bytes payload;
+  std::size_t count = 0;
+  auto close = [&] {
+    out.push_back(encodeFrame({FrameKind::Despawn, seq.take(), tick, count}, payload, token));
+    if (seq.counts != nullptr) seq.counts->push_back(count);
+    payload.clear();
+    count = 0;
+  };
+  std::uint64_t prev = 0;
+  for (std::uint64_t id : ids) {
+    // Each frame's deltas start from 0 again, so that it reads alone.
+    if (!appendDespawnId(payload, count > 0 ? prev : 0, id, kMaxFramePayloadBytes)) {
+      close();
+      appendDespawnId(payload, 0, id, kMaxFramePayloadBytes);
+    }
+    ++count;
+    prev = id;
+  }
+  if (count > 0) close();
+  return out;
 }
 
 }  // namespace zonesim::gateway

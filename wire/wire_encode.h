@@ -1,6 +1,7 @@
 #pragma once
-// Builds client-protocol datagrams. Lists of entities are split into chunks so that every
-// datagram stays within kMaxDatagramBytes and nothing is lost between chunks.
+// Builds client-protocol datagrams: FlatBuffers Datagrams, except StateBatch, Spawn and Despawn,
+// which go as lean frames (wire/downlink_frame.h). Lists of entities are split into chunks so
+// that every datagram stays within kMaxDatagramBytes and nothing is lost between chunks.
 
 #include <cstdint>
 #include <span>
@@ -9,6 +10,7 @@
 
 #include "client_protocol_generated.h"
 #include "dr/state_codec.h"
+#include "wire/downlink_frame.h"
 #include "wire/wire_verify.h"
 
 namespace zonesim::gateway {
@@ -16,14 +18,9 @@ namespace zonesim::gateway {
 /// One encoded datagram.
 using Bytes = std::vector<std::uint8_t>;
 
-/// Room left for the Datagram and message tables, vtables and vector headers (measured < 100)
-/// and the checksum trailer.
-inline constexpr std::size_t kChunkOverheadBytes = 128;
-/// Packed state bytes per StateBatch or Spawn datagram.
-inline constexpr std::size_t kPackedBytesPerDatagram = kMaxDatagramBytes - kChunkOverheadBytes;
-/// Ids per Despawn datagram.
-inline constexpr std::size_t kIdsPerDatagram =
-    (kMaxDatagramBytes - kChunkOverheadBytes) / sizeof(std::uint64_t);
+/// Packed state bytes per StateBatch or Spawn datagram: what a lean frame (wire/downlink_frame.h)
+/// always has room for.
+inline constexpr std::size_t kPackedBytesPerDatagram = kMaxFramePayloadBytes;
 
 /// World bounds and rates announced in a Welcome.
 struct WelcomeInfo {
@@ -66,8 +63,8 @@ Bytes encodeBye(std::uint64_t token);
 Bytes encodeWelcome(const WelcomeInfo& w);
 Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
-/// A StateBatch with no states: tells a client whose view is quiet that the zones' clock moved
-/// on (unnumbered: nothing in it needs resending).
+/// A StateBatch frame with no states: tells a client whose view is quiet that the zones' clock
+/// moved on (unnumbered: nothing in it needs resending).
 Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick);
 
 /// Sequence numbering of a run of chunks: chunk i gets seq next() (0 = unnumbered), and
@@ -79,15 +76,16 @@ struct ChunkSeq {
   std::uint32_t take() const { return next != nullptr ? next(ctx) : 0; }
 };
 
-/// StateBatch datagrams carrying all states (ascending ids), packed by the codec, in order.
+/// StateBatch frames carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq = {});
-/// Spawn datagrams carrying all states (ascending ids), packed by the codec, in order.
+/// Spawn frames carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq = {});
-/// Despawn datagrams carrying all ids, kIdsPerDatagram per datagram, in order.
+/// Despawn frames carrying all ids (strictly ascending: std::invalid_argument otherwise), as
+/// many per frame as fit, in order.
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
                                        std::span<const std::uint64_t> ids, ChunkSeq seq = {});
 

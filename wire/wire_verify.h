@@ -40,7 +40,7 @@ enum class DropReason : std::uint8_t {
   BadIdentifier,   ///< not a ZSCP buffer (nor a lean frame of a known kind)
   Malformed,       ///< the Verifier rejected its structure (a frame: its tick or count)
   NoMessage,       ///< union empty or of an unknown type
-  UnexpectedType,  ///< a message that never travels in this direction
+  UnexpectedType,  ///< a message that never travels in this direction (or not as FlatBuffers)
   OutOfRange,      ///< a value out of range (NaN, |move| > 1, ...)
   BadToken,        ///< no session has this token (forged or expired)
   WrongAddress,    ///< a real token sent from another address than the session's
@@ -99,7 +99,8 @@ std::optional<DropReason> checkFraming(std::span<const std::uint8_t>& bytes,
                                        VerifierLimits limits);
 
 /// Runs all checks in order (sizes, the checksum trailer, the Verifier on the bytes before it,
-/// values); the returned pointer aliases bytes. bytes must be 4-byte aligned.
+/// byte 0 not a lean frame's, values); the returned pointer aliases bytes. bytes must be 4-byte
+/// aligned.
 Verified verifyDatagram(std::span<const std::uint8_t> bytes, Direction direction);
 
 /// True if codec parameters describe a grid and steps a client can work with.

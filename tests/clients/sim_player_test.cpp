@@ -136,32 +136,43 @@ TEST_F(SimPlayerTest, ForgedAndMalformedTrafficIsDroppedByReason) {
   EXPECT_FALSE(player_->welcomed());
 
   std::uint64_t token = welcome();
-  toPlayer(spawnOf(token + 1, 1, one));  // forged token
+  // A frame's checksum is keyed by the token: made with another, it does not check.
+  toPlayer(spawnOf(token + 1, 1, one));
+  EXPECT_EQ(dropped(DropReason::BadChecksum), 1u);
+  toPlayer(gateway::encodePong(token + 1, 1, 2));  // a FlatBuffers datagram carries its token
   EXPECT_EQ(dropped(DropReason::BadToken), 2u);
   gateway::UdpSocket stranger;
   toPlayer(spawnOf(token, 1, one), stranger);  // not from the gateway
   EXPECT_EQ(dropped(DropReason::WrongAddress), 1u);
   toPlayer(Bytes{1, 2, 3});
-  EXPECT_EQ(dropped(DropReason::Truncated), 1u);
+  toPlayer(Bytes{0xA2, 2, 3});  // byte 0 of a frame
+  EXPECT_EQ(dropped(DropReason::Truncated), 2u);
   // A record 90 ticks old in a batch of tick 100, the batch tick rewritten to 50 after
   // packing: the state would predate tick 0, and unpacking refuses it.
   std::vector<dr::WireEntity> early{state(6, 1)};
   early[0].tick = 10;
-  Bytes at2 = spawnOf(token, 100, early);
-  gateway::Verified pv = gateway::verifyDatagram(at2, gateway::Direction::ToClient);
-  ASSERT_TRUE(pv.ok());
-  flatbuffers::FlatBufferBuilder fbb;
-  const proto::Spawn* sp = pv.datagram->msg_as_Spawn();
-  auto v = fbb.CreateVector(sp->packed()->data(), sp->packed()->size());
-  proto::FinishDatagramBuffer(
-      fbb, proto::CreateDatagram(fbb, token, proto::Message::Spawn,
-                                 proto::CreateSpawn(fbb, 50, sp->count(), v).Union()));
-  gateway::Bytes crafted(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
-  gateway::appendChecksum(crafted);
-  toPlayer(crafted);
+  Bytes at100 = spawnOf(token, 100, early);
+  gateway::ParsedFrame pf = gateway::parseFrame(at100, token);
+  ASSERT_TRUE(pf.ok());
+  gateway::FrameHeader h = pf.frame.header;
+  h.tick = 50;
+  toPlayer(gateway::encodeFrame(h, pf.frame.payload, token));
   EXPECT_EQ(dropped(DropReason::OutOfRange), 1u);
+  h.count = 9;  // more records than the bytes hold
+  toPlayer(gateway::encodeFrame(h, pf.frame.payload, token));
+  EXPECT_EQ(dropped(DropReason::OutOfRange), 2u);
   toPlayer(gateway::encodeInput(token, 1, 0, 0));  // a gateway-bound message
   EXPECT_EQ(dropped(DropReason::UnexpectedType), 1u);
+  // A Spawn as FlatBuffers: these travel as frames only.
+  flatbuffers::FlatBufferBuilder fbb;
+  auto v = fbb.CreateVector(pf.frame.payload.data(), pf.frame.payload.size());
+  proto::FinishDatagramBuffer(fbb,
+                              proto::CreateDatagram(fbb, token, proto::Message::Spawn,
+                                                    proto::CreateSpawn(fbb, 100, 1, v).Union()));
+  gateway::Bytes flat(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+  gateway::appendChecksum(flat);
+  toPlayer(flat);
+  EXPECT_EQ(dropped(DropReason::UnexpectedType), 2u);
   EXPECT_EQ(player_->view().size(), 0u) << "nothing dropped reached the view";
 }
 

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <thread>
 
+#include "client_read.h"
 #include "common/timer.h"
 #include "gateway/gateway.h"
 #include "gateway_fixture.h"
@@ -14,6 +15,7 @@
 namespace zonesim::gateway {
 namespace {
 
+using testing::ClientRead;
 using testing::entity;
 
 constexpr std::int64_t kTimeoutNs = 15'000'000'000;
@@ -26,22 +28,30 @@ class GatewayLoopback : public LoopbackGatewayTest {
     openGateway(cfg);
   }
 
-  // Receives one verified datagram for the client within 20 ms, if any.
-  const proto::Datagram* receive() {
+  // Receives one checked datagram for the client within 20 ms, if any.
+  ClientRead receive() {
     pollfd p{client_.fd(), POLLIN, 0};
-    if (::poll(&p, 1, 20) <= 0) return nullptr;
+    if (::poll(&p, 1, 20) <= 0) return {};
     auto got = client_.receive(buf_);
-    if (!got || got->from != gateway_addr_) return nullptr;
-    Verified v = verifyDatagram(std::span(buf_.data(), got->size), Direction::ToClient);
-    EXPECT_TRUE(v.ok()) << dropReasonName(v.reason);
-    return v.datagram;
+    if (!got || got->from != gateway_addr_) return {};
+    return testing::readAsClient(std::span(buf_.data(), got->size), token_);
+  }
+  // The next Handoff notice within the timeout, or nullptr.
+  const proto::Handoff* nextHandoff() {
+    std::int64_t deadline = nowNs() + kTimeoutNs;
+    while (nowNs() < deadline) {
+      ClientRead r = receive();
+      if (r.datagram && r.datagram->msg_type() == proto::Message::Handoff)
+        return r.datagram->msg_as_Handoff();
+    }
+    return nullptr;
   }
 
   // Plays client and zone until the client has its Welcome, both entities and a StateBatch.
   // The client acknowledges what it received, as client_stub does: until its spawns are
   // acknowledged the gateway sends the entities' states as Spawns, not StateBatches.
   std::uint64_t handshakeAndFirstState() {
-    std::uint64_t token = 0;
+    std::uint64_t& token = token_;
     std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0, next_ack = 0;
     while (nowNs() < deadline && !(token && spawned_avatar_ && spawned_npc_ && got_batch_)) {
       if (token == 0 && nowNs() >= next_hello) {
@@ -56,7 +66,7 @@ class GatewayLoopback : public LoopbackGatewayTest {
         client_.sendTo(gateway_addr_, encodePing(token, 1, acks_.ack(), acks_.bits()));
         next_ack = nowNs() + 50'000'000;
       }
-      if (const proto::Datagram* d = receive()) observe(*d, token);
+      observe(receive());
     }
     return token;
   }
@@ -75,37 +85,27 @@ class GatewayLoopback : public LoopbackGatewayTest {
     zone_->publishBatch(spawn_x_, spawn_z_, 0, tick_, {}, {avatar, npc});
   }
 
-  void observe(const proto::Datagram& d, std::uint64_t& token) {
-    switch (d.msg_type()) {
-      case proto::Message::Welcome: {
-        const proto::Welcome* w = d.msg_as_Welcome();
-        EXPECT_EQ(w->client_nonce(), 99u);
-        EXPECT_EQ(w->avatar_id(), kAvatar);
-        EXPECT_EQ(w->player_id(), player_);
-        EXPECT_EQ(w->zone(), 0);
-        token = w->token();
-        codec_.emplace(fromProto(*w->codec()));
-        break;
-      }
-      case proto::Message::Spawn: {
-        const proto::Spawn* m = d.msg_as_Spawn();
-        acks_.receive(m->seq());
-        ASSERT_TRUE(codec_.has_value());
-        auto got = codec_->unpack(std::span(m->packed()->data(), m->packed()->size()), m->count(),
-                                  m->server_tick());
-        ASSERT_TRUE(got.has_value());
-        for (const dr::WireEntity& s : *got) {
-          spawned_avatar_ |= s.id == kAvatar;
-          spawned_npc_ |= s.id == kNpc;
-        }
-        break;
-      }
-      case proto::Message::StateBatch:
-        acks_.receive(d.msg_as_StateBatch()->seq());
-        got_batch_ = true;
-        break;
-      default:
-        break;
+  void observe(const ClientRead& r) {
+    if (r.datagram && r.datagram->msg_type() == proto::Message::Welcome) {
+      const proto::Welcome* w = r.datagram->msg_as_Welcome();
+      EXPECT_EQ(w->client_nonce(), 99u);
+      EXPECT_EQ(w->avatar_id(), kAvatar);
+      EXPECT_EQ(w->player_id(), player_);
+      EXPECT_EQ(w->zone(), 0);
+      token_ = w->token();
+      codec_.emplace(fromProto(*w->codec()));
+    }
+    if (!r.frame) return;
+    const DownlinkFrame& f = *r.frame;
+    acks_.receive(f.header.seq);
+    if (f.header.kind == FrameKind::StateBatch) got_batch_ = true;
+    if (f.header.kind != FrameKind::Spawn) return;
+    ASSERT_TRUE(codec_.has_value());
+    auto got = codec_->unpack(f.payload, f.header.count, f.header.tick);
+    ASSERT_TRUE(got.has_value());
+    for (const dr::WireEntity& s : *got) {
+      spawned_avatar_ |= s.id == kAvatar;
+      spawned_npc_ |= s.id == kNpc;
     }
   }
 
@@ -122,7 +122,7 @@ class GatewayLoopback : public LoopbackGatewayTest {
   }
 
   static constexpr std::uint64_t kAvatar = 0x1000000000001ULL, kNpc = 0x1000000000002ULL;
-  std::uint64_t player_ = 0, tick_ = 0;
+  std::uint64_t player_ = 0, tick_ = 0, token_ = 0;
   std::uint32_t seq_ = 0;
   float spawn_x_ = 0, spawn_z_ = 0;
   bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
@@ -149,12 +149,7 @@ TEST_F(GatewayLoopback, WelcomeSpawnStateBatchInputsAndHandoff) {
 
   // Zone 1 takes the avatar over: the client hears of it, later inputs go to z.1.
   zone_->publishOwnership(player_, kAvatar, 0, 1, tick_ + 1, seq_);
-  const proto::Handoff* handoff = nullptr;
-  std::int64_t deadline = nowNs() + kTimeoutNs;
-  while (handoff == nullptr && nowNs() < deadline) {
-    const proto::Datagram* d = receive();
-    if (d && d->msg_type() == proto::Message::Handoff) handoff = d->msg_as_Handoff();
-  }
+  const proto::Handoff* handoff = nextHandoff();
   ASSERT_NE(handoff, nullptr);
   EXPECT_EQ(handoff->from_zone(), 0);
   EXPECT_EQ(handoff->to_zone(), 1);
@@ -172,11 +167,9 @@ TEST_F(GatewayLoopback, AHandoffIsResentUntilAcknowledged) {
   zone_->publishOwnership(player_, kAvatar, 0, 1, tick_ + 1, seq_);
   // The client acknowledges nothing of it: the same notice comes again under a new seq.
   std::vector<std::uint32_t> seqs;
-  std::int64_t deadline = nowNs() + kTimeoutNs;
-  while (seqs.size() < 2 && nowNs() < deadline) {
-    const proto::Datagram* d = receive();
-    if (!d || d->msg_type() != proto::Message::Handoff) continue;
-    const proto::Handoff* h = d->msg_as_Handoff();
+  while (seqs.size() < 2) {
+    const proto::Handoff* h = nextHandoff();
+    if (h == nullptr) break;
     EXPECT_EQ(h->to_zone(), 1);
     EXPECT_EQ(h->tick(), tick_ + 1);
     seqs.push_back(h->seq());
