@@ -2,8 +2,10 @@
 // one of which owns a live session, raw or with a valid checksum appended (to get past it),
 // plus well-formed inputs carrying that session's token with fuzzed values (to reach the range
 // checks behind the Verifier), plus Hellos to a gateway with the cluster key carrying fuzzed
-// connect tokens, raw or signed with fuzzed fields (to reach the checks behind the tag). It
-// must never crash, hang or trip a sanitizer; every datagram is either accepted or dropped
+// connect tokens, raw or signed with fuzzed fields (to reach the checks behind the tag). And
+// the client's side: fuzzed client-bound datagrams through the client's checks, lean frames
+// raw or sealed with the session's keyed checksum, their states unpacked by the client's codec.
+// It must never crash, hang or trip a sanitizer; every datagram is either accepted or dropped
 // and counted.
 #include <algorithm>
 #include <cstddef>
@@ -13,9 +15,11 @@
 #include <span>
 
 #include "auth/connect_token.h"
+#include "dr/state_codec.h"
 #include "gateway/datagram_handler.h"
 #include "gateway/session_table.h"
 #include "wire/datagram_checksum.h"
+#include "wire/downlink_frame.h"
 #include "wire/wire_encode.h"
 
 namespace {
@@ -104,6 +108,27 @@ void fuzzTokenHello(std::span<const std::uint8_t> rest, bool sign, const Endpoin
   k.out.clear();
 }
 
+/// What a client does with a datagram from its gateway (clients/sim_player.cpp, session token
+/// kClientToken): rest raw, or sealed with the keyed checksum to reach the checks behind it.
+void fuzzClientBound(std::span<const std::uint8_t> rest, bool seal) {
+  constexpr std::uint64_t kClientToken = 0x0123456789abcdefULL;
+  static const dr::StateCodec codec{dr::CodecParams{}};
+  Bytes bytes(rest.begin(), rest.end());
+  if (!isDownlinkFrame(bytes)) {
+    verifyDatagram(bytes, Direction::ToClient);
+    return;
+  }
+  if (seal) {
+    std::uint8_t key[8];
+    for (int i = 0; i < 8; ++i) key[i] = std::uint8_t(kClientToken >> (8 * i));
+    std::uint32_t crc = crc32c(key, bytes);
+    for (int i = 0; i < 4; ++i) bytes.push_back(std::uint8_t(crc >> (8 * i)));
+  }
+  ParsedFrame p = parseFrame(bytes, kClientToken);
+  if (!p.ok() || p.frame.header.kind == FrameKind::Despawn) return;
+  codec.unpack(p.frame.payload, p.frame.header.count, p.frame.header.tick);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -114,6 +139,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Endpoint& from = (mode & 3) == 0 ? h.player : (mode & 3) == 1 ? h.stranger : h.other;
   if ((mode & 0xe0) == 0x20) {
     fuzzTokenHello(rest, mode & 0x10, from);
+    return 0;
+  }
+  if ((mode & 0xe0) == 0x60) {
+    fuzzClientBound(rest, mode & 0x10);
     return 0;
   }
   if ((mode & 0x80) && rest.size() >= 12) {

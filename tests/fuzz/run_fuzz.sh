@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds the datagram-handler fuzz target with clang (libFuzzer + ASan + UBSan) and runs it for a
-# fixed time. Usage: tests/fuzz/run_fuzz.sh [BUILD_DIR] [SECONDS]. Exit 0: no crash, no leak,
+# Builds the datagram fuzz target (the gateway's handler, the client's checks) with clang
+# (libFuzzer + ASan + UBSan) and runs it for a fixed time.
+# Usage: tests/fuzz/run_fuzz.sh [BUILD_DIR] [SECONDS]. Exit 0: no crash, no leak,
 # no sanitizer report. Skips (exit 77) where clang cannot link libFuzzer, except under CI
 # (CI=true), where deploy/setup.sh has installed clang and its runtimes: there it fails.
 set -euo pipefail
@@ -24,6 +25,6 @@ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DZONESI
 cmake --build "$BUILD" --target fuzz_datagram_handler -j "${ZONESIM_JOBS:-2}"
 corpus="$probe/corpus"
 mkdir -p "$corpus"
-echo "== fuzzing the gateway's datagram handler for $SECONDS_RUN s"
+echo "== fuzzing the gateway's datagram handler and the client's checks for $SECONDS_RUN s"
 "$BUILD/bin/fuzz_datagram_handler" -max_total_time="$SECONDS_RUN" -max_len=2048 -rss_limit_mb=2048 \
   -print_final_stats=1 "$corpus" 2>&1 | tail -15
