@@ -20,6 +20,8 @@
 #include "common/interest_grid.h"
 #include "common/rng.h"
 #include "common/scene.h"
+#include "wire/datagram_checksum.h"
+#include "wire/downlink_frame.h"
 #include "wire/wire_encode.h"
 #include "zone_node/net/dead_reckoning.h"
 #include "zone_node/population.h"
@@ -34,6 +36,10 @@ namespace {
 
 constexpr int kNpcs = 600, kAvatars = 150;
 constexpr double kUdpIpHeaderBytes = 28;
+// Frames carry the server tick as LEB128: measured as for a server up an hour (3 bytes; 2 for
+// the bench's own ticks would flatter it). A day adds a byte.
+constexpr std::uint64_t kUptimeTicks = 30 * 3600;
+constexpr std::uint64_t kToken = 0x1234567890abcdefULL;
 
 struct Config {
   std::string name;
@@ -54,6 +60,7 @@ struct Config {
 
 struct Result {
   double bits_per_client_s = 0, wire_bits_per_client_s = 0;
+  double flat_wire_bits_per_client_s = 0;  ///< the same datagrams framed as FlatBuffers
   double visible_moving = 0;
   double p50 = 0, p99 = 0, max = 0;
   double updates_per_entity_s = 0;
@@ -84,14 +91,31 @@ double percentile(std::vector<double>& v, double q) {
   return v[k];
 }
 
-// Bytes of the Datagram + StateBatch framing around `packed` bytes (measured once).
-std::size_t framingBytes(const dr::StateCodec& codec) {
+// A gathered chunk as the gateway sends it: a lean StateBatch frame (the real encoder).
+std::size_t leanBytes(const dr::PackedChunk& ch, std::uint64_t tick) {
+  return gateway::encodeFrame({gateway::FrameKind::StateBatch, 1, tick + kUptimeTicks, ch.count},
+                              ch.bytes, kToken)
+      .size();
+}
+
+// The same chunk as the FlatBuffers Datagram{token, StateBatch} with its CRC-32C that carried
+// it before the lean frame (its tables are still in idl/client_protocol.fbs), for comparison.
+std::size_t flatBytes(const dr::PackedChunk& ch, std::uint64_t tick) {
+  flatbuffers::FlatBufferBuilder fbb(gateway::kMaxDatagramBytes);
+  auto v = fbb.CreateVector(ch.bytes.data(), ch.bytes.size());
+  auto batch = proto::CreateStateBatch(fbb, tick + kUptimeTicks, std::uint16_t(ch.count), v, 1);
+  proto::FinishDatagramBuffer(
+      fbb, proto::CreateDatagram(fbb, kToken, proto::Message::StateBatch, batch.Union()));
+  return fbb.GetSize() + gateway::kChecksumBytes;
+}
+
+// Bytes around one record's packed bytes, by each encoder.
+std::size_t framingBytes(const dr::StateCodec& codec, bool lean) {
   dr::WireEntity e;
   e.id = 1;
   std::vector<dr::WireEntity> one{e};
-  auto packed = codec.pack(one, 0, gateway::kPackedBytesPerDatagram);
-  auto dg = gateway::encodeStateChunks(0x1234567890abcdefULL, 1, codec, one);
-  return dg[0].size() - packed[0].bytes.size();
+  dr::PackedChunk ch = codec.pack(one, 0, gateway::kPackedBytesPerDatagram)[0];
+  return (lean ? leanBytes(ch, 0) : flatBytes(ch, 0)) - ch.bytes.size();
 }
 
 Result run(const Config& c, double seconds) {
@@ -117,14 +141,13 @@ Result run(const Config& c, double seconds) {
   InterestGrid grid(scene.world, scene.interest_cell_size);
   zone::DeadReckoner reckoner(drc, dr::codecParams(scene));
   const dr::StateCodec& codec = reckoner.codec();
-  const std::size_t framing = framingBytes(codec);
   clients::RemoteView view({c.blend, 0.2, scene.dt});
   Pcg32 loss(5, 6);
   const int ticks = int(seconds / scene.dt);
   const int warmup = int(5 / scene.dt);  // let the first full sends pass
   std::vector<double> errors;
   errors.reserve(std::size_t(ticks) * store.size() / 2);
-  double bits = 0, wire_bits = 0, visible_moving = 0, updates = 0;
+  double bits = 0, wire_bits = 0, flat_wire_bits = 0, visible_moving = 0, updates = 0;
   std::vector<int> observers;
   for (std::size_t i = 0; i < store.size(); ++i)
     if (store.kind[i] == zone::EntityKind::Avatar) observers.push_back(int(i));
@@ -223,9 +246,11 @@ Result run(const Config& c, double seconds) {
           double b = codec.stateBits(zone::modelFor(drc, store.kind[i])) + 24;
           bits += b;
           wire_bits += b;
+          flat_wire_bits += b;
         } else if (!inside && seen[i]) {
           bits += 64;
           wire_bits += 64;
+          flat_wire_bits += 64;
         }
         seen[i] = inside;
       }
@@ -240,7 +265,8 @@ Result run(const Config& c, double seconds) {
       for (const dr::PackedChunk& ch :
            codec.pack(batch, std::uint64_t(tick), gateway::kPackedBytesPerDatagram)) {
         bits += 8.0 * double(ch.bytes.size());
-        wire_bits += 8.0 * (double(ch.bytes.size()) + double(framing) + kUdpIpHeaderBytes);
+        wire_bits += 8.0 * (double(leanBytes(ch, std::uint64_t(tick))) + kUdpIpHeaderBytes);
+        flat_wire_bits += 8.0 * (double(flatBytes(ch, std::uint64_t(tick))) + kUdpIpHeaderBytes);
       }
     }
     // What the client shows against the truth, for every entity, at this server tick.
@@ -257,6 +283,7 @@ Result run(const Config& c, double seconds) {
   Result r;
   r.bits_per_client_s = bits / n_obs / measured_s;
   r.wire_bits_per_client_s = wire_bits / n_obs / measured_s;
+  r.flat_wire_bits_per_client_s = flat_wire_bits / n_obs / measured_s;
   r.visible_moving = visible_moving / n_obs / double(ticks - warmup);
   r.updates_per_entity_s = updates / double(store.size()) / measured_s;
   r.max = errors.empty() ? 0 : *std::max_element(errors.begin(), errors.end());
@@ -335,7 +362,7 @@ int main(int argc, char** argv) {
     configs.push_back(c);
   }
   // Several ticks' updates in one datagram: framing per visible entity against the latency.
-  for (int ticks : {1, 2, 3, 5}) {
+  for (int ticks : {1, 2, 3, 4, 5}) {
     c = base;
     c.name = "gather";
     c.ticks_per_datagram = ticks;
@@ -350,34 +377,41 @@ int main(int argc, char** argv) {
     std::fprintf(csv,
                  "set,order,threshold_m,blend,loss,radius_m,payload_bps,wire_bps,visible_moving,"
                  "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s,ticks_per_datagram,"
-                 "wire_bps_per_visible\n");
+                 "wire_bps_per_visible,flatbuffers_wire_bps_per_visible\n");
   std::printf(
       "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
       "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
       kNpcs, kAvatars, seconds - 5);
-  std::printf("framing: %zu B per datagram around its packed records, plus %.0f B of UDP/IP\n",
-              framingBytes(dr::StateCodec(dr::codecParams(benchScene()))), kUdpIpHeaderBytes);
-  std::printf("%-7s %-6s %6s %5s %5s %6s %3s | %10s %10s %8s %9s %9s | %8s %8s %8s | %7s\n",
+  dr::StateCodec bench_codec(dr::codecParams(benchScene()));
+  std::printf(
+      "framing: %zu B per datagram around its packed records as a lean frame (FlatBuffers "
+      "Datagram: %zu B), at server tick %llu, plus %.0f B of UDP/IP\n",
+      framingBytes(bench_codec, true), framingBytes(bench_codec, false),
+      static_cast<unsigned long long>(kUptimeTicks), kUdpIpHeaderBytes);
+  std::printf("%-7s %-6s %6s %5s %5s %6s %3s | %10s %10s %8s %9s %9s %9s | %8s %8s %8s | %7s\n",
               "set", "order", "thr_m", "blend", "loss", "rad_m", "tpd", "payload/s", "wire b/s",
-              "visible", "b/s/vis", "wire/vis", "p50_m", "p99_m", "max_m", "upd/e/s");
+              "visible", "b/s/vis", "wire/vis", "fb w/vis", "p50_m", "p99_m", "max_m", "upd/e/s");
   for (const Config& c : configs) {
     Result r = run(c, seconds);
     double per_visible = r.visible_moving > 0 ? r.bits_per_client_s / r.visible_moving : 0;
     double wire_per_visible =
         r.visible_moving > 0 ? r.wire_bits_per_client_s / r.visible_moving : 0;
+    double flat_per_visible =
+        r.visible_moving > 0 ? r.flat_wire_bits_per_client_s / r.visible_moving : 0;
     std::printf(
-        "%-7s %-6s %6.2f %5d %5.2f %6.0f %3d | %10.0f %10.0f %8.1f %9.1f %9.1f | %8.4f %8.4f "
-        "%8.3f | %7.3f\n",
+        "%-7s %-6s %6.2f %5d %5.2f %6.0f %3d | %10.0f %10.0f %8.1f %9.1f %9.1f %9.1f | %8.4f "
+        "%8.4f %8.3f | %7.3f\n",
         c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
         c.ticks_per_datagram, r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving,
-        per_visible, wire_per_visible, r.p50, r.p99, r.max, r.updates_per_entity_s);
+        per_visible, wire_per_visible, flat_per_visible, r.p50, r.p99, r.max,
+        r.updates_per_entity_s);
     std::fflush(stdout);
     if (csv)
-      std::fprintf(csv, "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f\n",
+      std::fprintf(csv, "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f,%.2f\n",
                    c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
                    r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible,
                    r.p50, r.p99, r.max, r.updates_per_entity_s, c.ticks_per_datagram,
-                   wire_per_visible);
+                   wire_per_visible, flat_per_visible);
   }
   if (csv) std::fclose(csv);
   return 0;

@@ -41,7 +41,7 @@ radius = [r for r in rows if r["set"] == "radius"]
 b.plot([float(r["radius_m"]) for r in radius], [float(r["payload_bps"]) / 1000 for r in radius],
        marker="o", label="payload")
 b.plot([float(r["radius_m"]) for r in radius], [float(r["wire_bps"]) / 1000 for r in radius],
-       marker="s", label="with FlatBuffers + UDP/IP headers")
+       marker="s", label="with framing + UDP/IP headers")
 b.set_xlabel("interest radius (m)")
 b.set_ylabel("kbit/s per client")
 b.set_title("Interest radius against bandwidth (first order, 0.25 m)")
