@@ -28,7 +28,7 @@
 #include <span>
 #include <vector>
 
-#include "wire/wire_verify.h"
+#include "wire/drop_reason.h"
 
 namespace zonesim::gateway {
 
