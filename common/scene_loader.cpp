@@ -22,7 +22,8 @@
 
 namespace zonesim {
 
-void readAgents(const SceneMap& root, Scene& scene);  // common/scene_loader_agents.cpp
+void readAgents(const SceneMap& root, Scene& scene);          // common/scene_loader_agents.cpp
+void readPlayerKinds(const SceneMap& clients, Scene& scene);  // common/scene_loader_kinds.cpp
 
 namespace {
 
@@ -355,9 +356,10 @@ void readDeadReckoning(const SceneMap& root, DeadReckoning& dr) {
   readQuantisation(m, dr.quantisation);
 }
 
-void readClients(const SceneMap& root, ClientProfile& clients) {
+void readClients(const SceneMap& root, Scene& scene) {
+  ClientProfile& clients = scene.clients;
   SceneMap m = root.section("clients", {"players", "speed", "input_hz", "nimbus", "retarget_s",
-                                        "downlink_kbps", "downlink_error_angle_deg"});
+                                        "downlink_kbps", "downlink_error_angle_deg", "kinds"});
   m.read("players", clients.players, Limit::atLeast(0));
   m.read("speed", clients.speed, Limit::atLeast(0));
   m.read("input_hz", clients.input_hz, Limit::above(0));
@@ -365,6 +367,7 @@ void readClients(const SceneMap& root, ClientProfile& clients) {
   m.read("retarget_s", clients.retarget_seconds, Limit::above(0));
   m.read("downlink_kbps", clients.downlink_kbps, Limit::atLeast(0));
   m.read("downlink_error_angle_deg", clients.downlink_error_angle_deg, Limit::between(0, 85));
+  readPlayerKinds(m, scene);  // after speed and nimbus: a kind's defaults
 }
 
 Scene readScene(const SceneNode& document, const std::string& file) {
@@ -388,7 +391,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readPhysicsObjects(root, scene);  // common/scene_loader_physics.cpp
   readObstacleMap(root, file, scene);
   readPopulations(root, scene);
-  readClients(root, scene.clients);
+  readClients(root, scene);
   readAgents(root, scene);
   readCrowdLod(root, scene);
   return scene;

@@ -233,6 +233,62 @@ TEST(SceneDefaults, AurasAndNimbusGrowth) {
   EXPECT_THROW(parseScene(std::string(kMinimal) + "interest: {aura: {npc: 0}}\n", "x"), SceneError);
 }
 
+TEST(SceneDefaults, OneImplicitWalkerWithoutKinds) {
+  Scene s = parseScene(std::string(kMinimal) + "clients: {speed: 4, nimbus: 70}\n", "x");
+  EXPECT_TRUE(s.clients.kinds.empty());
+  std::vector<PlayerKind> kinds = playerKinds(s.clients);
+  ASSERT_EQ(kinds.size(), 1u);
+  EXPECT_EQ(kinds[0].id, PlayerKindId::Walker);
+  EXPECT_DOUBLE_EQ(kinds[0].speed, 4);
+  EXPECT_DOUBLE_EQ(kinds[0].nimbus, 70);
+  EXPECT_DOUBLE_EQ(kinds[0].height, 0);
+  EXPECT_DOUBLE_EQ(kinds[0].share, 1);
+  EXPECT_TRUE(playerKind(s.clients, 0).has_value());
+  EXPECT_FALSE(playerKind(s.clients, 2).has_value()) << "no flyers in a scene without kinds";
+}
+
+TEST(SceneKinds, ListedInIdOrderWithTheClientsDefaults) {
+  Scene s = parseScene(std::string(kMinimal) +
+                           "clients:\n"
+                           "  speed: 4\n"
+                           "  nimbus: 70\n"
+                           "  kinds:\n"
+                           "    flyer: {speed: 30, nimbus: 300, height: 15, share: 0.1}\n"
+                           "    walker: {share: 0.7}\n"
+                           "    rider: {speed: 12, nimbus: 150, share: 0.2}\n",
+                       "x");
+  const std::vector<PlayerKind>& k = s.clients.kinds;
+  ASSERT_EQ(k.size(), 3u);
+  EXPECT_EQ(k[0].id, PlayerKindId::Walker);
+  EXPECT_DOUBLE_EQ(k[0].speed, 4);  // clients.speed and clients.nimbus unless given
+  EXPECT_DOUBLE_EQ(k[0].nimbus, 70);
+  EXPECT_DOUBLE_EQ(k[0].share, 0.7);
+  EXPECT_EQ(k[1].id, PlayerKindId::Rider);
+  EXPECT_DOUBLE_EQ(k[1].speed, 12);
+  EXPECT_DOUBLE_EQ(k[1].nimbus, 150);
+  EXPECT_DOUBLE_EQ(k[1].height, 0);
+  EXPECT_EQ(k[2].id, PlayerKindId::Flyer);
+  EXPECT_DOUBLE_EQ(k[2].speed, 30);
+  EXPECT_DOUBLE_EQ(k[2].nimbus, 300);
+  EXPECT_DOUBLE_EQ(k[2].height, 15);
+  EXPECT_DOUBLE_EQ(k[2].share, 0.1);
+  EXPECT_EQ(playerKinds(s.clients).size(), 3u);
+  EXPECT_DOUBLE_EQ(playerKind(s.clients, 2)->nimbus, 300);
+  EXPECT_FALSE(playerKind(s.clients, 3).has_value());
+  // A subset: a scene of riders only has no walker to fall back on.
+  Scene riders =
+      parseScene(std::string(kMinimal) + "clients: {kinds: {rider: {speed: 9, share: 1}}}\n", "x");
+  EXPECT_FALSE(playerKind(riders.clients, 0).has_value());
+  EXPECT_DOUBLE_EQ(playerKind(riders.clients, 1)->speed, 9);
+}
+
+TEST(PlayerKindNames, EachIdHasOneName) {
+  for (std::size_t i = 0; i < kPlayerKindCount; ++i)
+    EXPECT_EQ(playerKindNamed(playerKindName(std::uint8_t(i))), PlayerKindId(i));
+  EXPECT_EQ(playerKindName(std::uint8_t(7)), "unknown");
+  EXPECT_FALSE(playerKindNamed("plane").has_value());
+}
+
 TEST(SceneFormatDoc, CompleteExampleLoads) {
   std::ifstream in(sourcePath("docs/scene-format.md"));
   std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
