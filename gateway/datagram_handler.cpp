@@ -126,6 +126,12 @@ void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, st
     ++accepted_;
     return;
   }
+  // Before the token check: a kind this world has no speed or nimbus for never costs an HMAC.
+  std::uint8_t kind = d.msg_as_Hello()->kind();
+  if (kind >= kPlayerKindCount || (config_.kinds & (std::uint32_t{1} << kind)) == 0) {
+    drops_.add(DropReason::UnknownKind);
+    return;
+  }
   // After the retry check: a lost Welcome is resent to the address the token was checked for.
   std::optional<Admitted> admitted;
   if (gate_) {
@@ -150,9 +156,10 @@ void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, st
   const SceneBox& b = config_.world;
   s->spawn_x = spawn_rng_.uniform(b.min.x, b.max.x);
   s->spawn_z = spawn_rng_.uniform(b.min.z, b.max.z);
+  s->kind = PlayerKindId(kind);
   s->traffic.datagrams_in = 1;
   s->traffic.bytes_in = size;
-  out.spawns.push_back({s->player_id, float(s->spawn_x), 0.0f, float(s->spawn_z)});
+  out.spawns.push_back({s->player_id, float(s->spawn_x), 0.0f, float(s->spawn_z), kind});
   ++accepted_;
 }
 

@@ -25,6 +25,7 @@ namespace zonesim::gateway {
 struct SpawnCommand {
   std::uint64_t player_id = 0;
   float x = 0, y = 0, z = 0;
+  std::uint8_t kind = 0;  ///< the player's kind (common/player_kind.h), checked against the scene
 };
 
 /// One player input to forward to the avatar's owning zone.
@@ -65,6 +66,9 @@ struct HandlerConfig {
   /// (gateway/token_gate.h). nullopt: any Hello opens a session, as without a lobby.
   std::optional<auth::AuthKey> auth_key{};
   std::uint16_t gateway_id = 0;  ///< the gateway tokens must be signed for
+  /// The player kinds the scene lists: bit i for kind id i (common/player_kind.h). A Hello of
+  /// any other kind is refused. Default: walkers only, a scene without `clients.kinds`.
+  std::uint32_t kinds = 1;
   /// The wall clock (Unix ms) tokens expire by; tests set their own.
   std::function<std::uint64_t()> unix_now_ms = auth::unixNowMs;
 };

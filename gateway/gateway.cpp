@@ -31,6 +31,8 @@ HandlerConfig handlerConfig(const GatewayConfig& c) {
                   float(c.scene.dt)};
   h.auth_key = c.auth_key;
   h.gateway_id = std::uint16_t(c.gateway_id);
+  h.kinds = 0;
+  for (const PlayerKind& k : playerKinds(c.scene.clients)) h.kinds |= std::uint32_t{1} << int(k.id);
   return h;
 }
 
@@ -53,8 +55,20 @@ int expectedZones(const GatewayConfig& c) {
 }
 
 double interestRadius(const GatewayConfig& c) {
-  // The visibility keep radius (nimbus * 1.1) plus a margin ahead of motion.
-  return c.scene.clients.nimbus * 1.1 + c.scene.clients.speed * c.lookahead_s;
+  // The visibility keep radius (nimbus * 1.1) plus a margin ahead of motion, of the kind that
+  // reaches farthest (each player's update gives its own).
+  double r = 0;
+  for (const PlayerKind& k : playerKinds(c.scene.clients))
+    r = std::max(r, k.nimbus * 1.1 + k.speed * c.lookahead_s);
+  return r;
+}
+
+/// The scene's kinds by id; a kind the scene lacks keeps the default (no session has it: the
+/// handler refuses its Hello).
+std::array<PlayerKind, kPlayerKindCount> kindTable(const Scene& scene) {
+  std::array<PlayerKind, kPlayerKindCount> table{};
+  for (const PlayerKind& k : playerKinds(scene.clients)) table[std::size_t(k.id)] = k;
+  return table;
 }
 }  // namespace
 
@@ -69,6 +83,7 @@ Gateway::Gateway(GatewayConfig config)
       cache_(graceNs(config_)),
       clock_(config_.scene.tick_rate * config_.scene.dt),
       interest_(grid_, interestRadius(config_), grid_.cell_size() * 0.5),
+      kinds_(kindTable(config_.scene)),
       link_(config_.dds_domain, expectedZones(config_)),
       rx_batch_(kMaxDatagramBytes + 1),
       codec_(dr::codecParams(config_.scene)),
@@ -278,7 +293,8 @@ void Gateway::expireSessions(std::int64_t now_ns) {
 }
 
 void Gateway::retirePlayer(const Session& s, CellDelta& delta) {
-  finished_players_.push_back({s.player_id, double(nowNs() - s.created_ns) * 1e-9, s.traffic});
+  finished_players_.push_back(
+      {s.player_id, double(nowNs() - s.created_ns) * 1e-9, s.traffic, s.kind});
   interest_.remove(s.player_id, delta);
   link_.requestDespawn(s.player_id);
 }
@@ -312,8 +328,7 @@ double Gateway::avatarSpeed(const Session& s) const {
 
 double Gateway::nimbusOf(const Session& s) const {
   const AuraNimbus& an = config_.scene.aura_nimbus;
-  return grownNimbus(config_.scene.clients.nimbus, avatarSpeed(s), an.nimbus_per_speed,
-                     an.max_nimbus);
+  return grownNimbus(kindOf(s).nimbus, avatarSpeed(s), an.nimbus_per_speed, an.max_nimbus);
 }
 
 void Gateway::updateInterest(std::int64_t now_ns) {
@@ -326,7 +341,7 @@ void Gateway::updateInterest(std::int64_t now_ns) {
     avatarPosition(s, sim_now, x, z);
     // The cells of everything the player may be shown (keep radius), plus the distance it can
     // cover in lookahead_s, so that cells are read before anything in them comes into view.
-    double speed = std::max(avatarSpeed(s), config_.scene.clients.speed);
+    double speed = std::max(avatarSpeed(s), kindOf(s).speed);
     double reach = std::min(nimbusOf(s), widest_aura) * 1.1 + speed * config_.lookahead_s;
     interest_.update(s.player_id, x, z, delta, reach);
   });
@@ -718,7 +733,7 @@ std::string Gateway::summaryJson() {
   std::int64_t now = nowNs();
   std::vector<PlayerRecord> players = finished_players_;
   sessions_.forEach([&](SlotHandle, Session& s) {
-    players.push_back({s.player_id, double(now - s.created_ns) * 1e-9, s.traffic});
+    players.push_back({s.player_id, double(now - s.created_ns) * 1e-9, s.traffic, s.kind});
   });
   std::sort(players.begin(), players.end(),
             [](const auto& a, const auto& b) { return a.player_id < b.player_id; });

@@ -4,6 +4,7 @@
 // handler's checks and effects. Per tick: ownership events (Welcome, Handoff), cell samples into
 // the world cache, interest (cell readers), and each player's Spawn / Despawn / StateBatch.
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -135,8 +136,10 @@ class Gateway {
   void avatarPosition(const Session& s, double sim_now, double& x, double& z) const;
   /// The avatar's planar speed as last heard (0 before it is known).
   double avatarSpeed(const Session& s) const;
-  /// The player's nimbus now (grown with its speed).
+  /// The player's nimbus now (its kind's, grown with its speed).
   double nimbusOf(const Session& s) const;
+  /// The scene's settings for the player's kind.
+  const PlayerKind& kindOf(const Session& s) const { return kinds_[std::size_t(s.kind)]; }
 
   GatewayConfig config_;
   InterestGrid grid_;
@@ -153,6 +156,7 @@ class Gateway {
   std::vector<std::uint64_t> scratch_ids_;
   ZoneClock clock_;
   InterestManager interest_;
+  std::array<PlayerKind, kPlayerKindCount> kinds_;  // the scene's kinds by id
   ZoneLink link_;
   std::optional<LoadReport> load_report_;  // with a key: what the lobby knows of us
   MetricsWriter metrics_;

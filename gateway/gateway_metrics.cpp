@@ -1,5 +1,6 @@
 #include "gateway/gateway_metrics.h"
 
+#include <array>
 #include <string>
 
 namespace zonesim::gateway {
@@ -58,11 +59,22 @@ JsonLine dropsObject(const DropCounters& drops) {
   return j;
 }
 
+// Sessions of the run per player kind, every kind named (0 for one the scene lacks), so a
+// reader never has to ask which keys exist.
+JsonLine sessionsByKind(const std::vector<PlayerRecord>& players) {
+  std::array<std::uint64_t, kPlayerKindCount> n{};
+  for (const PlayerRecord& p : players) ++n[std::size_t(p.kind)];
+  JsonLine j;
+  for (std::size_t k = 0; k < kPlayerKindCount; ++k) j.add(kPlayerKindNames[k], n[k]);
+  return j;
+}
+
 std::string playerJson(const PlayerRecord& p) {
   const SessionTraffic& t = p.traffic;
   double s = p.seconds > 0 ? p.seconds : 1;
   JsonLine j;
   j.add("player_id", p.player_id)
+      .add("kind", playerKindName(p.kind))
       .add("seconds", p.seconds)
       .add("datagrams_in", t.datagrams_in)
       .add("bytes_in", t.bytes_in)
@@ -101,6 +113,7 @@ std::string summaryJson(const GatewayCounters& c, const DropCounters& drops, con
   addCounters(j, c);
   j.add("dropped_total", drops.total());
   j.addRaw("dropped", dropsObject(drops).str());
+  j.addRaw("sessions_by_kind", sessionsByKind(players).str());
   std::string list = "[";
   for (std::size_t i = 0; i < players.size(); ++i) {
     if (i > 0) list += ',';

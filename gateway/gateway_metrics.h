@@ -61,11 +61,13 @@ struct PlayerRecord {
   std::uint64_t player_id = 0;
   double seconds = 0;
   SessionTraffic traffic;
+  PlayerKindId kind = PlayerKindId::Walker;
 };
 
 /// One per-second metrics line.
 JsonLine metricsLine(const GatewayCounters& c, const DropCounters& drops, const GatewayGauges& g);
-/// The exit summary as one JSON object (counters, drops by reason, per-player traffic).
+/// The exit summary as one JSON object (counters, drops by reason, sessions by player kind,
+/// per-player traffic).
 std::string summaryJson(const GatewayCounters& c, const DropCounters& drops, const GatewayGauges& g,
                         const std::vector<PlayerRecord>& players);
 

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "common/generational_pool.h"
+#include "common/player_kind.h"
 #include "gateway/client_view.h"
 #include "gateway/downlink_budget.h"
 #include "wire/ack_window.h"
@@ -40,6 +41,7 @@ struct Session {
   std::uint64_t token = 0;
   std::uint64_t player_id = 0;
   std::uint64_t client_nonce = 0;
+  PlayerKindId kind = PlayerKindId::Walker;  ///< from the Hello: the nimbus and speed it gets
   Endpoint address;
   std::uint64_t avatar_id = 0;       ///< 0 until the owning zone announced the avatar
   int zone = -1;                     ///< owning zone rank, -1 until announced

@@ -41,6 +41,7 @@ std::size_t ZoneLink::flushSpawns() {
     zonesim_dds_SpawnRequest r{};
     r.player_id = c.player_id;
     r.position = {c.x, c.y, c.z};
+    r.kind = c.kind;
     // A write that times out (a zone not keeping up) is retried on the next tick.
     if (dds_write(spawn_writer_.writer.get(), &r) < 0) break;
     ++written;

@@ -44,6 +44,8 @@ const char* dropReasonName(DropReason reason) {
       return "token_wrong_address";
     case DropReason::TokenReused:
       return "token_reused";
+    case DropReason::UnknownKind:
+      return "unknown_kind";
     case DropReason::Count:
       break;
   }

@@ -36,6 +36,7 @@ enum class DropReason : std::uint8_t {
   TokenWrongGateway,  ///< the token was signed for another gateway
   TokenWrongAddress,  ///< the token is replayed from another address or port than it names
   TokenReused,        ///< the token already opened a session here (each opens one)
+  UnknownKind,        ///< Hello refused: a player kind the gateway's scene does not list
   Count
 };
 

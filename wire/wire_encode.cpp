@@ -28,13 +28,14 @@ Bytes finish(flatbuffers::FlatBufferBuilder& fbb, std::uint64_t token, proto::Me
 }  // namespace
 
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
-                  std::span<const std::uint8_t> connect_token) {
+                  std::span<const std::uint8_t> connect_token, std::uint8_t kind) {
   flatbuffers::FlatBufferBuilder fbb(128 + connect_token.size());
-  // No token, no field: a Hello without one is the same bytes as before tokens existed.
+  // No token, no field: a Hello without one is the same bytes as before tokens existed (and a
+  // walker's kind, the default 0, is not written either).
   flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> t;
   if (!connect_token.empty()) t = fbb.CreateVector(connect_token.data(), connect_token.size());
   auto n = fbb.CreateString(name.data(), name.size());
-  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n, t));
+  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n, t, kind));
 }
 
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,

@@ -49,9 +49,10 @@ struct HandoffInfo {
   std::uint32_t seq = 0;  ///< the session's datagram seq (0: unnumbered)
 };
 
-/// connect_token: the lobby's token, opaque here (empty: none, for a gateway without a key).
+/// connect_token: the lobby's token, opaque here (empty: none, for a gateway without a key);
+/// kind: the player's kind id (common/player_kind.h).
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
-                  std::span<const std::uint8_t> connect_token = {});
+                  std::span<const std::uint8_t> connect_token = {}, std::uint8_t kind = 0);
 /// ack / ack_bits: the client's acknowledgement of gateway datagrams (wire/ack_window.h).
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
                   std::uint32_t ack = 0, std::uint32_t ack_bits = 0);
