@@ -83,6 +83,8 @@ struct AvatarData {
   float move_x = 0, move_z = 0;
   double max_speed = 5.0;
   bool announced = false;  ///< its owner told the gateways (creation announced)
+  std::uint8_t kind = 0;   ///< the player's kind (common/player_kind.h)
+  double height = 0;       ///< metres above the ground a flyer holds; 0: it walks on the ground
 
   bool operator==(const AvatarData&) const = default;
 };

@@ -5,6 +5,7 @@
 
 #include "common/log.h"
 #include "common/scene.h"
+#include "zone_node/avatar_spawn.h"
 #include "zone_node/cluster/migration.h"
 #include "zone_node/net/gateway_link.h"
 #include "zone_node/tick_profile.h"
@@ -30,8 +31,7 @@ void Players::input(PlayerZone& zone) {
     applyInput(zone, f.player_id, f.seq, f.move_x, f.move_z);
   forwarded_in_.clear();
   if (zone.link) {
-    for (const SpawnRequestMsg& s : zone.link->takeSpawnRequests())
-      spawnAvatar(zone, s.player_id, s.x, s.z);
+    for (const SpawnRequestMsg& s : zone.link->takeSpawnRequests()) spawnAvatar(zone, s);
     for (std::uint64_t player : zone.link->takeDespawnRequests()) despawnAvatar(zone, player);
     for (const PlayerInputMsg& in : zone.link->takeInputs())
       applyInput(zone, in.player_id, in.seq, in.move_x, in.move_z);
@@ -39,7 +39,8 @@ void Players::input(PlayerZone& zone) {
   releaseHeldInputs(zone);
 }
 
-void Players::spawnAvatar(PlayerZone& zone, std::uint64_t player_id, double x, double z) {
+void Players::spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request) {
+  std::uint64_t player_id = request.player_id;
   EntityStore& store = zone.store;
   // Every zone reads every request, so all agree on which players exist; repeats are ignored,
   // and so is a request whose player already left (the despawn overtook it).
@@ -57,14 +58,18 @@ void Players::spawnAvatar(PlayerZone& zone, std::uint64_t player_id, double x, d
   // boundaries may move in between. Migration then takes the avatar to its owner, which
   // announces it (see migrated()).
   if (player_id % std::uint64_t(ranks_) != std::uint64_t(rank_)) return;
-  x = std::clamp(x, scene_.world.min.x, scene_.world.max.x - 1e-6);
-  z = std::clamp(z, scene_.world.min.z, scene_.world.max.z - 1e-6);
-  EntityRecordData r;
+  std::optional<EntityRecordData> made =
+      newAvatar(scene_, player_id, request.x, request.z, request.kind);
+  if (!made) {
+    // Its gateway reads another scene: no avatar of a kind this world has no speed for. The
+    // player's session times out, pending, at the gateway.
+    ++zone.counters.avatars_refused;
+    ZS_WARN("player %llu asked for an avatar of kind %u, which the scene does not list",
+            (unsigned long long)player_id, unsigned(request.kind));
+    return;
+  }
+  EntityRecordData& r = *made;
   r.id = zone.ids.next();
-  r.kind = EntityKind::Avatar;
-  r.pos = Vec3(x, scene_.world.min.y, z);
-  r.avatar.player_id = player_id;
-  r.avatar.max_speed = scene_.clients.speed;
   store.add(r);
   zone.ledger.add(r.id);
   ++zone.counters.avatars_spawned;

@@ -24,6 +24,7 @@ namespace zonesim::zone {
 
 class GatewayLink;
 struct MigrationResult;
+struct SpawnRequestMsg;
 struct TickCounters;
 
 /// What the protocol changes in its zone during a tick.
@@ -62,7 +63,7 @@ class Players {
   void startTick() { handoff_latency_ticks_.clear(); }
 
  private:
-  void spawnAvatar(PlayerZone& zone, std::uint64_t player_id, double x, double z);
+  void spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request);
   void applyInput(PlayerZone& zone, std::uint64_t player_id, std::uint32_t seq, float move_x,
                   float move_z);
   /// Applies held inputs whose turn has come, or whose gap has waited kInputHoldTicks.

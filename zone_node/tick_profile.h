@@ -75,6 +75,7 @@ struct TickCounters {
   std::uint64_t inputs_skipped = 0;  ///< sequence numbers that never arrived (gaps given up on)
   std::uint64_t inputs_held = 0;     ///< arrived ahead of a missing number: held to apply in order
   std::uint64_t avatars_spawned = 0;
+  std::uint64_t avatars_refused = 0;  ///< spawn requests of a player kind the scene lacks
   std::uint64_t entities_destroyed = 0;
   std::uint64_t rebalances = 0;
   std::uint64_t dds_write_failures = 0;
@@ -119,6 +120,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"inputs_skipped", &TickCounters::inputs_skipped, false},
     {"inputs_held", &TickCounters::inputs_held, false},
     {"avatars_spawned", &TickCounters::avatars_spawned, false},
+    {"avatars_refused", &TickCounters::avatars_refused, false},
     {"entities_destroyed", &TickCounters::entities_destroyed, false},
     {"rebalances", &TickCounters::rebalances, false},
     {"dds_write_failures", &TickCounters::dds_write_failures, false},

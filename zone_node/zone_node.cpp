@@ -211,7 +211,8 @@ void ZoneNode::ai() {
   }
   if (walker_reach_ > 0) {
     ScopedTimer t(profile_[Stage::AiNeighbours]);
-    near_.build(store_, &halo_.ghosts(), walker_reach_);
+    // A flyer higher above the ground than any walker reaches is nobody's neighbour.
+    near_.build(store_, &halo_.ghosts(), walker_reach_, scene_.world.min.y + walker_reach_);
   }
   // Every rank takes part in the gather (the scene decides, so all agree).
   if (scene_.lod.enabled && (flocks_->active() || flows_->active())) {

@@ -8,6 +8,7 @@
 #include <utility>
 #include <variant>
 
+#include "common/player_kind.h"
 #include "entity_record_generated.h"
 
 namespace zonesim::zone {
@@ -125,11 +126,13 @@ flatbuffers::Offset<fb::AvatarState> encodeAvatar(Builder& b, const AvatarData& 
                                                   EntityKind kind) {
   if (kind != EntityKind::Avatar) return {};
   return fb::CreateAvatarState(b, a.player_id, a.last_input_seq, a.move_x, a.move_z, a.max_speed,
-                               a.announced);
+                               a.announced, a.kind, a.height);
 }
 
 void decodeAvatar(const fb::AvatarState& s, AvatarData& a) {
-  a = {s.player_id(), s.last_input_seq(), s.move_x(), s.move_z(), s.max_speed(), s.announced()};
+  if (s.kind() >= kPlayerKindCount) throw CodecError("avatar record with unknown player kind");
+  a = {s.player_id(), s.last_input_seq(), s.move_x(), s.move_z(),
+       s.max_speed(), s.announced(),      s.kind(),   s.height()};
 }
 
 flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, EntityKind kind) {

@@ -30,7 +30,7 @@ std::vector<SpawnRequestMsg> GatewayLink::takeSpawnRequests() {
   std::vector<SpawnRequestMsg> out;
   dds::takeAll<zonesim_dds_SpawnRequest>(
       spawns_.reader.get(), [&](const zonesim_dds_SpawnRequest& s) {
-        out.push_back({s.player_id, double(s.position.x), double(s.position.z)});
+        out.push_back({s.player_id, double(s.position.x), double(s.position.z), s.kind});
       });
   return out;
 }

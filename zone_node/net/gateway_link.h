@@ -21,6 +21,7 @@ struct PlayerInputMsg {
 struct SpawnRequestMsg {
   std::uint64_t player_id = 0;
   double x = 0, z = 0;
+  std::uint8_t kind = 0;  ///< the player's kind (common/player_kind.h)
 };
 
 /// An avatar changed owner (from_zone -1: newly created).

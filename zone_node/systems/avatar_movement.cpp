@@ -12,6 +12,7 @@ void stepAvatars(const SceneBox& world, EntityStore& store, double dt) {
     Vec3 desired(double(a.move_x) * a.max_speed, 0.0, double(a.move_z) * a.max_speed);
     steerAndIntegrate(store.pos[i], store.vel[i], desired, kAvatarAccel, dt);
     keepOnGround(world, store.pos[i], store.vel[i]);
+    if (a.height > 0) holdHeight(world, a.height, store.pos[i], store.vel[i]);
     store.rot[i] = facing(store.rot[i], store.vel[i]);
   }
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Player avatars: walk in the direction of the last applied input at the avatar's speed.
+// Player avatars: move in the direction of the last applied input at the avatar's speed (its
+// kind's), walkers and riders on the ground, flyers at their kind's height.
 
 #include "common/scene_geometry.h"
 #include "zone_node/entity_store.h"

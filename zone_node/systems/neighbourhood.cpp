@@ -9,8 +9,10 @@
 namespace zonesim::zone {
 
 namespace {
-bool isWalker(EntityKind k) {
-  return k == EntityKind::Npc || k == EntityKind::Avatar;
+// The same rule for own entities and ghosts (which carry no avatar data), so the neighbours
+// found do not depend on which zone owns a flyer.
+bool isWalker(EntityKind k, const Vec3& pos, double air) {
+  return k == EntityKind::Npc || (k == EntityKind::Avatar && pos.y() <= air);
 }
 }  // namespace
 
@@ -22,14 +24,17 @@ std::int64_t Neighbourhood::cellKey(double x, double z) const {
   return cz * columns_ + cx;
 }
 
-void Neighbourhood::build(const EntityStore& store, const GhostStore* ghosts, double radius) {
+void Neighbourhood::build(const EntityStore& store, const GhostStore* ghosts, double radius,
+                          double air) {
   std::vector<Neighbour> all;
   all.reserve(store.size() + (ghosts ? ghosts->size() : 0));
   for (std::size_t i = 0; i < store.size(); ++i)
-    if (isWalker(store.kind[i])) all.push_back({store.id[i], store.pos[i], store.vel[i]});
+    if (isWalker(store.kind[i], store.pos[i], air))
+      all.push_back({store.id[i], store.pos[i], store.vel[i]});
   if (ghosts)
     for (std::size_t i = 0; i < ghosts->size(); ++i)
-      if (isWalker(ghosts->kind[i])) all.push_back({ghosts->id[i], ghosts->pos[i], ghosts->vel[i]});
+      if (isWalker(ghosts->kind[i], ghosts->pos[i], air))
+        all.push_back({ghosts->id[i], ghosts->pos[i], ghosts->vel[i]});
   points_.clear();
   cell_start_.assign(2, 0);
   if (all.empty() || !(radius > 0)) return;

@@ -5,6 +5,7 @@
 // decomposition and a zone's result does not depend on where its neighbours live.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "common/entity_id.h"
@@ -25,8 +26,10 @@ struct Neighbour {
 class Neighbourhood {
  public:
   /// Indexes the walkers (NPCs and avatars) of the store and of the ghosts, for queries of
-  /// at most `radius`.
-  void build(const EntityStore& store, const GhostStore* ghosts, double radius);
+  /// at most `radius`. Avatars higher than `air` (world y) are flying, not walking: nobody on
+  /// the ground makes way for them.
+  void build(const EntityStore& store, const GhostStore* ghosts, double radius,
+             double air = std::numeric_limits<double>::infinity());
   /// Every indexed walker within `radius` (<= the build radius) of p on the ground plane,
   /// except `self`, in ascending id order.
   void query(const Vec3& p, double radius, EntityId self, std::vector<Neighbour>& out) const;

@@ -35,6 +35,13 @@ inline void keepOnGround(const SceneBox& world, Vec3& pos, Vec3& vel) {
   wall(pos.z(), vel.z(), world.min.z, world.max.z);
 }
 
+/// Flyers hold their height above the ground with no vertical motion: nothing pulls them down,
+/// and the state clients extrapolate carries no climb or sink.
+inline void holdHeight(const SceneBox& world, double height, Vec3& pos, Vec3& vel) {
+  pos.y() = world.min.y + height;
+  vel.y() = 0;
+}
+
 /// Orientation facing along the planar velocity (yaw about +y); unchanged when standing still.
 inline Quat facing(const Quat& current, const Vec3& vel) {
   double speed2 = vel.x() * vel.x() + vel.z() * vel.z();

@@ -41,7 +41,9 @@ EntityRecordData everyColumnSet() {
               .move_x = -0.5f,
               .move_z = 0.25f,
               .max_speed = 6.5,
-              .announced = true};
+              .announced = true,
+              .kind = 2,
+              .height = 80};
   r.body = {.radius = 0.75,
             .mass = 3,
             .restitution = 0.6,
