@@ -8,6 +8,7 @@
 
 #include "clients/fd_limit.h"
 #include "clients/fleet_summary.h"
+#include "clients/kind_mix.h"
 #include "common/due_queue.h"
 #include "common/timer.h"
 #include "wire/datagram_batch.h"
@@ -32,8 +33,12 @@ ClientFleet::ClientFleet(const FleetConfig& config, const std::atomic<bool>& sto
     players = int(tickets_.size());
   }
   players_.reserve(std::size_t(players));
+  // By the configured count, as the link shares: a player's kind does not depend on how many
+  // the lobby let in.
+  std::vector<PlayerKind> kinds = assignKinds(config.kinds, std::size_t(config.players));
   for (int i = 0; i < players; ++i) {
     PlayerConfig player = config.player;
+    if (!kinds.empty()) player.kind = kinds[std::size_t(i)];
     if (!config.links.empty()) {
       std::size_t share =
           gateway::linkShareOf(config.links, std::size_t(i), std::size_t(config.players));

@@ -27,6 +27,9 @@ struct FleetConfig {
   /// Link profiles shared out over the players (each gets one for its uplink and downlink, by
   /// linkShareOf); empty: every player has player.impairment.
   std::vector<gateway::LinkShare> links;
+  /// Player kinds shared out over the players by their shares (clients/kind_mix.h); empty:
+  /// every player is player.kind.
+  std::vector<PlayerKind> kinds;
   int players = 32;
   double duration_s = 10;
   std::string metrics_path;     ///< clients.jsonl; empty = none

@@ -1,5 +1,6 @@
 #include "clients/fleet_summary.h"
 
+#include "clients/kind_summary.h"
 #include "common/stats.h"
 #include "common/timer.h"
 
@@ -55,7 +56,8 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("rtt_ms_p50", percentile(c.rtt_ms.samples(), 50))
       .add("rtt_ms_p99", percentile(c.rtt_ms.samples(), 99))
       .add("dr_error_m_p50", percentile(c.dr_error_m.samples(), 50))
-      .add("dr_error_m_p99", percentile(c.dr_error_m.samples(), 99));
+      .add("dr_error_m_p99", percentile(c.dr_error_m.samples(), 99))
+      .add("dr_error_m_max", c.dr_error_m.max());
 }
 
 // The player's link profile and what its models did to the datagrams each way.
@@ -75,14 +77,19 @@ void addLink(JsonLine& j, const gateway::Impairment& imp) {
 std::string clientJson(const SimPlayer& p, double s) {
   JsonLine j;
   j.add("player_id", p.playerId())
+      .add("kind", playerKindName(p.kind()))
       .add("avatar_id", p.avatarId())
       .add("zone", p.zone())
       .add("welcomed", p.welcomed() ? 1 : 0)
       .add("welcome_ms", p.welcomed() ? p.welcomeSeconds() * 1e3 : -1.0);
   addTraffic(j, p.counters(), s);
+  std::int64_t now = nowNs();
   j.add("visible_entities", std::uint64_t(p.view().size()))
-      .add("ghosts", std::uint64_t(p.ghosts(nowNs())))
+      .add("visible_entities_mean", p.meanVisible())
+      .add("ghosts", std::uint64_t(p.ghosts(now)))
       .add("unspawned", std::uint64_t(p.unspawned()));
+  // Where it shows its own avatar: a flyer at its kind's height, a walker on the ground.
+  if (auto self = p.ownPosition(now)) j.add("avatar_y", self->y);
   addLink(j, p.impairment());
   return j.str();
 }
@@ -158,7 +165,8 @@ std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& play
       .add("fleet_cpu_us_per_player_s", cpuUsPerPlayerSecond(cost, players.size()))
       .add("fleet_wakeups_per_s", wakeupsPerSecond(cost))
       .addRaw("clients", list)
-      .addRaw("totals", totals.str());
+      .addRaw("totals", totals.str())
+      .addRaw("kinds", kindsSummaryJson(players, duration_s));
   return j.str();
 }
 

@@ -9,6 +9,7 @@
 
 #include "clients/fd_limit.h"
 #include "clients/fleet.h"
+#include "clients/kind_mix.h"
 #include "common/cli.h"
 #include "common/log.h"
 #include "common/scene.h"
@@ -70,6 +71,10 @@ int main(int argc, char** argv) {
                  "with --metrics: write DIR/display.csv, where every K-th entity id was shown "
                  "each tick (zone_node --truth-every K writes the truth)");
   app.add_flag("--snap", snap, "show corrections at once instead of blending them in");
+  std::string kind;
+  app.add_option("--kind", kind,
+                 "make every player this kind (walker, rider or flyer: one of the scene's "
+                 "clients.kinds; default: the kinds mixed by their shares)");
   double max_lead_s = zonesim::clients::PlayerConfig{}.max_lead_s;
   app.add_option("--max-lead-s", max_lead_s,
                  "the server-clock estimate runs at most this far past the newest tick heard "
@@ -115,6 +120,11 @@ int main(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string(link.empty() ? "--link-mix" : "--link") + ": " +
                                   e.what());
+    }
+    try {
+      cfg.kinds = zonesim::clients::fleetKinds(scene.clients, kind);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error("--kind: " + std::string(e.what()));
     }
     cfg.player.blend = !snap;
     cfg.player.truth_every = truth_every;

@@ -34,7 +34,7 @@ SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64
       next_input_ns_(INT64_MAX),
       next_ping_ns_(INT64_MAX),
       input_period_ns_(std::max<std::int64_t>(1, seconds(1.0 / config.input_hz))),
-      wander_(config.world, config.retarget_seconds, config.seed, index),
+      wander_(config.world, config.retarget_seconds, config.seed, index, config.kind.speed),
       impairment_(config.impairment, index),
       rx_buffer_(gateway::kMaxDatagramBytes + 1) {
   if (nonce_ == 0) nonce_ = 1;
@@ -92,7 +92,8 @@ std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
 std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
   if (!welcomed()) {
     if (now_ns >= next_hello_ns_) {
-      send(gateway::encodeHello(nonce_, "player", config_.connect_token));
+      send(gateway::encodeHello(nonce_, "player", config_.connect_token,
+                                std::uint8_t(config_.kind.id)));
       ++counters_.hellos;
       if (first_hello_ns_ < 0) first_hello_ns_ = now_ns;
       next_hello_ns_ = now_ns + seconds(config_.hello_retry_s);
@@ -148,6 +149,8 @@ void SimPlayer::sendInput(std::int64_t now_ns) {
     m = wander_.step(self->x, self->z, double(now_ns - start_ns_) * 1e-9);
   send(gateway::encodeInput(token_, ++seq_, m.x, m.z, acks_.ack(), acks_.bits()));
   ++counters_.inputs;
+  visible_sum_ += double(view_.size());
+  ++visible_samples_;
 }
 
 void SimPlayer::bye() {

@@ -13,6 +13,7 @@
 #include "clients/remote_view.h"
 #include "clients/reservoir.h"
 #include "clients/wander.h"
+#include "common/scene_clients.h"
 #include "common/scene_geometry.h"
 #include "dr/state_codec.h"
 #include "wire/ack_window.h"
@@ -49,6 +50,9 @@ struct PlayerConfig {
   double max_lead_s = 0.25;
   /// The lobby's connect token for `gateway`, carried in every Hello (empty: none, no lobby).
   std::vector<std::uint8_t> connect_token;
+  /// The player's kind, said in the Hello; its speed sets how near a wander target counts as
+  /// reached (the zone moves the avatar at it).
+  PlayerKind kind;
 };
 
 /// Where a player showed a sampled entity (dr/truth_sample.h) at a server tick.
@@ -105,6 +109,16 @@ class SimPlayer {
   std::int64_t flushUplink(std::int64_t now_ns);
 
   bool welcomed() const { return token_ != 0; }
+  /// The player's kind, as said in its Hello.
+  PlayerKindId kind() const { return config_.kind.id; }
+  /// Entities in view, averaged over the inputs sent (20 a second by default) since the Welcome.
+  double meanVisible() const {
+    return visible_samples_ > 0 ? visible_sum_ / double(visible_samples_) : 0.0;
+  }
+  /// Where the player shows its own avatar now (nothing before its first state).
+  std::optional<Point3> ownPosition(std::int64_t now_ns) const {
+    return view_.shown(avatar_id_, serverTick(now_ns));
+  }
   std::uint64_t playerId() const { return player_id_; }
   std::uint64_t avatarId() const { return avatar_id_; }
   int zone() const { return zone_; }
@@ -199,6 +213,8 @@ class SimPlayer {
   std::vector<OwnEvent> own_;
   std::vector<DisplaySample> displayed_;
   std::int64_t displayed_tick_ = -1;  // the last server tick logged
+  double visible_sum_ = 0;            // view sizes at each input sent, for meanVisible()
+  std::uint64_t visible_samples_ = 0;
 };
 
 }  // namespace zonesim::clients

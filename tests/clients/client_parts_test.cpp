@@ -1,8 +1,10 @@
-// The client's pieces: dead reckoning of remote entities and the wander profile.
+// The client's pieces: dead reckoning of remote entities, the wander profile and the mix of
+// player kinds.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "clients/kind_mix.h"
 #include "clients/remote_view.h"
 #include "clients/reservoir.h"
 #include "clients/wander.h"
@@ -73,6 +75,21 @@ TEST(RemoteView, BlendingConvergesContinuouslyToTheNewModel) {
   EXPECT_NEAR(v.shown(1, 20)->x, 3, 1e-12);
 }
 
+TEST(RemoteView, AFlyersCorrectionIsMeasuredInThreeDimensions) {
+  // A flyer 60 m up, first at rest, then told it is a metre higher at the same place: the
+  // error shown is that metre, not the zero a planar distance would give.
+  RemoteView v({false, 0.25, 1.0 / 30});
+  dr::WireEntity e = state(1, 10, 5, 5, 0, 0);
+  e.state.pos.y = 60;
+  v.spawn(e, 10);
+  e.tick = 11;
+  e.state.pos.y = 61;
+  std::optional<double> err = v.update(e, 11);
+  ASSERT_TRUE(err.has_value());
+  EXPECT_NEAR(*err, 1.0, 1e-12);
+  EXPECT_NEAR(v.shown(1, 11)->y, 61, 1e-12);
+}
+
 TEST(Wander, WalksTowardTargetsInsideTheWorld) {
   SceneBox world{{-100, 0, 0}, {100, 10, 50}};
   Wander w(world, 8, 5, 0);
@@ -105,6 +122,88 @@ TEST(Wander, EachPlayerHasItsOwnReproducibleStream) {
   c.step(0, 0, 0);
   EXPECT_EQ(a.targetX(), b.targetX());
   EXPECT_NE(a.targetX(), c.targetX());
+}
+
+TEST(Wander, AFastKindArrivesFartherFromItsTarget) {
+  SceneBox world{{0, 0, 0}, {1000, 10, 1000}};
+  Wander walker(world, 8, 5, 1, 5), flyer(world, 8, 5, 1, 30);
+  EXPECT_EQ(walker.arriveDistance(), Wander::kArriveDistance) << "walkers as before kinds";
+  EXPECT_EQ(flyer.arriveDistance(), 30 * Wander::kArriveSeconds);
+  walker.step(500, 500, 0);
+  flyer.step(500, 500, 0);
+  ASSERT_EQ(walker.targetX(), flyer.targetX()) << "the same stream";
+  // 5 m short of the target: the flyer has arrived, the walker walks on.
+  walker.step(walker.targetX() + 5, walker.targetZ(), 1);
+  flyer.step(flyer.targetX() + 5, flyer.targetZ(), 1);
+  EXPECT_EQ(walker.retargets(), 1u);
+  EXPECT_EQ(flyer.retargets(), 2u);
+}
+
+TEST(KindMix, SharesBecomeExactCountsSpreadOverThePlayers) {
+  std::vector<PlayerKind> kinds = {{PlayerKindId::Walker, 5, 100, 0, 0.7},
+                                   {PlayerKindId::Rider, 12, 150, 0, 0.2},
+                                   {PlayerKindId::Flyer, 30, 300, 80, 0.1}};
+  EXPECT_EQ(kindCounts(kinds, 10), (std::vector<std::size_t>{7, 2, 1}));
+  EXPECT_EQ(kindCounts(kinds, 100), (std::vector<std::size_t>{70, 20, 10}));
+  EXPECT_EQ(kindCounts(kinds, 3), (std::vector<std::size_t>{2, 1, 0}));
+  EXPECT_EQ(kindCounts(kinds, 0), (std::vector<std::size_t>{0, 0, 0}));
+  EXPECT_TRUE(assignKinds({}, 5).empty()) << "no kinds to mix: the fleet's default kind";
+  for (std::size_t n : {1u, 3u, 10u, 37u, 100u}) {
+    std::vector<std::size_t> counts = kindCounts(kinds, n), given(3, 0);
+    std::vector<PlayerKind> got = assignKinds(kinds, n);
+    ASSERT_EQ(got.size(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      ++given[std::size_t(got[i].id)];
+      // Every first i + 1 players are mixed within one player of the whole fleet's mix.
+      for (std::size_t k = 0; k < 3; ++k)
+        EXPECT_LT(std::fabs(double(given[k]) - double(i + 1) * double(counts[k]) / double(n)), 1.0)
+            << n << " players, the first " << i + 1 << ", kind " << k;
+    }
+    EXPECT_EQ(given, counts) << n << " players";
+  }
+  // Not in blocks: riders and the flyer come between walkers, with their own settings.
+  std::vector<PlayerKind> ten = assignKinds(kinds, 10);
+  std::vector<PlayerKindId> ids;
+  for (const PlayerKind& k : ten) ids.push_back(k.id);
+  using enum PlayerKindId;
+  EXPECT_EQ(ids, (std::vector<PlayerKindId>{Walker, Walker, Rider, Walker, Walker, Flyer, Walker,
+                                            Walker, Rider, Walker}));
+  EXPECT_EQ(ten[5].speed, 30);
+  EXPECT_EQ(ten[5].height, 80);
+}
+
+TEST(KindMix, TheSceneKindsOrOneForcedKind) {
+  ClientProfile plain;
+  plain.speed = 4;
+  std::vector<PlayerKind> one = fleetKinds(plain);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].id, PlayerKindId::Walker);
+  EXPECT_EQ(one[0].speed, 4);
+  EXPECT_EQ(fleetKinds(plain, "walker").size(), 1u);
+  EXPECT_THROW(fleetKinds(plain, "flyer"), std::invalid_argument) << "no flyers in that scene";
+  ClientProfile mixed;
+  mixed.kinds = {{PlayerKindId::Walker, 5, 100, 0, 0.8}, {PlayerKindId::Flyer, 30, 300, 9, 0.2}};
+  std::vector<PlayerKind> flyers = fleetKinds(mixed, "flyer");
+  ASSERT_EQ(flyers.size(), 1u);
+  EXPECT_EQ(flyers[0].id, PlayerKindId::Flyer);
+  EXPECT_EQ(flyers[0].share, 1);
+  EXPECT_EQ(flyers[0].height, 9);
+  try {
+    fleetKinds(mixed, "plane");
+    ADD_FAILURE() << "accepted a kind the scene lacks";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "'plane' is not a kind of the scene (its kinds: walker, flyer)");
+  }
+}
+
+TEST(Reservoir, KeepsTheLargestValueEvenWhenItIsNotSampled) {
+  Reservoir r(4);
+  EXPECT_EQ(r.max(), 0);
+  for (int i = 0; i < 1000; ++i) r.add(i == 500 ? 99.0 : 1.0);
+  EXPECT_EQ(r.max(), 99.0);
+  Reservoir merged;
+  merged.merge(r);
+  EXPECT_EQ(merged.max(), 99.0);
 }
 
 TEST(Reservoir, KeepsAllUntilFullThenStaysBounded) {

@@ -10,6 +10,7 @@
 
 #include "../gateway/gateway_fixture.h"
 #include "clients/fleet.h"
+#include "clients/kind_mix.h"
 #include "common/timer.h"
 #include "gateway/gateway.h"
 
@@ -17,8 +18,9 @@ namespace zonesim::clients {
 namespace {
 
 // The zone: one avatar per spawn request, every avatar published in its cell each tick, until
-// done is set.
-void runZone(testing::ZoneEmulator& zone, const std::atomic<bool>& done) {
+// done is set. Returns the requests, by avatar id.
+std::map<std::uint64_t, zonesim_dds_SpawnRequest> runZone(testing::ZoneEmulator& zone,
+                                                          const std::atomic<bool>& done) {
   std::map<std::uint64_t, zonesim_dds_SpawnRequest> avatars;
   std::uint64_t tick = 0, next_avatar = 0x1000000000001ULL;
   while (!done) {
@@ -33,6 +35,7 @@ void runZone(testing::ZoneEmulator& zone, const std::atomic<bool>& done) {
     zone.takeInputs(0);
     std::this_thread::sleep_for(std::chrono::milliseconds(33));  // the zone's tick pacing
   }
+  return avatars;
 }
 
 void checkSummary(const nlohmann::json& summary, int players) {
@@ -147,6 +150,61 @@ TEST(FleetLoopback, HeldDatagramsArriveThroughTheLoop) {
     EXPECT_GT(c.in.delivered, 0u);
     EXPECT_GT(c.out.delivered, 0u);
   }
+}
+
+TEST(FleetLoopback, KindsAreMixedByTheSharesAndReportedPerKind) {
+  int domain = testing::privateDdsDomain();
+  Scene scene = testing::smallScene();
+  scene.clients.kinds = {{PlayerKindId::Walker, 5, 40, 0, 0.5},
+                         {PlayerKindId::Flyer, 20, 60, 10, 0.5}};
+  gateway::GatewayConfig gcfg;
+  gcfg.scene = scene;
+  gcfg.dds_domain = domain;
+  gcfg.gateway_id = testing::privateGatewayId();
+  gcfg.expected_zones = 1;
+  gateway::Gateway gw(gcfg);
+  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
+
+  FleetConfig fcfg;
+  fcfg.player.gateway = gateway::Endpoint::loopback(gw.port());
+  fcfg.player.world = scene.world;
+  fcfg.kinds = fleetKinds(scene.clients);
+  fcfg.players = 4;
+  fcfg.duration_s = 2.5;
+  ClientFleet fleet(fcfg);
+
+  std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
+  std::thread gateway_thread([&] { gw.run(stop_gateway); });
+  std::thread fleet_thread([&] {
+    fleet.run(stop_fleet);
+    fleet_done = true;
+  });
+  std::map<std::uint64_t, zonesim_dds_SpawnRequest> requests = runZone(zone, fleet_done);
+  fleet_thread.join();
+  stop_gateway = true;
+  gateway_thread.join();
+
+  ASSERT_EQ(fleet.welcomed(), 4);
+  int flyers_asked = 0;
+  for (const auto& [avatar, r] : requests) flyers_asked += r.kind == 2 ? 1 : 0;
+  EXPECT_EQ(flyers_asked, 2) << "the zones were asked for two flyers";
+  nlohmann::json summary = nlohmann::json::parse(fleet.summaryJson());
+  int flyers_listed = 0;
+  for (const auto& c : summary["clients"]) flyers_listed += c["kind"] == "flyer" ? 1 : 0;
+  EXPECT_EQ(flyers_listed, 2);
+  const nlohmann::json& kinds = summary["kinds"];
+  ASSERT_EQ(kinds.size(), 2u) << kinds;
+  for (const char* k : {"walker", "flyer"}) {
+    EXPECT_EQ(kinds[k]["players"], 2) << k;
+    EXPECT_GT(kinds[k]["kbps_in_p50"].get<double>(), 0) << k;
+    EXPECT_GE(kinds[k]["kbps_in_max"].get<double>(), kinds[k]["kbps_in_p50"].get<double>());
+    EXPECT_GE(kinds[k]["visible_entities_mean"].get<double>(), 1) << "its own avatar at least";
+    EXPECT_TRUE(kinds[k].contains("dr_error_m_max"));
+  }
+  nlohmann::json g = nlohmann::json::parse(gw.summaryJson());
+  EXPECT_EQ(g["sessions_by_kind"]["walker"], 2);
+  EXPECT_EQ(g["sessions_by_kind"]["flyer"], 2);
+  EXPECT_EQ(g["sessions_by_kind"]["rider"], 0);
 }
 
 }  // namespace
