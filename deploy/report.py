@@ -29,6 +29,29 @@ def last_json_line(path):
     return {}
 
 
+def kind_figures(per_client):
+    """Figures per player kind, from every fleet's clients (a fleet before kinds: walkers):
+    players, kbit/s received p50 and max, the worst client's correction error p99 and max, and
+    the mean of the players' time-averaged views."""
+    kinds = {}
+    for c in per_client:
+        kinds.setdefault(c.get("kind", "walker"), []).append(c)
+    order = ["walker", "rider", "flyer"]  # common/player_kind.h's ids
+    out = {}
+    for kind, cs in sorted(kinds.items(), key=lambda kv: order.index(kv[0]) if kv[0] in order else 9):
+        kbps = sorted(c["bytes_in_per_s"] * 8 / 1000 for c in cs)
+        out[kind] = {
+            "players": len(cs),
+            "kbps_in_p50": kbps[(len(kbps) - 1) // 2],
+            "kbps_in_max": kbps[-1],
+            "dr_error_m_p99_worst": max(c.get("dr_error_m_p99", 0) for c in cs),
+            "dr_error_m_max": max(c.get("dr_error_m_max", 0) for c in cs),
+            "visible_entities_mean": statistics.mean(
+                c.get("visible_entities_mean", c.get("visible_entities", 0)) for c in cs),
+        }
+    return out
+
+
 def build_report(run):
     zones = sorted((load(p) for p in run.glob("zone_*_summary.json")), key=lambda z: z["rank"])
     # One fleet or gateway writes into the run folder itself; a cluster with several gives each
@@ -68,6 +91,7 @@ def build_report(run):
             "updates_per_s_mean": statistics.mean([c["updates_per_s"] for c in per_client]) if per_client else 0,
         },
         "clients": per_client,
+        "kinds": kind_figures(per_client),
         "gateway": gateway,
         "gateways": gateways if len(gateways) > 1 else None,
     }
@@ -85,12 +109,20 @@ def print_report(r):
     print(f"total entities {t['entities_start']} -> {t['entities_end']}, migrations {t['migrations']}, "
           f"avatar handoffs {t['avatar_handoffs']} (clients observed {t['client_handoffs_observed']}), "
           f"conservation failures {t['conservation_failures']}")
-    print(f"\n{'client':>6} {'player':>14} {'bytes/s in':>11} {'bytes/s out':>11} {'updates/s':>9} {'handoffs':>8}")
+    print(f"\n{'client':>6} {'player':>14} {'kind':>6} {'bytes/s in':>11} {'bytes/s out':>11} "
+          f"{'updates/s':>9} {'handoffs':>8}")
     for i, c in enumerate(r["clients"]):
-        print(f"{i:>6} {c.get('player_id', 0):>14} {c['bytes_in_per_s']:>11.0f} {c['bytes_out_per_s']:>11.0f} "
-              f"{c['updates_per_s']:>9.1f} {c.get('handoffs', 0):>8}")
+        print(f"{i:>6} {c.get('player_id', 0):>14} {c.get('kind', 'walker'):>6} {c['bytes_in_per_s']:>11.0f} "
+              f"{c['bytes_out_per_s']:>11.0f} {c['updates_per_s']:>9.1f} {c.get('handoffs', 0):>8}")
     print(f"mean per client: {t['bytes_in_per_s_mean']:.0f} B/s in, {t['bytes_out_per_s_mean']:.0f} B/s out, "
           f"{t['updates_per_s_mean']:.1f} updates/s")
+    if len(r["kinds"]) > 1:
+        print(f"\n{'kind':>6} {'players':>7} {'kbit/s in p50':>13} {'max':>6} {'error m p99 (worst)':>19} "
+              f"{'max':>6} {'in view (mean)':>14}")
+        for kind, k in r["kinds"].items():
+            print(f"{kind:>6} {k['players']:>7} {k['kbps_in_p50']:>13.1f} {k['kbps_in_max']:>6.1f} "
+                  f"{k['dr_error_m_p99_worst']:>19.3f} {k['dr_error_m_max']:>6.3f} "
+                  f"{k['visible_entities_mean']:>14.1f}")
     if r.get("_own_stream"):
         print()
         own_stream.print_table(r["_own_stream"])
