@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "client_read.h"
 #include "common/timer.h"
 #include "gateway/gateway.h"
 #include "gateway_fixture.h"
@@ -63,32 +64,32 @@ struct Player {
     std::vector<std::uint8_t> buf(2048);
     while (auto got = socket.receive(buf)) {
       if (got->from != gateway) continue;
-      Verified v = verifyDatagram(std::span(buf.data(), got->size), Direction::ToClient);
-      ASSERT_TRUE(v.ok()) << dropReasonName(v.reason);
-      observe(*v.datagram);
+      observe(testing::readAsClient(std::span(buf.data(), got->size), token));
     }
   }
 
-  void observe(const proto::Datagram& d) {
-    switch (d.msg_type()) {
-      case proto::Message::Welcome:
-        if (d.msg_as_Welcome()->client_nonce() != nonce) return;
-        token = d.msg_as_Welcome()->token();
-        avatar = d.msg_as_Welcome()->avatar_id();
-        codec.emplace(fromProto(*d.msg_as_Welcome()->codec()));
-        return;
-      case proto::Message::Spawn: {
-        const proto::Spawn* m = d.msg_as_Spawn();
-        acks.receive(m->seq());
+  void observe(const testing::ClientRead& r) {
+    if (r.datagram && r.datagram->msg_type() == proto::Message::Welcome) {
+      const proto::Welcome* w = r.datagram->msg_as_Welcome();
+      if (w->client_nonce() != nonce) return;
+      token = w->token();
+      avatar = w->avatar_id();
+      codec.emplace(fromProto(*w->codec()));
+      return;
+    }
+    if (!r.frame) return;
+    const DownlinkFrame& f = *r.frame;
+    switch (f.header.kind) {
+      case FrameKind::Spawn: {
+        acks.receive(f.header.seq);
         ASSERT_TRUE(codec.has_value());
-        auto got = codec->unpack(std::span(m->packed()->data(), m->packed()->size()), m->count(),
-                                 m->server_tick());
+        auto got = codec->unpack(f.payload, f.header.count, f.header.tick);
         ASSERT_TRUE(got.has_value());
         for (const dr::WireEntity& e : *got) spawned.insert(e.id);
         return;
       }
-      case proto::Message::StateBatch:
-        acks.receive(d.msg_as_StateBatch()->seq());
+      case FrameKind::StateBatch:
+        acks.receive(f.header.seq);
         if (spawned.contains(avatar)) ++batches_since_own_spawn;
         return;
       default:
