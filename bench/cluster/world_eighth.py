@@ -7,7 +7,8 @@ through deploy/cluster.sh, then the figures a zone cluster is judged by:
     gateways' worst second of any player;
   - the error players were shown against the zones' truth, by distance band, p50/p99;
   - handoff latency p50/p99 over every rank's timed handoffs;
-  - inputs sent, applied, lost and duplicated.
+  - inputs sent, applied, lost and duplicated;
+  - per player kind (walkers, riders, flyers): players, kbit/s received, error, entities in view.
 On fewer cores than processes the ranks are oversubscribed, and the table says so: tick times
 then include waiting for a core.
 Usage: bench/cluster/world_eighth.py [RUN_DIR]
@@ -39,7 +40,7 @@ def load(path):
 def run_cluster(run_dir):
     env = dict(os.environ)
     env.setdefault("ZONESIM_BIN", str(ROOT / "build" / "bin"))
-    log = run_dir.parent / (run_dir.name + ".log")
+    log = run_dir.parent / (run_dir.name + "-cluster.log")
     print(f"running {CLUSTER.relative_to(ROOT)} into {run_dir} (log: {log})", flush=True)
     with open(log, "w") as out:
         p = subprocess.Popen(["bash", str(ROOT / "deploy" / "cluster.sh"), str(CLUSTER),
@@ -96,6 +97,7 @@ def figures(run_dir):
         "inputs_skipped_as_gaps": sum(z["inputs_skipped"] for z in zones),
         "inputs_unroutable": sum(z["inputs_unroutable"] for z in zones),
         "inputs_duplicates_dropped": sum(z["inputs_duplicate"] for z in zones),
+        "kinds": clients.get("kinds", {}),
     }
 
 
@@ -127,6 +129,14 @@ def print_figures(f):
     print(f"inputs: {f['inputs_sent']} sent, {f['inputs_applied']} applied, {f['inputs_lost']} "
           f"lost ({f['inputs_skipped_as_gaps']} skipped as gaps, {f['inputs_unroutable']} "
           f"unroutable), {f['inputs_duplicates_dropped']} duplicates arrived and were dropped")
+    if f["kinds"]:
+        # The correction error: how far a shown entity jumps when its next state arrives.
+        print(f"{'kind':>8} {'players':>7} {'kbit/s p50':>10} {'max':>6} {'correction p50 m':>16} "
+              f"{'p99 m':>6} {'in view':>7}")
+        for name, k in f["kinds"].items():
+            print(f"{name:>8} {k['players']:>7} {k['kbps_in_p50']:>10.1f} {k['kbps_in_max']:>6.1f} "
+                  f"{k['dr_error_m_p50']:>16.3f} {k['dr_error_m_p99']:>6.3f} "
+                  f"{k['visible_entities_mean']:>7.1f}")
 
 
 def main():
