@@ -5,6 +5,7 @@
 #include <atomic>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -63,36 +64,57 @@ void checkSummary(const nlohmann::json& summary, int players) {
   EXPECT_GT(summary["fleet_wakeups_per_s"].get<double>(), 0);
 }
 
-TEST(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
-  int domain = testing::privateDdsDomain();
-  Scene scene = testing::smallScene();
-  gateway::GatewayConfig gcfg;
-  gcfg.scene = scene;
-  gcfg.dds_domain = domain;
-  gcfg.gateway_id = testing::privateGatewayId();
-  gcfg.expected_zones = 1;
-  gateway::Gateway gw(gcfg);
-  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
+// A real gateway and the test zone on a private DDS domain; play() runs a fleet against them
+// until its duration ends.
+class FleetLoopback : public ::testing::Test {
+ protected:
+  void open(const Scene& scene) {
+    scene_ = scene;
+    gateway::GatewayConfig gcfg;
+    gcfg.scene = scene;
+    gcfg.dds_domain = domain_;
+    gcfg.gateway_id = testing::privateGatewayId();
+    gcfg.expected_zones = 1;
+    gw_ = std::make_unique<gateway::Gateway>(gcfg);
+    zone_ = std::make_unique<testing::ZoneEmulator>(domain_, scene, gcfg.gateway_id);
+  }
+  // A fleet of `players` for 2.5 s at this gateway.
+  FleetConfig fleetConfig(int players) const {
+    FleetConfig f;
+    f.player.gateway = gateway::Endpoint::loopback(gw_->port());
+    f.player.world = scene_.world;
+    f.players = players;
+    f.duration_s = 2.5;
+    return f;
+  }
+  // Runs gateway, fleet and zone until the fleet is done; the zone's spawn requests by avatar.
+  std::map<std::uint64_t, zonesim_dds_SpawnRequest> play(ClientFleet& fleet) {
+    std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
+    std::thread gateway_thread([&] { gw_->run(stop_gateway); });
+    std::thread fleet_thread([&] {
+      fleet.run(stop_fleet);
+      fleet_done = true;
+    });
+    std::map<std::uint64_t, zonesim_dds_SpawnRequest> requests = runZone(*zone_, fleet_done);
+    fleet_thread.join();
+    stop_gateway = true;
+    gateway_thread.join();
+    return requests;
+  }
 
-  std::string metrics = ::testing::TempDir() + "/clients_" + std::to_string(domain) + ".jsonl";
-  FleetConfig fcfg;
-  fcfg.player.gateway = gateway::Endpoint::loopback(gw.port());
-  fcfg.player.world = scene.world;
-  fcfg.players = 3;
-  fcfg.duration_s = 2.5;
+  int domain_ = testing::privateDdsDomain();
+  Scene scene_;
+  std::unique_ptr<gateway::Gateway> gw_;
+  std::unique_ptr<testing::ZoneEmulator> zone_;
+};
+
+TEST_F(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
+  open(testing::smallScene());
+  std::string metrics = ::testing::TempDir() + "/clients_" + std::to_string(domain_) + ".jsonl";
+  FleetConfig fcfg = fleetConfig(3);
   fcfg.metrics_path = metrics;
   ClientFleet fleet(fcfg);
-
-  std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
-  std::thread gateway_thread([&] { gw.run(stop_gateway); });
-  std::thread fleet_thread([&] {
-    fleet.run(stop_fleet);
-    fleet_done = true;
-  });
-  runZone(zone, fleet_done);
-  fleet_thread.join();
-  stop_gateway = true;
-  gateway_thread.join();
+  play(fleet);
 
   EXPECT_EQ(fleet.welcomed(), 3);
   checkSummary(nlohmann::json::parse(fleet.summaryJson()), 3);
@@ -102,43 +124,20 @@ TEST(FleetLoopback, PlayersAreWelcomedAndSeeTheWorld) {
   for (; std::getline(lines, line); ++n)
     EXPECT_TRUE(nlohmann::json::parse(line).contains("bytes_in_per_s"));
   EXPECT_GE(n, 2);
-  EXPECT_GE(gw.counters().inputs_forwarded, 1u);
+  EXPECT_GE(gw_->counters().inputs_forwarded, 1u);
 }
 
 // With every datagram held 20 ms each way, what the players get comes off their downlinks only
 // when the loop wakes for it: the Welcome, the states and the Pongs all arrive, and no round
 // trip is shorter than the two delays.
-TEST(FleetLoopback, HeldDatagramsArriveThroughTheLoop) {
-  int domain = testing::privateDdsDomain();
-  Scene scene = testing::smallScene();
-  gateway::GatewayConfig gcfg;
-  gcfg.scene = scene;
-  gcfg.dds_domain = domain;
-  gcfg.gateway_id = testing::privateGatewayId();
-  gcfg.expected_zones = 1;
-  gateway::Gateway gw(gcfg);
-  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
-
+TEST_F(FleetLoopback, HeldDatagramsArriveThroughTheLoop) {
+  open(testing::smallScene());
   constexpr double kDelayMs = 20;
-  FleetConfig fcfg;
-  fcfg.player.gateway = gateway::Endpoint::loopback(gw.port());
-  fcfg.player.world = scene.world;
+  FleetConfig fcfg = fleetConfig(3);
   fcfg.player.impairment.out.delay_ms = kDelayMs;
   fcfg.player.impairment.in.delay_ms = kDelayMs;
-  fcfg.players = 3;
-  fcfg.duration_s = 2.5;
   ClientFleet fleet(fcfg);
-
-  std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
-  std::thread gateway_thread([&] { gw.run(stop_gateway); });
-  std::thread fleet_thread([&] {
-    fleet.run(stop_fleet);
-    fleet_done = true;
-  });
-  runZone(zone, fleet_done);
-  fleet_thread.join();
-  stop_gateway = true;
-  gateway_thread.join();
+  play(fleet);
 
   EXPECT_EQ(fleet.welcomed(), 3);
   nlohmann::json summary = nlohmann::json::parse(fleet.summaryJson());
@@ -152,37 +151,15 @@ TEST(FleetLoopback, HeldDatagramsArriveThroughTheLoop) {
   }
 }
 
-TEST(FleetLoopback, KindsAreMixedByTheSharesAndReportedPerKind) {
-  int domain = testing::privateDdsDomain();
+TEST_F(FleetLoopback, KindsAreMixedByTheSharesAndReportedPerKind) {
   Scene scene = testing::smallScene();
   scene.clients.kinds = {{PlayerKindId::Walker, 5, 40, 0, 0.5},
                          {PlayerKindId::Flyer, 20, 60, 10, 0.5}};
-  gateway::GatewayConfig gcfg;
-  gcfg.scene = scene;
-  gcfg.dds_domain = domain;
-  gcfg.gateway_id = testing::privateGatewayId();
-  gcfg.expected_zones = 1;
-  gateway::Gateway gw(gcfg);
-  testing::ZoneEmulator zone(domain, scene, gcfg.gateway_id);
-
-  FleetConfig fcfg;
-  fcfg.player.gateway = gateway::Endpoint::loopback(gw.port());
-  fcfg.player.world = scene.world;
+  open(scene);
+  FleetConfig fcfg = fleetConfig(4);
   fcfg.kinds = fleetKinds(scene.clients);
-  fcfg.players = 4;
-  fcfg.duration_s = 2.5;
   ClientFleet fleet(fcfg);
-
-  std::atomic<bool> stop_gateway{false}, stop_fleet{false}, fleet_done{false};
-  std::thread gateway_thread([&] { gw.run(stop_gateway); });
-  std::thread fleet_thread([&] {
-    fleet.run(stop_fleet);
-    fleet_done = true;
-  });
-  std::map<std::uint64_t, zonesim_dds_SpawnRequest> requests = runZone(zone, fleet_done);
-  fleet_thread.join();
-  stop_gateway = true;
-  gateway_thread.join();
+  std::map<std::uint64_t, zonesim_dds_SpawnRequest> requests = play(fleet);
 
   ASSERT_EQ(fleet.welcomed(), 4);
   int flyers_asked = 0;
@@ -201,7 +178,7 @@ TEST(FleetLoopback, KindsAreMixedByTheSharesAndReportedPerKind) {
     EXPECT_GE(kinds[k]["visible_entities_mean"].get<double>(), 1) << "its own avatar at least";
     EXPECT_TRUE(kinds[k].contains("dr_error_m_max"));
   }
-  nlohmann::json g = nlohmann::json::parse(gw.summaryJson());
+  nlohmann::json g = nlohmann::json::parse(gw_->summaryJson());
   EXPECT_EQ(g["sessions_by_kind"]["walker"], 2);
   EXPECT_EQ(g["sessions_by_kind"]["flyer"], 2);
   EXPECT_EQ(g["sessions_by_kind"]["rider"], 0);
