@@ -22,10 +22,12 @@ struct BudgetSettings {
   double error_angle_rad = 0.0087;  ///< error held as this angle seen from the viewer (0.5 deg)
   bool enabled() const { return kbps > 0; }
   /// Ticks over which a client's spawns and updates are gathered into one send: enough for
-  /// about kGatherBytes, at most a third of a second, so that at a low rate a datagram a tick
-  /// is not mostly framing (13 bytes a lean frame, wire/downlink_frame.h). Each tick waited
-  /// is a tick of error: 150 B (2 ticks at 20 kbit/s) against 400 B (5) took the demo's
-  /// 0-25 m band from p99 0.333 m to 0.238-0.264 m (docs/benchmarks.md).
+  /// about kGatherBytes, at most a third of a second. Chosen when a datagram's framing was
+  /// 80 bytes, so that at a low rate a datagram a tick would not be mostly framing. With the
+  /// lean frames' 13 (wire/downlink_frame.h), 150 B took the demo's 0-25 m band from p99
+  /// 0.333 m to 0.24-0.26 m (docs/benchmarks.md), but the view's narrowing (adaptRadius) runs
+  /// per send, so more sends narrowed it faster and a loaded machine lost far spawns in the
+  /// budget test: smaller sends wait for a narrowing paced per second.
   int ticksPerSend(double tick_rate) const;
   /// Bytes each client may be sent per gateway tick: a second's bytes over tick_rate +
   /// ticksPerSend ticks, since a 1 s window that starts with one send can hold that many
@@ -34,7 +36,7 @@ struct BudgetSettings {
     return kbps * 1000.0 / 8.0 / (tick_rate + ticksPerSend(tick_rate));
   }
   /// What a client's spawns and updates are gathered to, bytes.
-  static constexpr double kGatherBytes = 150;
+  static constexpr double kGatherBytes = 400;
 };
 
 /// Throws std::invalid_argument naming `kbps_name` / `angle_name` when a setting is negative,

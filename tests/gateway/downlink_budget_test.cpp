@@ -90,13 +90,13 @@ TEST(DownlinkBudget, AccumulatorGrowsUntilSent) {
 }
 
 TEST(BudgetSettings, GathersLowRatesOverSeveralTicksAndStillHoldsTheSecond) {
-  // 20 kbit/s at 30 Hz: 80.6 B a tick, so 2 ticks gather the 150 B of a send.
+  // 20 kbit/s at 30 Hz: 80.6 B a tick, so 5 ticks gather the 400 B of a send.
   BudgetSettings b{20, 0.01};
-  EXPECT_EQ(b.ticksPerSend(30), 2);
+  EXPECT_EQ(b.ticksPerSend(30), 5);
   // A 1 s window that starts with a send holds tick_rate + ticksPerSend ticks' bytes: no more
   // than the second's.
-  EXPECT_NEAR(b.bytesPerTick(30) * (30 + 2), 2500, 1e-9);
-  EXPECT_EQ(BudgetSettings({5, 0.01}).ticksPerSend(30), 8);
+  EXPECT_NEAR(b.bytesPerTick(30) * (30 + 5), 2500, 1e-9);
+  EXPECT_EQ(BudgetSettings({48, 0.01}).ticksPerSend(30), 3);
   EXPECT_EQ(BudgetSettings({1000, 0.01}).ticksPerSend(30), 1);  // a tick's bytes fill a send
   EXPECT_EQ(BudgetSettings({2, 0.01}).ticksPerSend(30), 10);    // at most a third of a second
   EXPECT_EQ(BudgetSettings({0, 0.01}).ticksPerSend(30), 1);     // no budget
