@@ -25,9 +25,11 @@ struct BudgetSettings {
   /// about kGatherBytes, at most a third of a second. Chosen when a datagram's framing was
   /// 80 bytes, so that at a low rate a datagram a tick would not be mostly framing. With the
   /// lean frames' 13 (wire/downlink_frame.h), 150 B took the demo's 0-25 m band from p99
-  /// 0.333 m to 0.24-0.26 m (docs/benchmarks.md), but the view's narrowing (adaptRadius) runs
-  /// per send, so more sends narrowed it faster and a loaded machine lost far spawns in the
-  /// budget test: smaller sends wait for a narrowing paced per second.
+  /// 0.333 m to 0.24-0.26 m (docs/benchmarks.md), but the view's pressure (adaptRadius) is
+  /// judged per send: a smaller send overflows more often though the rate suffices (a view
+  /// spawning in), the view narrows, and the budget test's far NPCs were never spawned.
+  /// Pacing the narrowing per second alone did not fix that (tried): smaller sends wait for
+  /// pressure judged against the rate.
   int ticksPerSend(double tick_rate) const;
   /// Bytes each client may be sent per gateway tick: a second's bytes over tick_rate +
   /// ticksPerSend ticks, since a 1 s window that starts with one send can hold that many
