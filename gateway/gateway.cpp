@@ -22,6 +22,21 @@ constexpr int kMaxDatagramsPerWake = 4096;
 // Under a budget, the view radius never narrows below this fraction of the nimbus.
 constexpr double kLeastViewFraction = 0.25;
 
+// The largest k <= n for which fits(k) holds, fits being true up to some k and false after
+// (sizes grow with the prefix): a binary search, about log2(n) encodings.
+template <typename Fits>
+std::size_t longestFittingPrefix(std::size_t n, Fits fits) {
+  std::size_t lo = 0, hi = n;
+  while (lo < hi) {
+    std::size_t mid = (lo + hi + 1) / 2;
+    if (fits(mid))
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
+}
+
 std::int64_t seconds(double s) {
   return std::int64_t(s * 1e9);
 }
@@ -102,16 +117,15 @@ Gateway::Gateway(GatewayConfig config)
     dr::WireEntity widest;
     widest.id = ~std::uint64_t{0} >> 1;
     widest.model = {dr::Order::Second, dr::Spin::Rotating};
-    ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
-    std::size_t one_spawn = encodeSpawnChunks(~std::uint64_t{0}, ~std::uint64_t{0} >> 1, codec_,
-                                              {&widest, 1}, numbered)[0]
-                                .size();
+    std::size_t one_spawn = totalBytes(encodeSpawnChunks(~std::uint64_t{0}, ~std::uint64_t{0} >> 1,
+                                                         codec_, {&widest, 1}, sizingSeq()));
     checkBudget(config_.budget, one_spawn, config_.budget_names.first, config_.budget_names.second);
     budget_bytes_per_tick_ = config_.budget.bytesPerTick(config_.scene.tick_rate);
     // Spawns and updates go when the bucket holds a send's worth (ticksPerSend ticks' bytes,
     // or one spawn datagram where that is more); guaranteed traffic goes every tick.
     budget_ticks_per_send_ = config_.budget.ticksPerSend(config_.scene.tick_rate);
-    budget_cap_bytes_ = std::max(budget_bytes_per_tick_ * budget_ticks_per_send_, double(one_spawn));
+    budget_cap_bytes_ =
+        std::max(budget_bytes_per_tick_ * budget_ticks_per_send_, double(one_spawn));
   }
   if (config_.full_scan_every_ticks < 1)
     throw std::invalid_argument("gateway: --full-scan-every must be at least 1, not " +
@@ -365,10 +379,10 @@ void Gateway::sendViews(std::int64_t now_ns) {
   // The bucket fills by the time that passed, not by the tick: a gateway that falls behind its
   // cadence (an overloaded machine) still hands each player its budget. At most a send's worth
   // of ticks at once, so the bound on every 1 s window holds as at the nominal cadence.
-  double refill_ticks =
-      last_views_ns_ > 0 ? std::clamp(double(now_ns - last_views_ns_) / double(tick_ns_), 0.0,
-                                      double(budget_ticks_per_send_))
-                         : 1.0;
+  double refill_ticks = last_views_ns_ > 0
+                            ? std::clamp(double(now_ns - last_views_ns_) / double(tick_ns_), 0.0,
+                                         double(budget_ticks_per_send_))
+                            : 1.0;
   last_views_ns_ = now_ns;
   ++views_;
   snapshot_.rebuild(cache_, grid_, sim_now);
@@ -390,8 +404,8 @@ void Gateway::sendViews(std::int64_t now_ns) {
     // A player's full scan falls on its own tick of every full_scan_every_ticks (by token, so
     // the scans spread over the ticks); the avatar's first appearance does not wait.
     std::uint64_t every = std::uint64_t(config_.full_scan_every_ticks);
-    bool full_scan = config_.budget.enabled() || every <= 1 ||
-                     (views_ + s.token) % every == 0 || !s.view.knows(s.avatar_id);
+    bool full_scan = config_.budget.enabled() || every <= 1 || (views_ + s.token) % every == 0 ||
+                     !s.view.knows(s.avatar_id);
     if (full_scan) {
       selectVisible(snapshot_, grid_, at, s.view, visible_);
       s.view.diff(visible_, diff);
@@ -459,7 +473,6 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
                               double available) const {
   // Encodes exactly what sendView will send (seq is a fixed-width field, the batch tick the
   // newest of the set), so the size measured here is the size sent.
-  ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
   auto take = [&](std::size_t k) {
     Fit f = forced;
     for (std::size_t i = 0; i < k; ++i)
@@ -476,48 +489,27 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
       states.push_back(wireEntity(*cache_.find(id)));
       tick = std::max(tick, states.back().tick);
     }
-    std::size_t total = 0;
-    for (const Bytes& b : spawns ? encodeSpawnChunks(s.token, tick, codec_, states, numbered)
-                                 : encodeStateChunks(s.token, tick, codec_, states, numbered))
-      total += b.size();
-    return total;
+    return totalBytes(spawns ? encodeSpawnChunks(s.token, tick, codec_, states, sizingSeq())
+                             : encodeStateChunks(s.token, tick, codec_, states, sizingSeq()));
   };
   auto size = [&](const Fit& f) { return bytes(f.spawns, true) + bytes(f.updates, false); };
-  // Forced traffic goes as debt: what the rest adds to it must fit. The largest prefix that
-  // fits (sizes grow with the prefix): a binary search.
+  // Forced traffic goes as debt: what the rest adds to it must fit.
   double base = double(size(forced));
-  std::size_t lo = 0, hi = available > 0 ? ranked.size() : 0;
-  while (lo < hi) {
-    std::size_t mid = (lo + hi + 1) / 2;
-    if (double(size(take(mid))) - base <= available)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return take(lo);
+  return take(longestFittingPrefix(available > 0 ? ranked.size() : 0, [&](std::size_t k) {
+    return double(size(take(k))) - base <= available;
+  }));
 }
 
 std::size_t Gateway::despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const {
   if (ids.empty()) return 0;
-  ChunkSeq numbered{[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
-  std::size_t total = 0;
-  for (const Bytes& b : encodeDespawnChunks(s.token, clock_.tick(), ids, numbered))
-    total += b.size();
-  return total;
+  return totalBytes(encodeDespawnChunks(s.token, clock_.tick(), ids, sizingSeq()));
 }
 
 std::size_t Gateway::fittingDespawns(const Session& s, const std::vector<std::uint64_t>& ids,
                                      double available) const {
-  // The longest prefix whose datagrams fit (sizes grow with the prefix): a binary search.
-  std::size_t lo = 0, hi = ids.size();
-  while (lo < hi) {
-    std::size_t mid = (lo + hi + 1) / 2;
-    if (double(despawnBytes(s, std::span(ids).first(mid))) <= available)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return lo;
+  return longestFittingPrefix(ids.size(), [&](std::size_t k) {
+    return double(despawnBytes(s, std::span(ids).first(k))) <= available;
+  });
 }
 
 void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus) {
@@ -591,8 +583,8 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
   for (auto& [band, key, id, spawn] : order) ranked.emplace_back(id, spawn);
   Fit go = fitting(s, forced, ranked, available);
   // How many of ranked went (a prefix: fitting takes the longest that fits).
-  std::size_t taken = go.spawns.size() + go.updates.size() - forced.spawns.size() -
-                      forced.updates.size();
+  std::size_t taken =
+      go.spawns.size() + go.updates.size() - forced.spawns.size() - forced.updates.size();
   // On a send, the view narrows while the budget cannot carry what it ranked, and widens
   // again when it can; it never narrows below a quarter of the nimbus.
   if (available > 0)

@@ -77,6 +77,18 @@ struct ChunkSeq {
   std::uint32_t take() const { return next != nullptr ? next(ctx) : 0; }
 };
 
+/// Numbering for measuring only: every chunk gets a seq of the width a real one has, so the
+/// frames are exactly as large as the ones later sent with the session's own seqs.
+inline ChunkSeq sizingSeq() {
+  return {[](void*) { return std::uint32_t{0xffffffff}; }, nullptr, nullptr};
+}
+/// Bytes of a run of encoded chunks together.
+inline std::size_t totalBytes(const std::vector<Bytes>& chunks) {
+  std::size_t n = 0;
+  for (const Bytes& b : chunks) n += b.size();
+  return n;
+}
+
 /// StateBatch frames carrying all states (ascending ids), packed by the codec, in order.
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
