@@ -23,18 +23,12 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "deploy"))
+from report import load  # noqa: E402  (deploy/report.py)
+from truth_error import pct  # noqa: E402  (deploy/truth_error.py)
+
 CLUSTER = ROOT / "bench" / "cluster" / "world_eighth.cluster"
 PROCESSES_BESIDE_ZONES = 4  # two gateways, the lobby, the fleet
-
-
-def pct(values, p):
-    v = sorted(values)
-    return v[min(len(v) - 1, max(0, int(round(p / 100 * len(v) + 0.5)) - 1))] if v else float("nan")
-
-
-def load(path):
-    with open(path) as f:
-        return json.load(f)
 
 
 def run_cluster(run_dir):
