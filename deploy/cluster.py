@@ -257,21 +257,25 @@ class Launch:
                                 on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}, stop_at_eof=True),
                                 g.log, held_stdin=g.host.reach in ("ssh", "slurm"))
         for g in self.c.gateways:
-            what = f"{g.host.describe()}, gateway {g.name}"
-            deadline = time.monotonic() + 120  # a loaded 2-core machine can take long to start one
-            while not g.address:
-                m = re.search(r"gateway listening on (\S+)", g.log.read_text(errors="replace"))
-                if m:
-                    g.address = m.group(1)
-                elif g.proc.poll() is not None:
-                    self.fail(what, f"exited with {g.proc.returncode} before listening", g.log)
-                elif self.zones.poll() is not None:
-                    self.fail(self.procs[0][1], f"exited with {self.zones.returncode}", self.run / "zones.log")
-                elif time.monotonic() > deadline:
-                    self.fail(what, "not listening after 120 s", g.log)
-                else:
-                    time.sleep(0.1)
+            g.address = self.wait_listening(f"{g.host.describe()}, gateway {g.name}", "gateway",
+                                            g.proc, g.log, watch_zones=True)
             self.log(f"== gateway {g.name} on {g.host.name} listening on {g.address}")
+
+    def wait_listening(self, what, program, proc, log, watch_zones=False):
+        """The address a started gateway or lobby prints as "PROGRAM listening on ADDR"; fails the
+        run (naming `what`) if it exits first, if the zones do (watch_zones), or after 120 s."""
+        deadline = time.monotonic() + 120  # a loaded 2-core machine can take long to start one
+        while True:
+            m = re.search(program + r" listening on (\S+)", log.read_text(errors="replace"))
+            if m:
+                return m.group(1)
+            if proc.poll() is not None:
+                self.fail(what, f"exited with {proc.returncode} before listening", log)
+            elif watch_zones and self.zones.poll() is not None:
+                self.fail(self.procs[0][1], f"exited with {self.zones.returncode}", self.run / "zones.log")
+            elif time.monotonic() > deadline:
+                self.fail(what, "not listening after 120 s", log)
+            time.sleep(0.1)
 
     def write_key(self):
         """The cluster's key: 32 random bytes in the run folder, copied to the hosts that do not
@@ -301,17 +305,7 @@ class Launch:
         lobby.proc = self.start(what, on_host(lobby.host, argv, {"CYCLONEDDS_URI": f"file://{dds[lobby.host.name]}"},
                                               stop_at_eof=True),
                                 lobby.log, held_stdin=lobby.host.reach in ("ssh", "slurm"))
-        deadline = time.monotonic() + 120
-        while not lobby.address:
-            m = re.search(r"lobby listening on (\S+)", lobby.log.read_text(errors="replace"))
-            if m:
-                lobby.address = m.group(1)
-            elif lobby.proc.poll() is not None:
-                self.fail(what, f"exited with {lobby.proc.returncode} before listening", lobby.log)
-            elif time.monotonic() > deadline:
-                self.fail(what, "not listening after 120 s", lobby.log)
-            else:
-                time.sleep(0.1)
+        lobby.address = self.wait_listening(what, "lobby", lobby.proc, lobby.log)
         self.log(f"== lobby {lobby.name} on {lobby.host.name} listening on {lobby.address}")
 
     def start_fleets(self):
