@@ -23,19 +23,13 @@ int main(int argc, char** argv) {
   CLI::App app{"zonesim gateway: connects simulated players to the zone cluster"};
   zonesim::CommonOptions common;
   zonesim::addCommonOptions(app, common);
-  std::string scene_path, port_file, metrics_dir;
+  std::string scene_path, metrics_dir;
   zonesim::gateway::GatewayConfig cfg;
   double duration = 0;
   std::int64_t seed = -1;
-  int port = -1;
-  std::string bind_text = "127.0.0.1";
+  zonesim::ListenOptions listen_opts;
   app.add_option("--scene", scene_path, "scene file")->required();
-  app.add_option("--bind", bind_text,
-                 "UDP address for players, ADDR or ADDR:PORT: an IPv4 address (0.0.0.0 = every "
-                 "interface), an interface name or a host name (default 127.0.0.1)");
-  app.add_option("--port", port, "UDP port, when --bind gives none (default 0 = ephemeral)")
-      ->check(CLI::Range(0, 65535));
-  app.add_option("--port-file", port_file, "write the bound port to this file");
+  zonesim::addListenOptions(app, listen_opts, "players");
   app.add_option("--dds-domain", cfg.dds_domain,
                  "DDS domain id (Cyclone's default ports allow 0-232)")
       ->check(CLI::Range(0, 232));
@@ -98,8 +92,8 @@ int main(int argc, char** argv) {
     zonesim::applyCommonOptions(common, "gateway");
     cfg.scene = zonesim::loadScene(scene_path);
     // What the user typed, so an error names the options at fault.
-    std::string bind_option = zonesim::gateway::bindOptionText(bind_text, port);
-    cfg.bind = zonesim::gateway::bindFromOptions(bind_text, port);
+    std::string bind_option = zonesim::gateway::bindOptionText(listen_opts.bind, listen_opts.port);
+    cfg.bind = zonesim::gateway::bindFromOptions(listen_opts.bind, listen_opts.port);
     cfg.impairment =
         zonesim::gateway::injectedImpairment(inject_loss, inject_delay_ms, inject_jitter_ms);
     if (!link.empty()) {
@@ -140,14 +134,16 @@ int main(int argc, char** argv) {
       throw std::runtime_error(bind_option + ": " + e.what());
     }
     zonesim::gateway::Gateway& gateway = *bound;
-    if (!port_file.empty()) zonesim::writeTextFileAtomically(port_file, std::to_string(gateway.port()));
+    if (!listen_opts.port_file.empty())
+      zonesim::writeTextFileAtomically(listen_opts.port_file, std::to_string(gateway.port()));
     std::printf("gateway listening on %s\n", gateway.local().str().c_str());
     std::fflush(stdout);
     gateway.run(zonesim::stopRequested(), duration);
     std::string summary = gateway.summaryJson();
     std::printf("gateway summary %s\n", summary.c_str());
     std::fflush(stdout);
-    if (!metrics_dir.empty()) zonesim::writeTextFileAtomically(metrics_dir + "/gateway_summary.json", summary);
+    if (!metrics_dir.empty())
+      zonesim::writeTextFileAtomically(metrics_dir + "/gateway_summary.json", summary);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gateway: error: %s\n", e.what());
     return 1;

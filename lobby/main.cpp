@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <stdexcept>
 #include <random>
+#include <stdexcept>
 
 #include "auth/auth_key.h"
 #include "common/cli.h"
@@ -22,15 +22,10 @@ int main(int argc, char** argv) {
   zonesim::CommonOptions common;
   zonesim::addCommonOptions(app, common);
   zonesim::lobby::LobbyConfig cfg;
-  std::string bind_text = "127.0.0.1", port_file, metrics_dir, key_file;
-  int port = -1;
+  zonesim::ListenOptions listen_opts;
+  std::string metrics_dir, key_file;
   double duration = 0, lifetime_s = 30;
-  app.add_option("--bind", bind_text,
-                 "UDP address for players, ADDR or ADDR:PORT (0.0.0.0 = every interface, an "
-                 "interface name or a host name; default 127.0.0.1)");
-  app.add_option("--port", port, "UDP port, when --bind gives none (default 0 = ephemeral)")
-      ->check(CLI::Range(0, 65535));
-  app.add_option("--port-file", port_file, "write the bound port to this file");
+  zonesim::addListenOptions(app, listen_opts, "players' logins");
   app.add_option("--auth-key-file", key_file,
                  "the cluster's key, shared with the gateways (at least 32 random bytes: "
                  "head -c 32 /dev/urandom > FILE)")
@@ -55,8 +50,8 @@ int main(int argc, char** argv) {
 
   try {
     zonesim::applyCommonOptions(common, "lobby");
-    std::string bind_option = zonesim::gateway::bindOptionText(bind_text, port);
-    cfg.bind = zonesim::gateway::bindFromOptions(bind_text, port);
+    std::string bind_option = zonesim::gateway::bindOptionText(listen_opts.bind, listen_opts.port);
+    cfg.bind = zonesim::gateway::bindFromOptions(listen_opts.bind, listen_opts.port);
     zonesim::auth::AuthKey key = zonesim::auth::loadAuthKey(key_file);
     cfg.login.token_lifetime_ms = std::uint64_t(lifetime_s * 1000);
     // Player ids of a restarted lobby differ from the ones it issued before.
@@ -68,7 +63,8 @@ int main(int argc, char** argv) {
       throw std::runtime_error(bind_option + ": " + e.what());
     }
     zonesim::lobby::Lobby& lobby = *bound;
-    if (!port_file.empty()) zonesim::writeTextFileAtomically(port_file, std::to_string(lobby.local().port));
+    if (!listen_opts.port_file.empty())
+      zonesim::writeTextFileAtomically(listen_opts.port_file, std::to_string(lobby.local().port));
     std::printf("lobby listening on %s\n", lobby.local().str().c_str());
     std::fflush(stdout);
     lobby.run(zonesim::stopRequested(), duration);
