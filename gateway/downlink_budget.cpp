@@ -23,6 +23,9 @@ void checkBudget(const BudgetSettings& b, std::size_t min_datagram_bytes,
   if (!std::isfinite(b.error_angle_rad) || b.error_angle_rad < 0 ||
       b.error_angle_rad > 85.0 * M_PI / 180.0 + 1e-12)
     throw std::invalid_argument(angle_name + ": must be between 0 and 85 degrees");
+  if (!std::isfinite(b.send_bytes) || b.send_bytes <= 0)
+    throw std::invalid_argument("--budget-send-bytes: must be a number of bytes > 0, not " +
+                                number(b.send_bytes));
   if (!b.enabled()) return;
   double per_second = b.kbps * 1000.0 / 8.0;
   if (per_second < double(min_datagram_bytes)) {
@@ -37,7 +40,7 @@ int BudgetSettings::ticksPerSend(double tick_rate) const {
   if (!enabled()) return 1;
   double per_tick = kbps * 1000.0 / 8.0 / (tick_rate + 1);
   int most = std::max(1, int(tick_rate / 3));
-  return std::clamp(int(std::ceil(kGatherBytes / per_tick)), 1, most);
+  return std::clamp(int(std::ceil(send_bytes / per_tick)), 1, most);
 }
 
 ShownError shownError(const CachedEntity& sent, const CachedEntity& newest, double at) {
@@ -70,10 +73,26 @@ void DownlinkBudget::sent(std::uint64_t id, const CachedEntity& e) {
   waiting_next_.erase(id);
 }
 
-void DownlinkBudget::adaptRadius(bool pressed, double nimbus, double least) {
+bool DownlinkBudget::pressed(std::size_t taken, std::size_t waiting, std::size_t waiting_near,
+                             double available, double bytes_per_second) {
+  if (taken > 0) record_bytes_ = available / double(taken);
+  if (waiting_near > 0) return true;
+  if (waiting == 0) return false;
+  // Before any record went, one that did not fit took at least what was available.
+  double per_record = record_bytes_ > 0 ? record_bytes_ : available;
+  return double(waiting) * per_record > bytes_per_second * kBacklogSeconds;
+}
+
+void DownlinkBudget::adaptRadius(bool pressed, double nimbus, double least, double seconds) {
   double r = std::min(view_radius_, nimbus);
-  r = pressed ? r * kShrink : r * kGrow;
+  r *= std::pow(pressed ? kShrinkPerSecond : kGrowPerSecond, std::max(seconds, 0.0));
   view_radius_ = std::clamp(r, std::min(least, nimbus), nimbus);
+}
+
+double DownlinkBudget::secondsSinceAdapt(std::int64_t now_ns) {
+  double s = last_adapt_ns_ < 0 ? 0.0 : double(now_ns - last_adapt_ns_) * 1e-9;
+  last_adapt_ns_ = now_ns;
+  return std::clamp(s, 0.0, 1.0);
 }
 
 double DownlinkBudget::accumulateSpawn(std::uint64_t id, double priority) {

@@ -122,10 +122,13 @@ Gateway::Gateway(GatewayConfig config)
     checkBudget(config_.budget, one_spawn, config_.budget_names.first, config_.budget_names.second);
     budget_bytes_per_tick_ = config_.budget.bytesPerTick(config_.scene.tick_rate);
     // Spawns and updates go when the bucket holds a send's worth (ticksPerSend ticks' bytes,
-    // or one spawn datagram where that is more); guaranteed traffic goes every tick.
+    // or one spawn datagram where that is more); guaranteed traffic goes every tick. The
+    // bucket holds a tick more than a send, so a send that waits for the next tick's bytes
+    // loses none of them to the cap.
     budget_ticks_per_send_ = config_.budget.ticksPerSend(config_.scene.tick_rate);
-    budget_cap_bytes_ =
+    budget_send_bytes_ =
         std::max(budget_bytes_per_tick_ * budget_ticks_per_send_, double(one_spawn));
+    budget_cap_bytes_ = budget_send_bytes_ + budget_bytes_per_tick_;
   }
   if (config_.full_scan_every_ticks < 1)
     throw std::invalid_argument("gateway: --full-scan-every must be at least 1, not " +
@@ -419,7 +422,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
       addResends(s, diff, now_ns);
       resendHandoff(s, now_ns);
     }
-    if (config_.budget.enabled()) budgetDiff(s, diff, at, nimbus);
+    if (config_.budget.enabled()) budgetDiff(s, diff, at, nimbus, now_ns);
     std::uint64_t tick = clock_.tick();
     if (!diff.empty()) {
       sendView(s, diff, now_ns);
@@ -512,7 +515,8 @@ std::size_t Gateway::fittingDespawns(const Session& s, const std::vector<std::ui
   });
 }
 
-void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus) {
+void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus,
+                         std::int64_t now_ns) {
   const DeadReckoning& drs = config_.scene.dead_reckoning;
   // The zone's own thresholds are the floor: nearer than floor / angle, every state the zone
   // sent is worth sending, so the near band keeps the zone's precision.
@@ -538,12 +542,16 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
     tokens -= double(despawnBytes(s, diff.despawns));
   }
   // Until the bucket is full, only guaranteed traffic goes (the rest waits, gathered).
-  double available = s.budget.tokens() >= budget_cap_bytes_ ? tokens : 0.0;
-  // The avatar always goes (and a state whose reference the budget never saw). The near band
-  // (where angle * distance is within the zone's threshold) goes next, then the rest; within
-  // each, by accumulated priority: spawns as an entity missing by kMissingEntityM, updates by
-  // the error the client shows, both as angles at the viewer.
+  double available = s.budget.tokens() >= budget_send_bytes_ ? tokens : 0.0;
+  // The avatar goes in every send (and a state whose reference the budget never saw). Then,
+  // in three ranks: updates of the near band (where angle * distance is within the zone's
+  // threshold), so that what is shown near stays current while a view fills in; spawns of
+  // the near band; the rest. Within each, by accumulated priority: spawns as an entity
+  // missing by kMissingEntityM, updates by the error the client shows, both as angles at the
+  // viewer. Near spawns are not starved: a near update that waits narrows the view until the
+  // near updates leave room.
   auto nearBand = [&](double d) { return config_.budget.error_angle_rad * d <= floor; };
+  enum Rank { kNearUpdate, kNearSpawn, kFar };
   Fit forced;
   std::vector<std::tuple<int, double, std::uint64_t, bool>> order;  // band, -priority, id, spawn
   for (std::uint64_t id : diff.spawns) {
@@ -553,10 +561,16 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
     }
     double d = distanceOf(id);
     double acc = s.budget.accumulateSpawn(id, errorPriority(kMissingEntityM, d));
-    order.emplace_back(nearBand(d) ? 0 : 1, -acc, id, true);
+    order.emplace_back(nearBand(d) ? kNearSpawn : kFar, -acc, id, true);
   }
   for (std::uint64_t id : diff.updates) {
     const CachedEntity* sent = s.budget.lastSent(id);
+    // The avatar's own state rides with each send rather than in a datagram of its own every
+    // tick (a third of 20 kbit/s went on that): it waits at most ticksPerSend - 1 ticks.
+    if (id == at.self && sent != nullptr && available <= 0) {
+      s.view.defer(id);
+      continue;
+    }
     if (id == at.self || sent == nullptr) {
       forced.updates.push_back(id);
       continue;
@@ -575,7 +589,7 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
       continue;
     }
     double acc = s.budget.accumulate(id, errorPriority(std::max(error, floor), d));
-    order.emplace_back(near ? 0 : 1, -acc, id, false);
+    order.emplace_back(near ? kNearUpdate : kFar, -acc, id, false);
   }
   std::sort(order.begin(), order.end());
   std::vector<std::pair<std::uint64_t, bool>> ranked;
@@ -585,10 +599,18 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
   // How many of ranked went (a prefix: fitting takes the longest that fits).
   std::size_t taken =
       go.spawns.size() + go.updates.size() - forced.spawns.size() - forced.updates.size();
-  // On a send, the view narrows while the budget cannot carry what it ranked, and widens
-  // again when it can; it never narrows below a quarter of the nimbus.
-  if (available > 0)
-    s.budget.adaptRadius(taken < ranked.size(), nimbus, nimbus * kLeastViewFraction);
+  // On a send, the view narrows while a near update could not go, or what it ranked and could
+  // not carry is a long backlog for the budget's rate, and widens again when not; never below
+  // a quarter of the nimbus.
+  if (available > 0) {
+    std::size_t waiting_near = 0;
+    for (std::size_t i = taken; i < order.size(); ++i)
+      if (std::get<0>(order[i]) == kNearUpdate) ++waiting_near;
+    bool pressed = s.budget.pressed(taken, ranked.size() - taken, waiting_near, available,
+                                    config_.budget.bytesPerSecond());
+    s.budget.adaptRadius(pressed, nimbus, nimbus * kLeastViewFraction,
+                         s.budget.secondsSinceAdapt(now_ns));
+  }
   // What did not fit waits: listed again next tick. A spawn never sent is forgotten (the
   // client does not hold it); one sent but unacknowledged stays known, so that a despawn
   // still follows if it leaves the view before its resend gets through.

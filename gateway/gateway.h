@@ -101,10 +101,12 @@ class Gateway {
   /// Adds to diff what the client has not acknowledged within the timeout.
   void addResends(Session& s, ViewDiff& diff, std::int64_t now_ns);
   void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
-  /// Under a budget: what of diff goes out this tick, holding the rest in the view: despawns
-  /// first as far as the tokens reach, the avatar always, then spawns and updates by rank.
-  /// `nimbus` is the player's full nimbus, before the budget narrowed the view.
-  void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus);
+  /// Under a budget (gateway_budget.cpp): what of diff goes out this tick, holding the rest in
+  /// the view: despawns first as far as the tokens reach, the avatar in every send, then
+  /// near updates, near spawns and the rest by rank. `nimbus` is the player's full nimbus,
+  /// before the budget narrowed the view; `now_ns` paces the view's narrowing.
+  void budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double nimbus,
+                  std::int64_t now_ns);
   /// Spawns and updates chosen to go out this tick (each list ascending).
   struct Fit {
     std::vector<std::uint64_t> spawns, updates;
@@ -168,7 +170,8 @@ class Gateway {
   dr::StateCodec codec_;
   Impairment impairment_;  // packs states for clients exactly as the zones quantised them
   std::int64_t next_metrics_ns_ = 0;
-  double budget_bytes_per_tick_ = 0, budget_cap_bytes_ = 0;  // under a budget
+  // Under a budget: refill per tick, what a send waits for, what the bucket holds at most.
+  double budget_bytes_per_tick_ = 0, budget_send_bytes_ = 0, budget_cap_bytes_ = 0;
   int budget_ticks_per_send_ = 1;
   std::int64_t last_views_ns_ = 0;  // when sendViews last ran (the budget refills by time)
   std::uint64_t views_ = 0;         // sendViews calls: full scans are staggered by it

@@ -72,6 +72,10 @@ int main(int argc, char** argv) {
   app.add_option("--budget-error-angle-deg", budget_angle_deg,
                  "under a budget, hold the error each player sees as this angle (default: the "
                  "scene's clients.downlink_error_angle_deg)");
+  app.add_option("--budget-send-bytes", cfg.budget.send_bytes,
+                 "under a budget, gather each player's spawns and updates to about this many "
+                 "bytes before they go (default 150: 2 ticks at 20 kbit/s; smaller sends show "
+                 "states sooner and pay more framing)");
   app.add_option("--full-scan-every", cfg.full_scan_every_ticks,
                  "without a budget, scan each player's visibility every N ticks (staggered); "
                  "the ticks between send only what changed of what it holds (default 4; 1 = "

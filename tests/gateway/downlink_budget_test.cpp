@@ -90,16 +90,32 @@ TEST(DownlinkBudget, AccumulatorGrowsUntilSent) {
 }
 
 TEST(BudgetSettings, GathersLowRatesOverSeveralTicksAndStillHoldsTheSecond) {
-  // 20 kbit/s at 30 Hz: 80.6 B a tick, so 5 ticks gather the 400 B of a send.
+  // 20 kbit/s at 30 Hz: 80.6 B a tick, so 2 ticks gather the default 150 B of a send.
   BudgetSettings b{20, 0.01};
-  EXPECT_EQ(b.ticksPerSend(30), 5);
-  // A 1 s window that starts with a send holds tick_rate + ticksPerSend ticks' bytes: no more
-  // than the second's.
-  EXPECT_NEAR(b.bytesPerTick(30) * (30 + 5), 2500, 1e-9);
-  EXPECT_EQ(BudgetSettings({48, 0.01}).ticksPerSend(30), 3);
+  EXPECT_EQ(b.ticksPerSend(30), 2);
+  // A 1 s window that starts with a full bucket holds tick_rate + ticksPerSend + 1 ticks'
+  // bytes: no more than the second's.
+  EXPECT_NEAR(b.bytesPerTick(30) * (30 + 2 + 1), 2500, 1e-9);
+  BudgetSettings big{20, 0.01, 400};  // 400 B sends: 5 ticks
+  EXPECT_EQ(big.ticksPerSend(30), 5);
+  EXPECT_NEAR(big.bytesPerTick(30) * (30 + 5 + 1), 2500, 1e-9);
+  EXPECT_EQ(BudgetSettings({48, 0.01, 400}).ticksPerSend(30), 3);
   EXPECT_EQ(BudgetSettings({1000, 0.01}).ticksPerSend(30), 1);  // a tick's bytes fill a send
+  EXPECT_EQ(BudgetSettings({6, 0.01}).ticksPerSend(30), 7);     // 24.2 B a tick: 6.2 ticks
   EXPECT_EQ(BudgetSettings({2, 0.01}).ticksPerSend(30), 10);    // at most a third of a second
-  EXPECT_EQ(BudgetSettings({0, 0.01}).ticksPerSend(30), 1);     // no budget
+  EXPECT_EQ(BudgetSettings({0, 0.01}).ticksPerSend(30), 1);        // no budget
+}
+
+TEST(BudgetSettings, ASendSizeThatIsNoPositiveNumberOfBytesIsRefused) {
+  for (double bad : {0.0, -1.0, double(NAN), double(INFINITY)}) {
+    BudgetSettings b{20, 0.01, bad};
+    try {
+      checkBudget(b, 150, "--budget-kbps", "--budget-error-angle-deg");
+      ADD_FAILURE() << bad << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("--budget-send-bytes: ", 0), 0u) << e.what();
+    }
+  }
 }
 
 TEST(DownlinkBudget, ErrorPriorityIsTheAngleAtTheViewer) {
@@ -132,16 +148,45 @@ TEST(DownlinkBudget, WaitingSpawnsAccumulateAndStopWaitingWhenSentOrGone) {
 TEST(DownlinkBudget, ViewRadiusNarrowsUnderPressureAndWidensBackWithinItsBounds) {
   DownlinkBudget b;
   EXPECT_GT(b.viewRadius(), 1e9);  // not narrowed before the first send
-  b.adaptRadius(true, 60, 15);
-  EXPECT_DOUBLE_EQ(b.viewRadius(), 60 * DownlinkBudget::kShrink);
-  for (int i = 0; i < 200; ++i) b.adaptRadius(true, 60, 15);
+  b.adaptRadius(true, 60, 15, 1.0);
+  EXPECT_DOUBLE_EQ(b.viewRadius(), 60 * DownlinkBudget::kShrinkPerSecond);
+  // Per second, not per send: ten sends in a second narrow it as one send a second does.
+  DownlinkBudget often;
+  for (int i = 0; i < 10; ++i) often.adaptRadius(true, 60, 15, 0.1);
+  EXPECT_NEAR(often.viewRadius(), 60 * DownlinkBudget::kShrinkPerSecond, 1e-9);
+  for (int i = 0; i < 200; ++i) b.adaptRadius(true, 60, 15, 1.0);
   EXPECT_DOUBLE_EQ(b.viewRadius(), 15);  // never below the least
-  b.adaptRadius(false, 60, 15);
-  EXPECT_DOUBLE_EQ(b.viewRadius(), 15 * DownlinkBudget::kGrow);
-  for (int i = 0; i < 2000; ++i) b.adaptRadius(false, 60, 15);
+  b.adaptRadius(false, 60, 15, 1.0);
+  EXPECT_DOUBLE_EQ(b.viewRadius(), 15 * DownlinkBudget::kGrowPerSecond);
+  for (int i = 0; i < 2000; ++i) b.adaptRadius(false, 60, 15, 1.0);
   EXPECT_DOUBLE_EQ(b.viewRadius(), 60);  // never past the nimbus
-  b.adaptRadius(false, 40, 10);          // a nimbus that shrank (the player slowed) caps it
+  b.adaptRadius(false, 40, 10, 1.0);     // a nimbus that shrank (the player slowed) caps it
   EXPECT_DOUBLE_EQ(b.viewRadius(), 40);
+}
+
+TEST(DownlinkBudget, PressureIsANearUpdateWaitingOrABacklogLongerThanHalfASecond) {
+  DownlinkBudget b;
+  const double rate = 2500;  // 20 kbit/s
+  // A send of 10 records in 150 B (15 B each) leaves 80: 1,200 B, about half a second.
+  EXPECT_FALSE(b.pressed(10, 80, 0, 150, rate));  // 1,200 B <= 1,250 B
+  EXPECT_TRUE(b.pressed(10, 84, 0, 150, rate));   // 1,260 B
+  EXPECT_FALSE(b.pressed(10, 0, 0, 150, rate));   // nothing waits
+  // No record went: the last send's 15 B a record still prices what waits.
+  EXPECT_TRUE(b.pressed(0, 90, 0, 10, rate));
+  EXPECT_FALSE(b.pressed(0, 80, 0, 10, rate));
+  // Before any record ever went, one that did not fit took at least what was available.
+  DownlinkBudget fresh;
+  EXPECT_TRUE(fresh.pressed(0, 20, 0, 70, rate));  // 1,400 B
+  EXPECT_FALSE(fresh.pressed(0, 10, 0, 70, rate));
+  // A near update that waits presses, however short the backlog.
+  EXPECT_TRUE(b.pressed(10, 1, 1, 150, rate));
+}
+
+TEST(DownlinkBudget, SecondsSinceAdaptAreWallTimeBetweenSendsAtMostOne) {
+  DownlinkBudget b;
+  EXPECT_DOUBLE_EQ(b.secondsSinceAdapt(5'000'000'000), 0.0);  // the first send
+  EXPECT_NEAR(b.secondsSinceAdapt(5'066'000'000), 0.066, 1e-12);
+  EXPECT_DOUBLE_EQ(b.secondsSinceAdapt(9'000'000'000), 1.0);  // a stall counts as a second
 }
 
 TEST(ShownError, IsTheGapBetweenTheSentAndTheNewestPredictions) {
