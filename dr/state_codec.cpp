@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "common/scene.h"
 #include "dr/bit_stream.h"
@@ -30,7 +32,7 @@ Quantiser symmetric(double max, double resolution) {
   return {-steps * resolution, resolution, bitsFor(std::uint64_t(2 * steps + 1))};
 }
 
-void writeV3(BitWriter& w, const Quantiser& q, const V3& v) {
+void writeV3(EncodedState& w, const Quantiser& q, const V3& v) {
   w.write(q.encode(v.x), q.bits);
   w.write(q.encode(v.y), q.bits);
   w.write(q.encode(v.z), q.bits);
@@ -42,6 +44,50 @@ V3 readV3(BitReader& r, const Quantiser& q) {
   v.y = q.decode(r.read(q.bits));
   v.z = q.decode(r.read(q.bits));
   return v;
+}
+/// Appends a record's id and tick prefixes.
+void writePrefix(BitWriter& w, std::uint64_t id, std::uint64_t tick, std::uint64_t prev_id,
+                 std::uint64_t batch_tick) {
+  w.writeVar(id - prev_id);
+  w.writeVar(batch_tick - tick);
+}
+
+void append(BitWriter& w, const EncodedState& s) {
+  for (int done = 0, k = 0; done < s.bits; done += 64, ++k)
+    w.write(s.words[k], std::min(64, s.bits - done));
+}
+
+std::uint64_t idOf(const WireEntity& e) {
+  return e.id;
+}
+std::uint64_t idOf(const EncodedEntity& e) {
+  return e.id;
+}
+
+/// Streams of at most max_bytes, each record written by write(w, entity, prev_id).
+template <typename Entity, typename Write>
+std::vector<PackedChunk> packWith(std::span<const Entity> entities, std::size_t max_bytes,
+                                  Write&& write) {
+  std::vector<PackedChunk> out;
+  BitWriter w;
+  std::size_t count = 0;
+  std::uint64_t prev = 0;
+  for (const Entity& e : entities) {
+    std::size_t before = w.bits();
+    write(w, e, prev);
+    if (w.bytes().size() > max_bytes && count > 0) {
+      // Did not fit: close this stream and start the next with the same entity.
+      w.truncate(before);
+      out.push_back({w.take(), count});
+      w = BitWriter();
+      count = 0;
+      write(w, e, 0);
+    }
+    ++count;
+    prev = idOf(e);
+  }
+  if (count > 0) out.push_back({w.take(), count});
+  return out;
 }
 }  // namespace
 
@@ -86,6 +132,12 @@ StateCodec::StateCodec(const CodecParams& p) : params_(p) {
   std::uint64_t half = (std::uint64_t{1} << (p.rotation_bits - 1)) - 1;
   rot_ = {-kSqrtHalf, kSqrtHalf / double(half), int(p.rotation_bits)};
   angvel_ = symmetric(p.max_angular_velocity, p.angular_velocity_resolution);
+  int widest = stateBits({Order::Second, Spin::Rotating});
+  if (widest > EncodedState::kMaxBits)
+    throw std::invalid_argument(
+        "state codec: a record's state takes " + std::to_string(widest) + " bits, more than " +
+        std::to_string(EncodedState::kMaxBits) +
+        "; coarsen the quantisation's resolutions or widen its ranges less");
 }
 
 Quantiser StateCodec::horizontal(int index_along, double world_min) const {
@@ -145,8 +197,18 @@ State StateCodec::roundTrip(const State& s, const Model& m, int cell, int* large
 
 void StateCodec::write(BitWriter& w, const WireEntity& e, std::uint64_t prev_id,
                        std::uint64_t batch_tick) const {
-  w.writeVar(e.id - prev_id);
-  w.writeVar(batch_tick - e.tick);
+  writePrefix(w, e.id, e.tick, prev_id, batch_tick);
+  append(w, encodeState(e));
+}
+
+void StateCodec::write(BitWriter& w, const EncodedEntity& e, std::uint64_t prev_id,
+                       std::uint64_t batch_tick) const {
+  writePrefix(w, e.id, e.tick, prev_id, batch_tick);
+  append(w, *e.state);
+}
+
+EncodedState StateCodec::encodeState(const WireEntity& e) const {
+  EncodedState w;
   w.write(e.kind, kKindBits);
   w.write(std::uint64_t(e.model.order), kOrderBits);
   w.write(std::uint64_t(e.model.spin), kSpinBits);
@@ -164,6 +226,7 @@ void StateCodec::write(BitWriter& w, const WireEntity& e, std::uint64_t prev_id,
   w.write(std::uint64_t(largest), kLargestBits);
   for (double c : rest) w.write(rot_.encode(c), rot_.bits);
   if (e.model.spin == Spin::Rotating) writeV3(w, angvel_, s.angvel);
+  return w;
 }
 
 std::optional<WireEntity> StateCodec::read(BitReader& r, std::uint64_t prev_id,
@@ -200,26 +263,17 @@ std::optional<WireEntity> StateCodec::read(BitReader& r, std::uint64_t prev_id,
 
 std::vector<PackedChunk> StateCodec::pack(std::span<const WireEntity> entities,
                                           std::uint64_t batch_tick, std::size_t max_bytes) const {
-  std::vector<PackedChunk> out;
-  BitWriter w;
-  std::size_t count = 0;
-  std::uint64_t prev = 0;
-  for (const WireEntity& e : entities) {
-    std::size_t before = w.bits();
+  return packWith(entities, max_bytes, [&](BitWriter& w, const WireEntity& e, std::uint64_t prev) {
     write(w, e, prev, batch_tick);
-    if (w.bytes().size() > max_bytes && count > 0) {
-      // Did not fit: close this stream and start the next with the same entity.
-      w.truncate(before);
-      out.push_back({w.take(), count});
-      w = BitWriter();
-      count = 0;
-      write(w, e, 0, batch_tick);
-    }
-    ++count;
-    prev = e.id;
-  }
-  if (count > 0) out.push_back({w.take(), count});
-  return out;
+  });
+}
+
+std::vector<PackedChunk> StateCodec::pack(std::span<const EncodedEntity> entities,
+                                          std::uint64_t batch_tick, std::size_t max_bytes) const {
+  return packWith(entities, max_bytes,
+                  [&](BitWriter& w, const EncodedEntity& e, std::uint64_t prev) {
+                    write(w, e, prev, batch_tick);
+                  });
 }
 
 std::optional<std::vector<WireEntity>> StateCodec::unpack(std::span<const std::uint8_t> bytes,

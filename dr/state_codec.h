@@ -50,6 +50,32 @@ struct WireEntity {
   int rot_largest = -1;
 };
 
+/// A record's state part (kind, model, cell, position, velocity, acceleration, orientation and
+/// angular velocity: everything after its id and tick), quantised once. The gateway encodes
+/// each entity's state once a tick and shares it across every player it goes to; per
+/// datagram only the id and tick prefixes are written (they are deltas within the stream).
+struct EncodedState {
+  static constexpr int kMaxBits = 512;
+  std::uint64_t words[kMaxBits / 64] = {};
+  int bits = 0;
+  /// Appends the low n bits of v (n in 0..64; the codec keeps the total within kMaxBits).
+  void write(std::uint64_t v, int n) {
+    if (n == 0) return;
+    if (n < 64) v &= (std::uint64_t{1} << n) - 1;
+    int word = bits / 64, off = bits % 64;
+    words[word] |= v << off;
+    if (off + n > 64) words[word + 1] |= v >> (64 - off);
+    bits += n;
+  }
+};
+
+/// An entity ready to pack from its encoded state (which must outlive it).
+struct EncodedEntity {
+  std::uint64_t id = 0;
+  std::uint64_t tick = 0;  ///< zone tick the state was sampled at
+  const EncodedState* state = nullptr;
+};
+
 /// One uniform quantiser over [lo, lo + steps * resolution].
 struct Quantiser {
   double lo = 0, resolution = 1;
@@ -76,12 +102,20 @@ class StateCodec {
   /// Appends one entity; prev_id is the id written before it in this stream (0 at the start).
   void write(BitWriter& w, const WireEntity& e, std::uint64_t prev_id,
              std::uint64_t batch_tick) const;
+  /// The state part of e's record, as write() writes it after the id and tick.
+  EncodedState encodeState(const WireEntity& e) const;
+  /// Appends one entity from its encoded state: the very bits write() gives the same entity.
+  void write(BitWriter& w, const EncodedEntity& e, std::uint64_t prev_id,
+             std::uint64_t batch_tick) const;
   /// Reads one entity; nullopt on a malformed or out-of-range record.
   std::optional<WireEntity> read(BitReader& r, std::uint64_t prev_id,
                                  std::uint64_t batch_tick) const;
 
   /// Packs entities (ascending ids) into streams of at most max_bytes each.
   std::vector<PackedChunk> pack(std::span<const WireEntity> entities, std::uint64_t batch_tick,
+                                std::size_t max_bytes) const;
+  /// The same from encoded states: the same streams as pack() of the entities they encode.
+  std::vector<PackedChunk> pack(std::span<const EncodedEntity> entities, std::uint64_t batch_tick,
                                 std::size_t max_bytes) const;
   /// Unpacks `count` entities; nullopt if anything is wrong (overrun, range, order, leftovers).
   std::optional<std::vector<WireEntity>> unpack(std::span<const std::uint8_t> bytes,

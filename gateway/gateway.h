@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/flat_id_map.h"
 #include "common/interest_grid.h"
 #include "common/metrics.h"
 #include "common/scene.h"
@@ -101,6 +102,10 @@ class Gateway {
   /// Adds to diff what the client has not acknowledged within the timeout.
   void addResends(Session& s, ViewDiff& diff, std::int64_t now_ns);
   void sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns);
+  /// The newest states of ids, encoded once a tick (encoded_), into out; returns the newest
+  /// sample tick among them, at least the clock's (a frame's batch tick).
+  std::uint64_t encodedStates(const std::vector<std::uint64_t>& ids,
+                              std::vector<dr::EncodedEntity>& out) const;
   /// Under a budget (gateway_budget.cpp): what of diff goes out this tick, holding the rest in
   /// the view: despawns first as far as the tokens reach, the avatar in every send, then
   /// near updates, near spawns and the rest by rank. `nimbus` is the player's full nimbus,
@@ -151,11 +156,12 @@ class Gateway {
   SessionTable sessions_;
   DatagramHandler handler_;
   WorldCache cache_;
-  WorldSnapshot snapshot_;                // the cache at this tick's sim time, for every view
-  std::vector<VisibleEntity> visible_;    // one player's visible set, reused
-  ViewDiff diff_;                         // one player's diff, reused
-  ResendDue due_;                         // one player's resends, reused
+  WorldSnapshot snapshot_;              // the cache at this tick's sim time, for every view
+  std::vector<VisibleEntity> visible_;  // one player's visible set, reused
+  ViewDiff diff_;                       // one player's diff, reused
+  ResendDue due_;                       // one player's resends, reused
   std::vector<std::uint64_t> scratch_ids_;
+  std::vector<dr::EncodedEntity> encoded_scratch_;  // one send's states, reused
   ZoneClock clock_;
   InterestManager interest_;
   std::array<PlayerKind, kPlayerKindCount> kinds_;  // the scene's kinds by id
@@ -167,19 +173,22 @@ class Gateway {
   Outbox outbox_;
   ReceiveBatch rx_batch_;  // recvmmsg buffers
   SendQueue send_queue_;   // datagrams of this tick or wake, sent with sendmmsg
-  dr::StateCodec codec_;
-  Impairment impairment_;  // packs states for clients exactly as the zones quantised them
+  dr::StateCodec codec_;  // packs states for clients exactly as the zones quantised them
+  // This tick's encoded states by id (cleared by sendViews): each entity is quantised once a
+  // tick and shared by every player it goes to. Mutable: a memo that sizing fills too.
+  mutable FlatIdMap<dr::EncodedState> encoded_;
+  Impairment impairment_;
   std::int64_t next_metrics_ns_ = 0;
   // Under a budget: refill per tick, what a send waits for, what the bucket holds at most.
   double budget_bytes_per_tick_ = 0, budget_send_bytes_ = 0, budget_cap_bytes_ = 0;
   int budget_ticks_per_send_ = 1;
-  std::int64_t last_views_ns_ = 0;  // when sendViews last ran (the budget refills by time)
-  std::uint64_t views_ = 0;         // sendViews calls: full scans are staggered by it
+  std::int64_t last_views_ns_ = 0;      // when sendViews last ran (the budget refills by time)
+  std::uint64_t views_ = 0;             // sendViews calls: full scans are staggered by it
   TickTimes tick_window_, tick_total_;  // this metrics second, and the whole run
   TickTimes tick_cpu_window_, tick_cpu_total_;  // the same in thread CPU time
   std::int64_t start_process_cpu_ns_ = 0;
-  double worst_client_kbps_ = 0;        // the most any client was sent in one second
-  std::vector<double> kbps_scratch_;    // per-second rates, reused
+  double worst_client_kbps_ = 0;      // the most any client was sent in one second
+  std::vector<double> kbps_scratch_;  // per-second rates, reused
 };
 
 }  // namespace zonesim::gateway

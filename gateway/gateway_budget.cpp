@@ -1,11 +1,11 @@
 // The gateway under a downlink budget: what of a player's view diff goes out this tick
 // (budgetDiff), within the tokens of its DownlinkBudget (gateway/downlink_budget.h), sized by
 // encoding exactly what would be sent (fitting, fittingDespawns). The rest waits in the view.
-#include "gateway/gateway.h"
-
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+
+#include "gateway/gateway.h"
 
 namespace zonesim::gateway {
 
@@ -43,14 +43,10 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
     std::sort(f.updates.begin(), f.updates.end());
     return f;
   };
+  std::vector<dr::EncodedEntity> states;
   auto bytes = [&](const std::vector<std::uint64_t>& ids, bool spawns) {
     if (ids.empty()) return std::size_t{0};
-    std::vector<dr::WireEntity> states;
-    std::uint64_t tick = clock_.tick();
-    for (std::uint64_t id : ids) {
-      states.push_back(wireEntity(*cache_.find(id)));
-      tick = std::max(tick, states.back().tick);
-    }
+    std::uint64_t tick = encodedStates(ids, states);
     return totalBytes(spawns ? encodeSpawnChunks(s.token, tick, codec_, states, sizingSeq())
                              : encodeStateChunks(s.token, tick, codec_, states, sizingSeq()));
   };

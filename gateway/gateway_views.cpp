@@ -1,14 +1,15 @@
 // The gateway's per-tick views: each player's visible set against what it holds (sendViews),
 // resends merged in (addResends), and the despawns, spawns and updates sent as lean frames
 // (sendView). Under a budget, gateway_budget.cpp decides what of the diff goes.
-#include "gateway/gateway.h"
-
 #include <algorithm>
+
+#include "gateway/gateway.h"
 
 namespace zonesim::gateway {
 
 void Gateway::sendViews(std::int64_t now_ns) {
   double sim_now = clock_.simNow(now_ns);
+  encoded_.clear();  // the cache took this tick's samples: every state is encoded anew
   // The bucket fills by the time that passed, not by the tick: a gateway that falls behind its
   // cadence (an overloaded machine) still hands each player its budget. At most a send's worth
   // of ticks at once, so the bound on every 1 s window holds as at the nominal cadence.
@@ -104,18 +105,7 @@ void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {
 void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   // States go out as the zones sampled them, with their tick: the client runs the same model
   // from the same state, so nothing is extrapolated here.
-  auto states = [&](const std::vector<std::uint64_t>& ids) {
-    std::vector<dr::WireEntity> out;
-    out.reserve(ids.size());
-    for (std::uint64_t id : ids) out.push_back(wireEntity(*cache_.find(id)));
-    return out;
-  };
   std::uint64_t tick = clock_.tick();
-  auto newest = [&](const std::vector<dr::WireEntity>& v) {
-    std::uint64_t t = tick;
-    for (const dr::WireEntity& e : v) t = std::max(t, e.tick);
-    return t;
-  };
   // Every datagram gets the session's next seq (consecutive within one encoding); the tracker
   // learns which ids each one held.
   std::vector<std::size_t> counts;
@@ -133,15 +123,16 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
     }
     counts.clear();
   };
-  std::vector<dr::WireEntity> spawns = states(diff.spawns), updates = states(diff.updates);
+  std::vector<dr::EncodedEntity>& states = encoded_scratch_;
   std::uint32_t first = s.resend.upcoming();
   send(first, encodeDespawnChunks(s.token, tick, diff.despawns, seq), diff.despawns,
        Carried::Despawn);
   first = s.resend.upcoming();
-  send(first, encodeSpawnChunks(s.token, newest(spawns), codec_, spawns, seq), diff.spawns,
-       Carried::Spawn);
+  std::uint64_t batch = encodedStates(diff.spawns, states);
+  send(first, encodeSpawnChunks(s.token, batch, codec_, states, seq), diff.spawns, Carried::Spawn);
   first = s.resend.upcoming();
-  send(first, encodeStateChunks(s.token, newest(updates), codec_, updates, seq), diff.updates,
+  batch = encodedStates(diff.updates, states);
+  send(first, encodeStateChunks(s.token, batch, codec_, states, seq), diff.updates,
        Carried::Update);
   if (config_.budget.enabled()) {
     for (std::uint64_t id : diff.despawns) s.budget.forget(id);
@@ -154,6 +145,22 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   counters_.despawns_sent += diff.despawns.size();
   counters_.spawns_sent += diff.spawns.size();
   counters_.updates_forwarded += diff.updates.size();
+}
+
+std::uint64_t Gateway::encodedStates(const std::vector<std::uint64_t>& ids,
+                                     std::vector<dr::EncodedEntity>& out) const {
+  // Every encoding is made before any is pointed at: an insertion may move the map's slots.
+  for (std::uint64_t id : ids)
+    if (!encoded_.contains(id))
+      encoded_.insertOrAssign(id, codec_.encodeState(wireEntity(*cache_.find(id))));
+  out.clear();
+  std::uint64_t newest = clock_.tick();
+  for (std::uint64_t id : ids) {
+    std::uint64_t tick = cache_.find(id)->tick;
+    out.push_back({id, tick, encoded_.find(id)});
+    newest = std::max(newest, tick);
+  }
+  return newest;
 }
 
 }  // namespace zonesim::gateway

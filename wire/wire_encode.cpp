@@ -109,8 +109,9 @@ Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick) {
 }
 
 namespace {
+template <typename Entity>
 std::vector<Bytes> packed(FrameKind kind, std::uint64_t token, std::uint64_t tick,
-                          const dr::StateCodec& codec, std::span<const dr::WireEntity> states,
+                          const dr::StateCodec& codec, std::span<const Entity> states,
                           const ChunkSeq& seq) {
   std::vector<Bytes> out;
   for (const dr::PackedChunk& c : codec.pack(states, tick, kPackedBytesPerDatagram)) {
@@ -130,6 +131,18 @@ std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq) {
+  return packed(FrameKind::Spawn, token, tick, codec, states, seq);
+}
+
+std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq) {
+  return packed(FrameKind::StateBatch, token, tick, codec, states, seq);
+}
+
+std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq) {
   return packed(FrameKind::Spawn, token, tick, codec, states, seq);
 }
 

@@ -97,6 +97,13 @@ std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq = {});
+/// The same two from states the codec encoded once (StateCodec::encodeState), for many players.
+std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq = {});
+std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
+                                     const dr::StateCodec& codec,
+                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq = {});
 /// Despawn frames carrying all ids (strictly ascending: std::invalid_argument otherwise), as
 /// many per frame as fit, in order.
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,

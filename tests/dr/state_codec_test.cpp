@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "dr/bit_stream.h"
 
@@ -163,6 +165,71 @@ TEST(StateCodec, PacksIntoBoundedChunksAndUnpacksThemExactly) {
   }
   // A walker's update (first order, fixed) costs well under 24 bytes.
   EXPECT_LT(codec.stateBits({Order::First, Spin::Fixed}) + 30, 24 * 8);
+}
+
+// The gateway encodes each entity's state once a tick and packs many players' streams from
+// those encodings: they must be the very streams packed from the entities, chunk for chunk.
+TEST(StateCodec, EncodedStatesPackIntoTheSameStreamsAsTheEntities) {
+  StateCodec codec(params());
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> x(-500, 500), z(-300, 300), v(-3, 3);
+  std::vector<WireEntity> in;
+  std::uint64_t id = 0;
+  for (int i = 0; i < 400; ++i) {
+    WireEntity e;
+    id += 1 + rng() % 5000;
+    e.id = id;
+    e.kind = std::uint8_t(i % 4);
+    e.tick = 1000 - rng() % 300;
+    e.model = {Order(i % 3), Spin((i / 3) % 2)};
+    e.state.pos = {x(rng), 3.25, z(rng)};
+    e.state.vel = {v(rng), v(rng), v(rng)};
+    e.state.acc = {0, -9.81, v(rng)};
+    e.state.rot = randomRotation(rng);
+    e.state.angvel = {v(rng), v(rng), v(rng)};
+    e.cell = cellOf(codec, e.state.pos.x, e.state.pos.z);
+    e.rot_largest = i % 5 == 0 ? int(rng() % 4) : -1;
+    in.push_back(e);
+  }
+  std::vector<EncodedState> states;
+  for (const WireEntity& e : in) {
+    states.push_back(codec.encodeState(e));
+    EXPECT_EQ(states.back().bits, codec.stateBits(e.model));
+  }
+  std::vector<EncodedEntity> encoded;
+  for (std::size_t i = 0; i < in.size(); ++i) encoded.push_back({in[i].id, in[i].tick, &states[i]});
+  for (std::size_t max_bytes : {std::size_t{40}, std::size_t{300}, std::size_t{1200}}) {
+    auto want = codec.pack(in, 1000, max_bytes), got = codec.pack(encoded, 1000, max_bytes);
+    ASSERT_EQ(got.size(), want.size()) << max_bytes;
+    for (std::size_t c = 0; c < want.size(); ++c) {
+      EXPECT_EQ(got[c].count, want[c].count);
+      EXPECT_EQ(got[c].bytes, want[c].bytes) << "chunk " << c << " of " << max_bytes << " B";
+    }
+  }
+  // And the reader, which knows nothing of encoded states, takes them back.
+  auto one = codec.pack(encoded, 1000, 1 << 20);
+  ASSERT_EQ(one.size(), 1u);
+  auto back = codec.unpack(one[0].bytes, one[0].count, 1000);
+  ASSERT_TRUE(back.has_value());
+  ASSERT_EQ(back->size(), in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    EXPECT_EQ((*back)[i].id, in[i].id);
+    EXPECT_EQ((*back)[i].tick, in[i].tick);
+  }
+}
+
+TEST(StateCodec, ACodecWhoseRecordsWouldNotFitAnEncodedStateIsRefused) {
+  CodecParams p = params();
+  p.position_resolution = 1e-9f;
+  p.velocity_resolution = p.acceleration_resolution = p.angular_velocity_resolution = 1e-9f;
+  p.max_speed = p.max_acceleration = p.max_angular_velocity = 1e9f;
+  try {
+    StateCodec codec(p);
+    FAIL() << "a record of " << codec.stateBits({Order::Second, Spin::Rotating}) << " bits";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("state codec: a record's state takes ", 0), 0u)
+        << e.what();
+  }
 }
 
 TEST(StateCodec, MalformedStreamsAreRefused) {
