@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace zonesim::dr {
@@ -36,6 +37,13 @@ class BitWriter {
     bit_ = bits;
   }
   std::size_t bits() const { return bit_; }
+  /// Starts an empty stream in `storage`, keeping its capacity (so a writer reused over
+  /// buffers that are handed back allocates nothing once they have grown).
+  void reset(std::vector<std::uint8_t>&& storage) {
+    bytes_ = std::move(storage);
+    bytes_.clear();
+    bit_ = 0;
+  }
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }
   std::vector<std::uint8_t> take() { return std::move(bytes_); }
 

@@ -64,30 +64,44 @@ std::uint64_t idOf(const EncodedEntity& e) {
   return e.id;
 }
 
-/// Streams of at most max_bytes, each record written by write(w, entity, prev_id).
+/// Streams of at most max_bytes into out[0..n), each record written by write(w, entity,
+/// prev_id); returns n. out only grows, and its chunks' bytes are reused.
 template <typename Entity, typename Write>
-std::vector<PackedChunk> packWith(std::span<const Entity> entities, std::size_t max_bytes,
-                                  Write&& write) {
-  std::vector<PackedChunk> out;
+std::size_t packWith(std::span<const Entity> entities, std::size_t max_bytes,
+                     std::vector<PackedChunk>& out, Write&& write) {
+  std::size_t n = 0;
+  auto storage = [&]() {
+    return n < out.size() ? std::move(out[n].bytes) : std::vector<std::uint8_t>();
+  };
   BitWriter w;
+  w.reset(storage());
   std::size_t count = 0;
   std::uint64_t prev = 0;
+  auto close = [&] {
+    if (n == out.size()) out.emplace_back();
+    out[n].bytes = w.take();
+    out[n].count = count;
+    ++n;
+  };
   for (const Entity& e : entities) {
     std::size_t before = w.bits();
     write(w, e, prev);
     if (w.bytes().size() > max_bytes && count > 0) {
       // Did not fit: close this stream and start the next with the same entity.
       w.truncate(before);
-      out.push_back({w.take(), count});
-      w = BitWriter();
+      close();
+      w.reset(storage());
       count = 0;
       write(w, e, 0);
     }
     ++count;
     prev = idOf(e);
   }
-  if (count > 0) out.push_back({w.take(), count});
-  return out;
+  if (count > 0)
+    close();
+  else if (n < out.size())
+    out[n].bytes = w.take();  // handed back unused
+  return n;
 }
 }  // namespace
 
@@ -261,19 +275,34 @@ std::optional<WireEntity> StateCodec::read(BitReader& r, std::uint64_t prev_id,
   return e;
 }
 
+std::size_t StateCodec::packInto(std::span<const WireEntity> entities, std::uint64_t batch_tick,
+                                 std::size_t max_bytes, std::vector<PackedChunk>& chunks) const {
+  return packWith(entities, max_bytes, chunks,
+                  [&](BitWriter& w, const WireEntity& e, std::uint64_t prev) {
+                    write(w, e, prev, batch_tick);
+                  });
+}
+
+std::size_t StateCodec::packInto(std::span<const EncodedEntity> entities, std::uint64_t batch_tick,
+                                 std::size_t max_bytes, std::vector<PackedChunk>& chunks) const {
+  return packWith(entities, max_bytes, chunks,
+                  [&](BitWriter& w, const EncodedEntity& e, std::uint64_t prev) {
+                    write(w, e, prev, batch_tick);
+                  });
+}
+
 std::vector<PackedChunk> StateCodec::pack(std::span<const WireEntity> entities,
                                           std::uint64_t batch_tick, std::size_t max_bytes) const {
-  return packWith(entities, max_bytes, [&](BitWriter& w, const WireEntity& e, std::uint64_t prev) {
-    write(w, e, prev, batch_tick);
-  });
+  std::vector<PackedChunk> out;
+  out.resize(packInto(entities, batch_tick, max_bytes, out));
+  return out;
 }
 
 std::vector<PackedChunk> StateCodec::pack(std::span<const EncodedEntity> entities,
                                           std::uint64_t batch_tick, std::size_t max_bytes) const {
-  return packWith(entities, max_bytes,
-                  [&](BitWriter& w, const EncodedEntity& e, std::uint64_t prev) {
-                    write(w, e, prev, batch_tick);
-                  });
+  std::vector<PackedChunk> out;
+  out.resize(packInto(entities, batch_tick, max_bytes, out));
+  return out;
 }
 
 std::optional<std::vector<WireEntity>> StateCodec::unpack(std::span<const std::uint8_t> bytes,

@@ -117,6 +117,13 @@ class StateCodec {
   /// The same from encoded states: the same streams as pack() of the entities they encode.
   std::vector<PackedChunk> pack(std::span<const EncodedEntity> entities, std::uint64_t batch_tick,
                                 std::size_t max_bytes) const;
+  /// The same streams into chunks[0..n), returning n: chunks only grows, and each chunk's
+  /// bytes keep their storage, so a caller that keeps `chunks` allocates nothing once it
+  /// has grown.
+  std::size_t packInto(std::span<const WireEntity> entities, std::uint64_t batch_tick,
+                       std::size_t max_bytes, std::vector<PackedChunk>& chunks) const;
+  std::size_t packInto(std::span<const EncodedEntity> entities, std::uint64_t batch_tick,
+                       std::size_t max_bytes, std::vector<PackedChunk>& chunks) const;
   /// Unpacks `count` entities; nullopt if anything is wrong (overrun, range, order, leftovers).
   std::optional<std::vector<WireEntity>> unpack(std::span<const std::uint8_t> bytes,
                                                 std::size_t count, std::uint64_t batch_tick) const;

@@ -162,6 +162,11 @@ class Gateway {
   ResendDue due_;                       // one player's resends, reused
   std::vector<std::uint64_t> scratch_ids_;
   std::vector<dr::EncodedEntity> encoded_scratch_;  // one send's states, reused
+  FrameScratch frames_;                             // one send's frames, reused
+  std::vector<std::size_t> chunk_counts_;           // entities per frame of one send
+  // Budget sizing (fitting) encodes candidate sets into buffers of its own.
+  mutable std::vector<dr::EncodedEntity> sizing_states_;
+  mutable FrameScratch sizing_frames_;
   ZoneClock clock_;
   InterestManager interest_;
   std::array<PlayerKind, kPlayerKindCount> kinds_;  // the scene's kinds by id
@@ -173,7 +178,7 @@ class Gateway {
   Outbox outbox_;
   ReceiveBatch rx_batch_;  // recvmmsg buffers
   SendQueue send_queue_;   // datagrams of this tick or wake, sent with sendmmsg
-  dr::StateCodec codec_;  // packs states for clients exactly as the zones quantised them
+  dr::StateCodec codec_;   // packs states for clients exactly as the zones quantised them
   // This tick's encoded states by id (cleared by sendViews): each entity is quantised once a
   // tick and shared by every player it goes to. Mutable: a memo that sizing fills too.
   mutable FlatIdMap<dr::EncodedState> encoded_;

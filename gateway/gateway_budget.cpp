@@ -43,12 +43,14 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
     std::sort(f.updates.begin(), f.updates.end());
     return f;
   };
-  std::vector<dr::EncodedEntity> states;
   auto bytes = [&](const std::vector<std::uint64_t>& ids, bool spawns) {
     if (ids.empty()) return std::size_t{0};
-    std::uint64_t tick = encodedStates(ids, states);
-    return totalBytes(spawns ? encodeSpawnChunks(s.token, tick, codec_, states, sizingSeq())
-                             : encodeStateChunks(s.token, tick, codec_, states, sizingSeq()));
+    std::uint64_t tick = encodedStates(ids, sizing_states_);
+    std::size_t n =
+        spawns
+            ? encodeSpawnFrames(s.token, tick, codec_, sizing_states_, sizingSeq(), sizing_frames_)
+            : encodeStateFrames(s.token, tick, codec_, sizing_states_, sizingSeq(), sizing_frames_);
+    return totalBytes(sizing_frames_, n);
   };
   auto size = [&](const Fit& f) { return bytes(f.spawns, true) + bytes(f.updates, false); };
   // Forced traffic goes as debt: what the rest adds to it must fit.
@@ -60,7 +62,8 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
 
 std::size_t Gateway::despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const {
   if (ids.empty()) return 0;
-  return totalBytes(encodeDespawnChunks(s.token, clock_.tick(), ids, sizingSeq()));
+  return totalBytes(sizing_frames_,
+                    encodeDespawnFrames(s.token, clock_.tick(), ids, sizingSeq(), sizing_frames_));
 }
 
 std::size_t Gateway::fittingDespawns(const Session& s, const std::vector<std::uint64_t>& ids,

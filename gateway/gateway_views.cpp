@@ -107,32 +107,32 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   // from the same state, so nothing is extrapolated here.
   std::uint64_t tick = clock_.tick();
   // Every datagram gets the session's next seq (consecutive within one encoding); the tracker
-  // learns which ids each one held.
-  std::vector<std::size_t> counts;
+  // learns which ids each one held. The buffers are the gateway's, reused for every player.
   ChunkSeq seq{[](void* t) { return static_cast<ResendTracker*>(t)->nextSeq(); }, &s.resend,
-               &counts};
-  auto send = [&](std::uint32_t first, const std::vector<Bytes>& chunks,
-                  const std::vector<std::uint64_t>& ids, Carried what) {
+               &chunk_counts_};
+  auto send = [&](std::uint32_t first, std::size_t frames, const std::vector<std::uint64_t>& ids,
+                  Carried what) {
     std::size_t at = 0;
-    for (std::size_t i = 0; i < chunks.size(); ++i) {
-      sendTo(s, chunks[i]);
+    for (std::size_t i = 0; i < frames; ++i) {
+      sendTo(s, frames_.frames[i]);
       if (config_.resend)
-        s.resend.sent(first + std::uint32_t(i), std::span(ids).subspan(at, counts[i]), what,
+        s.resend.sent(first + std::uint32_t(i), std::span(ids).subspan(at, chunk_counts_[i]), what,
                       now_ns);
-      at += counts[i];
+      at += chunk_counts_[i];
     }
-    counts.clear();
+    chunk_counts_.clear();
   };
   std::vector<dr::EncodedEntity>& states = encoded_scratch_;
   std::uint32_t first = s.resend.upcoming();
-  send(first, encodeDespawnChunks(s.token, tick, diff.despawns, seq), diff.despawns,
+  send(first, encodeDespawnFrames(s.token, tick, diff.despawns, seq, frames_), diff.despawns,
        Carried::Despawn);
   first = s.resend.upcoming();
   std::uint64_t batch = encodedStates(diff.spawns, states);
-  send(first, encodeSpawnChunks(s.token, batch, codec_, states, seq), diff.spawns, Carried::Spawn);
+  send(first, encodeSpawnFrames(s.token, batch, codec_, states, seq, frames_), diff.spawns,
+       Carried::Spawn);
   first = s.resend.upcoming();
   batch = encodedStates(diff.updates, states);
-  send(first, encodeStateChunks(s.token, batch, codec_, states, seq), diff.updates,
+  send(first, encodeStateFrames(s.token, batch, codec_, states, seq, frames_), diff.updates,
        Carried::Update);
   if (config_.budget.enabled()) {
     for (std::uint64_t id : diff.despawns) s.budget.forget(id);

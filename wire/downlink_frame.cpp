@@ -52,8 +52,15 @@ bool readIds(std::span<const std::uint8_t> payload, std::size_t count,
 
 std::vector<std::uint8_t> encodeFrame(const FrameHeader& h, std::span<const std::uint8_t> payload,
                                       std::uint64_t token) {
-  if (h.count > kMaxFrameCount) throw std::invalid_argument("encodeFrame: count over 2^14 - 1");
   std::vector<std::uint8_t> out;
+  encodeFrameInto(h, payload, token, out);
+  return out;
+}
+
+void encodeFrameInto(const FrameHeader& h, std::span<const std::uint8_t> payload,
+                     std::uint64_t token, std::vector<std::uint8_t>& out) {
+  if (h.count > kMaxFrameCount) throw std::invalid_argument("encodeFrame: count over 2^14 - 1");
+  out.clear();
   out.reserve(kMaxFrameOverheadBytes + payload.size());
   out.push_back(std::uint8_t(kFrameTag | std::uint8_t(h.kind)));
   for (std::size_t i = 0; i < kSeqBytes; ++i) out.push_back(std::uint8_t(h.seq >> (8 * i)));
@@ -64,7 +71,6 @@ std::vector<std::uint8_t> encodeFrame(const FrameHeader& h, std::span<const std:
   for (std::size_t i = 0; i < kChecksumBytes; ++i) out.push_back(std::uint8_t(crc >> (8 * i)));
   if (out.size() > kMaxDatagramBytes)
     throw std::invalid_argument("encodeFrame: over kMaxDatagramBytes");
-  return out;
 }
 
 bool appendDespawnId(std::vector<std::uint8_t>& payload, std::uint64_t prev, std::uint64_t id,

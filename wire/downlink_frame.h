@@ -65,6 +65,10 @@ struct FrameHeader {
 /// kMaxDatagramBytes or the count kMaxFrameCount (a caller's bug, not the network's).
 std::vector<std::uint8_t> encodeFrame(const FrameHeader& h, std::span<const std::uint8_t> payload,
                                       std::uint64_t token);
+/// The same frame into out (cleared first; its storage is kept, so a caller that reuses out
+/// allocates nothing once it has grown).
+void encodeFrameInto(const FrameHeader& h, std::span<const std::uint8_t> payload,
+                     std::uint64_t token, std::vector<std::uint8_t>& out);
 
 /// Appends id to a Despawn payload whose last id is prev (0 at the start); false, the payload
 /// unchanged, if it would grow past max_bytes. Throws std::invalid_argument unless id > prev.

@@ -109,50 +109,81 @@ Bytes encodeClockTick(std::uint64_t token, std::uint64_t tick) {
 }
 
 namespace {
+/// One frame slot of the scratch, grown as needed.
+Bytes& frameAt(FrameScratch& scratch, std::size_t i) {
+  if (i == scratch.frames.size()) scratch.frames.emplace_back();
+  return scratch.frames[i];
+}
+
 template <typename Entity>
-std::vector<Bytes> packed(FrameKind kind, std::uint64_t token, std::uint64_t tick,
-                          const dr::StateCodec& codec, std::span<const Entity> states,
-                          const ChunkSeq& seq) {
-  std::vector<Bytes> out;
-  for (const dr::PackedChunk& c : codec.pack(states, tick, kPackedBytesPerDatagram)) {
-    out.push_back(encodeFrame({kind, seq.take(), tick, c.count}, c.bytes, token));
+std::size_t packedFrames(FrameKind kind, std::uint64_t token, std::uint64_t tick,
+                         const dr::StateCodec& codec, std::span<const Entity> states,
+                         const ChunkSeq& seq, FrameScratch& scratch) {
+  std::size_t n = codec.packInto(states, tick, kPackedBytesPerDatagram, scratch.chunks);
+  for (std::size_t i = 0; i < n; ++i) {
+    const dr::PackedChunk& c = scratch.chunks[i];
+    encodeFrameInto({kind, seq.take(), tick, c.count}, c.bytes, token, frameAt(scratch, i));
     if (seq.counts != nullptr) seq.counts->push_back(c.count);
   }
-  return out;
+  return n;
+}
+
+/// The first n frames of a scratch of its own, as a list.
+std::vector<Bytes> firstFrames(FrameScratch& scratch, std::size_t n) {
+  scratch.frames.resize(n);
+  return std::move(scratch.frames);
 }
 }  // namespace
 
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq) {
-  return packed(FrameKind::StateBatch, token, tick, codec, states, seq);
+  FrameScratch s;
+  return firstFrames(s, packedFrames(FrameKind::StateBatch, token, tick, codec, states, seq, s));
 }
 
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq) {
-  return packed(FrameKind::Spawn, token, tick, codec, states, seq);
+  FrameScratch s;
+  return firstFrames(s, packedFrames(FrameKind::Spawn, token, tick, codec, states, seq, s));
 }
 
 std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::EncodedEntity> states, ChunkSeq seq) {
-  return packed(FrameKind::StateBatch, token, tick, codec, states, seq);
+  FrameScratch s;
+  return firstFrames(s, packedFrames(FrameKind::StateBatch, token, tick, codec, states, seq, s));
 }
 
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::EncodedEntity> states, ChunkSeq seq) {
-  return packed(FrameKind::Spawn, token, tick, codec, states, seq);
+  FrameScratch s;
+  return firstFrames(s, packedFrames(FrameKind::Spawn, token, tick, codec, states, seq, s));
 }
 
-std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
-                                       std::span<const std::uint64_t> ids, ChunkSeq seq) {
-  std::vector<Bytes> out;
-  Bytes payload;
-  std::size_t count = 0;
+std::size_t encodeStateFrames(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
+                              std::span<const dr::EncodedEntity> states, ChunkSeq seq,
+                              FrameScratch& scratch) {
+  return packedFrames(FrameKind::StateBatch, token, tick, codec, states, seq, scratch);
+}
+
+std::size_t encodeSpawnFrames(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
+                              std::span<const dr::EncodedEntity> states, ChunkSeq seq,
+                              FrameScratch& scratch) {
+  return packedFrames(FrameKind::Spawn, token, tick, codec, states, seq, scratch);
+}
+
+std::size_t encodeDespawnFrames(std::uint64_t token, std::uint64_t tick,
+                                std::span<const std::uint64_t> ids, ChunkSeq seq,
+                                FrameScratch& scratch) {
+  std::size_t n = 0, count = 0;
+  Bytes& payload = scratch.payload;
+  payload.clear();
   auto close = [&] {
-    out.push_back(encodeFrame({FrameKind::Despawn, seq.take(), tick, count}, payload, token));
+    encodeFrameInto({FrameKind::Despawn, seq.take(), tick, count}, payload, token,
+                    frameAt(scratch, n++));
     if (seq.counts != nullptr) seq.counts->push_back(count);
     payload.clear();
     count = 0;
@@ -168,7 +199,13 @@ std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
     prev = id;
   }
   if (count > 0) close();
-  return out;
+  return n;
+}
+
+std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
+                                       std::span<const std::uint64_t> ids, ChunkSeq seq) {
+  FrameScratch s;
+  return firstFrames(s, encodeDespawnFrames(token, tick, ids, seq, s));
 }
 
 }  // namespace zonesim::gateway

@@ -104,6 +104,30 @@ std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::EncodedEntity> states, ChunkSeq seq = {});
+/// Buffers the frame encoders below reuse: chunks and frames keep their storage between calls.
+struct FrameScratch {
+  std::vector<dr::PackedChunk> chunks;
+  std::vector<Bytes> frames;
+  Bytes payload;
+};
+/// As encodeStateChunks, encodeSpawnChunks and encodeDespawnChunks, the frames into
+/// scratch.frames[0..n), returning n: nothing is allocated once the scratch has grown to a
+/// run's size (the gateway's per-player sends).
+std::size_t encodeStateFrames(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
+                              std::span<const dr::EncodedEntity> states, ChunkSeq seq,
+                              FrameScratch& scratch);
+std::size_t encodeSpawnFrames(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
+                              std::span<const dr::EncodedEntity> states, ChunkSeq seq,
+                              FrameScratch& scratch);
+std::size_t encodeDespawnFrames(std::uint64_t token, std::uint64_t tick,
+                                std::span<const std::uint64_t> ids, ChunkSeq seq,
+                                FrameScratch& scratch);
+/// Bytes of frames[0..n) together.
+inline std::size_t totalBytes(const FrameScratch& scratch, std::size_t n) {
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < n; ++i) bytes += scratch.frames[i].size();
+  return bytes;
+}
 /// Despawn frames carrying all ids (strictly ascending: std::invalid_argument otherwise), as
 /// many per frame as fit, in order.
 std::vector<Bytes> encodeDespawnChunks(std::uint64_t token, std::uint64_t tick,
