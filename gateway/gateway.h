@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -118,8 +119,9 @@ class Gateway {
   };
   /// `forced` and then the longest prefix of `ranked` (id, is a spawn) whose encoding adds at
   /// most `available` bytes to forced's; `forced` always goes.
-  Fit fitting(const Session& s, const Fit& forced,
-              const std::vector<std::pair<std::uint64_t, bool>>& ranked, double available) const;
+  void fitting(const Session& s, const Fit& forced,
+               const std::vector<std::pair<std::uint64_t, bool>>& ranked, double available,
+               Fit& out) const;
   /// Bytes of the Despawn datagrams carrying ids.
   std::size_t despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const;
   /// How many of ids (a prefix) fit in `available` bytes of Despawn datagrams.
@@ -167,6 +169,11 @@ class Gateway {
   // Budget sizing (fitting) encodes candidate sets into buffers of its own.
   mutable std::vector<dr::EncodedEntity> sizing_states_;
   mutable FrameScratch sizing_frames_;
+  mutable Fit sizing_fit_;
+  // budgetDiff's lists, kept: ranked entities (band, -priority, id, is a spawn), what goes.
+  std::vector<std::tuple<int, double, std::uint64_t, bool>> budget_order_;
+  std::vector<std::pair<std::uint64_t, bool>> budget_ranked_;
+  Fit budget_forced_, budget_go_;
   ZoneClock clock_;
   InterestManager interest_;
   std::array<PlayerKind, kPlayerKindCount> kinds_;  // the scene's kinds by id

@@ -30,13 +30,15 @@ std::size_t longestFittingPrefix(std::size_t n, Fits fits) {
 
 }  // namespace
 
-Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
-                              const std::vector<std::pair<std::uint64_t, bool>>& ranked,
-                              double available) const {
+void Gateway::fitting(const Session& s, const Fit& forced,
+                      const std::vector<std::pair<std::uint64_t, bool>>& ranked, double available,
+                      Fit& out) const {
   // Encodes exactly what sendView will send (seq is a fixed-width field, the batch tick the
-  // newest of the set), so the size measured here is the size sent.
-  auto take = [&](std::size_t k) {
-    Fit f = forced;
+  // newest of the set), so the size measured here is the size sent. Candidates are built in
+  // kept buffers: this runs a binary search for every player every send.
+  auto take = [&](std::size_t k, Fit& f) -> const Fit& {
+    f.spawns.assign(forced.spawns.begin(), forced.spawns.end());
+    f.updates.assign(forced.updates.begin(), forced.updates.end());
     for (std::size_t i = 0; i < k; ++i)
       (ranked[i].second ? f.spawns : f.updates).push_back(ranked[i].first);
     std::sort(f.spawns.begin(), f.spawns.end());
@@ -55,9 +57,10 @@ Gateway::Fit Gateway::fitting(const Session& s, const Fit& forced,
   auto size = [&](const Fit& f) { return bytes(f.spawns, true) + bytes(f.updates, false); };
   // Forced traffic goes as debt: what the rest adds to it must fit.
   double base = double(size(forced));
-  return take(longestFittingPrefix(available > 0 ? ranked.size() : 0, [&](std::size_t k) {
-    return double(size(take(k))) - base <= available;
-  }));
+  take(longestFittingPrefix(
+           available > 0 ? ranked.size() : 0,
+           [&](std::size_t k) { return double(size(take(k, sizing_fit_))) - base <= available; }),
+       out);
 }
 
 std::size_t Gateway::despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const {
@@ -110,8 +113,12 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
   // near updates leave room.
   auto nearBand = [&](double d) { return config_.budget.error_angle_rad * d <= floor; };
   enum Rank { kNearUpdate, kNearSpawn, kFar };
-  Fit forced;
-  std::vector<std::tuple<int, double, std::uint64_t, bool>> order;  // band, -priority, id, spawn
+  // Kept buffers: this runs for every player every tick.
+  Fit& forced = budget_forced_;
+  forced.spawns.clear();
+  forced.updates.clear();
+  auto& order = budget_order_;  // band, -priority, id, spawn
+  order.clear();
   for (std::uint64_t id : diff.spawns) {
     if (id == at.self) {
       forced.spawns.push_back(id);
@@ -150,10 +157,11 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
     order.emplace_back(near ? kNearUpdate : kFar, -acc, id, false);
   }
   std::sort(order.begin(), order.end());
-  std::vector<std::pair<std::uint64_t, bool>> ranked;
-  ranked.reserve(order.size());
+  std::vector<std::pair<std::uint64_t, bool>>& ranked = budget_ranked_;
+  ranked.clear();
   for (auto& [band, key, id, spawn] : order) ranked.emplace_back(id, spawn);
-  Fit go = fitting(s, forced, ranked, available);
+  Fit& go = budget_go_;
+  fitting(s, forced, ranked, available, go);
   // How many of ranked went (a prefix: fitting takes the longest that fits).
   std::size_t taken =
       go.spawns.size() + go.updates.size() - forced.spawns.size() - forced.updates.size();
@@ -181,8 +189,8 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
     ++s.traffic.deferred;
     ++counters_.deferred;
   }
-  diff.spawns = std::move(go.spawns);
-  diff.updates = std::move(go.updates);
+  diff.spawns.swap(go.spawns);  // swapped, so both keep their storage
+  diff.updates.swap(go.updates);
 }
 
 }  // namespace zonesim::gateway
