@@ -19,6 +19,8 @@ PACKAGES=(
   iproute2  # ip netns, veth and bridge for the multi_host test (deploy/netns.sh)
   openssh-server openssh-client  # sshd in each namespace for the multi_host_ssh test; ssh for reach = ssh
   slurmctld slurmd slurm-client munge  # a one-node Slurm for the slurm_cluster test; srun for reach = slurm
+  libsqlite3-dev libpq-dev  # the ledger's two back ends (ledger/)
+  postgresql  # the server the ledger's PostgreSQL tests and benchmark start in a temporary folder
 )
 
 missing=()
