@@ -14,8 +14,9 @@
 //   is Failed, "database unavailable: ...". A full database or any other error fails the batch
 //   at once with the database's reason; nothing of a failed batch is applied.
 //
-// Threads: submit(), poll() and inFlight() belong to one thread (the tick's); stop() and
-// stats() may be called from any.
+// Threads: submit(), poll(), inFlight() and stop() belong to one thread (the tick's): a
+// submit() racing a stop() on another thread could hand the worker a transaction after its
+// last look. stats() may be called from any.
 
 #include <atomic>
 #include <chrono>
