@@ -186,5 +186,30 @@ TEST_F(CommitterTest, StopCommitsWhatIsPendingWhenTheDatabaseIsUp) {
   EXPECT_EQ(SqliteStore({.path = path_}).counts().total, 500u);
 }
 
+// The leaderboard is served from its own connection: in WAL mode reading it never waits for the
+// committer's writes, nor they for it.
+TEST_F(CommitterTest, TheLeaderboardReadsOnItsOwnConnectionWhileTheCommitterWrites) {
+  LedgerCommitter committer(store(), {.capacity = 2048, .max_batch = 8});
+  SqliteStore reader({.path = path_, .busy_timeout_ms = 0});
+  for (std::uint64_t i = 0; i < 1000; ++i) {
+    std::uint64_t player = 1 + i % 100, seq = 1 + i / 100;
+    ASSERT_EQ(committer.submit(makeScore(player, seq, std::int64_t(player * 10 + seq), i)),
+              Submit::Accepted);
+  }
+  std::vector<Outcome> outcomes;
+  std::size_t reads = 0;
+  while (outcomes.size() < 1000) {
+    auto board = reader.leaderboard(5);  // would throw StoreError if it had to wait
+    ASSERT_LE(board.size(), 5u);
+    ++reads;
+    ASSERT_TRUE(waitUntil([&] { return committer.poll(outcomes) > 0 || outcomes.size() == 1000; }));
+  }
+  EXPECT_GT(reads, 0u);
+  for (const auto& o : outcomes) EXPECT_EQ(o.status, TxStatus::Committed) << o.reason;
+  // Best of player p is p*10 + 10 (seq 10), reached at tick 900 + p - 1.
+  EXPECT_EQ(reader.leaderboard(3),
+            (std::vector<LeaderboardRow>{{100, 1010, 999}, {99, 1000, 998}, {98, 990, 997}}));
+}
+
 }  // namespace
 }  // namespace zonesim::ledger::test

@@ -4,9 +4,15 @@
 #include "ledger/postgres_store.h"
 
 #include <gtest/gtest.h>
+#include <libpq-fe.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <map>
 
 #include "committer_support.h"
@@ -193,6 +199,98 @@ TEST_F(PostgresRestart, KilledMidStreamEveryTransactionCommitsOnce) {
   EXPECT_GE(committer.stats().attempts_unavailable, 1u);
   std::printf("outcomes: %d committed, %d already committed (answers lost at the kill)\n",
               by_status[TxStatus::Committed], by_status[TxStatus::AlreadyCommitted]);
+}
+
+// Runs one SQL command; throws std::runtime_error with the server's message.
+void execSql(const std::string& conninfo, const std::string& sql) {
+  std::unique_ptr<PGconn, void (*)(PGconn*)> conn(PQconnectdb(conninfo.c_str()), PQfinish);
+  std::unique_ptr<PGresult, void (*)(PGresult*)> res(PQexec(conn.get(), sql.c_str()), PQclear);
+  if (PQresultStatus(res.get()) != PGRES_COMMAND_OK) {
+    throw std::runtime_error(sql + ": " + PQerrorMessage(conn.get()));
+  }
+}
+
+// A small tmpfs for a tablespace: a disk that really fills. Unmounted (lazily, so a server
+// still holding a file cannot keep it) and removed at the end.
+class SmallDisk {
+ public:
+  SmallDisk(const std::string& path, const char* size) : path_(path) {
+    std::filesystem::create_directories(path_);
+    std::string options = std::string("size=") + size + ",mode=0700";
+    if (geteuid() == 0) {
+      struct stat st {};
+      stat(std::filesystem::path(path_).parent_path().c_str(), &st);  // the server's folder
+      options += ",uid=" + std::to_string(st.st_uid) + ",gid=" + std::to_string(st.st_gid);
+    }
+    if (mount("tmpfs", path_.c_str(), "tmpfs", 0, options.c_str()) != 0) {
+      throw std::runtime_error("cannot mount a " + std::string(size) + " tmpfs on " + path_ +
+                               " (this test needs root): " + std::strerror(errno));
+    }
+  }
+  ~SmallDisk() {
+    umount2(path_.c_str(), MNT_DETACH);
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+
+ private:
+  std::string path_;
+};
+
+// The ledger's table and index on a 1 MiB disk: the batch that does not fit fails as Full
+// (SQLSTATE 53100) and leaves nothing behind; through a committer the outcome is
+// "database full: ...".
+TEST_F(PostgresRestart, ADiskThatFillsFailsTheBatchAsFull) {
+  const std::string dir = server_->folder() + "/small_disk";
+  std::unique_ptr<SmallDisk> disk;
+  ASSERT_NO_THROW(disk = std::make_unique<SmallDisk>(dir, "1m"));
+  struct DropTablespace {
+    std::string conninfo;
+    ~DropTablespace() {
+      try {
+        execSql(conninfo, "DROP TABLESPACE IF EXISTS ledger_small");
+      } catch (...) {
+      }
+    }
+  } drop{server_->conninfo()};
+  ASSERT_NO_THROW(
+      execSql(server_->conninfo(), "CREATE TABLESPACE ledger_small LOCATION '" + dir + "'"));
+  auto store = harness_->open();  // creates the table, on the default tablespace
+  ASSERT_NO_THROW(execSql(harness_->conninfo(),
+                          "ALTER TABLE ledger_tx SET TABLESPACE ledger_small;"
+                          " ALTER INDEX ledger_tx_pkey SET TABLESPACE ledger_small;"
+                          " ALTER INDEX ledger_tx_scores SET TABLESPACE ledger_small"));
+  std::uint64_t committed = 0;
+  std::string error;
+  for (std::uint64_t round = 1; round < 2000 && error.empty(); ++round) {
+    std::vector<Transaction> batch;
+    for (std::uint64_t s = 1; s <= 100; ++s) batch.push_back(makeTx(round, s));
+    try {
+      store->commit(batch);
+      committed += batch.size();
+    } catch (const StoreError& e) {
+      EXPECT_EQ(e.failure(), StoreFailure::Full) << e.what();
+      error = e.what();
+    }
+  }
+  ASSERT_FALSE(error.empty()) << "1 MiB never filled";
+  EXPECT_GT(committed, 0u);
+  EXPECT_EQ(store->counts().total, committed);
+
+  LedgerCommitter committer(harness_->open());
+  for (std::uint64_t s = 1; s <= 300; ++s) committer.submit(makeTx(1'000'000, s));
+  std::vector<Outcome> outcomes;
+  ASSERT_TRUE(waitForOutcomes(committer, outcomes, 300));
+  for (const auto& o : outcomes) {
+    EXPECT_EQ(o.status, TxStatus::Failed);
+    EXPECT_EQ(o.reason.rfind("database full: ", 0), 0u) << o.reason;
+  }
+  committer.stop();
+  EXPECT_EQ(store->counts().total, committed);
+  store.reset();
+  execSql(harness_->conninfo(), "DROP TABLE ledger_tx");
 }
 
 }  // namespace
