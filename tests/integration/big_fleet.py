@@ -49,6 +49,8 @@ with tempfile.TemporaryDirectory(prefix="zs_fleet_") as tmp:
                     out / "lobby.log", env)
     h.wait_for_port(out / "gateway_port", gateway, out / "gateway.log")
     lobby_port = h.wait_for_port(out / "lobby_port", lobby, out / "lobby.log")
+    # The fleet runs only a few seconds: it starts once the zone ticks (welcomes come from it).
+    h.wait_for_zone_ticks(out, zones, out / "zones.log")
     # Only now, so that the servers keep the limit they were given: client_stub inherits this.
     resource.setrlimit(resource.RLIMIT_NOFILE, (min(SOFT, hard), hard))
     h.run([h.bin_dir() / "client_stub", "--scene", SCENE, "--lobby", f"127.0.0.1:{lobby_port}",

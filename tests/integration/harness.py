@@ -120,6 +120,21 @@ def wait_for_port(port_file, proc, log_path, timeout=120.0):
     fail(f"no port in {port_file} after {timeout:.0f} s\n{tail(log_path)}")
 
 
+def wait_for_zone_ticks(metrics_dir, proc, log_path, timeout=120.0):
+    """Until rank 0 of a zone job writing metrics to metrics_dir has written its first line of
+    zone_0.jsonl: the zones are ticking and will answer spawn requests. mpirun can take longer
+    to start the ranks on a loaded machine than a short fleet runs."""
+    path = Path(metrics_dir) / "zone_0.jsonl"
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if path.exists() and path.read_text().strip():
+            return
+        if proc.poll() is not None:
+            fail(f"exited with {proc.returncode} before ticking\n{tail(log_path)}")
+        time.sleep(0.2)
+    fail(f"no line in {path} after {timeout:.0f} s\n{tail(log_path)}")
+
+
 def tail(path, lines=40):
     try:
         return "".join(Path(path).read_text(errors="replace").splitlines(True)[-lines:])
