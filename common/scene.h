@@ -20,6 +20,7 @@
 #include "common/scene_map.h"
 #include "common/scene_npcs.h"
 #include "common/scene_physics.h"
+#include "common/scene_time_dilation.h"
 #include "common/scene_zones.h"
 
 namespace zonesim {
@@ -46,6 +47,7 @@ struct Scene {
   ObstacleMap map;         ///< walls and open ground for crowds and path finding
   AgentSettings agents;    ///< AI agent types and populations (common/scene_agents.h)
   CrowdLod lod;            ///< level of detail of the crowd systems
+  TimeDilationSettings time_dilation;  ///< slowing the clock under overload
 };
 
 /// A scene file problem; what() is "file:line: field: what is wrong".

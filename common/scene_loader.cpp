@@ -19,6 +19,7 @@
 #include "common/scene_loader_document.h"
 #include "common/scene_loader_node.h"
 #include "common/scene_loader_physics.h"
+#include "common/scene_loader_time_dilation.h"
 
 namespace zonesim {
 
@@ -373,7 +374,8 @@ void readClients(const SceneMap& root, Scene& scene) {
 Scene readScene(const SceneNode& document, const std::string& file) {
   SceneMap root =
       document.map({"name", "world", "tick", "seed", "zones", "interest", "halo", "dead_reckoning",
-                    "physics", "populations", "clients", "map", "agents", "lod"});
+                    "physics", "populations", "clients", "map", "agents", "lod",
+                    "time_dilation"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -394,6 +396,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readClients(root, scene);
   readAgents(root, scene);
   readCrowdLod(root, scene);
+  readTimeDilation(root, scene.time_dilation);
   return scene;
 }
 
