@@ -32,6 +32,7 @@ struct Options {
   std::string dump_state;
   std::string restart;
   std::uint32_t truth_every = 0;
+  std::string time_dilation = "scene";  ///< on, off, or as the scene says
   zonesim::zone::ZoneOptions zone;
   zonesim::CommonOptions common;
 };
@@ -50,6 +51,13 @@ timespec addSeconds(timespec t, double s) {
   return t;
 }
 
+/// Whether CLOCK_MONOTONIC has passed t (a paced tick that ends after its deadline is late).
+bool isPast(const timespec& t) {
+  timespec now;
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return now.tv_sec > t.tv_sec || (now.tv_sec == t.tv_sec && now.tv_nsec > t.tv_nsec);
+}
+
 /// All ranks stop together: any rank that saw a signal stops everyone.
 bool anyRankStopping(MPI_Comm comm) {
   int mine = zonesim::stopRequested() ? 1 : 0, any = 0;
@@ -60,6 +68,7 @@ bool anyRankStopping(MPI_Comm comm) {
 int run(const Options& o, MPI_Comm comm) {
   using namespace zonesim;
   Scene scene = loadScene(o.scene);
+  if (o.time_dilation != "scene") scene.time_dilation.enabled = o.time_dilation == "on";
   std::unique_ptr<zone::CheckpointImage> image;
   if (!o.restart.empty())
     image = std::make_unique<zone::CheckpointImage>(zone::readCheckpoint(o.restart));
@@ -91,17 +100,20 @@ int run(const Options& o, MPI_Comm comm) {
   Stopwatch wall;
   timespec next;
   clock_gettime(CLOCK_MONOTONIC, &next);
-  const double period = 1.0 / scene.tick_rate;
   while (node.tickCount() < ticks) {
     if (anyRankStopping(comm)) break;
+    // The factor this tick runs at (set by the previous tick): dt stays, the period stretches.
+    const double period = node.dilation().periodSeconds();
     Stopwatch tick_time;
     node.tick();
-    report.recordTick(node, tick_time.elapsedSeconds(), metrics);
-    truth.record(node.tickCount() - 1, node.store());  // the tick just published
+    const double tick_seconds = tick_time.elapsedSeconds();
     if (o.realtime) {
       next = addSeconds(next, period);
-      sleepUntil(next);
+      report.recordPacing(node, period, isPast(next));
     }
+    report.recordTick(node, tick_seconds, metrics);
+    truth.record(node.tickCount() - 1, node.store());  // the tick just published
+    if (o.realtime) sleepUntil(next);
   }
   metrics.flush();
   std::string summary = report.summaryJson(node, wall.elapsedSeconds());
@@ -157,6 +169,10 @@ int main(int argc, char** argv) {
                  "particles and flocks on OpenCL: on, off, auto (measured default thresholds) or "
                  "probe (auto with thresholds timed on rank 0 at start and broadcast)")
       ->check(CLI::IsMember({"on", "off", "auto", "probe"}));
+  app.add_option("--time-dilation", o.time_dilation,
+                 "slow the cluster's clock under overload: on, off, or scene (its time_dilation "
+                 "key; absent: off)")
+      ->check(CLI::IsMember({"on", "off", "scene"}));
   zonesim::addCommonOptions(app, o.common);
   CLI11_PARSE(app, argc, argv);
   o.zone.dds = !no_dds;

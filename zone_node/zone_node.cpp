@@ -56,7 +56,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       balancer_(comm, options.balance),
       // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
       halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)),
-      players_(scene, rank_, size_) {
+      players_(scene, rank_, size_),
+      dilation_(scene.time_dilation, scene.tick_rate) {
   // Jointed bodies do not migrate together and a cloth belongs to no entity: one zone only
   // (the loader checks the scene's zones; this catches a run on more ranks).
   if (size_ > 1 && (!scene.physics.joints.empty() || !scene.physics.cloths.empty())) {
@@ -164,6 +165,7 @@ void ZoneNode::tick() {
   counters_ = {};
   leavers_.clear();
   players_.startTick();
+  last_tick_factor_ = dilation_.factor();
   std::int64_t cpu0 = threadCpuNs();
   timed(Phase::Input, &ZoneNode::input);
   timed(Phase::Ai, &ZoneNode::ai);
@@ -291,6 +293,7 @@ void ZoneNode::coverZone() {
 
 void ZoneNode::publish() {
   if (!publisher_) return;
+  publisher_->setDilation(dilation_.factor());
   PublishStats s = publisher_->publish(store_, leavers_, tick_, double(tick_) * scene_.dt);
   counters_.published_updates = s.updates;
   counters_.published_enters = s.enters;
@@ -316,6 +319,20 @@ void ZoneNode::checks() {
     coverZone();
   }
   counters_.imbalance_permille = std::uint64_t(balancer_.imbalance() * 1000.0);
+  dilate();
+}
+
+void ZoneNode::dilate() {
+  if (!scene_.time_dilation.enabled) return;
+  // The tick's work in wall time up to here: what must fit the wall-clock period. (Not CPU
+  // time as for the balancer: a tick late for any reason is late for the players.)
+  double work = 0;
+  for (std::size_t i = 0; i < std::size_t(Phase::Checks); ++i) work += profile_.seconds[i];
+  double slowest = 0;
+  MPI_Allreduce(&work, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  if (dilation_.record(slowest, tick_) && rank_ == 0)
+    ZS_INFO("time dilation %.0f%% from tick %llu", dilation_.factor() * 100.0,
+            (unsigned long long)tick_);
 }
 
 void ZoneNode::checkConservationNow() {

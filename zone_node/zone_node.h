@@ -24,6 +24,7 @@
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/step_context.h"
 #include "zone_node/tick_profile.h"
+#include "zone_node/time_dilation.h"
 #include "zone_node/zone_layout.h"
 
 namespace zonesim::zone {
@@ -86,6 +87,11 @@ class ZoneNode {
   /// Read-only copies of the neighbours' entities within the halo (refreshed every tick).
   const GhostStore& ghosts() const { return halo_.ghosts(); }
   const ConservationTally& conservation() const { return conservation_; }
+  /// The cluster's clock rate (the same on every rank): the next tick's wall period is
+  /// tickSeconds() / factor(); the scene's time_dilation key turns it on.
+  const TimeDilation& dilation() const { return dilation_; }
+  /// The factor the tick just run ran at (dilation() may already hold the next one's).
+  double lastTickFactor() const { return last_tick_factor_; }
   /// Handoffs completed this tick: ticks from the avatar's arrival at this zone (the tick it
   /// crossed the border) to the first input applied here.
   const std::vector<std::uint64_t>& handoffLatencyTicks() const {
@@ -115,6 +121,8 @@ class ZoneNode {
   void publish();
   void checks();
   void checkConservationNow();
+  /// With time dilation on: one allreduce of this tick's work sets the next tick's factor.
+  void dilate();
   /// Readies the cell writers of this zone's rectangle (at start and when boundaries move).
   void coverZone();
 
@@ -165,6 +173,8 @@ class ZoneNode {
   TickProfile profile_;
   TickCounters counters_;
   ConservationTally conservation_;
+  TimeDilation dilation_;
+  double last_tick_factor_ = 1;
   MigrationResult last_migration_;
   std::vector<Departure> leavers_;  // migrated away or destroyed this tick: publish says so
 };

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
 #include "common/stats.h"
 
 namespace zonesim::zone {
@@ -23,8 +25,17 @@ std::string byRank(const std::map<int, std::uint64_t>& counts) {
 
 ZoneReport::ZoneReport(const ZoneNode& zone) : entities_start_(zone.store().size()) {}
 
+void ZoneReport::recordPacing(const ZoneNode& zone, double period_seconds, bool late) {
+  if (zone.lastTickFactor() < 1) dilated_wall_s_ += period_seconds;
+  late_ = late;
+  late_ticks_ += late ? 1 : 0;
+}
+
 void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWriter& metrics) {
   tick_ms_.push_back(tick_seconds * 1e3);
+  factor_ = zone.lastTickFactor();
+  min_factor_ = std::min(min_factor_, factor_);
+  dilated_ticks_ += factor_ < 1 ? 1 : 0;
   const TickProfile& p = zone.profile();
   for (std::size_t i = 0; i < kPhaseCount; ++i) phase_totals_.seconds[i] += p.seconds[i];
   for (std::size_t i = 0; i < kStageCount; ++i)
@@ -45,6 +56,9 @@ void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWr
       .add("rank", zone.rank())
       .add("entities", std::uint64_t(zone.store().size()));
   line.add("tick_ms", tick_seconds * 1e3);
+  line.add("dilation", factor_).add("wall_s", since_start_.elapsedSeconds());
+  line.add("late", std::uint64_t(late_ ? 1 : 0));
+  late_ = false;
   for (std::size_t i = 0; i < kPhaseCount; ++i)
     line.add(std::string(kPhaseNames[i]) + "_ms", p.seconds[i] * 1e3);
   for (std::size_t i = 0; i < kStageCount; ++i)
@@ -72,6 +86,9 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   for (const CounterField& f : kCounterFields) s.add(f.name, totals_.*f.field);
   s.add("conservation_checks", zone.conservation().checks);
   s.add("conservation_failures", zone.conservation().failures);
+  s.add("dilation_min", min_factor_).add("dilation_changes", zone.dilation().changes());
+  s.add("dilated_ticks", dilated_ticks_).add("dilated_wall_s", dilated_wall_s_);
+  s.add("late_ticks", late_ticks_);
   s.add("particle_backend", zone.particleBackend());
   s.add("flock_backend", zone.flockBackend());
   s.addRaw("migrated_out_to", byRank(migrated_to_));

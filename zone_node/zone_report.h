@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/metrics.h"
+#include "common/timer.h"
 #include "zone_node/zone_node.h"
 
 namespace zonesim::zone {
@@ -19,6 +20,9 @@ class ZoneReport {
 
   /// Records the tick just run (and writes its JSON line when metrics are on).
   void recordTick(const ZoneNode& zone, double tick_seconds, MetricsWriter& metrics);
+  /// Records the wall period of the tick just run when paced in real time, and whether its
+  /// work ended after its deadline (call before recordTick, which writes it).
+  void recordPacing(const ZoneNode& zone, double period_seconds, bool late);
   /// The end-of-run summary as one JSON object.
   std::string summaryJson(const ZoneNode& zone, double wall_seconds) const;
 
@@ -31,6 +35,13 @@ class ZoneReport {
   // Per destination rank, so a run across hosts can show which moves crossed a host boundary.
   std::map<int, std::uint64_t> migrated_to_;
   std::map<int, std::uint64_t> avatars_to_;
+  double min_factor_ = 1;  // the slowest clock rate run at
+  std::uint64_t dilated_ticks_ = 0;
+  double dilated_wall_s_ = 0;     // paced wall seconds of the dilated ticks
+  std::uint64_t late_ticks_ = 0;  // paced ticks whose work overran their deadline
+  double factor_ = 1;             // of the tick last recorded
+  bool late_ = false;             // the tick being recorded ended after its deadline
+  Stopwatch since_start_;         // wall time of each metrics line, for per-second figures
 };
 
 }  // namespace zonesim::zone

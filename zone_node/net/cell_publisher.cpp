@@ -179,6 +179,7 @@ void CellPublisher::write(int cell, Channel& ch, std::uint64_t tick, double sim_
     b.zone = zone_;
     b.tick = tick;
     b.sim_time = sim_time;
+    b.dilation = dilation_;
     view(b.enters, ch.enters);
     view(b.updates, ch.updates_out);
     view(b.leaves, ch.leaves);
@@ -195,6 +196,7 @@ void CellPublisher::write(int cell, Channel& ch, std::uint64_t tick, double sim_
     k.zone = zone_;
     k.tick = tick;
     k.sim_time = sim_time;
+    k.dilation = dilation_;
     view(k.entities, ch.keyframe);
     if (dds_write(ch.keyframes.writer.get(), &k) < 0) ++stats.write_failures;
     ++stats.keyframes;

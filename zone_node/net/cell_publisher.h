@@ -52,6 +52,9 @@ class CellPublisher {
   /// destroyed (to_rank < 0) this tick.
   PublishStats publish(EntityStore& store, std::span<const Departure> leavers, std::uint64_t tick,
                        double sim_time);
+  /// The cluster's time dilation factor, carried by every sample from now on (gateways run
+  /// their clock at it).
+  void setDilation(double factor) { dilation_ = factor; }
 
  private:
   struct Channel {
@@ -76,6 +79,7 @@ class CellPublisher {
   int zone_;
   DeadReckoner reckoner_;
   int keyframe_every_;
+  double dilation_ = 1;
   double last_sim_time_ = -1;        // previous publish: the step of the acceleration estimates
   std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
 };
