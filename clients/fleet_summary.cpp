@@ -1,5 +1,7 @@
 #include "clients/fleet_summary.h"
 
+#include <algorithm>
+
 #include "clients/kind_summary.h"
 #include "common/stats.h"
 #include "common/timer.h"
@@ -24,6 +26,7 @@ void addSum(PlayerCounters& t, const PlayerCounters& c, bool samples) {
   t.duplicates += c.duplicates;
   t.stale_lifecycle += c.stale_lifecycle;
   t.repeats += c.repeats;
+  t.min_dilation = std::min(t.min_dilation, c.min_dilation);
   for (std::size_t r = 0; r < std::size_t(gateway::DropReason::Count); ++r)
     t.drops.add(gateway::DropReason(r), c.drops[gateway::DropReason(r)]);
   if (!samples) return;
@@ -57,7 +60,8 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("rtt_ms_p99", percentile(c.rtt_ms.samples(), 99))
       .add("dr_error_m_p50", percentile(c.dr_error_m.samples(), 50))
       .add("dr_error_m_p99", percentile(c.dr_error_m.samples(), 99))
-      .add("dr_error_m_max", c.dr_error_m.max());
+      .add("dr_error_m_max", c.dr_error_m.max())
+      .add("dilation_min", c.min_dilation);
 }
 
 // The player's link profile and what its models did to the datagrams each way.

@@ -86,7 +86,7 @@ std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
                             float(p->z), distance});
     });
   }
-  return now_ns + std::int64_t((double(tick + 1) - now_tick) / tick_rate_ * 1e9) + 1;
+  return now_ns + std::int64_t((double(tick + 1) - now_tick) / ticksPerSecond() * 1e9) + 1;
 }
 
 std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
@@ -112,11 +112,27 @@ std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
   return std::min(next_input_ns_, next_ping_ns_);
 }
 
+void SimPlayer::setDilation(float factor, std::int64_t now_ns) {
+  // The Verifier checks structure only: a factor no gateway sends is dropped, the clock kept.
+  if (!(factor > 0.0f && factor <= 1.0f)) {
+    counters_.drops.add(gateway::DropReason::OutOfRange);
+    return;
+  }
+  if (double(factor) == dilation_) return;
+  // Re-anchor where the clock is now, so that only its rate changes from here on.
+  if (clock_tick_ >= 0) {
+    clock_tick_ = serverTick(now_ns);
+    clock_ns_ = now_ns;
+  }
+  dilation_ = double(factor);
+  counters_.min_dilation = std::min(counters_.min_dilation, dilation_);
+}
+
 double SimPlayer::serverTick(std::int64_t now_ns) const {
   if (clock_tick_ < 0) return 0;
-  double run_on = clock_tick_ + double(now_ns - clock_ns_) * 1e-9 * tick_rate_;
+  double run_on = clock_tick_ + double(now_ns - clock_ns_) * 1e-9 * ticksPerSecond();
   if (config_.max_lead_s <= 0) return run_on;
-  return std::min(run_on, newest_tick_ + config_.max_lead_s * tick_rate_);
+  return std::min(run_on, newest_tick_ + config_.max_lead_s * ticksPerSecond());
 }
 
 std::optional<std::vector<dr::WireEntity>> SimPlayer::unpack(const gateway::DownlinkFrame& f,
@@ -273,7 +289,7 @@ bool SimPlayer::newerLifecycle(std::uint64_t id, std::uint32_t seq) {
 }
 
 std::size_t SimPlayer::ghosts(std::int64_t now_ns) const {
-  double limit = serverTick(now_ns) - config_.stale_after_s * tick_rate_;
+  double limit = serverTick(now_ns) - config_.stale_after_s * ticksPerSecond();
   std::size_t n = 0;
   view_.forEach([&](std::uint64_t id, const dr::WireEntity& e) {
     if (id != avatar_id_ && double(e.tick) < limit) ++n;
@@ -377,6 +393,7 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
         counters_.last_rtt_ms = rtt_ms;
       }
       ++counters_.pongs;
+      setDilation(d.msg_as_Pong()->dilation(), now_ns);
       return;
     }
     default:

@@ -82,6 +82,7 @@ struct PlayerCounters {
   Reservoir rtt_ms;      ///< round trips, one per Pong
   Reservoir dr_error_m;  ///< correction seen at each update of a known entity
   double last_rtt_ms = 0;
+  double min_dilation = 1;  ///< the slowest zone clock rate a Pong told of
 };
 
 class SimPlayer {
@@ -133,8 +134,11 @@ class SimPlayer {
   const std::vector<DisplaySample>& displayed() const { return displayed_; }
 
   /// The estimated server tick at now_ns (fractional): the newest tick heard of, advanced by
-  /// the wall time since at the announced tick rate, at most max_lead_s past it.
+  /// the wall time since at the announced tick rate times the zones' time dilation factor
+  /// (from the Pongs), at most max_lead_s past it.
   double serverTick(std::int64_t now_ns) const;
+  /// The zones' time dilation factor the newest Pong told (1: full speed).
+  double dilation() const { return dilation_; }
   /// The codec announced in the Welcome (nullptr before).
   const dr::StateCodec* codec() const { return codec_ ? &*codec_ : nullptr; }
 
@@ -196,6 +200,11 @@ class SimPlayer {
   gateway::Impairment impairment_;
   std::optional<dr::StateCodec> codec_;
   double tick_rate_ = 30;
+  double dilation_ = 1;  // the zones' clock rate, from the newest Pong
+  /// Server ticks per wall second: the tick rate slowed by time dilation.
+  double ticksPerSecond() const { return tick_rate_ * dilation_; }
+  /// Takes a Pong's time dilation factor: the clock keeps its place and changes its rate.
+  void setDilation(float factor, std::int64_t now_ns);
   double clock_tick_ = -1;  // the tick the clock was last set to, and when
   std::int64_t clock_ns_ = 0;
   double newest_tick_ = -1;                                  // the newest server tick heard of

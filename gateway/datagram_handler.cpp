@@ -67,7 +67,8 @@ void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint
     case proto::Message::Ping:
       s->resend.onAck(d.msg_as_Ping()->ack(), d.msg_as_Ping()->ack_bits(), now_ns);
       out.replies.push_back(
-          {from, s->token, encodePong(s->token, d.msg_as_Ping()->client_time_us(), wallTimeUs())});
+          {from, s->token,
+           encodePong(s->token, d.msg_as_Ping()->client_time_us(), wallTimeUs(), dilation_)});
       ++accepted_;
       return;
     case proto::Message::Bye: {

@@ -84,6 +84,8 @@ class DatagramHandler {
   Bytes welcomeFor(const Session& s) const;
 
   const DropCounters& drops() const { return drops_; }
+  /// The zones' time dilation factor, told to every client in its Pongs.
+  void setDilation(double factor) { dilation_ = float(factor); }
   /// Counts an oversize datagram the socket truncated before it reached handle().
   void countTooLarge() { drops_.add(DropReason::TooLarge); }
   std::uint64_t accepted() const { return accepted_; }
@@ -105,6 +107,7 @@ class DatagramHandler {
   std::optional<TokenGate> gate_;
   DropCounters drops_;
   std::uint64_t accepted_ = 0;
+  float dilation_ = 1.0f;  // the zones' clock rate, for Pongs
 };
 
 }  // namespace zonesim::gateway

@@ -210,6 +210,7 @@ void Gateway::tick(std::int64_t now_ns) {
   for (const zonesim_dds_OwnershipEvent& e : link_.takeOwnership()) applyOwnership(e);
   link_.flushSpawns();
   counters_.dds_samples += link_.takeCells(cache_, clock_, now_ns);
+  handler_.setDilation(clock_.dilation());
   cache_.sweep(now_ns);
   expireSessions(now_ns);
   updateInterest(now_ns);
@@ -396,6 +397,8 @@ GatewayGauges Gateway::gauges(std::int64_t now_ns) {
   g.entities_cached = cache_.size();
   g.held_spawns = link_.heldSpawns();
   g.zone_tick = clock_.tick();
+  g.zone_dilation = clock_.dilation();
+  g.zone_dilation_min = clock_.minDilation();
   g.tick_ms = tick_window_;
   g.tick_cpu_ms = tick_cpu_window_;
   g.process_cpu_ms_per_tick = processCpuMsPerTick();

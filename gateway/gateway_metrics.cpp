@@ -42,6 +42,8 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("entities_cached", std::uint64_t(g.entities_cached))
       .add("held_spawns", std::uint64_t(g.held_spawns))
       .add("zone_tick", g.zone_tick)
+      .add("zone_dilation", g.zone_dilation)
+      .add("zone_dilation_min", g.zone_dilation_min)
       .add("ticks", g.tick_ms.count)
       .add("tick_ms_mean", g.tick_ms.meanMs())
       .add("tick_ms_max", g.tick_ms.max_ms)

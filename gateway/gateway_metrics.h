@@ -46,6 +46,8 @@ struct GatewayGauges {
   std::size_t sessions = 0, pending_sessions = 0, cells_subscribed = 0, entities_cached = 0;
   std::size_t held_spawns = 0;
   std::uint64_t zone_tick = 0;
+  /// The zones' time dilation factor in the newest sample, and the lowest seen in the run.
+  double zone_dilation = 1, zone_dilation_min = 1;
   TickTimes tick_ms;      ///< wall time of each tick (grows when the machine is oversubscribed)
   TickTimes tick_cpu_ms;  ///< the gateway thread's CPU time in each tick: its own work
   /// Whole-process CPU (every thread: receiving datagrams, DDS) per tick, ms.

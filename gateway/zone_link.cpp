@@ -112,18 +112,18 @@ std::size_t ZoneLink::takeCells(WorldCache& cache, ZoneClock& clock, std::int64_
   std::size_t n = 0;
   for (auto& [cell, r] : cells_) {
     // Keyframes first: a batch of the same tick then applies on top of a complete picture.
-    n += dds::takeAll<zonesim_dds_CellKeyframe>(r.keyframes.reader.get(),
-                                                [&](const zonesim_dds_CellKeyframe& k) {
-                                                  if (k.cell != cell) return;  // misaddressed
-                                                  clock.observe(k.tick, k.sim_time, now_ns);
-                                                  cache.applyKeyframe(k, now_ns);
-                                                });
-    n += dds::takeAll<zonesim_dds_CellUpdateBatch>(r.updates.reader.get(),
-                                                   [&](const zonesim_dds_CellUpdateBatch& b) {
-                                                     if (b.cell != cell) return;  // misaddressed
-                                                     clock.observe(b.tick, b.sim_time, now_ns);
-                                                     cache.applyBatch(b, now_ns);
-                                                   });
+    n += dds::takeAll<zonesim_dds_CellKeyframe>(
+        r.keyframes.reader.get(), [&](const zonesim_dds_CellKeyframe& k) {
+          if (k.cell != cell) return;  // misaddressed
+          clock.observe(k.tick, k.sim_time, k.dilation, now_ns);
+          cache.applyKeyframe(k, now_ns);
+        });
+    n += dds::takeAll<zonesim_dds_CellUpdateBatch>(
+        r.updates.reader.get(), [&](const zonesim_dds_CellUpdateBatch& b) {
+          if (b.cell != cell) return;  // misaddressed
+          clock.observe(b.tick, b.sim_time, b.dilation, now_ns);
+          cache.applyBatch(b, now_ns);
+        });
   }
   return n;
 }

@@ -91,10 +91,11 @@ Bytes encodeWelcome(const WelcomeInfo& w) {
   return finish(fbb, w.token, proto::Message::Welcome, msg);
 }
 
-Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us) {
+Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us,
+                 float dilation) {
   flatbuffers::FlatBufferBuilder fbb(96);
   return finish(fbb, token, proto::Message::Pong,
-                proto::CreatePong(fbb, client_time_us, gateway_time_us));
+                proto::CreatePong(fbb, client_time_us, gateway_time_us, dilation));
 }
 
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h) {

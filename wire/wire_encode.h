@@ -62,7 +62,8 @@ Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_
 Bytes encodeBye(std::uint64_t token);
 /// The Datagram's token is the new session token too, so the client can check it.
 Bytes encodeWelcome(const WelcomeInfo& w);
-Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us);
+Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us,
+                 float dilation = 1.0f);
 Bytes encodeHandoff(std::uint64_t token, const HandoffInfo& h);
 /// A StateBatch frame with no states: tells a client whose view is quiet that the zones' clock
 /// moved on (unnumbered: nothing in it needs resending).

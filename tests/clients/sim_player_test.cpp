@@ -344,5 +344,26 @@ TEST_F(SimPlayerTest, UpdatesOfAnUnspawnedEntityAreNoticed) {
   EXPECT_EQ(player_->unspawned(), 0u) << "a spawn settles it";
 }
 
+TEST_F(SimPlayerTest, ThePongsTimeDilationSlowsTheServerClock) {
+  std::uint64_t token = welcome();
+  std::int64_t t0 = nowNs();
+  Endpoint from = Endpoint::loopback(gateway_.localPort());
+  player_->handle(gateway::encodeClockTick(token, 300), from, t0);
+  player_->handle(gateway::encodePong(token, 1, 2, 0.5f), from, t0);
+  EXPECT_EQ(player_->dilation(), 0.5);
+  EXPECT_EQ(player_->counters().min_dilation, 0.5);
+  // 0.1 s later at half speed: 1.5 ticks on (3 at full speed); max_lead_s also in dilated time.
+  EXPECT_NEAR(player_->serverTick(t0 + 100'000'000), 301.5, 1e-6);
+  EXPECT_NEAR(player_->serverTick(t0 + 2'000'000'000), 300 + 0.25 * 15, 1e-6);
+  // A factor no gateway sends is dropped and the clock keeps its rate.
+  for (float bad : {0.0f, -1.0f, 1.5f, std::numeric_limits<float>::quiet_NaN()})
+    player_->handle(gateway::encodePong(token, 1, 2, bad), from, t0);
+  EXPECT_EQ(dropped(DropReason::OutOfRange), 4u);
+  EXPECT_EQ(player_->dilation(), 0.5);
+  // Back to full speed 0.1 s on: the clock keeps its place (301.5) and runs at 30 Hz again.
+  player_->handle(gateway::encodePong(token, 1, 2, 1.0f), from, t0 + 100'000'000);
+  EXPECT_NEAR(player_->serverTick(t0 + 200'000'000), 304.5, 1e-6);
+}
+
 }  // namespace
 }  // namespace zonesim::clients
