@@ -181,7 +181,8 @@ void ZoneNode::tick() {
   ++tick_;
   // The rank's own work, in CPU time: migrate and checks wait on other ranks, and wall time
   // also grows while a rank is descheduled; either would hide or fake an imbalance.
-  balancer_.record(double((cpu1 - cpu0) + (cpu3 - cpu2)) * 1e-9);
+  own_work_seconds_ = double((cpu1 - cpu0) + (cpu3 - cpu2)) * 1e-9;
+  balancer_.record(own_work_seconds_);
   timed(Phase::Checks, &ZoneNode::checks);
 }
 
@@ -324,12 +325,12 @@ void ZoneNode::checks() {
 
 void ZoneNode::dilate() {
   if (!scene_.time_dilation.enabled) return;
-  // The tick's work in wall time up to here: what must fit the wall-clock period. (Not CPU
-  // time as for the balancer: a tick late for any reason is late for the players.)
-  double work = 0;
-  for (std::size_t i = 0; i < std::size_t(Phase::Checks); ++i) work += profile_.seconds[i];
+  // The rank's own work in CPU time, as the balancer reads it: waits on other ranks would
+  // count the slowest rank's work again on every rank, and time a loaded machine took the
+  // CPU away would dilate the clock for a load that is not the simulation's (and slowing the
+  // clock does not give the CPU back).
   double slowest = 0;
-  MPI_Allreduce(&work, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  MPI_Allreduce(&own_work_seconds_, &slowest, 1, MPI_DOUBLE, MPI_MAX, comm_);
   if (dilation_.record(slowest, tick_) && rank_ == 0)
     ZS_INFO("time dilation %.0f%% from tick %llu", dilation_.factor() * 100.0,
             (unsigned long long)tick_);

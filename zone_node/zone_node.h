@@ -175,6 +175,7 @@ class ZoneNode {
   ConservationTally conservation_;
   TimeDilation dilation_;
   double last_tick_factor_ = 1;
+  double own_work_seconds_ = 0;  // CPU time of this tick's input..gpu and publish
   MigrationResult last_migration_;
   std::vector<Departure> leavers_;  // migrated away or destroyed this tick: publish says so
 };
