@@ -97,7 +97,7 @@ const InlineCase kInlineCases[] = {
      "8: populations[0].size: only boxes have a size"},
     {"unknown_top_level", withBase("colour: red\n"),
      "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
-     "dead_reckoning, physics, populations, clients, map, agents, lod)"},
+     "dead_reckoning, physics, populations, clients, map, agents, lod, time_dilation)"},
     {"agent_unknown_action",
      withBase("agents:\n  types:\n    - {name: a, behaviour: tree, tree: dance}\n"),
      "7: agents.types[0].tree: unknown action 'dance' (allowed: idle, wander, chase, flee, "
