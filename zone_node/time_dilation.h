@@ -22,8 +22,8 @@ namespace zonesim::zone {
 /// The cluster's clock rate, decided from the slowest rank's tick work.
 class TimeDilation {
  public:
-  /// `dt` is the scene's simulated seconds per tick, `tick_rate` its ticks per wall second at
-  /// full speed (the undilated period is 1 / tick_rate).
+  /// `tick_rate` is the scene's ticks per wall second at full speed (the undilated period is
+  /// 1 / tick_rate).
   TimeDilation(const TimeDilationSettings& settings, double tick_rate);
 
   /// Feeds the slowest rank's work (wall seconds) of the tick just run, `next_tick` being the
