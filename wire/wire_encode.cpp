@@ -150,20 +150,6 @@ std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
   return firstFrames(s, packedFrames(FrameKind::Spawn, token, tick, codec, states, seq, s));
 }
 
-std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
-                                     const dr::StateCodec& codec,
-                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq) {
-  FrameScratch s;
-  return firstFrames(s, packedFrames(FrameKind::StateBatch, token, tick, codec, states, seq, s));
-}
-
-std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
-                                     const dr::StateCodec& codec,
-                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq) {
-  FrameScratch s;
-  return firstFrames(s, packedFrames(FrameKind::Spawn, token, tick, codec, states, seq, s));
-}
-
 std::size_t encodeStateFrames(std::uint64_t token, std::uint64_t tick, const dr::StateCodec& codec,
                               std::span<const dr::EncodedEntity> states, ChunkSeq seq,
                               FrameScratch& scratch) {

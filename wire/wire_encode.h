@@ -98,13 +98,6 @@ std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
 std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
                                      const dr::StateCodec& codec,
                                      std::span<const dr::WireEntity> states, ChunkSeq seq = {});
-/// The same two from states the codec encoded once (StateCodec::encodeState), for many players.
-std::vector<Bytes> encodeStateChunks(std::uint64_t token, std::uint64_t tick,
-                                     const dr::StateCodec& codec,
-                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq = {});
-std::vector<Bytes> encodeSpawnChunks(std::uint64_t token, std::uint64_t tick,
-                                     const dr::StateCodec& codec,
-                                     std::span<const dr::EncodedEntity> states, ChunkSeq seq = {});
 /// Buffers the frame encoders below reuse: chunks and frames keep their storage between calls.
 struct FrameScratch {
   std::vector<dr::PackedChunk> chunks;
