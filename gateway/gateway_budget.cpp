@@ -131,7 +131,8 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
   for (std::uint64_t id : diff.updates) {
     const CachedEntity* sent = s.budget.lastSent(id);
     // The avatar's own state rides with each send rather than in a datagram of its own every
-    // tick (a third of 20 kbit/s went on that): it waits at most ticksPerSend - 1 ticks.
+    // tick (30 frames a second of 13 B framing each: 390 of 20 kbit/s's 2,500 B/s before any
+    // record): it waits at most ticksPerSend - 1 ticks.
     if (id == at.self && sent != nullptr && available <= 0) {
       s.view.defer(id);
       continue;

@@ -26,7 +26,8 @@ inline constexpr const char* kCreateScoreIndex =
     " WHERE kind = 4";
 
 /// Best score per player (first reached wins), then the top rows; one parameter: the limit.
-/// Written once for both back ends; the placeholder differs ($1 against ?).
+/// Shared by both back ends, which append their own SQL parameter marker for the limit:
+/// "$1" in PostgreSQL, "?1" in SQLite.
 inline constexpr const char* kLeaderboardBody =
     "SELECT player, score, tick FROM ("
     " SELECT player, score, tick, ROW_NUMBER() OVER"
