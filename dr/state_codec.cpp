@@ -298,13 +298,6 @@ std::vector<PackedChunk> StateCodec::pack(std::span<const WireEntity> entities,
   return out;
 }
 
-std::vector<PackedChunk> StateCodec::pack(std::span<const EncodedEntity> entities,
-                                          std::uint64_t batch_tick, std::size_t max_bytes) const {
-  std::vector<PackedChunk> out;
-  out.resize(packInto(entities, batch_tick, max_bytes, out));
-  return out;
-}
-
 std::optional<std::vector<WireEntity>> StateCodec::unpack(std::span<const std::uint8_t> bytes,
                                                           std::size_t count,
                                                           std::uint64_t batch_tick) const {

@@ -114,12 +114,9 @@ class StateCodec {
   /// Packs entities (ascending ids) into streams of at most max_bytes each.
   std::vector<PackedChunk> pack(std::span<const WireEntity> entities, std::uint64_t batch_tick,
                                 std::size_t max_bytes) const;
-  /// The same from encoded states: the same streams as pack() of the entities they encode.
-  std::vector<PackedChunk> pack(std::span<const EncodedEntity> entities, std::uint64_t batch_tick,
-                                std::size_t max_bytes) const;
   /// The same streams into chunks[0..n), returning n: chunks only grows, and each chunk's
   /// bytes keep their storage, so a caller that keeps `chunks` allocates nothing once it
-  /// has grown.
+  /// has grown. From encoded states, the same streams as from the entities they encode.
   std::size_t packInto(std::span<const WireEntity> entities, std::uint64_t batch_tick,
                        std::size_t max_bytes, std::vector<PackedChunk>& chunks) const;
   std::size_t packInto(std::span<const EncodedEntity> entities, std::uint64_t batch_tick,

@@ -124,9 +124,10 @@ class Gateway {
                Fit& out) const;
   /// Bytes of the Despawn datagrams carrying ids.
   std::size_t despawnBytes(const Session& s, std::span<const std::uint64_t> ids) const;
-  /// How many of ids (a prefix) fit in `available` bytes of Despawn datagrams.
+  /// How many of ids (a prefix) fit in `available` bytes of Despawn datagrams; `bytes` gets
+  /// that prefix's size.
   std::size_t fittingDespawns(const Session& s, const std::vector<std::uint64_t>& ids,
-                              double available) const;
+                              double available, std::size_t& bytes) const;
   /// Sends the session's pending Handoff notice under a new seq.
   void sendHandoff(Session& s, std::int64_t now_ns);
   /// Forgets the pending Handoff once acknowledged; sends it again after the timeout.

@@ -70,9 +70,15 @@ std::size_t Gateway::despawnBytes(const Session& s, std::span<const std::uint64_
 }
 
 std::size_t Gateway::fittingDespawns(const Session& s, const std::vector<std::uint64_t>& ids,
-                                     double available) const {
+                                     double available, std::size_t& bytes) const {
+  // The longest prefix is the largest k found to fit, so its size is known from the search.
+  std::size_t best = 0;
+  bytes = 0;
   return longestFittingPrefix(ids.size(), [&](std::size_t k) {
-    return double(despawnBytes(s, std::span(ids).first(k))) <= available;
+    std::size_t b = despawnBytes(s, std::span(ids).first(k));
+    if (double(b) > available) return false;
+    if (k > best) best = k, bytes = b;
+    return true;
   });
 }
 
@@ -93,14 +99,15 @@ void Gateway::budgetDiff(Session& s, ViewDiff& diff, const ViewPoint& at, double
   // bodies can leave hundreds at once.
   double tokens = s.budget.tokens();
   if (!diff.despawns.empty()) {
-    std::size_t fit = fittingDespawns(s, diff.despawns, std::max(tokens, 0.0));
+    std::size_t bytes = 0;
+    std::size_t fit = fittingDespawns(s, diff.despawns, std::max(tokens, 0.0), bytes);
     for (std::size_t i = fit; i < diff.despawns.size(); ++i) {
       s.view.holdDespawn(diff.despawns[i]);
       ++s.traffic.deferred;
       ++counters_.deferred;
     }
     diff.despawns.resize(fit);
-    tokens -= double(despawnBytes(s, diff.despawns));
+    tokens -= double(bytes);
   }
   // Until the bucket is full, only guaranteed traffic goes (the rest waits, gathered).
   double available = s.budget.tokens() >= budget_send_bytes_ ? tokens : 0.0;

@@ -198,18 +198,21 @@ TEST(StateCodec, EncodedStatesPackIntoTheSameStreamsAsTheEntities) {
   }
   std::vector<EncodedEntity> encoded;
   for (std::size_t i = 0; i < in.size(); ++i) encoded.push_back({in[i].id, in[i].tick, &states[i]});
-  for (std::size_t max_bytes : {std::size_t{40}, std::size_t{300}, std::size_t{1200}}) {
-    auto want = codec.pack(in, 1000, max_bytes), got = codec.pack(encoded, 1000, max_bytes);
-    ASSERT_EQ(got.size(), want.size()) << max_bytes;
+  // One kept chunk list across all sizes, as the gateway keeps it: reused storage must not
+  // leak bytes of an earlier, longer stream into a later one.
+  std::vector<PackedChunk> got;
+  for (std::size_t max_bytes : {std::size_t{40}, std::size_t{1200}, std::size_t{300}}) {
+    auto want = codec.pack(in, 1000, max_bytes);
+    std::size_t n = codec.packInto(encoded, 1000, max_bytes, got);
+    ASSERT_EQ(n, want.size()) << max_bytes;
     for (std::size_t c = 0; c < want.size(); ++c) {
       EXPECT_EQ(got[c].count, want[c].count);
       EXPECT_EQ(got[c].bytes, want[c].bytes) << "chunk " << c << " of " << max_bytes << " B";
     }
   }
   // And the reader, which knows nothing of encoded states, takes them back.
-  auto one = codec.pack(encoded, 1000, 1 << 20);
-  ASSERT_EQ(one.size(), 1u);
-  auto back = codec.unpack(one[0].bytes, one[0].count, 1000);
+  ASSERT_EQ(codec.packInto(encoded, 1000, 1 << 20, got), 1u);
+  auto back = codec.unpack(got[0].bytes, got[0].count, 1000);
   ASSERT_TRUE(back.has_value());
   ASSERT_EQ(back->size(), in.size());
   for (std::size_t i = 0; i < in.size(); ++i) {
