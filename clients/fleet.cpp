@@ -167,7 +167,7 @@ void ClientFleet::writeMetrics(std::int64_t now_ns) {
 
 std::string ClientFleet::summaryJson() const {
   double s = elapsed_s_ > 0 ? elapsed_s_ : double(nowNs() - start_ns_) * 1e-9;
-  return fleetSummaryJson(players_, s, cost());
+  return fleetSummaryJson(players_, s, cost(), double(start_ns_) * 1e-9);
 }
 
 }  // namespace zonesim::clients

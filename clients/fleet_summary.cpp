@@ -147,7 +147,8 @@ double wakeupsPerSecond(const FleetCost& cost) {
 }
 
 std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& players,
-                             double duration_s, const FleetCost& cost) {
+                             double duration_s, const FleetCost& cost,
+                             double started_monotonic_s) {
   std::string list = "[";
   std::uint64_t visible = 0, welcomed = 0;
   for (std::size_t i = 0; i < players.size(); ++i) {
@@ -164,6 +165,7 @@ std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& play
   JsonLine j;
   j.add("players", std::uint64_t(players.size()))
       .add("duration_s", duration_s)
+      .add("started_monotonic_s", started_monotonic_s)
       .add("fleet_cpu_s", cost.cpu_s)
       .add("fleet_process_cpu_s", cost.process_cpu_s)
       .add("fleet_cpu_us_per_player_s", cpuUsPerPlayerSecond(cost, players.size()))

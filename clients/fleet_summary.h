@@ -29,9 +29,12 @@ double cpuUsPerPlayerSecond(const FleetCost& cost, std::size_t players);
 /// Loop wake-ups per second of run.
 double wakeupsPerSecond(const FleetCost& cost);
 
-/// {"players", "duration_s", "fleet_cpu_s", "fleet_process_cpu_s", "fleet_cpu_us_per_player_s",
-/// "fleet_wakeups_per_s", "clients": [...], "totals": {...}}.
+/// {"players", "duration_s", "started_monotonic_s", "fleet_cpu_s", "fleet_process_cpu_s",
+/// "fleet_cpu_us_per_player_s", "fleet_wakeups_per_s", "clients": [...], "totals": {...}}.
+/// started_monotonic_s: the start (own_stream.csv's t_ms 0) on CLOCK_MONOTONIC, so that other
+/// processes of the machine can place their events on the players' timeline.
 std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& players,
-                             double duration_s, const FleetCost& cost);
+                             double duration_s, const FleetCost& cost,
+                             double started_monotonic_s = 0);
 
 }  // namespace zonesim::clients

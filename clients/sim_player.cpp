@@ -380,6 +380,8 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
       ++handoffs_seen_;
       last_handoff_tick_ = h->tick();
       zone_ = h->to_zone();
+      // A zone restarted without our avatar made a new one (gateway/gateway_epochs.cpp).
+      if (h->avatar_id() != 0) avatar_id_ = h->avatar_id();
       ++counters_.handoffs;
       logOwn(now_ns, h->tick(), true);
       return;

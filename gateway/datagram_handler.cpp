@@ -175,6 +175,7 @@ void DatagramHandler::onInput(const proto::Input& in, Session& s, Outbox& out) {
     return;
   }
   s.last_input_seq = in.seq();
+  s.inputs.record({in.seq(), in.move_x(), in.move_z()});
   ++s.traffic.inputs_forwarded;
   out.inputs.push_back({s.player_id, s.avatar_id, s.zone, in.seq(), in.move_x(), in.move_z()});
   ++accepted_;

@@ -80,6 +80,7 @@ Gateway::Gateway(GatewayConfig config)
       handler_(sessions_, handlerConfig(config_)),
       cache_(graceNs(config_)),
       clock_(config_.scene.tick_rate * config_.scene.dt),
+      timeline_(config_.scene.dt),
       interest_(grid_, interestRadius(config_), grid_.cell_size() * 0.5),
       kinds_(kindTable(config_.scene)),
       link_(config_.dds_domain, expectedZones(config_)),
@@ -209,7 +210,9 @@ void Gateway::tick(std::int64_t now_ns) {
   std::int64_t cpu_ns = threadCpuNs();
   for (const zonesim_dds_OwnershipEvent& e : link_.takeOwnership()) applyOwnership(e);
   link_.flushSpawns();
-  counters_.dds_samples += link_.takeCells(cache_, clock_, now_ns);
+  counters_.dds_samples += link_.takeCells(cache_, clock_, timeline_, now_ns);
+  followEpochs(now_ns);
+  resendInputs(now_ns);
   handler_.setDilation(clock_.dilation());
   cache_.sweep(now_ns);
   expireSessions(now_ns);
@@ -231,6 +234,11 @@ void Gateway::tick(std::int64_t now_ns) {
 }
 
 void Gateway::applyOwnership(const zonesim_dds_OwnershipEvent& e) {
+  std::optional<std::uint64_t> tick = timeline_.mapTick(e.epoch, e.tick);
+  if (!tick) {
+    ++counters_.epoch_stale;  // from a zone of a world since restarted
+    return;
+  }
   auto h = sessions_.findByPlayer(e.player_id);
   Session* s = h ? sessions_.get(*h) : nullptr;
   if (s == nullptr) {
@@ -238,16 +246,25 @@ void Gateway::applyOwnership(const zonesim_dds_OwnershipEvent& e) {
     ++counters_.ownership_foreign;
     return;
   }
-  if (s->avatar_id != 0 && s->avatar_id != e.avatar_id) return;
+  // A restored world may own the avatar elsewhere, or, asked anew, under a new id.
+  bool restored = s->welcomed && e.epoch > s->owner_epoch;
+  if (s->avatar_id != 0 && s->avatar_id != e.avatar_id && !restored && !s->respawning) return;
   // Events of successive owners come from different writers in any order: an older one must
   // not route inputs back to a zone the avatar already left (an avatar moves once per tick).
-  if (s->avatar_id != 0 && e.tick < s->owner_tick) {
+  if (s->avatar_id != 0 && *tick < s->owner_tick) {
     ++counters_.ownership_stale;
     return;
   }
+  bool avatar_changed = s->avatar_id != 0 && s->avatar_id != e.avatar_id;
+  bool zone_changed = s->zone != e.to_zone;
   s->avatar_id = e.avatar_id;
   s->zone = e.to_zone;
-  s->owner_tick = e.tick;
+  s->owner_tick = *tick;
+  s->owner_epoch = e.epoch;
+  if (restored || s->respawning) {
+    adoptRestoredOwner(*s, e, *tick, avatar_changed, zone_changed);
+    return;
+  }
   if (!s->welcomed) {
     s->welcomed = true;
     s->last_input_seq = std::max(s->last_input_seq, e.last_input_seq);
@@ -257,7 +274,7 @@ void Gateway::applyOwnership(const zonesim_dds_OwnershipEvent& e) {
   }
   if (e.from_zone < 0) return;  // a repeated creation notice: nothing moved
   // Numbered and resent until acknowledged, like a Spawn: a newer handoff supersedes it.
-  s->handoff = PendingHandoff{{e.avatar_id, e.from_zone, e.to_zone, e.tick, e.last_input_seq}, 0};
+  s->handoff = PendingHandoff{{e.avatar_id, e.from_zone, e.to_zone, *tick, e.last_input_seq}, 0};
   sendHandoff(*s, nowNs());
   ++s->traffic.handoffs;
   ++counters_.handoffs;
@@ -397,6 +414,7 @@ GatewayGauges Gateway::gauges(std::int64_t now_ns) {
   g.entities_cached = cache_.size();
   g.held_spawns = link_.heldSpawns();
   g.zone_tick = clock_.tick();
+  g.epoch = timeline_.epoch();
   g.zone_dilation = clock_.dilation();
   g.zone_dilation_min = clock_.minDilation();
   g.tick_ms = tick_window_;
@@ -442,6 +460,15 @@ std::string Gateway::summaryJson() {
   std::sort(kbps.begin(), kbps.end());
   g.client_kbps_p50 = kbps.empty() ? 0.0 : kbps[kbps.size() / 2];
   g.client_kbps_max = worst_client_kbps_;
+  std::vector<float> jumps = cache_.epochJumps();
+  if (!jumps.empty()) {
+    std::sort(jumps.begin(), jumps.end());
+    auto at = [&](double q) { return double(jumps[std::size_t(q * double(jumps.size() - 1))]); };
+    g.epoch_jumps = jumps.size();
+    g.epoch_jump_m_p50 = at(0.5);
+    g.epoch_jump_m_p99 = at(0.99);
+    g.epoch_jump_m_max = double(jumps.back());
+  }
   return gateway::summaryJson(counters_, handler_.drops(), g, players);
 }
 

@@ -19,6 +19,7 @@
 #include "common/metrics.h"
 #include "common/scene.h"
 #include "gateway/datagram_handler.h"
+#include "gateway/epoch_timeline.h"
 #include "gateway/gateway_metrics.h"
 #include "gateway/interest_manager.h"
 #include "gateway/load_report.h"
@@ -96,6 +97,16 @@ class Gateway {
   void flushSends();
   void tick(std::int64_t now_ns);
   void applyOwnership(const zonesim_dds_OwnershipEvent& e);
+  /// After a restart (gateway_epochs.cpp): the first announcement of s's avatar in the new
+  /// epoch; resends the inputs the restored zone lacks, and tells the client of a new avatar
+  /// or zone.
+  void adoptRestoredOwner(Session& s, const zonesim_dds_OwnershipEvent& e, std::uint64_t tick,
+                          bool avatar_changed, bool zone_changed);
+  /// Notices a newly entered epoch and, kResyncSeconds after, drops what the restored world
+  /// did not bring back and asks avatars anew for players it lacks.
+  void followEpochs(std::int64_t now_ns);
+  /// Sends the due bursts of inputs to resend after a restart.
+  void resendInputs(std::int64_t now_ns);
   void expireSessions(std::int64_t now_ns);
   void updateInterest(std::int64_t now_ns);
   void applyCellDelta(const CellDelta& delta);
@@ -176,6 +187,10 @@ class Gateway {
   std::vector<std::pair<std::uint64_t, bool>> budget_ranked_;
   Fit budget_forced_, budget_go_;
   ZoneClock clock_;
+  EpochTimeline timeline_;                 // zone ticks of every epoch on one timeline
+  std::uint32_t epochs_followed_ = 0;      // epochs entered that followEpochs has seen
+  std::int64_t resync_due_ns_ = 0;         // when the newest epoch's resync ends (0: none)
+  std::vector<SlotHandle> resending_;      // sessions with input bursts still due
   InterestManager interest_;
   std::array<PlayerKind, kPlayerKindCount> kinds_;  // the scene's kinds by id
   ZoneLink link_;

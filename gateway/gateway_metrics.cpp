@@ -31,7 +31,13 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("ownership_foreign", c.ownership_foreign)
       .add("ownership_stale", c.ownership_stale)
       .add("deferred", c.deferred)
-      .add("held", c.held);
+      .add("held", c.held)
+      .add("epochs_entered", c.epochs_entered)
+      .add("epoch_stale", c.epoch_stale)
+      .add("inputs_resent", c.inputs_resent)
+      .add("inputs_unresendable", c.inputs_unresendable)
+      .add("avatars_reasked", c.avatars_reasked)
+      .add("entities_retired", c.entities_retired);
 }
 
 void addGauges(JsonLine& j, const GatewayGauges& g) {
@@ -42,6 +48,7 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("entities_cached", std::uint64_t(g.entities_cached))
       .add("held_spawns", std::uint64_t(g.held_spawns))
       .add("zone_tick", g.zone_tick)
+      .add("epoch", std::uint64_t(g.epoch))
       .add("zone_dilation", g.zone_dilation)
       .add("zone_dilation_min", g.zone_dilation_min)
       .add("ticks", g.tick_ms.count)
@@ -52,6 +59,11 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("process_cpu_ms_per_tick", g.process_cpu_ms_per_tick)
       .add("client_kbps_p50", g.client_kbps_p50)
       .add("client_kbps_max", g.client_kbps_max);
+  if (g.epoch_jumps > 0)
+    j.add("epoch_jumps", std::uint64_t(g.epoch_jumps))
+        .add("epoch_jump_m_p50", g.epoch_jump_m_p50)
+        .add("epoch_jump_m_p99", g.epoch_jump_m_p99)
+        .add("epoch_jump_m_max", g.epoch_jump_m_max);
 }
 
 JsonLine dropsObject(const DropCounters& drops) {

@@ -26,6 +26,12 @@ struct GatewayCounters {
   std::uint64_t dds_samples = 0, ownership_foreign = 0, ownership_stale = 0;
   std::uint64_t deferred = 0;  ///< spawns, updates and despawns held back a tick for want of budget
   std::uint64_t held = 0;      ///< updates not sent: the error shown stayed within the angle
+  std::uint64_t epochs_entered = 0;      ///< cluster restarts followed
+  std::uint64_t epoch_stale = 0;         ///< samples and events of an older epoch, dropped
+  std::uint64_t inputs_resent = 0;       ///< inputs sent again to a restored zone (first burst)
+  std::uint64_t inputs_unresendable = 0;  ///< ones it lacked that the history no longer held
+  std::uint64_t avatars_reasked = 0;     ///< spawns asked again: the restored world lacked them
+  std::uint64_t entities_retired = 0;    ///< cached entities the restored world did not bring
 };
 
 /// Wall time of gateway ticks (everything but receiving datagrams), in milliseconds.
@@ -46,6 +52,10 @@ struct GatewayGauges {
   std::size_t sessions = 0, pending_sessions = 0, cells_subscribed = 0, entities_cached = 0;
   std::size_t held_spawns = 0;
   std::uint64_t zone_tick = 0;
+  std::uint32_t epoch = 0;  ///< the newest cluster epoch seen
+  /// Summary only: how far entities jumped when a restored world replaced them (metres).
+  std::size_t epoch_jumps = 0;
+  double epoch_jump_m_p50 = 0, epoch_jump_m_p99 = 0, epoch_jump_m_max = 0;
   /// The zones' time dilation factor in the newest sample, and the lowest seen in the run.
   double zone_dilation = 1, zone_dilation_min = 1;
   TickTimes tick_ms;      ///< wall time of each tick (grows when the machine is oversubscribed)

@@ -12,6 +12,7 @@
 #include "common/player_kind.h"
 #include "gateway/client_view.h"
 #include "gateway/downlink_budget.h"
+#include "gateway/input_history.h"
 #include "wire/ack_window.h"
 #include "wire/udp_socket.h"
 #include "wire/wire_encode.h"
@@ -46,8 +47,14 @@ struct Session {
   std::uint64_t avatar_id = 0;       ///< 0 until the owning zone announced the avatar
   int zone = -1;                     ///< owning zone rank, -1 until announced
   std::uint64_t owner_tick = 0;      ///< zone tick of the ownership event applied last
+  std::uint32_t owner_epoch = 0;     ///< cluster epoch of that event
+  bool respawning = false;           ///< the restored world lacks the avatar: a new one is asked
   bool welcomed = false;             ///< Welcome sent: inputs are accepted from now on
   std::uint32_t last_input_seq = 0;  ///< last seq forwarded to the zone
+  InputHistory inputs;               ///< the newest forwarded, for resending after a restart
+  std::uint32_t resend_from = 0;     ///< after a restart: resend inputs from this seq
+  int resends_left = 0;              ///< bursts still to send (0: none due)
+  std::int64_t next_resend_ns = 0;
   double spawn_x = 0, spawn_z = 0;   ///< where the avatar was requested (interest until it shows)
   std::int64_t created_ns = 0, last_heard_ns = 0;
   ClientView view;                        ///< what the client has been sent

@@ -54,7 +54,7 @@ void WorldCache::index(std::uint64_t id, int old_cell, int new_cell) {
 }
 
 bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e,
-                        bool refresh_only, std::uint64_t tick) {
+                        bool refresh_only, std::uint64_t tick, std::uint32_t epoch) {
   // Zones quarantine non-finite states; if one slips through it must not reach a client.
   if (!validSample(e)) {
     ++stats_.invalid;
@@ -71,13 +71,20 @@ bool WorldCache::upsert(int cell, int zone, double sim_time, const zonesim_dds_E
     return false;
   }
   int old_cell = inserted ? -1 : c.cell;
-  bool refresh =
-      refresh_only && !inserted && c.cell == cell && c.zone == zone && c.remove_at_ns == 0;
+  bool new_epoch = !inserted && c.epoch < epoch;
+  if (new_epoch && epoch_jumps_m_.size() < kMaxJumps) {
+    dr::V3 was = predictedPosition(c, sim_time);
+    double dx = was.x - e.pos.x, dy = was.y - e.pos.y, dz = was.z - e.pos.z;
+    epoch_jumps_m_.push_back(float(std::sqrt(dx * dx + dy * dy + dz * dz)));
+  }
+  bool refresh = refresh_only && !inserted && !new_epoch && c.cell == cell && c.zone == zone &&
+                 c.remove_at_ns == 0;
   c.state = e;
   c.sim_time = sim_time;
   c.tick = tick;
   c.cell = cell;
   c.zone = zone;
+  c.epoch = epoch;
   if (!refresh) c.version = ++version_counter_;
   if (c.remove_at_ns != 0) pending_.erase(e.id);
   c.remove_at_ns = 0;
@@ -106,29 +113,40 @@ bool WorldCache::leave(int cell, int zone, double sim_time, std::uint64_t id, st
   return true;
 }
 
-void WorldCache::applyBatch(const zonesim_dds_CellUpdateBatch& b, std::int64_t now_ns) {
+void WorldCache::applyBatch(const zonesim_dds_CellUpdateBatch& b, const SampleAt& at,
+                            std::int64_t now_ns) {
   for (std::uint32_t i = 0; i < b.enters._length; ++i)
-    upsert(b.cell, b.zone, b.sim_time, b.enters._buffer[i], false, b.tick);
+    upsert(b.cell, b.zone, at.sim_time, b.enters._buffer[i], false, at.tick, at.epoch);
   for (std::uint32_t i = 0; i < b.updates._length; ++i)
-    upsert(b.cell, b.zone, b.sim_time, b.updates._buffer[i], false, b.tick);
+    upsert(b.cell, b.zone, at.sim_time, b.updates._buffer[i], false, at.tick, at.epoch);
   for (std::uint32_t i = 0; i < b.leaves._length; ++i)
-    leave(b.cell, b.zone, b.sim_time, b.leaves._buffer[i].id, now_ns);
+    leave(b.cell, b.zone, at.sim_time, b.leaves._buffer[i].id, now_ns);
 }
 
-void WorldCache::applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t now_ns) {
+void WorldCache::applyKeyframe(const zonesim_dds_CellKeyframe& k, const SampleAt& at,
+                               std::int64_t now_ns) {
   std::unordered_set<std::uint64_t> present;
   present.reserve(k.entities._length);
   for (std::uint32_t i = 0; i < k.entities._length; ++i) {
-    upsert(k.cell, k.zone, k.sim_time, k.entities._buffer[i], /*refresh_only=*/true, k.tick);
+    upsert(k.cell, k.zone, at.sim_time, k.entities._buffer[i], /*refresh_only=*/true, at.tick,
+           at.epoch);
     present.insert(k.entities._buffer[i].id);
   }
   // The keyframe is the full state of (cell, zone): whatever we hold from there that is older
   // and absent has left, even if its leave sample never reached us.
   std::vector<std::uint64_t> gone;
   forEachInCell(k.cell, [&](std::uint64_t id, const CachedEntity& c) {
-    if (c.zone == k.zone && c.sim_time < k.sim_time && !present.contains(id)) gone.push_back(id);
+    if (c.zone == k.zone && c.sim_time < at.sim_time && !present.contains(id)) gone.push_back(id);
   });
-  for (std::uint64_t id : gone) leave(k.cell, k.zone, k.sim_time, id, now_ns);
+  for (std::uint64_t id : gone) leave(k.cell, k.zone, at.sim_time, id, now_ns);
+}
+
+std::size_t WorldCache::retireEpochsBefore(std::uint32_t epoch, std::int64_t now_ns) {
+  std::vector<std::uint64_t> old;
+  for (const auto& [id, c] : entities_)
+    if (c.epoch < epoch) old.push_back(id);
+  for (std::uint64_t id : old) remove(id, now_ns);
+  return old.size();
 }
 
 void WorldCache::remove(std::uint64_t id, std::int64_t now_ns) {

@@ -6,10 +6,13 @@
 //    newer arrived, and only after a grace period, so that a handoff (leave from zone A, enter
 //    at zone B in the same tick, either first) never shows a client a despawn and a respawn;
 //  - removed ids leave a short-lived tombstone so a late older sample cannot resurrect them.
+// Times are on the gateway's timeline (epoch_timeline.h): a restored world's samples are newer
+// than anything held from before its restart, and each records the jump it makes.
 
 #include <cstdint>
 #include <unordered_map>
 #include <unordered_set>
+#include <vector>
 
 #include "dr/dr_model.h"
 #include "dr/state_codec.h"
@@ -26,6 +29,14 @@ struct CachedEntity {
   int zone = -1;
   std::uint64_t version = 0;      ///< bumps on every accepted sample; clients are sent newer ones
   std::int64_t remove_at_ns = 0;  ///< 0 = live; else a leave is pending until this time
+  std::uint32_t epoch = 0;        ///< cluster epoch of the sample held
+};
+
+/// A sample's time on the gateway's timeline, and its cluster epoch.
+struct SampleAt {
+  std::uint64_t tick = 0;
+  double sim_time = 0;
+  std::uint32_t epoch = 0;
 };
 
 /// Counts of what the cache did with samples.
@@ -38,21 +49,36 @@ class WorldCache {
   /// grace_ns: how long a leave waits for the matching enter before the entity is removed.
   explicit WorldCache(std::int64_t grace_ns);
 
-  /// Applies one zone batch: enters and updates upsert, leaves start the grace.
-  void applyBatch(const zonesim_dds_CellUpdateBatch& b, std::int64_t now_ns);
+  /// Applies one zone batch at `at`: enters and updates upsert, leaves start the grace.
+  void applyBatch(const zonesim_dds_CellUpdateBatch& b, const SampleAt& at, std::int64_t now_ns);
   /// Applies a keyframe: its entities upsert; older entities of that (cell, zone) not in it leave.
-  void applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t now_ns);
+  void applyKeyframe(const zonesim_dds_CellKeyframe& k, const SampleAt& at, std::int64_t now_ns);
+  /// The same at the sample's own tick, sim time and epoch.
+  void applyBatch(const zonesim_dds_CellUpdateBatch& b, std::int64_t now_ns) {
+    applyBatch(b, {b.tick, b.sim_time, b.epoch}, now_ns);
+  }
+  void applyKeyframe(const zonesim_dds_CellKeyframe& k, std::int64_t now_ns) {
+    applyKeyframe(k, {k.tick, k.sim_time, k.epoch}, now_ns);
+  }
   /// Upserts one state unless older than what is held; false if ignored. A refresh (keyframe
   /// of an entity already held from the same source) updates the state without a new version:
   /// clients already following it keep to the zone's dead-reckoning updates.
   bool upsert(int cell, int zone, double sim_time, const zonesim_dds_EntityUpdate& e,
-              bool refresh_only = false, std::uint64_t tick = 0);
+              bool refresh_only = false, std::uint64_t tick = 0, std::uint32_t epoch = 0);
   /// A leave of id from (cell, zone) at sim_time; false if it does not apply.
   bool leave(int cell, int zone, double sim_time, std::uint64_t id, std::int64_t now_ns);
   /// Removes entities whose grace expired and forgets old tombstones; returns how many removed.
   std::size_t sweep(std::int64_t now_ns);
   /// Forgets everything from a cell (its reader was deleted: nothing will update it).
   void dropCell(int cell);
+  /// Removes every entity still held from an epoch before `epoch`: the restored world has had
+  /// its time to say what it holds, and these are not in it. Returns how many.
+  std::size_t retireEpochsBefore(std::uint32_t epoch, std::int64_t now_ns);
+  /// How far each entity jumped when a newer epoch's sample replaced its state (its old state
+  /// extrapolated to the new sample's time, to the new position), metres, in arrival order
+  /// (the first kMaxJumps).
+  const std::vector<float>& epochJumps() const { return epoch_jumps_m_; }
+  static constexpr std::size_t kMaxJumps = 1 << 17;
 
   const CachedEntity* find(std::uint64_t id) const;
   std::size_t size() const { return entities_.size(); }
@@ -89,6 +115,7 @@ class WorldCache {
   std::unordered_map<std::uint64_t, Tombstone> tombstones_;
   std::unordered_map<std::uint64_t, std::int64_t> pending_;  // id -> remove_at_ns
   CacheStats stats_;
+  std::vector<float> epoch_jumps_m_;
 };
 
 /// Where the entity's own dead-reckoning model puts it at sim time `at`.

@@ -12,6 +12,7 @@ ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
       participant_(dds::makeParticipant(domain)),
       topics_(dds::makeTopics(participant_.get())),
       keep_all_qos_(dds::reliableKeepAllQos()),
+      input_qos_(dds::playerInputQos()),
       update_qos_(dds::cellUpdateQos()),
       keyframe_qos_(dds::cellKeyframeQos()) {
   spawn_writer_ = dds::makePartitionWriter(participant_.get(), topics_.spawn_requests.get(), "",
@@ -68,7 +69,7 @@ dds::PartitionWriter& ZoneLink::inputWriter(int zone) {
   auto it = input_writers_.find(zone);
   if (it != input_writers_.end()) return it->second;
   auto w = dds::makePartitionWriter(participant_.get(), topics_.player_input.get(),
-                                    dds::zonePartition(zone), keep_all_qos_.get());
+                                    dds::zonePartition(zone), input_qos_.get());
   return input_writers_.emplace(zone, std::move(w)).first->second;
 }
 
@@ -108,21 +109,26 @@ std::vector<zonesim_dds_OwnershipEvent> ZoneLink::takeOwnership() {
   return out;
 }
 
-std::size_t ZoneLink::takeCells(WorldCache& cache, ZoneClock& clock, std::int64_t now_ns) {
+std::size_t ZoneLink::takeCells(WorldCache& cache, ZoneClock& clock, EpochTimeline& timeline,
+                                std::int64_t now_ns) {
   std::size_t n = 0;
   for (auto& [cell, r] : cells_) {
     // Keyframes first: a batch of the same tick then applies on top of a complete picture.
     n += dds::takeAll<zonesim_dds_CellKeyframe>(
         r.keyframes.reader.get(), [&](const zonesim_dds_CellKeyframe& k) {
           if (k.cell != cell) return;  // misaddressed
-          clock.observe(k.tick, k.sim_time, k.dilation, now_ns);
-          cache.applyKeyframe(k, now_ns);
+          std::optional<MappedTime> at = timeline.map(k.epoch, k.tick, k.sim_time);
+          if (!at) return;  // a zone of a world since restarted
+          clock.observe(at->tick, at->sim_time, k.dilation, now_ns);
+          cache.applyKeyframe(k, {at->tick, at->sim_time, k.epoch}, now_ns);
         });
     n += dds::takeAll<zonesim_dds_CellUpdateBatch>(
         r.updates.reader.get(), [&](const zonesim_dds_CellUpdateBatch& b) {
           if (b.cell != cell) return;  // misaddressed
-          clock.observe(b.tick, b.sim_time, b.dilation, now_ns);
-          cache.applyBatch(b, now_ns);
+          std::optional<MappedTime> at = timeline.map(b.epoch, b.tick, b.sim_time);
+          if (!at) return;
+          clock.observe(at->tick, at->sim_time, b.dilation, now_ns);
+          cache.applyBatch(b, {at->tick, at->sim_time, b.epoch}, now_ns);
         });
   }
   return n;

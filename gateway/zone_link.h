@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gateway/datagram_handler.h"
+#include "gateway/epoch_timeline.h"
 #include "gateway/world_cache.h"
 #include "gateway/zone_clock.h"
 #include "idl/dds_entity.h"
@@ -46,8 +47,10 @@ class ZoneLink {
   /// The participant and topics, for the gateway's other publications (its load report).
   dds_entity_t participant() const { return participant_.get(); }
   const dds::Topics& topics() const { return topics_; }
-  /// Takes every pending cell sample into the cache and the clock; returns samples taken.
-  std::size_t takeCells(WorldCache& cache, ZoneClock& clock, std::int64_t now_ns);
+  /// Takes every pending cell sample into the cache and the clock, on the timeline's ticks
+  /// (samples of an old epoch are dropped there); returns samples taken.
+  std::size_t takeCells(WorldCache& cache, ZoneClock& clock, EpochTimeline& timeline,
+                        std::int64_t now_ns);
 
  private:
   struct CellReaders {
@@ -59,7 +62,7 @@ class ZoneLink {
   // Declared first so it is deleted last; deleting it would delete every child anyway.
   dds::Entity participant_;
   dds::Topics topics_;
-  dds::Qos keep_all_qos_, update_qos_, keyframe_qos_;
+  dds::Qos keep_all_qos_, input_qos_, update_qos_, keyframe_qos_;
   dds::PartitionWriter spawn_writer_;
   dds::PartitionWriter despawn_writer_;
   dds::PartitionReader ownership_reader_;

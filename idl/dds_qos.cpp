@@ -30,6 +30,14 @@ Qos reliableKeepAllQos() {
   return q;
 }
 
+Qos playerInputQos() {
+  Qos q(dds_create_qos());
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, kMaxBlocking);
+  dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, kInputDepth);
+  return q;
+}
+
 Qos gatewayLoadQos() {
   Qos q(dds_create_qos());
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, kMaxBlocking);

@@ -16,8 +16,15 @@ using Qos = std::unique_ptr<dds_qos_t, QosDeleter>;
 Qos cellUpdateQos();
 /// Per-cell keyframes: reliable, TRANSIENT_LOCAL, KEEP_LAST 1, so a new reader starts complete.
 Qos cellKeyframeQos();
-/// Commands that must not be dropped (inputs, spawn requests, ownership events): KEEP_ALL.
+/// Commands that must not be dropped (spawn requests, ownership events; inputs at readers):
+/// KEEP_ALL.
 Qos reliableKeepAllQos();
+/// The gateway's input writers: reliable, KEEP_LAST kInputDepth per player. A zone that died
+/// stays matched until its lease ends; a KEEP_ALL writer would fill its history for it and
+/// block the gateway 100 ms a write, while this one keeps the newest and never blocks (the
+/// gateway resends what a restarted zone lacks, gateway/gateway_epochs.cpp).
+Qos playerInputQos();
+inline constexpr int kInputDepth = 64;
 /// Gateway load reports: only the newest counts, and a lobby started later gets it at once
 /// (reliable, TRANSIENT_LOCAL, KEEP_LAST 1 per gateway).
 Qos gatewayLoadQos();

@@ -33,6 +33,8 @@ struct Options {
   std::string restart;
   std::uint32_t truth_every = 0;
   std::string time_dilation = "scene";  ///< on, off, or as the scene says
+  std::int64_t epoch = -1;              ///< -1: 0 for a fresh start, 1 after --restart
+  double orphan_grace_s = 30;
   zonesim::zone::ZoneOptions zone;
   zonesim::CommonOptions common;
 };
@@ -69,12 +71,16 @@ int run(const Options& o, MPI_Comm comm) {
   using namespace zonesim;
   Scene scene = loadScene(o.scene);
   if (o.time_dilation != "scene") scene.time_dilation.enabled = o.time_dilation == "on";
+  zone::ZoneOptions zone_options = o.zone;
+  zone_options.epoch = std::uint32_t(o.epoch >= 0 ? o.epoch : o.restart.empty() ? 0 : 1);
+  zone_options.orphan_grace_ticks = int(std::lround(o.orphan_grace_s * scene.tick_rate));
   std::unique_ptr<zone::CheckpointImage> image;
   if (!o.restart.empty())
     image = std::make_unique<zone::CheckpointImage>(zone::readCheckpoint(o.restart));
-  zone::ZoneNode node(scene, comm, o.zone, image.get());
+  zone::ZoneNode node(scene, comm, zone_options, image.get());
   if (image)
-    ZS_INFO("restarted from %s at tick %llu", image->path.c_str(), (unsigned long long)image->tick);
+    ZS_INFO("restarted from %s at tick %llu, epoch %u", image->path.c_str(),
+            (unsigned long long)image->tick, unsigned(zone_options.epoch));
   image.reset();  // entities now live in the zone; the image is not needed any more
   log::setTag("zone " + std::to_string(node.rank()));
   std::uint64_t ticks = o.ticks ? o.ticks : std::uint64_t(std::ceil(o.duration * scene.tick_rate));
@@ -165,6 +171,15 @@ int main(int argc, char** argv) {
   app.add_option(
       "--restart", o.restart,
       "continue from a checkpoint (a checkpoint folder, or a --checkpoint-dir: its LATEST)");
+  app.add_option("--epoch", o.epoch,
+                 "the cluster epoch every DDS sample carries, one more per restart (default: 0, "
+                 "or 1 with --restart; a supervisor restarting again from one checkpoint must "
+                 "count on)")
+      ->check(CLI::Range(std::int64_t(0), std::int64_t(UINT32_MAX)));
+  app.add_option("--orphan-grace", o.orphan_grace_s,
+                 "seconds an avatar may go without input (its player gone with its gateway) "
+                 "before the zone removes it; 0: never")
+      ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--gpu", o.zone.gpu,
                  "particles and flocks on OpenCL: on, off, auto (measured default thresholds) or "
                  "probe (auto with thresholds timed on rank 0 at start and broadcast)")

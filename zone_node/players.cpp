@@ -12,14 +12,21 @@
 
 namespace zonesim::zone {
 
-Players::Players(const Scene& scene, int rank, int ranks)
-    : scene_(scene), rank_(rank), ranks_(ranks), forward_(std::size_t(ranks)) {}
+Players::Players(const Scene& scene, int rank, int ranks, int orphan_grace_ticks)
+    : scene_(scene),
+      rank_(rank),
+      ranks_(ranks),
+      forward_(std::size_t(ranks)),
+      orphan_grace_ticks_(std::uint64_t(std::max(0, orphan_grace_ticks))) {}
 
 void Players::restored(PlayerZone& zone) {
   const EntityStore& store = zone.store;
+  hold_until_tick_ = zone.tick + kRestoreHoldTicks;
   for (std::size_t i = 0; i < store.size(); ++i) {
     if (store.kind[i] != EntityKind::Avatar) continue;
     known_players_.insert(store.avatar[i].player_id);
+    last_input_tick_[store.avatar[i].player_id] = zone.tick;
+    awaiting_resend_.insert(store.avatar[i].player_id);
     if (zone.link)
       zone.link->announce({store.avatar[i].player_id, store.id[i].value, -1, rank_, zone.tick,
                            store.avatar[i].last_input_seq});
@@ -37,6 +44,43 @@ void Players::input(PlayerZone& zone) {
       applyInput(zone, in.player_id, in.seq, in.move_x, in.move_z);
   }
   releaseHeldInputs(zone);
+  removeOrphans(zone);
+  announceAwaiting(zone);
+}
+
+void Players::announceAwaiting(PlayerZone& zone) {
+  if (awaiting_resend_.empty()) return;
+  if (zone.tick >= hold_until_tick_) {
+    awaiting_resend_.clear();
+    return;
+  }
+  if (!zone.link || zone.tick % kReannounceTicks != 0) return;
+  for (std::uint64_t player : awaiting_resend_)
+    if (std::optional<std::size_t> i = zone.store.avatarOf(player))
+      zone.link->announce({player, zone.store.id[*i].value, -1, rank_, zone.tick,
+                           zone.store.avatar[*i].last_input_seq});
+}
+
+void Players::removeOrphans(PlayerZone& zone) {
+  if (orphan_grace_ticks_ == 0 || zone.tick % std::uint64_t(std::max(1.0, scene_.tick_rate)) != 0)
+    return;
+  EntityStore& store = zone.store;
+  std::vector<std::uint64_t> orphans;
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    if (store.kind[i] != EntityKind::Avatar) continue;
+    std::uint64_t player = store.avatar[i].player_id;
+    // An avatar first seen here (arrived, restored) starts its grace now.
+    auto [heard, first] = last_input_tick_.try_emplace(player, zone.tick);
+    if (!first && zone.tick - heard->second > orphan_grace_ticks_) orphans.push_back(player);
+  }
+  for (std::uint64_t player : orphans) {
+    ZS_INFO("player %llu sent no input for %llu ticks: avatar removed",
+            (unsigned long long)player, (unsigned long long)orphan_grace_ticks_);
+    last_input_tick_.erase(player);
+    held_inputs_.erase(player);
+    destroyAt(zone, *store.avatarOf(player));
+    ++zone.counters.avatars_orphaned;
+  }
 }
 
 void Players::spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request) {
@@ -72,6 +116,7 @@ void Players::spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request) {
   r.id = zone.ids.next();
   store.add(r);
   zone.ledger.add(r.id);
+  last_input_tick_[player_id] = zone.tick;
   ++zone.counters.avatars_spawned;
   unannounced_.push_back(r.id);
   ZS_DEBUG("spawned avatar %s for player %llu", toString(r.id).c_str(),
@@ -83,6 +128,7 @@ void Players::despawnAvatar(PlayerZone& zone, std::uint64_t player_id) {
   // arrival at a zone that has already seen it.
   despawned_players_.insert(player_id);
   departed_players_.erase(player_id);
+  last_input_tick_.erase(player_id);
   if (std::optional<std::size_t> i = zone.store.avatarOf(player_id)) destroyAt(zone, *i);
 }
 
@@ -99,6 +145,7 @@ void Players::applyInput(PlayerZone& zone, std::uint64_t player_id, std::uint32_
                          float move_z) {
   if (std::optional<std::size_t> i = zone.store.avatarOf(player_id)) {
     AvatarData& a = zone.store.avatar[*i];
+    last_input_tick_[player_id] = zone.tick;
     if (seq <= a.last_input_seq) {
       ++zone.counters.inputs_duplicate;  // already applied (e.g. forwarded copy): exactly once
       return;
@@ -111,6 +158,7 @@ void Players::applyInput(PlayerZone& zone, std::uint64_t player_id, std::uint32_
       return;
     }
     a.last_input_seq = seq;
+    awaiting_resend_.erase(player_id);
     a.move_x = move_x;
     a.move_z = move_z;
     ++zone.counters.inputs_applied;
@@ -139,8 +187,12 @@ void Players::releaseHeldInputs(PlayerZone& zone) {
       if (i) {
         AvatarData& a = zone.store.avatar[*i];
         if (seq > a.last_input_seq + 1) {
-          if (zone.tick - in.since_tick < kInputHoldTicks) break;      // the gap may still fill
+          // The gap may still fill: soon, or, after a restart, once the gateway resends.
+          bool resend_due = zone.tick < hold_until_tick_ && awaiting_resend_.count(player->first);
+          if (zone.tick - in.since_tick < kInputHoldTicks || resend_due) break;
           zone.counters.inputs_skipped += seq - a.last_input_seq - 1;  // it did not: never arrived
+          ZS_DEBUG("player %llu: inputs %u..%u never arrived, skipped", (unsigned long long)player->first,
+                  a.last_input_seq + 1, seq - 1);
           a.last_input_seq = seq - 1;
         }
       }
@@ -156,6 +208,7 @@ void Players::migrated(PlayerZone& zone, MigrationResult& result) {
   for (const Departure& d : result.departed) {
     if (!d.announced_avatar) continue;
     departed_players_[d.player_id] = d.to_rank;
+    last_input_tick_.erase(d.player_id);
     ++zone.counters.handoffs_out;
   }
   std::vector<EntityId> gone_players;
@@ -163,6 +216,7 @@ void Players::migrated(PlayerZone& zone, MigrationResult& result) {
     if (store.kind[a.index] != EntityKind::Avatar) continue;
     const AvatarData& av = store.avatar[a.index];
     departed_players_.erase(av.player_id);
+    last_input_tick_[av.player_id] = zone.tick;
     if (despawned_players_.count(av.player_id)) {
       gone_players.push_back(store.id[a.index]);
       continue;

@@ -41,11 +41,16 @@ struct PlayerZone {
 /// The players of one zone.
 class Players {
  public:
-  /// `rank` of `ranks` zones: a new avatar is created by rank player_id % ranks.
-  Players(const Scene& scene, int rank, int ranks);
+  /// `rank` of `ranks` zones: a new avatar is created by rank player_id % ranks. An avatar that
+  /// gets no input for orphan_grace_ticks (its player left with a crashed gateway) is removed;
+  /// 0: never.
+  Players(const Scene& scene, int rank, int ranks, int orphan_grace_ticks = 0);
 
   /// The avatars a restart brought back to this zone: remembered as spawned, and their owner
-  /// announced, since the gateways must learn where they live now.
+  /// announced, since the gateways must learn where they live now. For kRestoreHoldTicks a gap
+  /// in an avatar's inputs waits for the gateway to resend what the restart lost, and the
+  /// announcement is repeated until it does: one written before a gateway's reader matched
+  /// this new process never reaches that gateway (the topic is volatile).
   void restored(PlayerZone& zone);
   /// Input phase: the inputs forwarded with the last migration, then the gateways' spawn,
   /// despawn and input messages, then held inputs whose turn has come.
@@ -70,6 +75,11 @@ class Players {
   void releaseHeldInputs(PlayerZone& zone);
   void despawnAvatar(PlayerZone& zone, std::uint64_t player_id);
   void destroyAt(PlayerZone& zone, std::size_t index);
+  /// Removes the avatars that have gone orphan_grace_ticks without an input (checked once a
+  /// second).
+  void removeOrphans(PlayerZone& zone);
+  /// Announces the restored avatars still waiting for their inputs to be resent.
+  void announceAwaiting(PlayerZone& zone);
 
   const Scene& scene_;
   int rank_, ranks_;
@@ -84,6 +94,15 @@ class Players {
     std::uint64_t since_tick;
   };
   static constexpr std::uint64_t kInputHoldTicks = 3;  // a forwarded input lags by one tick
+  // After a restart the gateways resend each player's inputs since the restored one; they need
+  // to see the new epoch and the avatar's announcement first (DDS discovery, a second or two).
+  // Until the next input in sequence arrives, a restored avatar's gap waits this long.
+  static constexpr std::uint64_t kRestoreHoldTicks = 150;
+  static constexpr std::uint64_t kReannounceTicks = 10;
+  std::uint64_t hold_until_tick_ = 0;                   // a restart's extended hold ends here
+  std::unordered_set<std::uint64_t> awaiting_resend_;  // restored players, until in sequence
+  std::uint64_t orphan_grace_ticks_;
+  std::unordered_map<std::uint64_t, std::uint64_t> last_input_tick_;  // player -> tick heard
   std::map<std::uint64_t, std::map<std::uint32_t, HeldInput>> held_inputs_;  // player -> seq
   std::unordered_map<std::uint64_t, std::uint64_t> handoff_started_;  // player -> arrival tick
   std::vector<std::uint64_t> handoff_latency_ticks_;                  // completed this tick

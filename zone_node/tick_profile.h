@@ -76,6 +76,7 @@ struct TickCounters {
   std::uint64_t inputs_held = 0;     ///< arrived ahead of a missing number: held to apply in order
   std::uint64_t avatars_spawned = 0;
   std::uint64_t avatars_refused = 0;  ///< spawn requests of a player kind the scene lacks
+  std::uint64_t avatars_orphaned = 0;  ///< removed after the orphan grace without an input
   std::uint64_t entities_destroyed = 0;
   std::uint64_t rebalances = 0;
   std::uint64_t dds_write_failures = 0;
@@ -121,6 +122,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"inputs_held", &TickCounters::inputs_held, false},
     {"avatars_spawned", &TickCounters::avatars_spawned, false},
     {"avatars_refused", &TickCounters::avatars_refused, false},
+    {"avatars_orphaned", &TickCounters::avatars_orphaned, false},
     {"entities_destroyed", &TickCounters::entities_destroyed, false},
     {"rebalances", &TickCounters::rebalances, false},
     {"dds_write_failures", &TickCounters::dds_write_failures, false},

@@ -56,7 +56,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       balancer_(comm, options.balance),
       // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
       halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)),
-      players_(scene, rank_, size_),
+      players_(scene, rank_, size_, options.orphan_grace_ticks),
       dilation_(scene.time_dilation, scene.tick_rate) {
   // Jointed bodies do not migrate together and a cloth belongs to no entity: one zone only
   // (the loader checks the scene's zones; this catches a run on more ranks).
@@ -124,9 +124,9 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
     forEachInitialEntity(scene_, keepIfMine);
   }
   if (options_.dds) {
-    link_ = std::make_unique<GatewayLink>(options_.dds_domain, rank_);
+    link_ = std::make_unique<GatewayLink>(options_.dds_domain, rank_, options_.epoch);
     publisher_ = std::make_unique<CellPublisher>(link_->participant(), link_->topics(), grid_,
-                                                 rank_, scene_);
+                                                 rank_, scene_, options_.epoch);
     coverZone();
   }
   PlayerZone zone = playerZone();

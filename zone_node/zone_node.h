@@ -53,6 +53,8 @@ struct ZoneOptions {
   std::string checkpoint_dir;  ///< empty: no checkpoints
   int checkpoint_every = 0;    ///< ticks between checkpoints
   BalanceSettings balance;     ///< moving zone boundaries (every = 0: fixed)
+  std::uint32_t epoch = 0;     ///< the cluster epoch every DDS sample carries
+  int orphan_grace_ticks = 0;  ///< an avatar with no input this long is removed (0: never)
 };
 
 struct CheckpointImage;
@@ -76,6 +78,8 @@ class ZoneNode {
   void tick();
 
   int rank() const { return rank_; }
+  /// The cluster epoch (ZoneOptions::epoch).
+  std::uint32_t epoch() const { return options_.epoch; }
   int size() const { return size_; }
   std::uint64_t tickCount() const { return tick_; }
   /// Wall seconds per tick when running in real time (1 / tick rate).

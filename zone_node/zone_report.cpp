@@ -23,7 +23,12 @@ std::string byRank(const std::map<int, std::uint64_t>& counts) {
 }
 }  // namespace
 
-ZoneReport::ZoneReport(const ZoneNode& zone) : entities_start_(zone.store().size()) {}
+ZoneReport::ZoneReport(const ZoneNode& zone) : entities_start_(zone.store().size()) {
+  // As a checkpoint's manifest sums it over the ranks: a restart can be checked against it.
+  IdSetDigest start;
+  for (EntityId id : zone.store().id) start.add(id);
+  id_hash_start_ = start.hash;
+}
 
 void ZoneReport::recordPacing(const ZoneNode& zone, double period_seconds, bool late) {
   if (zone.lastTickFactor() < 1) dilated_wall_s_ += period_seconds;
@@ -75,6 +80,7 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.addRaw("rect", "[" + std::to_string(r.min_x) + "," + std::to_string(r.min_z) + "," +
                        std::to_string(r.max_x) + "," + std::to_string(r.max_z) + "]");
   s.add("entities_start", entities_start_).add("entities_end", std::uint64_t(zone.store().size()));
+  s.add("id_hash_start", id_hash_start_).add("epoch", std::uint64_t(zone.epoch()));
   s.add("wall_s", wall_seconds);
   s.add("tick_ms_p50", percentile(tick_ms_, 50)).add("tick_ms_p99", percentile(tick_ms_, 99));
   s.add("tick_ms_max", percentile(tick_ms_, 100));

@@ -28,6 +28,7 @@ class ZoneReport {
 
  private:
   std::uint64_t entities_start_;
+  std::uint64_t id_hash_start_ = 0;  // IdSetDigest hash of the ids the run began with
   std::vector<double> tick_ms_;
   TickProfile phase_totals_;
   TickCounters totals_;  // event counters summed; gauges hold their last value

@@ -82,10 +82,10 @@ class ZoneEmulator {
     return all;
   }
 
-  /// Announces that `to_zone` owns the player's avatar.
+  /// Announces that `to_zone` owns the player's avatar, in cluster epoch `epoch`.
   void publishOwnership(std::uint64_t player, std::uint64_t avatar, int from_zone, int to_zone,
-                        std::uint64_t tick, std::uint32_t last_seq) {
-    zonesim_dds_OwnershipEvent e{player, avatar, from_zone, to_zone, tick, last_seq};
+                        std::uint64_t tick, std::uint32_t last_seq, std::uint32_t epoch = 0) {
+    zonesim_dds_OwnershipEvent e{player, avatar, from_zone, to_zone, tick, last_seq, epoch};
     dds::check(dds_write(ownership_writer_.writer.get(), &e), "write OwnershipEvent");
   }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <poll.h>
 
+#include <algorithm>
 #include <atomic>
 #include <thread>
 
@@ -176,6 +177,48 @@ TEST_F(GatewayLoopback, AHandoffIsResentUntilAcknowledged) {
   }
   ASSERT_EQ(seqs.size(), 2u);
   EXPECT_GT(seqs[1], seqs[0]);
+}
+
+// The zones restart from a checkpoint (epoch 1) whose avatar had applied input 2, and now own
+// it in zone 2: the gateway resends inputs 3.. to z.2 in order, tells the client of the new
+// zone at a tick after every one told before, and ignores what zones of epoch 0 still say.
+TEST_F(GatewayLoopback, ARestoredWorldGetsTheLostInputsAndOldEpochsAreIgnored) {
+  startGateway();
+  std::uint64_t token = handshakeAndFirstState();
+  ASSERT_NE(token, 0u) << "no Welcome";
+  ASSERT_FALSE(inputsArrivingAt(0, token).empty());
+  while (seq_ < 6) inputsArrivingAt(0, token);
+  const std::uint32_t sent = seq_;
+  zone_->takeInputs(2);  // zone 2's reader, matched before it is resent to
+  std::int64_t settle = nowNs() + 300'000'000;
+  while (nowNs() < settle) receive();
+
+  const std::uint64_t restored_tick = 5;  // earlier than any tick the gateway has seen
+  zone_->publishOwnership(player_, kAvatar, -1, 2, restored_tick, 2, /*epoch=*/1);
+  const proto::Handoff* handoff = nextHandoff();
+  ASSERT_NE(handoff, nullptr);
+  EXPECT_EQ(handoff->to_zone(), 2);
+  EXPECT_EQ(handoff->avatar_id(), kAvatar);
+  EXPECT_GT(handoff->tick(), tick_) << "the restored world's ticks continue the gateway's";
+  std::vector<std::uint32_t> resent;
+  std::int64_t deadline = nowNs() + 3'000'000'000;
+  while (nowNs() < deadline && resent.size() < sent - 2) {
+    for (const zonesim_dds_PlayerInput& in : zone_->takeInputs(2))
+      if (std::find(resent.begin(), resent.end(), in.seq) == resent.end()) resent.push_back(in.seq);
+    receive();
+  }
+  std::vector<std::uint32_t> expected;
+  for (std::uint32_t s = 3; s <= sent; ++s) expected.push_back(s);
+  EXPECT_EQ(resent, expected) << "inputs 3.." << sent << " resent in order";
+
+  // A late word from epoch 0 moves nothing: new inputs still go to zone 2.
+  zone_->publishOwnership(player_, kAvatar, 2, 3, tick_ + 100, sent, /*epoch=*/0);
+  settle = nowNs() + 300'000'000;
+  while (nowNs() < settle) receive();
+  std::vector<zonesim_dds_PlayerInput> later = inputsArrivingAt(2, token);
+  ASSERT_FALSE(later.empty());
+  EXPECT_GT(later.back().seq, sent);
+  EXPECT_TRUE(zone_->takeInputs(3).empty());
 }
 
 TEST_F(GatewayLoopback, ForgedTrafficIsCountedAndHarmless) {

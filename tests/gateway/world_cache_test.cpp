@@ -40,6 +40,22 @@ TEST(WorldCache, OlderSamplesAreIgnored) {
   EXPECT_EQ(c.stats().stale, 1u);
 }
 
+// A restored world (epoch 1, on the gateway's timeline: newer) replaces what was held and
+// records how far each entity jumped; what it did not bring back is retired on request.
+TEST(WorldCache, ARestoredEpochReplacesStatesRecordsJumpsAndRetiresTheRest) {
+  WorldCache c(kGrace);
+  EXPECT_TRUE(c.upsert(kCell, 0, 2.0, entity(1, 0, 10, 10), false, 60, 0));
+  EXPECT_TRUE(c.upsert(kCell, 0, 2.0, entity(2, 0, 20, 10), false, 60, 0));
+  // Entity 1 restored 3 m back along x; entity 2 absent from the restored world.
+  EXPECT_TRUE(c.upsert(kCell, 0, 2.1, entity(1, 0, 7, 10), /*refresh_only=*/true, 61, 1));
+  ASSERT_EQ(c.epochJumps().size(), 1u);
+  EXPECT_NEAR(c.epochJumps()[0], 3.0, 1e-4);
+  EXPECT_EQ(c.find(1)->epoch, 1u);
+  EXPECT_EQ(c.retireEpochsBefore(1, 0), 1u);
+  EXPECT_EQ(c.find(2), nullptr);
+  EXPECT_NE(c.find(1), nullptr);
+}
+
 TEST(WorldCache, VersionsGrowWithEveryAcceptedSample) {
   WorldCache c(kGrace);
   c.upsert(kCell, 0, 1.0, entity(1, 0, 1, 1));

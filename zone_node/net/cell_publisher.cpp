@@ -52,14 +52,16 @@ Matched matchedReaders(dds_entity_t writer) {
 }  // namespace
 
 CellPublisher::CellPublisher(dds_entity_t participant, const dds::Topics& topics,
-                             const InterestGrid& grid, int zone, const Scene& scene)
+                             const InterestGrid& grid, int zone, const Scene& scene,
+                             std::uint32_t epoch)
     : participant_(participant),
       update_topic_(topics.cell_updates.get()),
       keyframe_topic_(topics.cell_keyframes.get()),
       grid_(grid),
       zone_(zone),
       reckoner_(scene.dead_reckoning, dr::codecParams(scene)),
-      keyframe_every_(scene.keyframe_every) {}
+      keyframe_every_(scene.keyframe_every),
+      epoch_(epoch) {}
 
 CellPublisher::Channel& CellPublisher::channel(int cell) {
   auto it = channels_.find(cell);
@@ -180,6 +182,7 @@ void CellPublisher::write(int cell, Channel& ch, std::uint64_t tick, double sim_
     b.tick = tick;
     b.sim_time = sim_time;
     b.dilation = dilation_;
+    b.epoch = epoch_;
     view(b.enters, ch.enters);
     view(b.updates, ch.updates_out);
     view(b.leaves, ch.leaves);
@@ -197,6 +200,7 @@ void CellPublisher::write(int cell, Channel& ch, std::uint64_t tick, double sim_
     k.tick = tick;
     k.sim_time = sim_time;
     k.dilation = dilation_;
+    k.epoch = epoch_;
     view(k.entities, ch.keyframe);
     if (dds_write(ch.keyframes.writer.get(), &k) < 0) ++stats.write_failures;
     ++stats.keyframes;

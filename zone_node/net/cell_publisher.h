@@ -40,9 +40,10 @@ struct PublishStats {
 
 class CellPublisher {
  public:
-  /// Dead-reckoning models, thresholds, quantisation and keyframe period come from the scene.
+  /// Dead-reckoning models, thresholds, quantisation and keyframe period come from the scene;
+  /// every sample carries the cluster epoch.
   CellPublisher(dds_entity_t participant, const dds::Topics& topics, const InterestGrid& grid,
-                int zone, const Scene& scene);
+                int zone, const Scene& scene, std::uint32_t epoch);
 
   /// Creates the writers of every cell the rectangle touches, so that they are matched before
   /// an entity first enters one (a handoff into a fresh cell must not wait for discovery).
@@ -80,6 +81,7 @@ class CellPublisher {
   DeadReckoner reckoner_;
   int keyframe_every_;
   double dilation_ = 1;
+  std::uint32_t epoch_;
   double last_sim_time_ = -1;        // previous publish: the step of the acceleration estimates
   std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
 };

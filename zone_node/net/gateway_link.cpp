@@ -6,8 +6,10 @@
 
 namespace zonesim::zone {
 
-GatewayLink::GatewayLink(int domain, int rank)
-    : participant_(dds::makeParticipant(domain)), topics_(dds::makeTopics(participant_.get())) {
+GatewayLink::GatewayLink(int domain, int rank, std::uint32_t epoch)
+    : participant_(dds::makeParticipant(domain)),
+      topics_(dds::makeTopics(participant_.get())),
+      epoch_(epoch) {
   dds::Qos q = dds::reliableKeepAllQos();
   inputs_ = dds::makePartitionReader(participant_.get(), topics_.player_input.get(),
                                      dds::zonePartition(rank), q.get());
@@ -51,6 +53,7 @@ void GatewayLink::announce(const OwnershipMsg& m) {
   s.to_zone = m.to_zone;
   s.tick = m.tick;
   s.last_input_seq = m.last_input_seq;
+  s.epoch = epoch_;
   // A gateway that stopped reading fills a KEEP_ALL writer and the write times out: the zone
   // goes on (inputs still reach the avatar through forwarding) and counts it.
   if (dds_write(ownership_.writer.get(), &s) < 0) ++write_failures_;

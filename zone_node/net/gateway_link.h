@@ -36,8 +36,9 @@ struct OwnershipMsg {
 
 class GatewayLink {
  public:
-  /// Joins the DDS domain as zone `rank`; throws dds::DdsError on failure.
-  GatewayLink(int domain, int rank);
+  /// Joins the DDS domain as zone `rank` of cluster epoch `epoch` (every announcement carries
+  /// it); throws dds::DdsError on failure.
+  GatewayLink(int domain, int rank, std::uint32_t epoch);
 
   dds_entity_t participant() const { return participant_.get(); }
   const dds::Topics& topics() const { return topics_; }
@@ -60,6 +61,7 @@ class GatewayLink {
   dds::PartitionReader despawns_;
   dds::PartitionWriter ownership_;
   std::uint64_t write_failures_ = 0;
+  std::uint32_t epoch_;
 };
 
 }  // namespace zonesim::zone

@@ -103,7 +103,7 @@ class CellPublisherTest : public ::testing::Test {
         topics_(dds::makeTopics(participant_.get())),
         scene_(sceneWithKeyframes()),
         grid_(scene_.world, scene_.interest_cell_size),
-        publisher_(participant_.get(), topics_, grid_, 0, scene_) {
+        publisher_(participant_.get(), topics_, grid_, 0, scene_, 0) {
     publisher_.cover(scene_.world.min.x, scene_.world.min.z, scene_.world.max.x,
                      scene_.world.max.z);
   }
