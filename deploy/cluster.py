@@ -12,6 +12,7 @@ mpi_yield_when_idle: Open MPI only knows the slots it is given and otherwise bus
 collective waits a scheduler slice for every descheduled rank (24 ms ticks instead of 0.9 ms
 for 4 ranks in 2 namespaces on 2 cores, issue 13).
 """
+import json
 import os
 import re
 import shlex
@@ -106,6 +107,7 @@ def dds_config(host, peers, max_index):
     <Discovery>
       <ParticipantIndex>auto</ParticipantIndex>
       <MaxAutoParticipantIndex>{max_index}</MaxAutoParticipantIndex>
+      <LeaseDuration>3 s</LeaseDuration>
       <Peers>
 {peer_lines}
       </Peers>
@@ -128,6 +130,8 @@ class Launch:
         self.zones = None
         self.tmp = None
         self.key = None  # the cluster's key file, with a lobby
+        self.epoch = 0  # the cluster epoch of the zone job running (supervise: one more per restart)
+        self.restarts = []  # what the supervisor did, also in run/supervisor.jsonl
 
     def log(self, msg):
         print(msg, flush=True)
@@ -194,10 +198,13 @@ class Launch:
             paths[h.name].write_text(dds_config(h, peers, max_index))
         return paths
 
-    def start_zones(self, dds):
+    def start_zones(self, dds, ranks=None, restart=None):
+        """The zone job; ranks: the count on the one zone host (a supervised restart may
+        change it); restart: the checkpoint folder it continues from, in epoch self.epoch."""
         zone_hosts = [h for h in self.c.hosts.values() if h.zones]
+        slots = {h.name: (ranks if ranks and len(zone_hosts) == 1 else h.zones) for h in zone_hosts}
         hostfile = self.run / "hostfile"
-        hostfile.write_text("".join(f"{self.mpi_name(h)} slots={h.zones}\n" for h in zone_hosts))
+        hostfile.write_text("".join(f"{self.mpi_name(h)} slots={slots[h.name]}\n" for h in zone_hosts))
         mca = []
         if any(h.reach in ("netns", "ssh") for h in zone_hosts):
             agent = self.run / "mpi-agent.sh"
@@ -215,19 +222,63 @@ class Launch:
         zone_argv = [self.bin / "zone_node", "--scene", self.c.scene, "--realtime",
                      "--duration", int(self.c.duration + ZONE_SAFETY_S), "--metrics", self.run,
                      "--dds-domain", self.c.dds_domain, "--truth-every", self.c.truth_every, *self.c.zone_args]
+        if self.c.checkpoint_every:
+            zone_argv += ["--checkpoint-dir", self.run / "checkpoints", "--checkpoint-every", self.c.checkpoint_every]
+        if self.epoch:
+            zone_argv += ["--epoch", self.epoch] + (["--restart", restart] if restart else [])
         contexts = []
         for h in zone_hosts:
             contexts += [":"] if contexts else []
-            contexts += ["-np", h.zones, "--host", f"{self.mpi_name(h)}:{h.zones}",
+            contexts += ["-np", slots[h.name], "--host", f"{self.mpi_name(h)}:{slots[h.name]}",
                          "-x", f"CYCLONEDDS_URI=file://{dds[h.name]}", *zone_argv]
         argv = ["mpirun", "--hostfile", hostfile, "--bind-to", "none", *mca, *contexts]
         # mpirun runs where it reaches every daemon: inside the first host's namespace for a
         # namespace cluster, else here.
         first = zone_hosts[0]
         launch_argv = on_host(first, argv) if first.reach == "netns" else ["env", *([f"TMPDIR={first.tmp}"] if first.tmp else []), *map(str, argv)]
-        (self.run / "zones.cmd").write_text(shlex.join(map(str, launch_argv)) + "\n")
+        suffix = f"-epoch{self.epoch}" if self.epoch else ""
+        (self.run / f"zones{suffix}.cmd").write_text(shlex.join(map(str, launch_argv)) + "\n")
+        self.zones_log = self.run / f"zones{suffix}.log"
         self.zones = self.start("zones (mpirun over " + ", ".join(h.name for h in zone_hosts) + ")",
-                                launch_argv, self.run / "zones.log")
+                                launch_argv, self.zones_log)
+        self.zones_started = time.monotonic()
+
+    def zones_hung(self):
+        """True when no rank has written a metrics line for hang_s (every rank writes one per
+        tick, buffered: a stalled collective stops them all)."""
+        if time.monotonic() - self.zones_started < max(self.c.hang_s, 30):
+            return False  # still starting (a restart reads the checkpoint first)
+        files = list(self.run.glob("zone_*.jsonl"))
+        newest = max((f.stat().st_mtime for f in files), default=0)
+        return bool(files) and time.time() - newest > self.c.hang_s
+
+    def supervise_zones(self, dds):
+        """Restarts a zone job that died or hung from the newest complete checkpoint, in the
+        next cluster epoch; gateways and players stay connected (gateway/gateway_epochs.cpp)."""
+        died = self.zones.poll() is not None
+        if not died and not self.zones_hung():
+            return
+        detected = time.monotonic()
+        reason = f"exited with {self.zones.returncode}" if died else f"hung (no metrics for {self.c.hang_s:g} s)"
+        slot = next(i for i, p in enumerate(self.procs) if p[0] is self.zones)
+        process_group.stop(self.zones, 2)
+        old = self.run / f"epoch-{self.epoch}"
+        old.mkdir(exist_ok=True)
+        for f in self.run.glob("zone_*"):
+            f.rename(old / f.name)
+        for f in self.run.glob("truth_*.csv"):
+            f.rename(old / f.name)
+        latest = self.run / "checkpoints" / "LATEST"
+        restart = self.run / "checkpoints" if latest.exists() else None
+        self.epoch += 1
+        self.start_zones(dds, self.c.restart_zones or None, restart)
+        self.procs[slot] = self.procs.pop()  # stopped first-started-last, as the job it replaces
+        event = {"epoch": self.epoch, "reason": reason, "checkpoint": latest.read_text().strip() if restart else None,
+                 "detected_unix": time.time(), "restart_s": round(time.monotonic() - detected, 3)}
+        self.restarts.append(event)
+        with open(self.run / "supervisor.jsonl", "a") as f:
+            f.write(json.dumps(event) + "\n")
+        self.log(f"== zones {reason}: restarted from {event['checkpoint'] or 'the scene'} as epoch {self.epoch}")
 
     def mpi_name(self, h):
         return "localhost" if h.reach == "local" else (h.target if h.reach == "slurm" else h.name)
@@ -272,7 +323,7 @@ class Launch:
             if proc.poll() is not None:
                 self.fail(what, f"exited with {proc.returncode} before listening", log)
             elif watch_zones and self.zones.poll() is not None:
-                self.fail(self.procs[0][1], f"exited with {self.zones.returncode}", self.run / "zones.log")
+                self.fail(self.procs[0][1], f"exited with {self.zones.returncode}", self.zones_log)
             elif time.monotonic() > deadline:
                 self.fail(what, "not listening after 120 s", log)
             time.sleep(0.1)
@@ -326,13 +377,15 @@ class Launch:
             f.proc = self.start(f"{f.host.describe()}, fleet {f.name}", on_host(f.host, argv, stop_at_eof=True), f.log,
                                 held_stdin=f.host.reach in ("ssh", "slurm"))
 
-    def wait_fleets(self):
+    def wait_fleets(self, dds):
         report = ROOT / "deploy" / "report.py"
         next_progress = time.monotonic() + 5
         # A cluster without fleets (players from elsewhere) runs for the duration.
         end = time.monotonic() + self.c.duration
         while (any(f.proc.poll() is None for f in self.c.fleets) if self.c.fleets else time.monotonic() < end):
             time.sleep(0.2)
+            if self.c.supervise:
+                self.supervise_zones(dds)
             for p, what, log in self.procs:
                 if p not in (f.proc for f in self.c.fleets) and p.poll() is not None:
                     self.fail(what, f"exited with {p.returncode} while players played", log)
@@ -357,12 +410,13 @@ class Launch:
         # SIGTERM: the ranks finish their tick and write their summaries; mpirun then reports
         # the signal in its own status, so the summaries are what is checked.
         self.stop(self.zones, 30)
-        ranks = sum(h.zones for h in self.c.hosts.values())
+        ranks = (self.c.restart_zones if self.epoch and self.c.restart_zones
+                 else sum(h.zones for h in self.c.hosts.values()))
         if not self.c.shared_storage:
             self.fetch_remote_folders()
         written = len(list(self.run.glob("zone_*_summary.json")))
         if written != ranks:
-            self.fail(self.procs[0][1], f"{written} of {ranks} ranks wrote their summary", self.run / "zones.log")
+            self.fail(self.procs[0][1], f"{written} of {ranks} ranks wrote their summary", self.zones_log)
         # A process that ran but wrote no summary would leave the report with a hole that looks
         # like a quiet run: name it instead.
         for g in self.c.gateways:
@@ -405,7 +459,7 @@ class Launch:
                 self.start_lobby(dds)
             time.sleep(2)  # let DDS discovery between zones and gateways settle before players ask for avatars
             self.start_fleets()
-            self.wait_fleets()
+            self.wait_fleets(dds)
             self.finish()
         finally:
             self.cleanup()

@@ -8,7 +8,12 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
               $ZONESIM_DDS_DOMAIN or random), truth_every, zone_args, client_args,
               shared_storage (yes | no: copy each ssh host's run folder back at the end),
               ssh_options (added to every ssh the launcher and Open MPI's daemons run, e.g.
-              -i KEY -o UserKnownHostsFile=/dev/null; ssh's own ~/.ssh/config is the other way)
+              -i KEY -o UserKnownHostsFile=/dev/null; ssh's own ~/.ssh/config is the other way),
+              supervise (no | zones: a dead or hung zone job is restarted from its newest
+              checkpoint in a new cluster epoch while gateways and players stay), checkpoint_every
+              (ticks between checkpoints, default 60 when supervising), hang_s (a zone job whose
+              metrics stay unwritten this long is hung, default 10), restart_zones (the rank count
+              of restarted jobs, default the same)
   [host NAME] reach (local | netns NAMESPACE | ssh [USER@]HOST | slurm NODE), address (IPv4 on
               the cluster network; default 127.0.0.1 for local, else NAME resolved), zones
               (ranks there, default 0), cores (default: nproc there)
@@ -36,7 +41,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 KEYS = {
     "cluster": {"scene", "duration", "network", "btl", "yield", "dds_domain", "truth_every",
-                "zone_args", "client_args", "shared_storage", "ssh_options"},
+                "zone_args", "client_args", "shared_storage", "ssh_options", "supervise",
+                "checkpoint_every", "hang_s", "restart_zones"},
     "host": {"reach", "address", "zones", "cores"},
     "gateway": {"host", "bind", "id", "args"},
     "lobby": {"host", "bind", "args"},
@@ -121,6 +127,10 @@ class Cluster:
     gateways: list
     fleets: list = field(default_factory=list)
     lobby: Lobby = None
+    supervise: bool = False
+    checkpoint_every: int = 0
+    hang_s: float = 10
+    restart_zones: int = 0  # 0: as many ranks as the first job
 
 
 def expand(text, where):
@@ -267,16 +277,29 @@ def load(path):
     storage = c.get("shared_storage", "yes")
     if storage not in ("yes", "no"):
         raise ClusterError(f"{where} shared_storage: '{storage}' (expected yes or no)")
+    supervise = c.get("supervise", "no")
+    if supervise not in ("no", "zones"):
+        raise ClusterError(f"{where} supervise: '{supervise}' (expected no or zones)")
+    restart_zones = number(c.get("restart_zones", "0"), f"{where} restart_zones")
+    if restart_zones and len([h for h in hosts.values() if h.zones]) > 1:
+        raise ClusterError(f"{where} restart_zones: only for zones on one host")
     return Cluster(scene, number(c.get("duration", "20"), f"{where} duration", float, 1), network,
                    c.get("btl", ""), yield_mode, domain, number(c.get("truth_every", "0"), f"{where} truth_every"),
                    shlex.split(c.get("zone_args", "")), shlex.split(c.get("client_args", "")),
-                   storage == "yes", hosts, list(gateways.values()), fleets, lobby)
+                   storage == "yes", hosts, list(gateways.values()), fleets, lobby,
+                   supervise == "zones",
+                   number(c.get("checkpoint_every", "60" if supervise == "zones" else "0"), f"{where} checkpoint_every"),
+                   number(c.get("hang_s", "10"), f"{where} hang_s", float, 1), restart_zones)
 
 
 def plan(cluster):
     """What runs where, one line each."""
     lines = [f"scene {cluster.scene}, {cluster.duration:g} s of players, DDS domain {cluster.dds_domain}"
              + (f", network {cluster.network}" if cluster.network else "")]
+    if cluster.supervise:
+        lines.append(f"supervised: a dead zone job, or one silent for {cluster.hang_s:g} s, restarts from its "
+                     f"newest checkpoint (every {cluster.checkpoint_every} ticks)"
+                     + (f" on {cluster.restart_zones} ranks" if cluster.restart_zones else ""))
     for h in cluster.hosts.values():
         lines.append(f"{h.describe()} at {h.address}: {h.zones} zone ranks")
     for g in cluster.gateways:

@@ -56,6 +56,9 @@ with tempfile.TemporaryDirectory(prefix="zs_cluster_file_") as tmp:
             "network (a.b.c.d/n) is needed")
     refused(tmp, "bad_network", GOOD_HEAD.replace("duration", "network = 10.0.0/33\nduration") + LOCAL,
             "network: '10.0.0/33'")
+    refused(tmp, "bad_supervise", GOOD_HEAD + "supervise = everything\n" + LOCAL,
+            "[cluster] supervise: 'everything' (expected no or zones)")
+    refused(tmp, "bad_hang", GOOD_HEAD + "supervise = zones\nhang_s = 0\n" + LOCAL, "[cluster] hang_s: 0 is below 1")
     refused(tmp, "unset_variable", GOOD_HEAD + LOCAL.replace("players = 2", "players = ${ZONESIM_NO_SUCH_VAR}"),
             "${ZONESIM_NO_SUCH_VAR} is not set")
     refused(tmp, "bad_section", GOOD_HEAD + LOCAL + "[router r]\n", "[router r]: unknown section")

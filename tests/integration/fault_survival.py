@@ -1,0 +1,171 @@
+"""Zone crashes survived: a supervised local cluster (deploy/cluster.py, supervise = zones) of 4
+zone ranks checkpointing every 60 ticks, a gateway and 8 players runs for 60 s while this test
+SIGKILLs a random zone rank at a random moment three times. Afterwards:
+  - the supervisor restarted the zone job each time from the newest checkpoint, as epochs 1-3;
+  - the last job began with exactly the checkpoint's entities (count and id hash), and its
+    conservation checks found nothing lost or doubled;
+  - every player stayed connected (no session closed, no second Welcome) and received its own
+    avatar's state after every fault; the time from each kill to that state is printed;
+  - no input was lost: the restored zones applied every sequence number in order (none skipped)
+    and the gateway still held every input it had to resend;
+  - no zone_node, gateway or client_stub of the run is left.
+Usage: fault_survival.py [SEED [FAULTS]]: SEED default random (printed), FAULTS default 3 (one
+every 16 s; bench/README: 10 faults measure the recovery time, docs/benchmarks.md)."""
+import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import harness as h
+
+PLAYERS = 8
+FAULTS = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+# One kill at a random moment in each 8 s window, 16 s apart from 10 s after the players start.
+KILL_WINDOWS = [(10 + 16 * k, 18 + 16 * k) for k in range(FAULTS)]
+SECONDS = KILL_WINDOWS[-1][1] + 10
+
+seed = int(sys.argv[1]) if len(sys.argv) > 1 else random.SystemRandom().randrange(1 << 30)
+print(f"fault_survival seed {seed}", flush=True)
+rng = random.Random(seed)
+
+
+def run_pids(run, program):
+    """Pids of `program` processes started for this run (their command line names the run)."""
+    out = subprocess.run(["pgrep", "-f", f"{program} .*{run}"], capture_output=True, text=True).stdout
+    return [int(p) for p in out.split()]
+
+
+def zone_rank_pids(run):
+    """zone_node ranks of the running job (mpirun's children, not mpirun itself)."""
+    return [p for p in run_pids(run, "zone_node")
+            if Path(f"/proc/{p}/comm").exists() and Path(f"/proc/{p}/comm").read_text().strip() == "zone_node"]
+
+
+def wait_for(what, cond, timeout):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if cond():
+            return
+        time.sleep(0.1)
+    h.fail(f"timed out waiting for {what}")
+
+
+# ZONESIM_KEEP_RUN=DIR keeps the run folder there (to look at a failure).
+with tempfile.TemporaryDirectory(prefix="zs_fault_") as tmp:
+    tmp = os.environ.get("ZONESIM_KEEP_RUN", tmp)
+    Path(tmp).mkdir(parents=True, exist_ok=True)
+    run = Path(tmp) / "run"
+    cluster = Path(tmp) / "fault.cluster"
+    cluster.write_text(f"""[cluster]
+scene = scenes/test_e2e.yaml
+duration = {SECONDS}
+supervise = zones
+zone_args = ${{ZONESIM_FAULT_ZONE_ARGS:-}}
+checkpoint_every = 60
+hang_s = 10
+[host here]
+reach = local
+zones = 4
+[gateway g1]
+host = here
+[fleet players]
+host = here
+players = {PLAYERS}
+""")
+    env = h.base_env(h.free_dds_domain())
+    env["ZONESIM_BIN"] = str(h.bin_dir())
+    log = Path(tmp) / "cluster.log"
+    launcher = h.start(["python3", h.SOURCE_DIR / "deploy/cluster.py", cluster, run], log, env)
+    wait_for("the fleet to start", lambda: "== fleet players" in log.read_text() or launcher.poll() is not None, 180)
+    started = time.monotonic()
+    kills = []  # (monotonic time, pid)
+    for k, (lo, hi) in enumerate(KILL_WINDOWS):
+        at = started + rng.uniform(lo, hi)
+        while time.monotonic() < at:
+            if launcher.poll() is not None:
+                h.fail(f"the cluster ended before fault {k + 1}\n{h.tail(log)}")
+            time.sleep(0.1)
+        pids = zone_rank_pids(run)
+        h.check(len(pids) == 4, f"fault {k + 1}: 4 zone ranks are running ({pids})")
+        victim = rng.choice(sorted(pids))
+        os.kill(victim, signal.SIGKILL)
+        kills.append((time.monotonic(), victim, time.time()))
+        print(f"fault {k + 1}: SIGKILL zone rank pid {victim} at {kills[-1][0] - started:.1f} s", flush=True)
+        wait_for(f"restart {k + 1}", lambda: f"as epoch {k + 1}" in log.read_text(), 60)
+    try:
+        rc = launcher.wait(timeout=SECONDS + 240)
+    except subprocess.TimeoutExpired:
+        h.stop(launcher)
+        h.fail(f"the cluster did not finish\n{h.tail(log)}")
+    h.check(rc == 0, f"the cluster finished and reported (exit {rc})\n{h.tail(log)}")
+
+    events = [json.loads(l) for l in (run / "supervisor.jsonl").read_text().splitlines()]
+    h.check([e["epoch"] for e in events] == list(range(1, FAULTS + 1)),
+            f"the supervisor restarted the zones {FAULTS} times ({events})")
+    h.check(all(e["checkpoint"] for e in events), "each restart continued from a checkpoint")
+
+    # The last job began with the entities of the checkpoint it restored, exactly.
+    zones = [h.load_json(run / f"zone_{r}_summary.json") for r in range(4)]
+    manifest = h.load_json(run / "checkpoints" / events[-1]["checkpoint"] / "MANIFEST.json")
+    start_count = sum(z["entities_start"] for z in zones)
+    start_hash = sum(z["id_hash_start"] for z in zones) % (1 << 64)
+    h.check(start_count == manifest["entities"] and start_hash == int(manifest["id_hash"], 16),
+            f"epoch {FAULTS} began with the checkpoint's {manifest['entities']} entities and id hash "
+            f"({start_count}, {start_hash:x} vs {manifest['id_hash']})")
+    h.check(all(z["epoch"] == FAULTS for z in zones), f"the last job ran as epoch {FAULTS}")
+    h.check(sum(z["conservation_failures"] for z in zones) == 0 and sum(z["conservation_checks"] for z in zones) > 0,
+            "conservation held after the last restart: nothing lost or doubled since the checkpoint")
+    skipped = sum(z["inputs_skipped"] for z in zones)
+    h.check(skipped == 0, f"the restored zones applied every input in sequence, none skipped ({skipped})")
+
+    g = h.load_json(run / "gateway_summary.json")
+    h.check(g["epochs_entered"] == FAULTS and g["epoch"] == FAULTS,
+            f"the gateway followed {FAULTS} restarts ({g['epochs_entered']})")
+    h.check(g["sessions_expired"] == 0 and g["welcomes"] == PLAYERS,
+            f"no session expired and no player was welcomed twice ({g['sessions_expired']}, {g['welcomes']})")
+    h.check(g["inputs_resent"] > 0 and g["inputs_unresendable"] == 0,
+            f"inputs the restarts lost were resent ({g['inputs_resent']}), none beyond the history "
+            f"({g['inputs_unresendable']})")
+    print(f"position jumps at the restarts: {g.get('epoch_jumps', 0)} entities, p50 "
+          f"{g.get('epoch_jump_m_p50', 0):.2f} m, p99 {g.get('epoch_jump_m_p99', 0):.2f} m, "
+          f"max {g.get('epoch_jump_m_max', 0):.2f} m", flush=True)
+
+    clients = h.load_json(run / "clients_summary.json")
+    h.check(clients["totals"]["welcomed"] == PLAYERS, "every player is still welcomed at the end")
+    # Each player's own-avatar states, on this test's clock.
+    base = clients["started_monotonic_s"]
+    states = {}
+    with open(run / "own_stream.csv") as f:
+        next(f)
+        for line in f:
+            player, event, t_ms, _, _ = line.split(",")
+            if event == "U":
+                states.setdefault(int(player), []).append(base + float(t_ms) * 1e-3)
+    recovery, silent = [], []
+    for k, (at, _, _) in enumerate(kills):
+        until = kills[k + 1][0] if k + 1 < len(kills) else float("inf")
+        for p in range(PLAYERS):
+            seen = [t for t in states.get(p, []) if at < t < until]
+            if not [t for t in seen if t > at + 0.2]:
+                silent.append((k + 1, p))
+                continue
+            # The state that ends the longest silence after the kill: the restored world's.
+            gaps = [(b - a, b) for a, b in zip([at] + seen, seen)]
+            recovery.append(max(gaps)[1] - at)
+    h.check(not silent, f"every player received its avatar's state after every fault (silent: {silent})")
+    recovery.sort()
+    detect = sorted(e["detected_unix"] - kill[2] for e, kill in zip(events, kills))
+    print(f"kill to the supervisor's restart (mpirun ends the job): p50 {detect[len(detect) // 2]:.2f} s, "
+          f"max {detect[-1]:.2f} s", flush=True)
+    print(f"kill to the player's next own state: p50 {recovery[len(recovery) // 2]:.2f} s, "
+          f"max {recovery[-1]:.2f} s over {len(kills)} faults x {PLAYERS} players "
+          f"(restart {', '.join(str(e['restart_s']) for e in events)} s after detection)", flush=True)
+
+    left = [p for prog in ("zone_node", "gateway", "client_stub") for p in run_pids(run, prog)]
+    h.check(not left, f"no process of the run is left ({left})")
+print("fault survival passed")
