@@ -242,15 +242,18 @@ class Launch:
         self.zones = self.start("zones (mpirun over " + ", ".join(h.name for h in zone_hosts) + ")",
                                 launch_argv, self.zones_log)
         self.zones_started = time.monotonic()
+        self.zones_started_unix = time.time()
 
     def zones_hung(self):
         """True when no rank has written a metrics line for hang_s (every rank writes one per
-        tick, buffered: a stalled collective stops them all)."""
-        if time.monotonic() - self.zones_started < max(self.c.hang_s, 30):
-            return False  # still starting (a restart reads the checkpoint first)
+        tick, buffered: a stalled collective stops them all), or, before the job's first line,
+        for 60 s (a restart reads its checkpoint first)."""
         files = list(self.run.glob("zone_*.jsonl"))
         newest = max((f.stat().st_mtime for f in files), default=0)
-        return bool(files) and time.time() - newest > self.c.hang_s
+        since_start = time.monotonic() - self.zones_started
+        if newest < self.zones_started_unix:
+            return since_start > max(self.c.hang_s, 60)
+        return time.time() - newest > self.c.hang_s
 
     def supervise_zones(self, dds):
         """Restarts a zone job that died or hung from the newest complete checkpoint, in the
