@@ -243,6 +243,7 @@ class Launch:
                                 launch_argv, self.zones_log)
         self.zones_started = time.monotonic()
         self.zones_started_unix = time.time()
+        self.rank_pids = set()  # the job's local zone_node ranks, once all have started
 
     def zones_hung(self):
         """True when no rank has written a metrics line for hang_s (every rank writes one per
@@ -255,16 +256,39 @@ class Launch:
             return since_start > max(self.c.hang_s, 60)
         return time.time() - newest > self.c.hang_s
 
+    def local_rank_lost(self):
+        """A zone_node rank of this job on this machine (local or netns hosts) has gone. mpirun
+        takes about 2 s to end a job after a rank dies; the supervisor need not wait for that."""
+        if any(h.reach in ("ssh", "slurm") for h in self.c.hosts.values() if h.zones):
+            return False
+        out = subprocess.run(["pgrep", "-x", "zone_node"], capture_output=True, text=True).stdout.split()
+        mine = set()
+        for pid in out:
+            try:
+                if str(self.run) in Path(f"/proc/{pid}/cmdline").read_bytes().decode(errors="replace"):
+                    mine.add(int(pid))
+            except OSError:
+                pass
+        ranks = self.c.restart_zones if self.epoch and self.c.restart_zones else sum(h.zones for h in self.c.hosts.values())
+        if not self.rank_pids:
+            if len(mine) == ranks:
+                self.rank_pids = mine
+            return False
+        return not self.rank_pids <= mine
+
     def supervise_zones(self, dds):
         """Restarts a zone job that died or hung from the newest complete checkpoint, in the
         next cluster epoch; gateways and players stay connected (gateway/gateway_epochs.cpp)."""
         died = self.zones.poll() is not None
-        if not died and not self.zones_hung():
+        lost = not died and self.local_rank_lost()
+        if not died and not lost and not self.zones_hung():
             return
         detected = time.monotonic()
-        reason = f"exited with {self.zones.returncode}" if died else f"hung (no metrics for {self.c.hang_s:g} s)"
+        reason = (f"exited with {self.zones.returncode}" if died else "lost a rank" if lost
+                  else f"hung (no metrics for {self.c.hang_s:g} s)")
         slot = next(i for i, p in enumerate(self.procs) if p[0] is self.zones)
-        process_group.stop(self.zones, 2)
+        # A job that lost a rank or hung cannot finish a tick: its ranks are killed at once.
+        process_group.stop(self.zones, 2 if died else 0)
         old = self.run / f"epoch-{self.epoch}"
         old.mkdir(exist_ok=True)
         for f in self.run.glob("zone_*"):

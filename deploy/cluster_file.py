@@ -9,8 +9,9 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
               shared_storage (yes | no: copy each ssh host's run folder back at the end),
               ssh_options (added to every ssh the launcher and Open MPI's daemons run, e.g.
               -i KEY -o UserKnownHostsFile=/dev/null; ssh's own ~/.ssh/config is the other way),
-              supervise (no | zones: a dead or hung zone job is restarted from its newest
-              checkpoint in a new cluster epoch while gateways and players stay), checkpoint_every
+              supervise (no | zones: a zone job that died, lost a rank on this machine or hung is
+              restarted from its newest checkpoint in a new cluster epoch while gateways and
+              players stay), checkpoint_every
               (ticks between checkpoints, default 60 when supervising), hang_s (a zone job whose
               metrics stay unwritten this long is hung, default 10), restart_zones (the rank count
               of restarted jobs, default the same)

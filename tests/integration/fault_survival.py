@@ -177,7 +177,7 @@ players = {PLAYERS}
     h.check(not silent, f"every player received its avatar's state after every fault (silent: {silent})")
     after_kill = sorted(r for k, r in recovery if k < len(kills))
     detect = sorted(e["detected_unix"] - kill[2] for e, kill in zip(events, kills))
-    print(f"kill to the supervisor's restart (mpirun ends the job): p50 {detect[len(detect) // 2]:.2f} s, "
+    print(f"kill to the supervisor's restart: p50 {detect[len(detect) // 2]:.2f} s, "
           f"max {detect[-1]:.2f} s", flush=True)
     print(f"kill to the player's next own state: p50 {after_kill[len(after_kill) // 2]:.2f} s, "
           f"max {after_kill[-1]:.2f} s over {len(kills)} faults x {PLAYERS} players "
