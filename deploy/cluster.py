@@ -131,7 +131,6 @@ class Launch:
         self.tmp = None
         self.key = None  # the cluster's key file, with a lobby
         self.epoch = 0  # the cluster epoch of the zone job running (supervise: one more per restart)
-        self.restarts = []  # what the supervisor did, also in run/supervisor.jsonl
 
     def log(self, msg):
         print(msg, flush=True)
@@ -302,7 +301,6 @@ class Launch:
         self.procs[slot] = self.procs.pop()  # stopped first-started-last, as the job it replaces
         event = {"epoch": self.epoch, "reason": reason, "checkpoint": latest.read_text().strip() if restart else None,
                  "detected_unix": time.time(), "restart_s": round(time.monotonic() - detected, 3)}
-        self.restarts.append(event)
         with open(self.run / "supervisor.jsonl", "a") as f:
             f.write(json.dumps(event) + "\n")
         self.log(f"== zones {reason}: restarted from {event['checkpoint'] or 'the scene'} as epoch {self.epoch}")

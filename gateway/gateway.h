@@ -188,7 +188,6 @@ class Gateway {
   Fit budget_forced_, budget_go_;
   ZoneClock clock_;
   EpochTimeline timeline_;                 // zone ticks of every epoch on one timeline
-  std::uint32_t epochs_followed_ = 0;      // epochs entered that followEpochs has seen
   std::int64_t resync_due_ns_ = 0;         // when the newest epoch's resync ends (0: none)
   std::vector<SlotHandle> resending_;      // sessions with input bursts still due
   InterestManager interest_;

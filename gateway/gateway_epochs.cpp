@@ -60,9 +60,10 @@ void Gateway::resendInputs(std::int64_t now_ns) {
 }
 
 void Gateway::followEpochs(std::int64_t now_ns) {
-  if (timeline_.epochsEntered() != epochs_followed_) {
-    epochs_followed_ = timeline_.epochsEntered();
-    ++counters_.epochs_entered;
+  // The timeline counts; the counters show its figures.
+  counters_.epoch_stale = timeline_.stale();
+  if (timeline_.epochsEntered() != counters_.epochs_entered) {
+    counters_.epochs_entered = timeline_.epochsEntered();
     resync_due_ns_ = now_ns + std::int64_t(kResyncSeconds * 1e9);
     ZS_INFO("zones restarted: cluster epoch %u", unsigned(timeline_.epoch()));
   }
