@@ -238,6 +238,8 @@ class Launch:
         suffix = f"-epoch{self.epoch}" if self.epoch else ""
         (self.run / f"zones{suffix}.cmd").write_text(shlex.join(map(str, launch_argv)) + "\n")
         self.zones_log = self.run / f"zones{suffix}.log"
+        # Ranks of earlier jobs (killed, maybe not yet reaped) are never this job's.
+        self.old_pids = self.local_rank_pids() if self.epoch else set()
         self.zones = self.start("zones (mpirun over " + ", ".join(h.name for h in zone_hosts) + ")",
                                 launch_argv, self.zones_log)
         self.zones_started = time.monotonic()
@@ -255,19 +257,26 @@ class Launch:
             return since_start > max(self.c.hang_s, 60)
         return time.time() - newest > self.c.hang_s
 
+    def local_rank_pids(self):
+        """Live (not zombie) zone_node processes on this machine started for this run."""
+        out = subprocess.run(["pgrep", "-x", "zone_node"], capture_output=True, text=True).stdout.split()
+        pids = set()
+        for pid in out:
+            try:
+                stat = Path(f"/proc/{pid}/stat").read_text()
+                if stat[stat.rindex(")") + 2] != "Z" and \
+                        str(self.run) in Path(f"/proc/{pid}/cmdline").read_bytes().decode(errors="replace"):
+                    pids.add(int(pid))
+            except (OSError, ValueError, IndexError):
+                pass
+        return pids
+
     def local_rank_lost(self):
         """A zone_node rank of this job on this machine (local or netns hosts) has gone. mpirun
         takes about 2 s to end a job after a rank dies; the supervisor need not wait for that."""
         if any(h.reach in ("ssh", "slurm") for h in self.c.hosts.values() if h.zones):
             return False
-        out = subprocess.run(["pgrep", "-x", "zone_node"], capture_output=True, text=True).stdout.split()
-        mine = set()
-        for pid in out:
-            try:
-                if str(self.run) in Path(f"/proc/{pid}/cmdline").read_bytes().decode(errors="replace"):
-                    mine.add(int(pid))
-            except OSError:
-                pass
+        mine = self.local_rank_pids() - self.old_pids
         ranks = self.c.restart_zones if self.epoch and self.c.restart_zones else sum(h.zones for h in self.c.hosts.values())
         if not self.rank_pids:
             if len(mine) == ranks:
