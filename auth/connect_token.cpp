@@ -3,31 +3,18 @@
 #include <chrono>
 
 #include "auth/hmac.h"
+#include "auth/little_endian.h"
 
 namespace zonesim::auth {
-
-namespace {
-
-void put(std::uint8_t* p, std::uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) p[i] = std::uint8_t(v >> (8 * i));
-}
-
-std::uint64_t get(const std::uint8_t* p, int bytes) {
-  std::uint64_t v = 0;
-  for (int i = 0; i < bytes; ++i) v |= std::uint64_t(p[i]) << (8 * i);
-  return v;
-}
-
-}  // namespace
 
 TokenBytes signToken(const ConnectToken& t, const AuthKey& key) {
   TokenBytes b{};
   b[0] = kConnectTokenVersion;
-  put(&b[1], t.gateway_id, 2);
-  put(&b[3], t.client_port, 2);
-  put(&b[5], t.client_address, 4);
-  put(&b[9], t.player_id, 8);
-  put(&b[17], t.expiry_unix_ms, 8);
+  putLittleEndian(&b[1], t.gateway_id, 2);
+  putLittleEndian(&b[3], t.client_port, 2);
+  putLittleEndian(&b[5], t.client_address, 4);
+  putLittleEndian(&b[9], t.player_id, 8);
+  putLittleEndian(&b[17], t.expiry_unix_ms, 8);
   Digest tag = hmacSha256(key.bytes(), std::span(b).first(kConnectTokenBodyBytes));
   std::copy(tag.begin(), tag.end(), b.begin() + kConnectTokenBodyBytes);
   return b;
@@ -41,11 +28,11 @@ TokenVerdict checkToken(std::span<const std::uint8_t> bytes, const AuthKey& key,
   Digest tag = hmacSha256(key.bytes(), bytes.first(kConnectTokenBodyBytes));
   if (!constantTimeEqual(tag, bytes.subspan(kConnectTokenBodyBytes))) return v;
   const std::uint8_t* p = bytes.data();
-  v.token.gateway_id = std::uint16_t(get(p + 1, 2));
-  v.token.client_port = std::uint16_t(get(p + 3, 2));
-  v.token.client_address = std::uint32_t(get(p + 5, 4));
-  v.token.player_id = get(p + 9, 8);
-  v.token.expiry_unix_ms = get(p + 17, 8);
+  v.token.gateway_id = std::uint16_t(getLittleEndian(p + 1, 2));
+  v.token.client_port = std::uint16_t(getLittleEndian(p + 3, 2));
+  v.token.client_address = std::uint32_t(getLittleEndian(p + 5, 4));
+  v.token.player_id = getLittleEndian(p + 9, 8);
+  v.token.expiry_unix_ms = getLittleEndian(p + 17, 8);
   if (v.token.gateway_id != gateway_id)
     v.check = TokenCheck::WrongGateway;
   else if (now_unix_ms >= v.token.expiry_unix_ms)

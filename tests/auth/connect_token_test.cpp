@@ -5,14 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/auth/test_key.h"
+
 namespace zonesim::auth {
 namespace {
 
-AuthKey key(std::uint8_t seed) {
-  std::vector<std::uint8_t> b(32);
-  for (std::size_t i = 0; i < b.size(); ++i) b[i] = std::uint8_t(seed + i * 13);
-  return AuthKey(b, "test key");
-}
+AuthKey key(std::uint8_t seed) { return testKey(seed); }
 
 constexpr std::uint32_t kAddress = 0x0a4d0003;  // 10.77.0.3
 constexpr std::uint16_t kPort = 40001;
