@@ -26,12 +26,18 @@ void addSum(PlayerCounters& t, const PlayerCounters& c, bool samples) {
   t.duplicates += c.duplicates;
   t.stale_lifecycle += c.stale_lifecycle;
   t.repeats += c.repeats;
+  t.resumes += c.resumes;
+  t.resume_failed += c.resume_failed;
+  t.resume_new_avatar += c.resume_new_avatar;
+  t.inputs_resent += c.inputs_resent;
+  t.inputs_unresendable += c.inputs_unresendable;
   t.min_dilation = std::min(t.min_dilation, c.min_dilation);
   for (std::size_t r = 0; r < std::size_t(gateway::DropReason::Count); ++r)
     t.drops.add(gateway::DropReason(r), c.drops[gateway::DropReason(r)]);
   if (!samples) return;
   t.rtt_ms.merge(c.rtt_ms);
   t.dr_error_m.merge(c.dr_error_m);
+  t.resume_s.merge(c.resume_s);
 }
 
 double rate(std::uint64_t n, double s) {
@@ -61,7 +67,14 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("dr_error_m_p50", percentile(c.dr_error_m.samples(), 50))
       .add("dr_error_m_p99", percentile(c.dr_error_m.samples(), 99))
       .add("dr_error_m_max", c.dr_error_m.max())
-      .add("dilation_min", c.min_dilation);
+      .add("dilation_min", c.min_dilation)
+      .add("resumes", c.resumes)
+      .add("resume_failed", c.resume_failed)
+      .add("resume_new_avatar", c.resume_new_avatar)
+      .add("resume_inputs_resent", c.inputs_resent)
+      .add("resume_inputs_unresendable", c.inputs_unresendable)
+      .add("resume_s_p50", percentile(c.resume_s.samples(), 50))
+      .add("resume_s_max", c.resume_s.max());
 }
 
 // The player's link profile and what its models did to the datagrams each way.

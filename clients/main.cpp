@@ -80,6 +80,14 @@ int main(int argc, char** argv) {
                  "the server-clock estimate runs at most this far past the newest tick heard "
                  "(0: unbounded, for comparison)")
       ->check(CLI::NonNegativeNumber);
+  double resume_after_s = zonesim::clients::PlayerConfig{}.resume_after_s;
+  app.add_option("--resume-after-s", resume_after_s,
+                 "a gateway silent this long is taken for dead: the player says Hello again with "
+                 "its resume token, to it (restarted) or a --fallback-gateway (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  std::vector<std::string> fallback_gateways;
+  app.add_option("--fallback-gateway", fallback_gateways,
+                 "HOST:PORT of another gateway of the cluster to resume at (repeatable)");
   CLI11_PARSE(app, argc, argv);
   // First, so a signal during start-up also ends in a clean exit rather than a kill.
   zonesim::installStopSignals();
@@ -129,6 +137,14 @@ int main(int argc, char** argv) {
     cfg.player.blend = !snap;
     cfg.player.truth_every = truth_every;
     cfg.player.max_lead_s = max_lead_s;
+    cfg.player.resume_after_s = resume_after_s;
+    for (const std::string& g : fallback_gateways) {
+      try {
+        cfg.player.fallback_gateways.push_back(zonesim::gateway::resolveEndpoint(g));
+      } catch (const std::invalid_argument& e) {
+        throw std::runtime_error("--fallback-gateway " + g + ": " + e.what());
+      }
+    }
     // Heartbeat + 2 s: with --max-lead-s 0 the player's server clock may run up to 1 s ahead of
     // the zones before it falls back (sim_player.cpp), so 1 s of margin alone counts a late
     // heartbeat as a ghost.

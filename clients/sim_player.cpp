@@ -13,6 +13,13 @@ namespace {
 std::int64_t seconds(double s) {
   return std::int64_t(s * 1e9);
 }
+// A resuming player asks often: a restarted gateway is up within a second.
+constexpr double kResumeHelloRetryS = 0.2;
+// And asks one gateway this long before the next: a resumed Welcome takes a zone's answer.
+constexpr double kResumeStayS = 1.0;
+// Silent for half of resume_after_s, the player pings this often: a live gateway whose zones
+// are restarting (no states, no clock) answers, and the player does not leave it.
+constexpr double kProbeEveryS = 0.1;
 // An hour of own states at 30 Hz: the log stays bounded whatever the run length.
 constexpr std::size_t kMaxOwnEvents = 108'000;
 // Sampled entities shown, per player (32 bytes each): minutes of a view with a dozen sampled.
@@ -29,6 +36,7 @@ SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64
       // Nonces only match replies to requests; mixing in the port keeps two runs apart.
       nonce_(splitmix64(config.seed ^ (std::uint64_t{index} << 32)) ^
              std::uint64_t(socket_.localPort())),
+      gateway_(config.gateway),
       start_ns_(start_ns),
       next_hello_ns_(start_ns),
       next_input_ns_(INT64_MAX),
@@ -46,8 +54,8 @@ double SimPlayer::welcomeSeconds() const {
 }
 
 void SimPlayer::send(const gateway::Bytes& bytes) {
-  bool ok = impairment_.active() ? impairment_.send(socket_, config_.gateway, bytes, nowNs())
-                                 : socket_.sendTo(config_.gateway, bytes);
+  bool ok = impairment_.active() ? impairment_.send(socket_, gateway_, bytes, nowNs())
+                                 : socket_.sendTo(gateway_, bytes);
   if (!ok) {
     ++counters_.send_failures;
     return;
@@ -91,25 +99,90 @@ std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
 
 std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
   if (!welcomed()) {
+    if (resuming_ && now_ns - resume_started_ns_ > seconds(config_.resume_give_up_s)) {
+      // No gateway took the player back: it comes as a new one (the lobby's token, if any,
+      // was for its first gateway: a gateway with a key refuses it, and the count says so).
+      ++counters_.resume_failed;
+      resuming_ = false;
+      resume_token_.clear();
+      player_id_ = avatar_id_ = 0;
+      seq_ = 0;  // a new avatar's inputs start at 1
+      sent_inputs_ = gateway::InputHistory();
+      startNewStream();
+    }
     if (now_ns >= next_hello_ns_) {
+      if (resuming_ && now_ns - resume_gateway_since_ns_ >= seconds(kResumeStayS)) {
+        gateway_index_ = (gateway_index_ + 1) % (1 + config_.fallback_gateways.size());
+        gateway_ = knownGateway(gateway_index_);
+        resume_gateway_since_ns_ = now_ns;
+      }
       send(gateway::encodeHello(nonce_, "player", config_.connect_token,
-                                std::uint8_t(config_.kind.id)));
+                                std::uint8_t(config_.kind.id),
+                                resuming_ ? std::span(resume_token_)
+                                          : std::span<const std::uint8_t>()));
       ++counters_.hellos;
       if (first_hello_ns_ < 0) first_hello_ns_ = now_ns;
-      next_hello_ns_ = now_ns + seconds(config_.hello_retry_s);
+      next_hello_ns_ = now_ns + seconds(resuming_ ? kResumeHelloRetryS : config_.hello_retry_s);
     }
     return next_hello_ns_;
+  }
+  if (config_.resume_after_s > 0 && !resume_token_.empty() &&
+      now_ns - last_heard_ns_ > seconds(config_.resume_after_s)) {
+    beginResume(now_ns);
+    return now_ns;
   }
   if (now_ns >= next_input_ns_) {
     sendInput(now_ns);
     next_input_ns_ += input_period_ns_;
     if (next_input_ns_ <= now_ns) next_input_ns_ = now_ns + input_period_ns_;
   }
+  bool probing = config_.resume_after_s > 0 && !resume_token_.empty() &&
+                 now_ns - last_heard_ns_ > seconds(config_.resume_after_s / 2);
+  if (probing) next_ping_ns_ = std::min(next_ping_ns_, last_ping_ns_ + seconds(kProbeEveryS));
   if (now_ns >= next_ping_ns_) {
     send(gateway::encodePing(token_, std::uint64_t(now_ns / 1000), acks_.ack(), acks_.bits()));
-    next_ping_ns_ = now_ns + seconds(config_.ping_every_s);
+    last_ping_ns_ = now_ns;
+    next_ping_ns_ = now_ns + seconds(probing ? kProbeEveryS : config_.ping_every_s);
   }
-  return std::min(next_input_ns_, next_ping_ns_);
+  std::int64_t due = std::min(next_input_ns_, next_ping_ns_);
+  if (config_.resume_after_s > 0 && !resume_token_.empty()) {
+    std::int64_t probe_at = last_heard_ns_ + seconds(config_.resume_after_s / 2) + 1;
+    std::int64_t resume_at = last_heard_ns_ + seconds(config_.resume_after_s) + 1;
+    due = std::min(due, probing ? resume_at : probe_at);
+  }
+  return due;
+}
+
+const Endpoint& SimPlayer::knownGateway(std::size_t index) const {
+  return index == 0 ? config_.gateway : config_.fallback_gateways[index - 1];
+}
+
+bool SimPlayer::isKnownGateway(const Endpoint& e) const {
+  return e == config_.gateway || std::find(config_.fallback_gateways.begin(),
+                                           config_.fallback_gateways.end(),
+                                           e) != config_.fallback_gateways.end();
+}
+
+void SimPlayer::startNewStream() {
+  view_ = RemoteView();
+  lifecycle_.clear();
+  unknown_.clear();
+  acks_ = gateway::AckWindow();
+  clock_tick_ = newest_tick_ = -1;
+  handoffs_seen_ = 0;
+  last_handoff_tick_ = 0;
+  displayed_tick_ = -1;
+}
+
+void SimPlayer::beginResume(std::int64_t now_ns) {
+  token_ = 0;
+  resuming_ = true;
+  resume_started_ns_ = now_ns;
+  next_hello_ns_ = now_ns;
+  // A new nonce: a late Welcome of the old session is not this one's. The first Hellos go
+  // to the same gateway (restarted on its address), later ones to the next one known.
+  nonce_ = splitmix64(nonce_) | 1;
+  resume_gateway_since_ns_ = now_ns;
 }
 
 void SimPlayer::setDilation(float factor, std::int64_t now_ns) {
@@ -164,6 +237,7 @@ void SimPlayer::sendInput(std::int64_t now_ns) {
   if (auto self = view_.predicted(avatar_id_, serverTick(now_ns)))
     m = wander_.step(self->x, self->z, double(now_ns - start_ns_) * 1e-9);
   send(gateway::encodeInput(token_, ++seq_, m.x, m.z, acks_.ack(), acks_.bits()));
+  sent_inputs_.record({seq_, m.x, m.z});
   ++counters_.inputs;
   visible_sum_ += double(view_.size());
   ++visible_samples_;
@@ -215,9 +289,13 @@ void SimPlayer::deliverHeld(std::int64_t now_ns) {
 void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from,
                        std::int64_t now_ns) {
   using gateway::DropReason;
-  if (from != config_.gateway) {
-    counters_.drops.add(DropReason::WrongAddress);
-    return;
+  if (from != gateway_) {
+    // A resuming player asked several gateways in turn: whichever welcomes it first is the
+    // one it plays through (a Hello to another may still be answered).
+    if (!resuming_ || !isKnownGateway(from)) {
+      counters_.drops.add(DropReason::WrongAddress);
+      return;
+    }
   }
   if (gateway::isDownlinkFrame(bytes)) {
     // Checked against our token (none before the Welcome: not_ready).
@@ -226,6 +304,7 @@ void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from
       counters_.drops.add(*f.drop);
       return;
     }
+    last_heard_ns_ = now_ns;
     onFrame(f.frame, now_ns);
     return;
   }
@@ -236,9 +315,16 @@ void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from
   }
   const proto::Datagram& d = *v.datagram;
   if (d.msg_type() == proto::Message::Welcome) {
+    bool was_welcomed = welcomed();
     onWelcome(d, now_ns);
+    if (!was_welcomed && welcomed()) {
+      gateway_ = from;
+      for (std::size_t i = 0; i <= config_.fallback_gateways.size(); ++i)
+        if (knownGateway(i) == from) gateway_index_ = i;
+    }
     return;
   }
+  if (welcomed() && d.token() == token_) last_heard_ns_ = now_ns;
   if (!welcomed()) {
     counters_.drops.add(DropReason::NotReady);
     return;
@@ -259,15 +345,41 @@ void SimPlayer::onWelcome(const proto::Datagram& d, std::int64_t now_ns) {
   }
   if (welcomed()) return;  // a re-sent Welcome for our own retry
   token_ = w->token();
-  player_id_ = w->player_id();
+  if (const flatbuffers::Vector<std::uint8_t>* r = w->resume_token())
+    resume_token_.assign(r->begin(), r->end());
+  else
+    resume_token_.clear();
+  if (resuming_) {
+    onResumed(*w, now_ns);
+  } else {
+    player_id_ = w->player_id();
+    welcome_ns_ = now_ns;
+  }
   avatar_id_ = w->avatar_id();
   zone_ = w->zone();
   codec_.emplace(gateway::fromProto(*w->codec()));
   tick_rate_ = w->tick_rate();
   view_.configure({config_.blend, config_.blend_s, double(w->sim_dt())});
-  welcome_ns_ = now_ns;
+  last_heard_ns_ = now_ns;
   next_input_ns_ = now_ns;
   next_ping_ns_ = now_ns;
+}
+
+void SimPlayer::onResumed(const proto::Welcome& w, std::int64_t now_ns) {
+  resuming_ = false;
+  ++counters_.resumes;
+  counters_.resume_s.add(double(now_ns - last_heard_ns_) * 1e-9);
+  if (w.avatar_id() != avatar_id_) ++counters_.resume_new_avatar;
+  startNewStream();
+  // What the zone did not apply (sent to the dead gateway, or lost with it) goes again, in
+  // order, before anything new: the zone applies each seq once.
+  std::uint32_t applied = w.last_input_seq();
+  if (seq_ > applied) {
+    counters_.inputs_unresendable += sent_inputs_.since(applied + 1, [&](const gateway::InputRecord& in) {
+      send(gateway::encodeInput(token_, in.seq, in.move_x, in.move_z));
+      ++counters_.inputs_resent;
+    });
+  }
 }
 
 bool SimPlayer::fresh(std::uint32_t seq) {

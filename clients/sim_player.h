@@ -3,6 +3,9 @@
 // answered), inputs at a fixed rate from the wander profile, a Ping a second for RTT, and a
 // RemoteView fed by Spawn/StateBatch/Despawn (lean frames, checked with the session's token).
 // Everything from the network is verified first: the client does not trust the gateway either.
+// When the gateway falls silent, the player says Hello again with its Welcome's resume token,
+// to the same gateway (restarted) or the next one it knows, and goes on as the same player with
+// the same avatar: it resends the inputs after the last one the zone applied.
 
 #include <cstdint>
 #include <optional>
@@ -20,6 +23,7 @@
 #include "wire/datagram_batch.h"
 #include "wire/downlink_frame.h"
 #include "wire/impairment.h"
+#include "wire/input_history.h"
 #include "wire/udp_socket.h"
 #include "wire/wire_encode.h"
 #include "wire/wire_verify.h"
@@ -53,6 +57,15 @@ struct PlayerConfig {
   /// The player's kind, said in the Hello; its speed sets how near a wander target counts as
   /// reached (the zone moves the avatar at it).
   PlayerKind kind;
+  /// Nothing from the gateway for this long (seconds) means it is gone: resume elsewhere. The
+  /// gateway sends a quiet view the clock several times a second. 0: never resume.
+  double resume_after_s = 1.0;
+  /// A resume not welcomed after this long (seconds) gives up: the player starts over as a
+  /// new one (its avatar may have been removed, or the token expired).
+  double resume_give_up_s = 10;
+  /// Other gateways of the cluster to resume at, tried in turn after `gateway` (which may be
+  /// restarted on its address).
+  std::vector<Endpoint> fallback_gateways;
 };
 
 /// Where a player showed a sampled entity (dr/truth_sample.h) at a server tick.
@@ -83,6 +96,13 @@ struct PlayerCounters {
   Reservoir dr_error_m;  ///< correction seen at each update of a known entity
   double last_rtt_ms = 0;
   double min_dilation = 1;  ///< the slowest zone clock rate a Pong told of
+  // Gateway faults (resume tokens):
+  std::uint64_t resumes = 0;            ///< sessions resumed after the gateway fell silent
+  std::uint64_t resume_failed = 0;      ///< resumes given up: started over as a new player
+  std::uint64_t resume_new_avatar = 0;  ///< resumed with another avatar than before
+  std::uint64_t inputs_resent = 0;      ///< inputs sent again after a resume
+  std::uint64_t inputs_unresendable = 0;  ///< ones the zone lacked that were no longer kept
+  Reservoir resume_s;  ///< from the last datagram heard to the resumed Welcome, seconds
 };
 
 class SimPlayer {
@@ -123,6 +143,8 @@ class SimPlayer {
   std::uint64_t playerId() const { return player_id_; }
   std::uint64_t avatarId() const { return avatar_id_; }
   int zone() const { return zone_; }
+  /// The gateway the player plays through now.
+  const Endpoint& gateway() const { return gateway_; }
   /// Seconds from the first Hello to the Welcome (negative if none yet).
   double welcomeSeconds() const;
   const RemoteView& view() const { return view_; }
@@ -164,6 +186,17 @@ class SimPlayer {
   std::int64_t actDue(std::int64_t now_ns);
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
+  /// The gateway fell silent: say Hello with the resume token from now on, to the next
+  /// gateway in turn.
+  void beginResume(std::int64_t now_ns);
+  /// A resumed Welcome: a new session, so a new stream; resends what the zone lacks.
+  void onResumed(const proto::Welcome& w, std::int64_t now_ns);
+  /// A new session's stream: its datagram seqs, ticks and spawns start afresh, and the
+  /// gateway will spawn everything in view again.
+  void startNewStream();
+  /// [gateway, fallback_gateways...][index].
+  const Endpoint& knownGateway(std::size_t index) const;
+  bool isKnownGateway(const Endpoint& e) const;
   /// Handoff and Pong (FlatBuffers).
   void onMessage(const proto::Datagram& d, std::int64_t now_ns);
   /// A checked lean frame: Spawn, StateBatch or Despawn (wire/downlink_frame.h).
@@ -192,6 +225,13 @@ class SimPlayer {
   std::uint64_t token_ = 0, player_id_ = 0, avatar_id_ = 0;
   int zone_ = -1;
   std::uint32_t seq_ = 0;
+  Endpoint gateway_;                       // the gateway played through now
+  std::size_t gateway_index_ = 0;          // its place in [gateway, fallback_gateways...]
+  std::vector<std::uint8_t> resume_token_;  // the newest Welcome's (empty: none)
+  bool resuming_ = false;
+  std::int64_t last_heard_ns_ = 0, resume_started_ns_ = 0, resume_gateway_since_ns_ = 0;
+  std::int64_t last_ping_ns_ = 0;
+  gateway::InputHistory sent_inputs_;  // the newest inputs, resent after a resume
   std::int64_t start_ns_, first_hello_ns_ = -1, welcome_ns_ = -1;
   std::int64_t next_hello_ns_, next_input_ns_, next_ping_ns_;
   std::int64_t input_period_ns_;

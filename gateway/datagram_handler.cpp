@@ -11,6 +11,7 @@ void Outbox::clear() {
   spawns.clear();
   inputs.clear();
   closed.clear();
+  replaced.clear();
 }
 
 DatagramHandler::DatagramHandler(SessionTable& sessions, const HandlerConfig& config)
@@ -31,6 +32,13 @@ Bytes DatagramHandler::welcomeFor(const Session& s) const {
   w.world_max = proto::Vec3f(float(b.max.x), float(b.max.y), float(b.max.z));
   w.codec = config_.codec;
   w.sim_dt = config_.sim_dt;
+  w.last_input_seq = s.last_input_seq;
+  if (config_.resume_key) {
+    auth::ResumeToken r{s.player_id, std::uint8_t(s.kind), s.address.address, s.address.port,
+                        config_.unix_now_ms() + std::uint64_t(config_.resume_valid_s * 1000)};
+    auth::ResumeBytes b = auth::signResume(r, *config_.resume_key);
+    w.resume_token.assign(b.begin(), b.end());
+  }
   return encodeWelcome(w);
 }
 
@@ -127,16 +135,25 @@ void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, st
     ++accepted_;
     return;
   }
+  const proto::Hello& hello = *d.msg_as_Hello();
+  std::span<const std::uint8_t> resume;
+  if (const flatbuffers::Vector<std::uint8_t>* r = hello.resume_token()) resume = {r->data(), r->size()};
+  std::optional<auth::ResumeToken> resuming;
+  if (!resume.empty()) {
+    resuming = checkResume(resume, from);
+    if (!resuming) return;
+  }
   // Before the token check: a kind this world has no speed or nimbus for never costs an HMAC.
-  std::uint8_t kind = d.msg_as_Hello()->kind();
+  std::uint8_t kind = resuming ? resuming->kind : hello.kind();
   if (kind >= kPlayerKindCount || (config_.kinds & (std::uint32_t{1} << kind)) == 0) {
     drops_.add(DropReason::UnknownKind);
     return;
   }
   // After the retry check: a lost Welcome is resent to the address the token was checked for.
+  // A resumed player was admitted when it first came: no connect token again.
   std::optional<Admitted> admitted;
-  if (gate_) {
-    const flatbuffers::Vector<std::uint8_t>* t = d.msg_as_Hello()->connect_token();
+  if (gate_ && !resuming) {
+    const flatbuffers::Vector<std::uint8_t>* t = hello.connect_token();
     std::span<const std::uint8_t> token;
     if (t != nullptr) token = {t->data(), t->size()};
     DropReason refused = DropReason::TokenForged;
@@ -146,8 +163,19 @@ void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, st
       return;
     }
   }
-  auto created = sessions_.create(from, nonce, now_ns,
-                                  admitted ? std::optional(admitted->player_id) : std::nullopt);
+  std::optional<std::uint64_t> player;
+  if (resuming) {
+    player = resuming->player_id;
+    // The player thought this gateway dead while it was not (a long outage of its link): the
+    // old session gives way, and its avatar goes on under the new one.
+    if (auto old = sessions_.findByPlayer(*player)) {
+      out.replaced.push_back(*sessions_.get(*old));
+      sessions_.erase(*old);
+    }
+  } else if (admitted) {
+    player = admitted->player_id;
+  }
+  auto created = sessions_.create(from, nonce, now_ns, player);
   if (!created) {
     drops_.add(DropReason::SessionLimit);
     return;
@@ -160,8 +188,35 @@ void DatagramHandler::onHello(const proto::Datagram& d, const Endpoint& from, st
   s->kind = PlayerKindId(kind);
   s->traffic.datagrams_in = 1;
   s->traffic.bytes_in = size;
-  out.spawns.push_back({s->player_id, float(s->spawn_x), 0.0f, float(s->spawn_z), kind});
+  // A resumed player's zone knows it: the request re-announces its avatar where it is.
+  out.spawns.push_back({s->player_id, float(s->spawn_x), 0.0f, float(s->spawn_z), kind,
+                        resuming.has_value(), s->session_id});
+  s->resumed = resuming.has_value();
   ++accepted_;
+}
+
+std::optional<auth::ResumeToken> DatagramHandler::checkResume(std::span<const std::uint8_t> token,
+                                                              const Endpoint& from) {
+  if (!config_.resume_key) {
+    drops_.add(DropReason::ResumeForged);
+    return std::nullopt;
+  }
+  auth::ResumeVerdict v = auth::checkResume(token, *config_.resume_key, from.address, from.port,
+                                            config_.unix_now_ms());
+  switch (v.check) {
+    case auth::ResumeCheck::Ok:
+      return v.token;
+    case auth::ResumeCheck::Forged:
+      drops_.add(DropReason::ResumeForged);
+      break;
+    case auth::ResumeCheck::Expired:
+      drops_.add(DropReason::ResumeExpired);
+      break;
+    case auth::ResumeCheck::WrongAddress:
+      drops_.add(DropReason::ResumeWrongAddress);
+      break;
+  }
+  return std::nullopt;
 }
 
 void DatagramHandler::onInput(const proto::Input& in, Session& s, Outbox& out) {

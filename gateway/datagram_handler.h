@@ -12,6 +12,7 @@
 
 #include "auth/auth_key.h"
 #include "auth/connect_token.h"
+#include "auth/resume_token.h"
 #include "common/rng.h"
 #include "common/scene_geometry.h"
 #include "gateway/session_table.h"
@@ -26,6 +27,8 @@ struct SpawnCommand {
   std::uint64_t player_id = 0;
   float x = 0, y = 0, z = 0;
   std::uint8_t kind = 0;  ///< the player's kind (common/player_kind.h), checked against the scene
+  bool resumed = false;   ///< a player back with a resume token: its zone re-announces its avatar
+  std::uint64_t session_id = 0;  ///< the session asking (Session::session_id)
 };
 
 /// One player input to forward to the avatar's owning zone.
@@ -50,6 +53,9 @@ struct Outbox {
   std::vector<SpawnCommand> spawns;
   std::vector<InputCommand> inputs;
   std::vector<Session> closed;  ///< sessions ended by Bye (already erased): release interest
+  /// Sessions a resumed Hello of the same player replaced (already erased): release interest,
+  /// but keep the avatar, which the new session goes on with.
+  std::vector<Session> replaced;
   void clear();
 };
 
@@ -66,6 +72,10 @@ struct HandlerConfig {
   /// (gateway/token_gate.h). nullopt: any Hello opens a session, as without a lobby.
   std::optional<auth::AuthKey> auth_key{};
   std::uint16_t gateway_id = 0;  ///< the gateway tokens must be signed for
+  /// The key the cluster's gateways share for resume tokens (auth/resume_token.h): each
+  /// Welcome carries one, and a Hello with one comes back as its player. nullopt: no resume.
+  std::optional<auth::AuthKey> resume_key{};
+  double resume_valid_s = 86400;  ///< how long a Welcome's resume token is good for
   /// The player kinds the scene lists: bit i for kind id i (common/player_kind.h). A Hello of
   /// any other kind is refused. Default: walkers only, a scene without `clients.kinds`.
   std::uint32_t kinds = 1;
@@ -95,6 +105,9 @@ class DatagramHandler {
  private:
   void onHello(const proto::Datagram& d, const Endpoint& from, std::size_t size,
                std::int64_t now_ns, Outbox& out);
+  /// Checks a Hello's resume token: the player it brings back, or nullopt (counted).
+  std::optional<auth::ResumeToken> checkResume(std::span<const std::uint8_t> token,
+                                               const Endpoint& from);
   void onInput(const proto::Input& in, Session& s, Outbox& out);
   /// Takes one token from the session's bucket; false (drop) when it is empty.
   bool withinRate(Session& s, std::int64_t now_ns) const;

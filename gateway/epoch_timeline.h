@@ -8,7 +8,8 @@
 // back to where the checkpoint had them, not a disconnect. Samples of an older epoch than the
 // newest seen are dropped: they come from zones that are no longer the world.
 //
-// Epoch 0 maps onto itself, so a cluster that never restarts sees no change at all.
+// Epoch 0 maps onto itself, so a cluster that never restarts sees no change at all; so does the
+// first epoch a gateway sees, whichever it is (a gateway started after a restart).
 
 #include <cstdint>
 #include <optional>
@@ -51,6 +52,7 @@ class EpochTimeline {
   std::optional<double> sim_offset_ = 0.0;
   std::uint64_t newest_tick_ = 0;  // newest mapped, of any epoch
   double newest_sim_ = 0;
+  bool mapped_any_ = false, mapped_sim_ = false;  // a tick, a sim time mapped yet
 };
 
 }  // namespace zonesim::gateway

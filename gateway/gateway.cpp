@@ -29,6 +29,7 @@ HandlerConfig handlerConfig(const GatewayConfig& c) {
   HandlerConfig h{c.scene.world, float(c.scene.tick_rate), c.spawn_seed, dr::codecParams(c.scene),
                   float(c.scene.dt)};
   h.auth_key = c.auth_key;
+  h.resume_key = c.resume_key;
   h.gateway_id = std::uint16_t(c.gateway_id);
   h.kinds = 0;
   for (const PlayerKind& k : playerKinds(c.scene.clients)) h.kinds |= std::uint32_t{1} << int(k.id);
@@ -191,6 +192,7 @@ void Gateway::carryOut(Outbox& out) {
     link_.requestSpawn(c);
     ++counters_.spawn_requests;
     ++counters_.sessions_opened;
+    counters_.sessions_resumed += c.resumed ? 1 : 0;
   }
   for (const InputCommand& c : out.inputs) {
     if (link_.sendInput(c))
@@ -202,6 +204,10 @@ void Gateway::carryOut(Outbox& out) {
   for (const Session& s : out.closed) {
     retirePlayer(s, delta);
     ++counters_.sessions_closed;
+  }
+  for (const Session& s : out.replaced) {
+    releasePlayer(s, delta);
+    ++counters_.sessions_replaced;
   }
   applyCellDelta(delta);
   out.clear();
@@ -308,18 +314,28 @@ void Gateway::expireSessions(std::int64_t now_ns) {
   for (auto& [h, expired] : dead) closeSession(h, expired);
 }
 
-void Gateway::retirePlayer(const Session& s, CellDelta& delta) {
+void Gateway::releasePlayer(const Session& s, CellDelta& delta) {
   finished_players_.push_back(
       {s.player_id, double(nowNs() - s.created_ns) * 1e-9, s.traffic, s.kind});
   interest_.remove(s.player_id, delta);
-  link_.requestDespawn(s.player_id);
+}
+
+void Gateway::retirePlayer(const Session& s, CellDelta& delta) {
+  releasePlayer(s, delta);
+  link_.requestDespawn(s.player_id, s.session_id);
 }
 
 void Gateway::closeSession(SlotHandle h, bool expired) {
   Session* s = sessions_.get(h);
   if (s == nullptr) return;
   CellDelta delta;
-  retirePlayer(*s, delta);
+  // A resume that was never welcomed here leaves the avatar alone: the player may have been
+  // taken back by another gateway it also asked, or its avatar was already gone. The zone's
+  // orphan grace removes one nobody plays.
+  if (s->resumed && !s->welcomed)
+    releasePlayer(*s, delta);
+  else
+    retirePlayer(*s, delta);
   sessions_.erase(h);
   applyCellDelta(delta);
   ++(expired ? counters_.sessions_expired : counters_.sessions_closed);

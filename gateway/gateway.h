@@ -72,6 +72,9 @@ struct GatewayConfig {
   /// Where players reach this gateway, told to the lobby: address 0 means the bound address,
   /// port 0 the bound port (a gateway bound to 0.0.0.0 must name its address).
   Endpoint public_address{0, 0};
+  /// The key the cluster's gateways share for resume tokens (--resume-key-file, by default the
+  /// cluster's key): a player whose gateway died comes back to any of them as itself.
+  std::optional<auth::AuthKey> resume_key{};
 };
 
 class Gateway {
@@ -148,6 +151,8 @@ class Gateway {
   void closeSession(SlotHandle h, bool expired);
   /// Bookkeeping for a player whose session ended: its figures, its interest, its avatar.
   void retirePlayer(const Session& s, CellDelta& delta);
+  /// The same, keeping the avatar: a resumed session of the player goes on with it.
+  void releasePlayer(const Session& s, CellDelta& delta);
   /// Ends a metrics second: each client's rate over it, and a gateway.jsonl line if enabled.
   void writeMetrics(std::int64_t now_ns);
   GatewayGauges gauges(std::int64_t now_ns);

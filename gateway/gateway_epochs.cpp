@@ -80,7 +80,8 @@ void Gateway::followEpochs(std::int64_t now_ns) {
     double x = s.spawn_x, z = s.spawn_z;
     if (s.welcomed) avatarPosition(s, sim_now, x, z);
     s.respawning = s.welcomed;
-    link_.requestSpawn({s.player_id, float(x), 0.0f, float(z), std::uint8_t(s.kind)});
+    link_.requestSpawn(
+        {s.player_id, float(x), 0.0f, float(z), std::uint8_t(s.kind), s.resumed, s.session_id});
     ++counters_.avatars_reasked;
   });
 }

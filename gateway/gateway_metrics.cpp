@@ -27,6 +27,8 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("sessions_opened", c.sessions_opened)
       .add("sessions_closed", c.sessions_closed)
       .add("sessions_expired", c.sessions_expired)
+      .add("sessions_resumed", c.sessions_resumed)
+      .add("sessions_replaced", c.sessions_replaced)
       .add("dds_samples", c.dds_samples)
       .add("ownership_foreign", c.ownership_foreign)
       .add("ownership_stale", c.ownership_stale)

@@ -23,6 +23,8 @@ struct GatewayCounters {
   std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
   std::uint64_t clock_ticks = 0;      ///< empty StateBatches sent to quiet views
   std::uint64_t sessions_opened = 0, sessions_closed = 0, sessions_expired = 0;
+  std::uint64_t sessions_resumed = 0;   ///< opened by a resume token: a player whose gateway died
+  std::uint64_t sessions_replaced = 0;  ///< live ones a resume of the same player took over
   std::uint64_t dds_samples = 0, ownership_foreign = 0, ownership_stale = 0;
   std::uint64_t deferred = 0;  ///< spawns, updates and despawns held back a tick for want of budget
   std::uint64_t held = 0;      ///< updates not sent: the error shown stayed within the angle

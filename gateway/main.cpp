@@ -81,10 +81,15 @@ int main(int argc, char** argv) {
                  "the ticks between send only what changed of what it holds (default 4; 1 = "
                  "every tick)")
       ->check(CLI::PositiveNumber);
-  std::string auth_key_file, public_address;
+  std::string auth_key_file, public_address, resume_key_file;
   app.add_option("--auth-key-file", auth_key_file,
                  "the cluster's key (at least 32 random bytes, shared with the lobby): every "
                  "Hello then needs the lobby's connect token, and the load goes to the lobby");
+  app.add_option("--resume-key-file", resume_key_file,
+                 "the key (at least 32 random bytes) the cluster's gateways share for resume "
+                 "tokens: each Welcome carries one, and a player whose gateway died says Hello "
+                 "with it to any of them and gets its avatar back (default: --auth-key-file; "
+                 "neither: no resume)");
   app.add_option("--public-address", public_address,
                  "ADDR[:PORT] players reach this gateway at, told to the lobby (default: the "
                  "bound address and port; needed with --bind 0.0.0.0)");
@@ -116,6 +121,10 @@ int main(int argc, char** argv) {
         budget_from_cli ? "--budget-kbps" : "clients.downlink_kbps",
         angle_from_cli ? "--budget-error-angle-deg" : "clients.downlink_error_angle_deg"};
     if (!auth_key_file.empty()) cfg.auth_key = zonesim::auth::loadAuthKey(auth_key_file);
+    if (!resume_key_file.empty())
+      cfg.resume_key = zonesim::auth::loadAuthKey(resume_key_file);
+    else
+      cfg.resume_key = cfg.auth_key;
     if (!public_address.empty()) {
       if (auth_key_file.empty())
         throw std::runtime_error("--public-address is told to the lobby: it needs --auth-key-file");

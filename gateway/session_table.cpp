@@ -32,15 +32,18 @@ std::uint64_t SessionTable::freshToken() {
   }
 }
 
+std::uint64_t SessionTable::issuedId(std::uint32_t serial) const {
+  return (std::uint64_t{incarnation_} << 48) | (std::uint64_t{gateway_id_} << 32) | serial;
+}
+
 std::optional<SlotHandle> SessionTable::create(const Endpoint& address, std::uint64_t client_nonce,
                                                std::int64_t now_ns,
                                                std::optional<std::uint64_t> player_id) {
   if (pool_.size() >= max_sessions_) return std::nullopt;
   Session s;
   s.token = freshToken();
-  s.player_id = player_id ? *player_id
-                          : (std::uint64_t{incarnation_} << 48) |
-                                (std::uint64_t{gateway_id_} << 32) | ++player_counter_;
+  s.player_id = player_id ? *player_id : issuedId(++player_counter_);
+  s.session_id = issuedId(++session_counter_);
   s.client_nonce = client_nonce;
   s.address = address;
   s.created_ns = s.last_heard_ns = now_ns;

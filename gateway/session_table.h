@@ -12,7 +12,7 @@
 #include "common/player_kind.h"
 #include "gateway/client_view.h"
 #include "gateway/downlink_budget.h"
-#include "gateway/input_history.h"
+#include "wire/input_history.h"
 #include "wire/ack_window.h"
 #include "wire/udp_socket.h"
 #include "wire/wire_encode.h"
@@ -41,6 +41,9 @@ struct PendingHandoff {
 struct Session {
   std::uint64_t token = 0;
   std::uint64_t player_id = 0;
+  /// Unique in the cluster, as issued player ids are; zones match a despawn request to the
+  /// session that asked for the avatar last (a resumed player's old session must not remove it).
+  std::uint64_t session_id = 0;
   std::uint64_t client_nonce = 0;
   PlayerKindId kind = PlayerKindId::Walker;  ///< from the Hello: the nimbus and speed it gets
   Endpoint address;
@@ -50,6 +53,7 @@ struct Session {
   std::uint32_t owner_epoch = 0;     ///< cluster epoch of that event
   bool respawning = false;           ///< the restored world lacks the avatar: a new one is asked
   bool welcomed = false;             ///< Welcome sent: inputs are accepted from now on
+  bool resumed = false;              ///< opened by a resume token (auth/resume_token.h)
   std::uint32_t last_input_seq = 0;  ///< last seq forwarded to the zone
   InputHistory inputs;               ///< the newest forwarded, for resending after a restart
   std::uint32_t resend_from = 0;     ///< after a restart: resend inputs from this seq
@@ -110,11 +114,14 @@ class SessionTable {
     }
   };
   std::uint64_t freshToken();
+  /// incarnation | gateway id | serial: an id no other gateway, nor this one before a restart,
+  /// issues.
+  std::uint64_t issuedId(std::uint32_t serial) const;
 
   std::uint32_t gateway_id_;
   std::uint16_t incarnation_;
   std::size_t max_sessions_;
-  std::uint32_t player_counter_ = 0;
+  std::uint32_t player_counter_ = 0, session_counter_ = 0;
   // Tokens must not be guessable: seeded from the OS entropy source, not from the scene seed.
   std::mt19937_64 token_rng_;
   GenerationalPool<Session> pool_;

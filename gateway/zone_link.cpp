@@ -43,6 +43,7 @@ std::size_t ZoneLink::flushSpawns() {
     r.player_id = c.player_id;
     r.position = {c.x, c.y, c.z};
     r.kind = c.kind;
+    r.session = c.session_id;
     // A write that times out (a zone not keeping up) is retried on the next tick.
     if (dds_write(spawn_writer_.writer.get(), &r) < 0) break;
     ++written;
@@ -51,15 +52,17 @@ std::size_t ZoneLink::flushSpawns() {
   return written;
 }
 
-void ZoneLink::requestDespawn(std::uint64_t player_id) {
-  auto held = std::find_if(held_spawns_.begin(), held_spawns_.end(),
-                           [&](const SpawnCommand& c) { return c.player_id == player_id; });
+void ZoneLink::requestDespawn(std::uint64_t player_id, std::uint64_t session_id) {
+  auto held = std::find_if(held_spawns_.begin(), held_spawns_.end(), [&](const SpawnCommand& c) {
+    return c.player_id == player_id && c.session_id == session_id;
+  });
   if (held != held_spawns_.end()) {
     held_spawns_.erase(held);  // never reached a zone: nothing to remove there
     return;
   }
   zonesim_dds_DespawnRequest r{};
   r.player_id = player_id;
+  r.session = session_id;
   // A zone that stopped reading makes the write time out; the gateway must not stall or die.
   if (dds_write(despawn_writer_.writer.get(), &r) < 0)
     ZS_WARN("despawn request for player %llu timed out", (unsigned long long)player_id);

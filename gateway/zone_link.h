@@ -30,8 +30,9 @@ class ZoneLink {
   /// Writes held spawn requests if enough zones listen now; returns how many were written.
   std::size_t flushSpawns();
   std::size_t heldSpawns() const { return held_spawns_.size(); }
-  /// The player left: drops its held spawn request, or asks the zones to remove its avatar.
-  void requestDespawn(std::uint64_t player_id);
+  /// The player left session_id: drops the session's held spawn request, or asks the zones to
+  /// remove its avatar (which they do only if no newer session asked for it).
+  void requestDespawn(std::uint64_t player_id, std::uint64_t session_id);
   /// Writes one input on the owning zone's partition; false if the write failed (timed out).
   bool sendInput(const InputCommand& c);
 

@@ -46,6 +46,12 @@ const char* dropReasonName(DropReason reason) {
       return "token_reused";
     case DropReason::UnknownKind:
       return "unknown_kind";
+    case DropReason::ResumeForged:
+      return "resume_forged";
+    case DropReason::ResumeExpired:
+      return "resume_expired";
+    case DropReason::ResumeWrongAddress:
+      return "resume_wrong_address";
     case DropReason::Count:
       break;
   }

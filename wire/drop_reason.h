@@ -37,6 +37,10 @@ enum class DropReason : std::uint8_t {
   TokenWrongAddress,  ///< the token is replayed from another address or port than it names
   TokenReused,        ///< the token already opened a session here (each opens one)
   UnknownKind,        ///< Hello refused: a player kind the gateway's scene does not list
+  // Hellos with a resume token (auth/resume_token.h) refused:
+  ResumeForged,        ///< not signed with the gateways' resume key (or malformed), or no key
+  ResumeExpired,       ///< the resume token's expiry has passed
+  ResumeWrongAddress,  ///< presented from another address or port than it names
   Count
 };
 

@@ -27,15 +27,26 @@ Bytes finish(flatbuffers::FlatBufferBuilder& fbb, std::uint64_t token, proto::Me
 
 }  // namespace
 
+namespace {
+// No bytes, no field: a Hello or Welcome without a token is the same bytes as before tokens
+// existed.
+flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> optionalBytes(
+    flatbuffers::FlatBufferBuilder& fbb, std::span<const std::uint8_t> bytes) {
+  if (bytes.empty()) return {};
+  return fbb.CreateVector(bytes.data(), bytes.size());
+}
+}  // namespace
+
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
-                  std::span<const std::uint8_t> connect_token, std::uint8_t kind) {
-  flatbuffers::FlatBufferBuilder fbb(128 + connect_token.size());
-  // No token, no field: a Hello without one is the same bytes as before tokens existed (and a
-  // walker's kind, the default 0, is not written either).
-  flatbuffers::Offset<flatbuffers::Vector<std::uint8_t>> t;
-  if (!connect_token.empty()) t = fbb.CreateVector(connect_token.data(), connect_token.size());
+                  std::span<const std::uint8_t> connect_token, std::uint8_t kind,
+                  std::span<const std::uint8_t> resume_token) {
+  flatbuffers::FlatBufferBuilder fbb(128 + connect_token.size() + resume_token.size());
+  auto t = optionalBytes(fbb, connect_token);
+  auto r = optionalBytes(fbb, resume_token);
   auto n = fbb.CreateString(name.data(), name.size());
-  return finish(fbb, 0, proto::Message::Hello, proto::CreateHello(fbb, client_nonce, n, t, kind));
+  // A walker's kind, the default 0, is not written either.
+  return finish(fbb, 0, proto::Message::Hello,
+                proto::CreateHello(fbb, client_nonce, n, t, kind, r));
 }
 
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
@@ -84,10 +95,12 @@ dr::CodecParams fromProto(const proto::CodecParams& c) {
 }
 
 Bytes encodeWelcome(const WelcomeInfo& w) {
-  flatbuffers::FlatBufferBuilder fbb(256);
+  flatbuffers::FlatBufferBuilder fbb(256 + w.resume_token.size());
   proto::CodecParams codec = toProto(w.codec);
+  auto r = optionalBytes(fbb, w.resume_token);
   auto msg = proto::CreateWelcome(fbb, w.client_nonce, w.token, w.player_id, w.avatar_id, w.zone,
-                                  w.tick_rate, &w.world_min, &w.world_max, &codec, w.sim_dt);
+                                  w.tick_rate, &w.world_min, &w.world_max, &codec, w.sim_dt, r,
+                                  w.last_input_seq);
   return finish(fbb, w.token, proto::Message::Welcome, msg);
 }
 

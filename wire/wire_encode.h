@@ -33,6 +33,8 @@ struct WelcomeInfo {
   proto::Vec3f world_min, world_max;
   dr::CodecParams codec;
   float sim_dt = 1.0f / 30;
+  std::vector<std::uint8_t> resume_token;  ///< auth/resume_token.h; empty: none
+  std::uint32_t last_input_seq = 0;        ///< the last input the avatar's zone applied
 };
 
 /// The wire form of codec parameters, and back.
@@ -50,9 +52,11 @@ struct HandoffInfo {
 };
 
 /// connect_token: the lobby's token, opaque here (empty: none, for a gateway without a key);
-/// kind: the player's kind id (common/player_kind.h).
+/// kind: the player's kind id (common/player_kind.h); resume_token: an earlier Welcome's, to come
+/// back as the same player after a gateway died (empty: a new player).
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
-                  std::span<const std::uint8_t> connect_token = {}, std::uint8_t kind = 0);
+                  std::span<const std::uint8_t> connect_token = {}, std::uint8_t kind = 0,
+                  std::span<const std::uint8_t> resume_token = {});
 /// ack / ack_bits: the client's acknowledgement of gateway datagrams (wire/ack_window.h).
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
                   std::uint32_t ack = 0, std::uint32_t ack_bits = 0);

@@ -33,7 +33,8 @@ bool checkToGateway(const proto::Datagram& d) {
       const proto::Hello* h = d.msg_as_Hello();
       return h->client_nonce() != 0 &&
              (h->name() == nullptr || h->name()->size() <= kMaxNameBytes) &&
-             (h->connect_token() == nullptr || h->connect_token()->size() <= kMaxConnectTokenBytes);
+             (h->connect_token() == nullptr || h->connect_token()->size() <= kMaxConnectTokenBytes) &&
+             (h->resume_token() == nullptr || h->resume_token()->size() <= kMaxConnectTokenBytes);
     }
     case proto::Message::Input: {
       const proto::Input* in = d.msg_as_Input();

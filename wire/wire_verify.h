@@ -19,8 +19,8 @@ namespace zonesim::gateway {
 inline constexpr std::size_t kMinDatagramBytes = 8;
 /// Longest player name accepted in a Hello.
 inline constexpr std::size_t kMaxNameBytes = 64;
-/// Longest connect token accepted in a Hello: room above today's 57 bytes for a later version;
-/// the exact size is the token check's business (auth/connect_token.h).
+/// Longest connect or resume token accepted in a Hello: room above today's 57 and 56 bytes for
+/// a later version; the exact size is the token check's business (auth/).
 inline constexpr std::size_t kMaxConnectTokenBytes = 128;
 /// Slack on |move| <= 1 for rounding on the client.
 inline constexpr float kMoveEpsilon = 1e-3f;

@@ -39,7 +39,7 @@ void Players::input(PlayerZone& zone) {
   forwarded_in_.clear();
   if (zone.link) {
     for (const SpawnRequestMsg& s : zone.link->takeSpawnRequests()) spawnAvatar(zone, s);
-    for (std::uint64_t player : zone.link->takeDespawnRequests()) despawnAvatar(zone, player);
+    for (const DespawnRequestMsg& d : zone.link->takeDespawnRequests()) despawnAvatar(zone, d);
     for (const PlayerInputMsg& in : zone.link->takeInputs())
       applyInput(zone, in.player_id, in.seq, in.move_x, in.move_z);
   }
@@ -90,6 +90,7 @@ void Players::spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request) {
   // and so is a request whose player already left (the despawn overtook it).
   bool seen = !known_players_.insert(player_id).second;
   if (despawned_players_.count(player_id)) return;
+  session_of_[player_id] = request.session;
   std::optional<std::size_t> mine = store.avatarOf(player_id);
   if (seen) {
     if (mine && zone.link) {
@@ -123,7 +124,17 @@ void Players::spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request) {
            (unsigned long long)player_id);
 }
 
-void Players::despawnAvatar(PlayerZone& zone, std::uint64_t player_id) {
+void Players::despawnAvatar(PlayerZone& zone, const DespawnRequestMsg& request) {
+  std::uint64_t player_id = request.player_id;
+  // A session the player left by resuming at another gateway (which asked for the avatar
+  // since) times out there; the player plays on. Requests of one player are seconds apart, so
+  // every zone reads the two in the same order.
+  if (auto newest = session_of_.find(player_id);
+      newest != session_of_.end() && newest->second != request.session) {
+    if (zone.store.avatarOf(player_id)) ++zone.counters.despawns_superseded;  // once, by its owner
+    return;
+  }
+  session_of_.erase(player_id);
   // Every zone remembers the request: an avatar migrating while zones read it is removed on
   // arrival at a zone that has already seen it.
   despawned_players_.insert(player_id);

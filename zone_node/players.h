@@ -25,6 +25,7 @@ namespace zonesim::zone {
 class GatewayLink;
 struct MigrationResult;
 struct SpawnRequestMsg;
+struct DespawnRequestMsg;
 struct TickCounters;
 
 /// What the protocol changes in its zone during a tick.
@@ -73,7 +74,7 @@ class Players {
                   float move_z);
   /// Applies held inputs whose turn has come, or whose gap has waited kInputHoldTicks.
   void releaseHeldInputs(PlayerZone& zone);
-  void despawnAvatar(PlayerZone& zone, std::uint64_t player_id);
+  void despawnAvatar(PlayerZone& zone, const DespawnRequestMsg& request);
   void destroyAt(PlayerZone& zone, std::size_t index);
   /// Removes the avatars that have gone orphan_grace_ticks without an input (checked once a
   /// second).
@@ -88,7 +89,10 @@ class Players {
   std::vector<ForwardedInput> forwarded_in_;                 // to apply next input phase
   std::unordered_map<std::uint64_t, int> departed_players_;  // player -> rank its avatar went to
   std::unordered_set<std::uint64_t> known_players_;          // every spawn request seen
-  std::unordered_set<std::uint64_t> despawned_players_;      // every despawn request seen
+  std::unordered_set<std::uint64_t> despawned_players_;      // every despawn request obeyed
+  // player -> the gateway session of its newest spawn request: a player that resumed at
+  // another gateway leaves its old session behind, whose timeout must not remove the avatar.
+  std::unordered_map<std::uint64_t, std::uint64_t> session_of_;
   struct HeldInput {
     float move_x, move_z;
     std::uint64_t since_tick;

@@ -77,6 +77,9 @@ struct TickCounters {
   std::uint64_t avatars_spawned = 0;
   std::uint64_t avatars_refused = 0;  ///< spawn requests of a player kind the scene lacks
   std::uint64_t avatars_orphaned = 0;  ///< removed after the orphan grace without an input
+  /// Despawn requests ignored: from a session the player left by resuming elsewhere (counted
+  /// by the zone holding the avatar).
+  std::uint64_t despawns_superseded = 0;
   std::uint64_t entities_destroyed = 0;
   std::uint64_t rebalances = 0;
   std::uint64_t dds_write_failures = 0;
@@ -123,6 +126,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"avatars_spawned", &TickCounters::avatars_spawned, false},
     {"avatars_refused", &TickCounters::avatars_refused, false},
     {"avatars_orphaned", &TickCounters::avatars_orphaned, false},
+    {"despawns_superseded", &TickCounters::despawns_superseded, false},
     {"entities_destroyed", &TickCounters::entities_destroyed, false},
     {"rebalances", &TickCounters::rebalances, false},
     {"dds_write_failures", &TickCounters::dds_write_failures, false},

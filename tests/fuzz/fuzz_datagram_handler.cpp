@@ -2,7 +2,8 @@
 // one of which owns a live session, raw or with a valid checksum appended (to get past it),
 // plus well-formed inputs carrying that session's token with fuzzed values (to reach the range
 // checks behind the Verifier), plus Hellos to a gateway with the cluster key carrying fuzzed
-// connect tokens, raw or signed with fuzzed fields (to reach the checks behind the tag). And
+// connect or resume tokens, raw or signed with fuzzed fields (to reach the checks behind the
+// tag). And
 // the client's side: fuzzed client-bound datagrams through the client's checks, lean frames
 // raw or sealed with the session's keyed checksum, their states unpacked by the client's codec.
 // It must never crash, hang or trip a sanitizer; every datagram is either accepted or dropped
@@ -15,6 +16,7 @@
 #include <span>
 
 #include "auth/connect_token.h"
+#include "auth/resume_token.h"
 #include "dr/state_codec.h"
 #include "gateway/datagram_handler.h"
 #include "gateway/session_table.h"
@@ -63,7 +65,7 @@ auth::AuthKey fuzzKey() {
   return auth::AuthKey(std::vector<std::uint8_t>(32, 0x5c), "fuzz key");
 }
 
-/// A gateway (id 1) that requires connect tokens, its clock fixed.
+/// A gateway (id 1) that requires connect tokens and takes resume tokens, its clock fixed.
 struct KeyedHarness {
   SessionTable sessions{1, 64};
   DatagramHandler handler{sessions, config()};
@@ -73,6 +75,7 @@ struct KeyedHarness {
     HandlerConfig c;
     c.world = {{0, 0, 0}, {100, 10, 100}};
     c.auth_key = fuzzKey();
+    c.resume_key = fuzzKey();
     c.gateway_id = 1;
     c.unix_now_ms = [] { return std::uint64_t{1'800'000'000'000}; };
     return c;
@@ -108,6 +111,31 @@ void fuzzTokenHello(std::span<const std::uint8_t> rest, bool sign, const Endpoin
   k.out.clear();
 }
 
+/// A resuming Hello to the keyed gateway: rest as the resume token, or one signed from fields
+/// in rest (any player, any kind, any expiry).
+void fuzzResumeHello(std::span<const std::uint8_t> rest, bool sign, const Endpoint& from) {
+  KeyedHarness& k = keyed();
+  if (sign && rest.size() >= 24) {
+    auth::ResumeToken t;
+    std::memcpy(&t.player_id, rest.data(), 8);
+    std::memcpy(&t.expiry_unix_ms, rest.data() + 8, 8);
+    t.kind = rest[16];
+    std::memcpy(&t.client_port, rest.data() + 18, 2);
+    std::memcpy(&t.client_address, rest.data() + 20, 4);
+    if (rest.size() > 24 && (rest[24] & 1)) {
+      t.client_address = from.address;
+      t.client_port = from.port;
+    }
+    auth::ResumeBytes b = auth::signResume(t, fuzzKey());
+    k.handler.handle(encodeHello(t.player_id | 1, "fuzz", {}, 0, b), from, 0, k.out);
+  } else {
+    k.handler.handle(
+        encodeHello(7, "fuzz", {}, 0, rest.first(std::min<std::size_t>(rest.size(), 128))), from,
+        0, k.out);
+  }
+  k.out.clear();
+}
+
 /// What a client does with a datagram from its gateway (clients/sim_player.cpp, session token
 /// kClientToken): rest raw, or sealed with the keyed checksum to reach the checks behind it.
 void fuzzClientBound(std::span<const std::uint8_t> rest, bool seal) {
@@ -139,6 +167,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Endpoint& from = (mode & 3) == 0 ? h.player : (mode & 3) == 1 ? h.stranger : h.other;
   if ((mode & 0xe0) == 0x20) {
     fuzzTokenHello(rest, mode & 0x10, from);
+    return 0;
+  }
+  if ((mode & 0xe0) == 0xa0) {
+    fuzzResumeHello(rest, mode & 0x10, from);
     return 0;
   }
   if ((mode & 0xe0) == 0x60) {

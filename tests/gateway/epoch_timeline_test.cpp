@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "gateway/input_history.h"
+#include "wire/input_history.h"
 
 namespace zonesim::gateway {
 namespace {
@@ -46,6 +46,19 @@ TEST(EpochTimeline, SamplesOfAnOlderEpochAreDroppedAndCounted) {
   ASSERT_TRUE(s.has_value());
   EXPECT_EQ(s->tick, 402u);
   EXPECT_DOUBLE_EQ(s->sim_time, 20.05);
+}
+
+// A gateway started after the zones restarted (or restarted itself) has told no client any
+// tick: it takes the epoch it first hears of as it comes, and still follows later restarts.
+TEST(EpochTimeline, TheFirstEpochHeardOfMapsOntoItself) {
+  EpochTimeline t(0.05);
+  auto a = t.map(3, 900, 45.0);
+  ASSERT_TRUE(a.has_value());
+  EXPECT_EQ(a->tick, 900u);
+  EXPECT_DOUBLE_EQ(a->sim_time, 45.0);
+  auto b = t.map(4, 700, 35.0);
+  EXPECT_EQ(b->tick, 901u);
+  EXPECT_DOUBLE_EQ(b->sim_time, 45.05);
 }
 
 TEST(InputHistory, ResendsFromASeqAndCountsWhatItNoLongerHolds) {

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <thread>
 
+#include "auth/resume_token.h"
 #include "client_read.h"
 #include "common/timer.h"
 #include "gateway/gateway.h"
@@ -26,6 +27,7 @@ class GatewayLoopback : public LoopbackGatewayTest {
   void SetUp() override {
     GatewayConfig cfg;
     cfg.scene = testing::smallScene();
+    cfg.resume_key = auth::AuthKey(std::vector<std::uint8_t>(32, 0x5c), "test resume key");
     openGateway(cfg);
   }
 
@@ -56,7 +58,7 @@ class GatewayLoopback : public LoopbackGatewayTest {
     std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0, next_tick = 0, next_ack = 0;
     while (nowNs() < deadline && !(token && spawned_avatar_ && spawned_npc_ && got_batch_)) {
       if (token == 0 && nowNs() >= next_hello) {
-        client_.sendTo(gateway_addr_, encodeHello(99, "tester"));
+        client_.sendTo(gateway_addr_, encodeHello(hello_nonce_, "tester"));
         next_hello = nowNs() + 500'000'000;
       }
       if (nowNs() >= next_tick) {
@@ -89,12 +91,14 @@ class GatewayLoopback : public LoopbackGatewayTest {
   void observe(const ClientRead& r) {
     if (r.datagram && r.datagram->msg_type() == proto::Message::Welcome) {
       const proto::Welcome* w = r.datagram->msg_as_Welcome();
-      EXPECT_EQ(w->client_nonce(), 99u);
+      EXPECT_EQ(w->client_nonce(), hello_nonce_);
       EXPECT_EQ(w->avatar_id(), kAvatar);
       EXPECT_EQ(w->player_id(), player_);
       EXPECT_EQ(w->zone(), 0);
       token_ = w->token();
       codec_.emplace(fromProto(*w->codec()));
+      welcome_last_input_seq_ = w->last_input_seq();
+      if (const auto* t = w->resume_token()) resume_token_.assign(t->begin(), t->end());
     }
     if (!r.frame) return;
     const DownlinkFrame& f = *r.frame;
@@ -123,8 +127,9 @@ class GatewayLoopback : public LoopbackGatewayTest {
   }
 
   static constexpr std::uint64_t kAvatar = 0x1000000000001ULL, kNpc = 0x1000000000002ULL;
-  std::uint64_t player_ = 0, tick_ = 0, token_ = 0;
-  std::uint32_t seq_ = 0;
+  std::uint64_t player_ = 0, tick_ = 0, token_ = 0, hello_nonce_ = 99;
+  std::uint32_t seq_ = 0, welcome_last_input_seq_ = 0;
+  std::vector<std::uint8_t> resume_token_;
   float spawn_x_ = 0, spawn_z_ = 0;
   bool spawned_avatar_ = false, spawned_npc_ = false, got_batch_ = false;
   std::optional<dr::StateCodec> codec_;
@@ -219,6 +224,60 @@ TEST_F(GatewayLoopback, ARestoredWorldGetsTheLostInputsAndOldEpochsAreIgnored) {
   ASSERT_FALSE(later.empty());
   EXPECT_GT(later.back().seq, sent);
   EXPECT_TRUE(zone_->takeInputs(3).empty());
+}
+
+// The gateway dies with the player in play (inputs 1..6 or more sent, the zone applied 1..4
+// when it last said); a restarted one takes the player back with its resume token: the same
+// player and avatar, a Welcome naming input 4, and inputs after it reach the zone in order.
+TEST_F(GatewayLoopback, ARestartedGatewayResumesThePlayerWithItsToken) {
+  startGateway();
+  ASSERT_NE(handshakeAndFirstState(), 0u) << "no Welcome";
+  ASSERT_EQ(resume_token_.size(), auth::kResumeTokenBytes);
+  while (seq_ < 6) inputsArrivingAt(0, token_);
+  const std::uint64_t player = player_, old_token = token_;
+  const std::uint32_t sent = seq_, last = sent + 2;
+
+  restartGateway();
+  zone_->takeInputs(0);  // stragglers of the first session
+  token_ = 0;
+  hello_nonce_ = 100;  // a resuming client says Hello anew
+  bool asked = false;
+  std::int64_t deadline = nowNs() + kTimeoutNs, next_hello = 0;
+  while (nowNs() < deadline && token_ == 0) {
+    if (nowNs() >= next_hello) {
+      client_.sendTo(gateway_addr_, encodeHello(hello_nonce_, "tester", {}, 0, resume_token_));
+      next_hello = nowNs() + 200'000'000;
+    }
+    // The zone knows the player: it re-announces the avatar where it is, with input 4 applied.
+    for (const auto& r : zone_->takeSpawnRequests()) {
+      EXPECT_EQ(r.player_id, player) << "the token's player, not a new one";
+      asked = true;
+      zone_->publishOwnership(player, kAvatar, -1, 0, tick_, 4);
+    }
+    observe(receive());
+  }
+  ASSERT_TRUE(asked) << "no spawn request from the restarted gateway";
+  ASSERT_NE(token_, 0u) << "no Welcome from the restarted gateway";
+  EXPECT_NE(token_, old_token) << "a new session";
+  EXPECT_EQ(welcome_last_input_seq_, 4u);
+  EXPECT_EQ(gateway_->counters().sessions_resumed, 1u);
+
+  // The client resends 5.. and goes on: the zone reads them in order, none twice.
+  std::vector<std::uint32_t> got;
+  deadline = nowNs() + kTimeoutNs;
+  std::uint32_t next = welcome_last_input_seq_;
+  while (nowNs() < deadline && (got.empty() || got.back() < last)) {
+    if (next < last) client_.sendTo(gateway_addr_, encodeInput(token_, ++next, 0.6f, 0.8f));
+    for (const zonesim_dds_PlayerInput& in : zone_->takeInputs(0)) {
+      EXPECT_EQ(in.player_id, player);
+      EXPECT_EQ(in.avatar_id, kAvatar);
+      got.push_back(in.seq);
+    }
+    receive();
+  }
+  std::vector<std::uint32_t> expected;
+  for (std::uint32_t s = 5; s <= last; ++s) expected.push_back(s);
+  EXPECT_EQ(got, expected) << "inputs 5.." << sent << " resent, then new ones";
 }
 
 TEST_F(GatewayLoopback, ForgedTrafficIsCountedAndHarmless) {

@@ -24,9 +24,21 @@ class LoopbackGatewayTest : public ::testing::Test {
     cfg.dds_domain = domain;
     cfg.gateway_id = testing::privateGatewayId();
     cfg.expected_zones = 1;
+    cfg_ = cfg;
     gateway_ = std::make_unique<Gateway>(cfg);
     zone_ = std::make_unique<testing::ZoneEmulator>(domain, cfg.scene, cfg.gateway_id);
     gateway_addr_ = Endpoint::loopback(gateway_->port());
+  }
+  /// Ends the gateway, sessions and all, and starts a new one of the same id on the same domain
+  /// and another port, as a supervisor restarts a dead one; the zone emulator stays.
+  void restartGateway() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+    gateway_.reset();
+    stop_ = false;
+    gateway_ = std::make_unique<Gateway>(cfg_);
+    gateway_addr_ = Endpoint::loopback(gateway_->port());
+    startGateway();
   }
   void startGateway() {
     thread_ = std::thread([this] { gateway_->run(stop_); });
@@ -36,6 +48,7 @@ class LoopbackGatewayTest : public ::testing::Test {
     if (thread_.joinable()) thread_.join();
   }
 
+  GatewayConfig cfg_;
   std::unique_ptr<Gateway> gateway_;
   std::unique_ptr<testing::ZoneEmulator> zone_;
   Endpoint gateway_addr_;

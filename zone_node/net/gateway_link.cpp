@@ -32,16 +32,17 @@ std::vector<SpawnRequestMsg> GatewayLink::takeSpawnRequests() {
   std::vector<SpawnRequestMsg> out;
   dds::takeAll<zonesim_dds_SpawnRequest>(
       spawns_.reader.get(), [&](const zonesim_dds_SpawnRequest& s) {
-        out.push_back({s.player_id, double(s.position.x), double(s.position.z), s.kind});
+        out.push_back(
+            {s.player_id, double(s.position.x), double(s.position.z), s.kind, s.session});
       });
   return out;
 }
 
-std::vector<std::uint64_t> GatewayLink::takeDespawnRequests() {
-  std::vector<std::uint64_t> out;
+std::vector<DespawnRequestMsg> GatewayLink::takeDespawnRequests() {
+  std::vector<DespawnRequestMsg> out;
   dds::takeAll<zonesim_dds_DespawnRequest>(
       despawns_.reader.get(),
-      [&](const zonesim_dds_DespawnRequest& s) { out.push_back(s.player_id); });
+      [&](const zonesim_dds_DespawnRequest& s) { out.push_back({s.player_id, s.session}); });
   return out;
 }
 

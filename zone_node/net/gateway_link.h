@@ -22,6 +22,13 @@ struct SpawnRequestMsg {
   std::uint64_t player_id = 0;
   double x = 0, z = 0;
   std::uint8_t kind = 0;  ///< the player's kind (common/player_kind.h)
+  std::uint64_t session = 0;  ///< the gateway session asking
+};
+
+/// A player left a gateway session: remove its avatar, unless a newer session asked for it.
+struct DespawnRequestMsg {
+  std::uint64_t player_id = 0;
+  std::uint64_t session = 0;
 };
 
 /// An avatar changed owner (from_zone -1: newly created).
@@ -48,7 +55,7 @@ class GatewayLink {
   /// All spawn requests received since the last call.
   std::vector<SpawnRequestMsg> takeSpawnRequests();
   /// Players whose avatars are to be removed (the player left), since the last call.
-  std::vector<std::uint64_t> takeDespawnRequests();
+  std::vector<DespawnRequestMsg> takeDespawnRequests();
   void announce(const OwnershipMsg& m);
   /// Announcements whose write timed out.
   std::uint64_t writeFailures() const { return write_failures_; }

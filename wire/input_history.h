@@ -1,8 +1,10 @@
 #pragma once
-// A session's newest inputs, kept so that what a crashed zone lost can be sent again: a zone
-// restarted from a checkpoint announces each avatar with the last input it had applied then,
-// and the gateway resends everything after it. The zones apply each sequence number once, so a
-// resend of what already arrived costs nothing but bytes.
+// A player's newest inputs, kept so that what a crash lost can be sent again. Both ends keep
+// them: the gateway, for a zone restarted from a checkpoint, which announces each avatar with
+// the last input it had applied then (the gateway resends everything after it); the client,
+// for its gateway dying, since a resumed session's Welcome names the last input the zone
+// applied. The zones apply each sequence number once, so a resend of what already arrived
+// costs nothing but bytes.
 
 #include <array>
 #include <cstddef>
@@ -10,7 +12,7 @@
 
 namespace zonesim::gateway {
 
-/// One input as the gateway forwarded it.
+/// One input as it was sent.
 struct InputRecord {
   std::uint32_t seq = 0;
   float move_x = 0, move_z = 0;
@@ -21,7 +23,7 @@ class InputHistory {
   /// 12.8 s of inputs at 20 a second: a checkpoint interval plus a restart.
   static constexpr std::size_t kCapacity = 256;
 
-  /// Records an input; seqs must rise (the gateway forwards only newer ones).
+  /// Records an input; seqs must rise.
   void record(const InputRecord& in) {
     ring_[next_ % kCapacity] = in;
     ++next_;
