@@ -129,7 +129,7 @@ class Launch:
         self.procs = []  # (Popen, what, log), stopped in reverse order
         self.zones = None
         self.tmp = None
-        self.key = None  # the cluster's key file, with a lobby
+        self.key = None  # the cluster's key file: connect tokens (with a lobby) and resume tokens
         self.epoch = 0  # the cluster epoch of the zone job running (supervise: one more per restart)
 
     def log(self, msg):
@@ -310,9 +310,40 @@ class Launch:
         self.procs[slot] = self.procs.pop()  # stopped first-started-last, as the job it replaces
         event = {"epoch": self.epoch, "reason": reason, "checkpoint": latest.read_text().strip() if restart else None,
                  "detected_unix": time.time(), "restart_s": round(time.monotonic() - detected, 3)}
+        self.record({"kind": "zones", **event})
+        self.log(f"== zones {reason}: restarted from {event['checkpoint'] or 'the scene'} as epoch {self.epoch}")
+
+    def record(self, event):
+        """One line of supervisor.jsonl: a restart, what it restarted and why."""
         with open(self.run / "supervisor.jsonl", "a") as f:
             f.write(json.dumps(event) + "\n")
-        self.log(f"== zones {reason}: restarted from {event['checkpoint'] or 'the scene'} as epoch {self.epoch}")
+
+    def supervise_gateways(self, dds):
+        """Restarts a gateway that died on the address it listened on, with the cluster's key:
+        its players say Hello there with their resume tokens and go on as themselves."""
+        for g in self.c.gateways:
+            if g.proc.poll() is None:
+                continue
+            detected = time.monotonic()
+            reason = f"exited with {g.proc.returncode}"
+            g.restarts += 1
+            # The dead one's metrics stay beside the new one's, out of report.py's way.
+            old = g.folder / f"before-restart-{g.restarts}"
+            old.mkdir(exist_ok=True)
+            for name in ("gateway.jsonl", "gateway_summary.json"):
+                if (g.folder / name).exists():
+                    (g.folder / name).rename(old / name)
+            g.log.rename(old / g.log.name)
+            slot = next(i for i, p in enumerate(self.procs) if p[0] is g.proc)
+            bind = g.bind.split(":")[0] + ":" + g.address.rsplit(":", 1)[1]
+            self.launch_gateway(g, dds, bind)
+            self.procs[slot] = self.procs.pop()
+            address = self.wait_listening(f"{g.host.describe()}, gateway {g.name}", "gateway", g.proc, g.log)
+            if address.rsplit(":", 1)[1] != g.address.rsplit(":", 1)[1]:
+                self.fail(f"{g.host.describe()}, gateway {g.name}", f"restarted on {address}, not {g.address}", g.log)
+            self.record({"kind": "gateway", "gateway": g.name, "restart": g.restarts, "reason": reason,
+                         "detected_unix": time.time(), "restart_s": round(time.monotonic() - detected, 3)})
+            self.log(f"== gateway {g.name} {reason}: restarted on {address} ({g.restarts}. restart)")
 
     def mpi_name(self, h):
         return "localhost" if h.reach == "local" else (h.target if h.reach == "slurm" else h.name)
@@ -324,23 +355,27 @@ class Launch:
         f.mkdir(parents=True, exist_ok=True)
         return f
 
-    def start_gateways(self, dds):
+    def launch_gateway(self, g, dds, bind):
         expect = sum(h.zones for h in self.c.hosts.values())
+        # Every gateway signs resume tokens with the cluster's key and takes any of them back.
+        argv = [self.bin / "gateway", "--scene", self.c.scene, "--bind", bind, "--dds-domain",
+                self.c.dds_domain, "--gateway-id", g.id, "--metrics", g.folder, "--expect-zones", expect,
+                "--duration", int(self.c.duration + ZONE_SAFETY_S), "--resume-key-file", self.key, *g.args]
+        if self.c.lobby:
+            # The lobby tells players where the gateway is: one bound to every interface
+            # names its host's cluster address.
+            argv += ["--auth-key-file", self.key]
+            if g.bind.split(":")[0] == "0.0.0.0":
+                argv += ["--public-address", g.host.address]
+        g.log = self.run / f"gateway-{g.name}.log"
+        g.proc = self.start(f"{g.host.describe()}, gateway {g.name}",
+                            on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}, stop_at_eof=True),
+                            g.log, held_stdin=g.host.reach in ("ssh", "slurm"))
+
+    def start_gateways(self, dds):
         for g in self.c.gateways:
             g.folder = self.folder("gateway", g.name, len(self.c.gateways))
-            argv = [self.bin / "gateway", "--scene", self.c.scene, "--bind", g.bind, "--dds-domain",
-                    self.c.dds_domain, "--gateway-id", g.id, "--metrics", g.folder, "--expect-zones", expect,
-                    "--duration", int(self.c.duration + ZONE_SAFETY_S), *g.args]
-            if self.c.lobby:
-                # The lobby tells players where the gateway is: one bound to every interface
-                # names its host's cluster address.
-                argv += ["--auth-key-file", self.key]
-                if g.bind.split(":")[0] == "0.0.0.0":
-                    argv += ["--public-address", g.host.address]
-            g.log = self.run / f"gateway-{g.name}.log"
-            g.proc = self.start(f"{g.host.describe()}, gateway {g.name}",
-                                on_host(g.host, argv, {"CYCLONEDDS_URI": f"file://{dds[g.host.name]}"}, stop_at_eof=True),
-                                g.log, held_stdin=g.host.reach in ("ssh", "slurm"))
+            self.launch_gateway(g, dds, g.bind)
         for g in self.c.gateways:
             g.address = self.wait_listening(f"{g.host.describe()}, gateway {g.name}", "gateway",
                                             g.proc, g.log, watch_zones=True)
@@ -371,7 +406,7 @@ class Launch:
             f.write(os.urandom(32))
         if self.c.shared_storage:
             return
-        for h in {p.host.name: p.host for p in [*self.c.gateways, self.c.lobby]}.values():
+        for h in {p.host.name: p.host for p in [*self.c.gateways, self.c.lobby] if p}.values():
             if h.reach in ("ssh", "slurm"):
                 line = f"mkdir -p {shlex.quote(str(self.run))} && umask 077 && cat > {shlex.quote(str(self.key))}"
                 with open(self.key, "rb") as f:
@@ -393,18 +428,25 @@ class Launch:
         lobby.address = self.wait_listening(what, "lobby", lobby.proc, lobby.log)
         self.log(f"== lobby {lobby.name} on {lobby.host.name} listening on {lobby.address}")
 
+    @staticmethod
+    def reached_at(server):
+        """ADDR:PORT players send to: one bound to every interface is reached at its host's address."""
+        address, port = server.address.rsplit(":", 1)
+        return f"{server.host.address if address == '0.0.0.0' else address}:{port}"
+
     def start_fleets(self):
         for f in self.c.fleets:
             f.folder = self.folder("fleet", f.name, len(self.c.fleets))
             server = f.gateway or self.c.lobby
-            address, port = server.address.rsplit(":", 1)
-            if address == "0.0.0.0":
-                address = server.host.address
+            address, port = self.reached_at(server).rsplit(":", 1)
             option = "--gateway" if f.gateway else "--lobby"
+            # A player whose gateway dies resumes there (restarted) or at the next of the others.
+            fallbacks = [a for g in self.c.gateways if f.gateway and g is not f.gateway
+                         for a in ("--fallback-gateway", self.reached_at(g))]
             argv = [self.bin / "client_stub", "--scene", self.c.scene, option, f"{address}:{port}",
                     "--players", f.players, "--duration", self.c.duration, "--metrics", f.folder,
                     "--summary", f.folder / "clients_summary.json", "--truth-every", self.c.truth_every,
-                    *self.c.client_args, *f.args]
+                    *fallbacks, *self.c.client_args, *f.args]
             f.log = self.run / f"fleet-{f.name}.log"
             to = "against" if f.gateway else "logging in at lobby"
             self.log(f"== fleet {f.name} on {f.host.name}: {f.players} players for {self.c.duration:g} s {to} {address}:{port}")
@@ -420,6 +462,8 @@ class Launch:
             time.sleep(0.2)
             if self.c.supervise:
                 self.supervise_zones(dds)
+            if self.c.supervise_gateways:
+                self.supervise_gateways(dds)
             for p, what, log in self.procs:
                 if p not in (f.proc for f in self.c.fleets) and p.poll() is not None:
                     self.fail(what, f"exited with {p.returncode} while players played", log)
@@ -486,8 +530,7 @@ class Launch:
             self.log(f"== run folder: {self.run} (DDS domain {self.c.dds_domain}, hosts "
                      + ", ".join(f"{h.name}={h.address}" for h in self.c.hosts.values()) + ")")
             self.start_zones(dds)
-            if self.c.lobby:
-                self.write_key()
+            self.write_key()
             self.start_gateways(dds)
             if self.c.lobby:
                 self.start_lobby(dds)

@@ -9,9 +9,11 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
               shared_storage (yes | no: copy each ssh host's run folder back at the end),
               ssh_options (added to every ssh the launcher and Open MPI's daemons run, e.g.
               -i KEY -o UserKnownHostsFile=/dev/null; ssh's own ~/.ssh/config is the other way),
-              supervise (no | zones: a zone job that died, lost a rank on this machine or hung is
-              restarted from its newest checkpoint in a new cluster epoch while gateways and
-              players stay), checkpoint_every
+              supervise (no, or zones and/or gateways, comma-separated. zones: a zone job that
+              died, lost a rank on this machine or hung is restarted from its newest checkpoint
+              in a new cluster epoch while gateways and players stay; gateways: a gateway that
+              died is restarted on its address, and its players resume there with the token
+              of their Welcome, as the same players with the same avatars), checkpoint_every
               (ticks between checkpoints, default 60 when supervising), hang_s (a zone job whose
               metrics stay unwritten this long is hung, default 10), restart_zones (the rank count
               of restarted jobs, default the same)
@@ -87,6 +89,7 @@ class Gateway:
     proc: subprocess.Popen = None
     log: Path = None
     address: str = ""  # ADDR:PORT it listens on
+    restarts: int = 0  # by the supervisor
 
 
 @dataclass
@@ -128,10 +131,11 @@ class Cluster:
     gateways: list
     fleets: list = field(default_factory=list)
     lobby: Lobby = None
-    supervise: bool = False
+    supervise: bool = False  # the zone job
     checkpoint_every: int = 0
     hang_s: float = 10
     restart_zones: int = 0  # 0: as many ranks as the first job
+    supervise_gateways: bool = False
 
 
 def expand(text, where):
@@ -278,9 +282,10 @@ def load(path):
     storage = c.get("shared_storage", "yes")
     if storage not in ("yes", "no"):
         raise ClusterError(f"{where} shared_storage: '{storage}' (expected yes or no)")
-    supervise = c.get("supervise", "no")
-    if supervise not in ("no", "zones"):
-        raise ClusterError(f"{where} supervise: '{supervise}' (expected no or zones)")
+    supervise = {w for w in re.split(r"[\s,]+", c.get("supervise", "no")) if w}
+    if supervise != {"no"} and not supervise <= {"zones", "gateways"}:
+        raise ClusterError(f"{where} supervise: '{c.get('supervise')}' (expected no, or zones and/or "
+                           f"gateways, comma-separated)")
     restart_zones = number(c.get("restart_zones", "0"), f"{where} restart_zones")
     if restart_zones and len([h for h in hosts.values() if h.zones]) > 1:
         raise ClusterError(f"{where} restart_zones: only for zones on one host")
@@ -288,9 +293,10 @@ def load(path):
                    c.get("btl", ""), yield_mode, domain, number(c.get("truth_every", "0"), f"{where} truth_every"),
                    shlex.split(c.get("zone_args", "")), shlex.split(c.get("client_args", "")),
                    storage == "yes", hosts, list(gateways.values()), fleets, lobby,
-                   supervise == "zones",
-                   number(c.get("checkpoint_every", "60" if supervise == "zones" else "0"), f"{where} checkpoint_every"),
-                   number(c.get("hang_s", "10"), f"{where} hang_s", float, 1), restart_zones)
+                   "zones" in supervise,
+                   number(c.get("checkpoint_every", "60" if "zones" in supervise else "0"), f"{where} checkpoint_every"),
+                   number(c.get("hang_s", "10"), f"{where} hang_s", float, 1), restart_zones,
+                   "gateways" in supervise)
 
 
 def plan(cluster):
@@ -301,6 +307,8 @@ def plan(cluster):
         lines.append(f"supervised: a dead zone job, or one silent for {cluster.hang_s:g} s, restarts from its "
                      f"newest checkpoint (every {cluster.checkpoint_every} ticks)"
                      + (f" on {cluster.restart_zones} ranks" if cluster.restart_zones else ""))
+    if cluster.supervise_gateways:
+        lines.append("supervised: a dead gateway restarts on its address; its players resume there")
     for h in cluster.hosts.values():
         lines.append(f"{h.describe()} at {h.address}: {h.zones} zone ranks")
     for g in cluster.gateways:

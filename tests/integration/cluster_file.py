@@ -57,7 +57,20 @@ with tempfile.TemporaryDirectory(prefix="zs_cluster_file_") as tmp:
     refused(tmp, "bad_network", GOOD_HEAD.replace("duration", "network = 10.0.0/33\nduration") + LOCAL,
             "network: '10.0.0/33'")
     refused(tmp, "bad_supervise", GOOD_HEAD + "supervise = everything\n" + LOCAL,
-            "[cluster] supervise: 'everything' (expected no or zones)")
+            "[cluster] supervise: 'everything' (expected no, or zones and/or gateways, comma-separated)")
+    refused(tmp, "bad_supervise_part", GOOD_HEAD + "supervise = zones, lobby\n" + LOCAL,
+            "[cluster] supervise: 'zones, lobby'")
+    both = Path(tmp) / "both.cluster"
+    both.write_text(GOOD_HEAD + "supervise = zones, gateways\n" + LOCAL)
+    r = dry_run(both)
+    h.check(r.returncode == 0 and "restarts from its newest checkpoint" in r.stdout
+            and "a dead gateway restarts on its address" in r.stdout,
+            f"supervise = zones, gateways plans both ({r.stdout.strip()} {r.stderr.strip()})")
+    gateways = Path(tmp) / "gateways.cluster"
+    gateways.write_text(GOOD_HEAD + "supervise = gateways\n" + LOCAL)
+    r = dry_run(gateways)
+    h.check(r.returncode == 0 and "checkpoint" not in r.stdout and "a dead gateway restarts" in r.stdout,
+            f"supervise = gateways plans gateways only ({r.stdout.strip()} {r.stderr.strip()})")
     refused(tmp, "bad_hang", GOOD_HEAD + "supervise = zones\nhang_s = 0\n" + LOCAL, "[cluster] hang_s: 0 is below 1")
     refused(tmp, "unset_variable", GOOD_HEAD + LOCAL.replace("players = 2", "players = ${ZONESIM_NO_SUCH_VAR}"),
             "${ZONESIM_NO_SUCH_VAR} is not set")

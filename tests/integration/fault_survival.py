@@ -1,7 +1,10 @@
-"""Zone crashes survived: a supervised local cluster (deploy/cluster.py, supervise = zones) of 4
-zone ranks checkpointing every 60 ticks, a gateway and 8 players runs for 60 s while this test
-SIGKILLs a random zone rank at a random moment three times, then SIGSTOPs one (a hung job).
-Afterwards:
+"""Zone and gateway crashes survived: a supervised local cluster (deploy/cluster.py, supervise =
+zones, gateways) of 4 zone ranks checkpointing every 60 ticks, a gateway and 8 players runs for
+60 s while this test SIGKILLs the gateway once, then a random zone rank at a random moment three
+times, then SIGSTOPs one (a hung job). Afterwards:
+  - the supervisor restarted the gateway on its address, and every player resumed there with
+    its Welcome's resume token as the same player with the same avatar, within 2 s of its last
+    datagram from the dead one; the time from the kill to each player's next own state is printed;
   - the supervisor restarted the zone job each time from the newest checkpoint, as epochs 1-4,
     the last for a job that stopped writing metrics;
   - the last job began with exactly the checkpoint's entities (count and id hash), and its
@@ -11,8 +14,9 @@ Afterwards:
   - no input was lost: the restored zones applied every sequence number in order (none skipped)
     and the gateway still held every input it had to resend;
   - no zone_node, gateway or client_stub of the run is left.
-Usage: fault_survival.py [SEED [FAULTS]]: SEED default random (printed), FAULTS default 3 (one
-every 16 s; bench/README: 10 faults measure the recovery time, docs/benchmarks.md)."""
+Usage: fault_survival.py [SEED [FAULTS [GATEWAY_FAULTS]]]: SEED default random (printed), FAULTS
+zone kills, default 3 (one every 16 s), GATEWAY_FAULTS default 1 (one every 6 s, before them);
+docs/benchmarks.md: 10 faults of each kind measure the recovery times."""
 import json
 import os
 import random
@@ -27,8 +31,12 @@ import harness as h
 
 PLAYERS = 8
 FAULTS = int(sys.argv[2]) if len(sys.argv) > 2 else 3
-# One kill at a random moment in each 8 s window, 16 s apart from 10 s after the players start.
-KILL_WINDOWS = [(10 + 16 * k, 18 + 16 * k) for k in range(FAULTS)]
+GATEWAY_FAULTS = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+# The gateway's kills at a random moment in each 4 s window, 6 s apart from 4 s after the players
+# start; then one zone rank's kill in each 8 s window, 16 s apart from 2 s after those.
+GATEWAY_KILL_WINDOWS = [(4 + 6 * k, 8 + 6 * k) for k in range(GATEWAY_FAULTS)]
+ZONE_START = 6 + 6 * GATEWAY_FAULTS
+KILL_WINDOWS = [(ZONE_START + 16 * k, ZONE_START + 8 + 16 * k) for k in range(FAULTS)]
 HANG_S = 6  # the supervisor's hang_s
 # Then one rank stopped (SIGSTOP): the job hangs in its next collective.
 HANG_AT = KILL_WINDOWS[-1][1] + 8
@@ -45,10 +53,19 @@ def run_pids(run, program):
     return [int(p) for p in out.split()]
 
 
+def program_pids(run, program):
+    """`program` processes of the run themselves (not mpirun, nor a command line naming it)."""
+    def comm(p):
+        try:
+            return Path(f"/proc/{p}/comm").read_text().strip()
+        except OSError:
+            return None
+    return [p for p in run_pids(run, program) if comm(p) == program]
+
+
 def zone_rank_pids(run):
     """zone_node ranks of the running job (mpirun's children, not mpirun itself)."""
-    return [p for p in run_pids(run, "zone_node")
-            if Path(f"/proc/{p}/comm").exists() and Path(f"/proc/{p}/comm").read_text().strip() == "zone_node"]
+    return program_pids(run, "zone_node")
 
 
 def wait_for(what, cond, timeout):
@@ -69,7 +86,7 @@ with tempfile.TemporaryDirectory(prefix="zs_fault_") as tmp:
     cluster.write_text(f"""[cluster]
 scene = scenes/test_e2e.yaml
 duration = {SECONDS}
-supervise = zones
+supervise = zones, gateways
 zone_args = ${{ZONESIM_FAULT_ZONE_ARGS:-}}
 checkpoint_every = 60
 hang_s = {HANG_S}
@@ -88,13 +105,28 @@ players = {PLAYERS}
     launcher = h.start(["python3", h.SOURCE_DIR / "deploy/cluster.py", cluster, run], log, env)
     wait_for("the fleet to start", lambda: "== fleet players" in log.read_text() or launcher.poll() is not None, 180)
     started = time.monotonic()
-    kills = []  # (monotonic time, pid)
-    for k, (lo, hi) in enumerate(KILL_WINDOWS):
-        at = started + rng.uniform(lo, hi)
+
+    def until_random_moment(window, fault):
+        """Sleeps to a random moment of window (seconds after the players started)."""
+        at = started + rng.uniform(*window)
         while time.monotonic() < at:
             if launcher.poll() is not None:
-                h.fail(f"the cluster ended before fault {k + 1}\n{h.tail(log)}")
+                h.fail(f"the cluster ended before {fault}\n{h.tail(log)}")
             time.sleep(0.1)
+
+    gateway_kills = []  # (monotonic time, unix time)
+    for k, window in enumerate(GATEWAY_KILL_WINDOWS):
+        until_random_moment(window, f"gateway fault {k + 1}")
+        gateways = program_pids(run, "gateway")
+        h.check(len(gateways) == 1, f"gateway fault {k + 1}: one gateway is running ({gateways})")
+        os.kill(gateways[0], signal.SIGKILL)
+        gateway_kills.append((time.monotonic(), time.time()))
+        print(f"gateway fault {k + 1}: SIGKILL gateway pid {gateways[0]} at {gateway_kills[-1][0] - started:.1f} s",
+              flush=True)
+        wait_for(f"the gateway's restart {k + 1}", lambda: f"({k + 1}. restart)" in log.read_text(), 60)
+    kills = []  # (monotonic time, pid)
+    for k, window in enumerate(KILL_WINDOWS):
+        until_random_moment(window, f"fault {k + 1}")
         pids = zone_rank_pids(run)
         h.check(len(pids) == 4, f"fault {k + 1}: 4 zone ranks are running ({pids})")
         victim = rng.choice(sorted(pids))
@@ -116,7 +148,14 @@ players = {PLAYERS}
         h.fail(f"the cluster did not finish\n{h.tail(log)}")
     h.check(rc == 0, f"the cluster finished and reported (exit {rc})\n{h.tail(log)}")
 
-    events = [json.loads(l) for l in (run / "supervisor.jsonl").read_text().splitlines()]
+    all_events = [json.loads(l) for l in (run / "supervisor.jsonl").read_text().splitlines()]
+    events = [e for e in all_events if e["kind"] == "zones"]
+    gateway_events = [e for e in all_events if e["kind"] == "gateway"]
+    h.check(len(gateway_events) == GATEWAY_FAULTS and all(e["gateway"] == "g1" for e in gateway_events),
+            f"the supervisor restarted the gateway {GATEWAY_FAULTS} times ({gateway_events})")
+    detect = sorted(e["detected_unix"] - unix for e, (_, unix) in zip(gateway_events, gateway_kills))
+    print(f"gateway kill to its restart: p50 {detect[len(detect) // 2]:.2f} s, max {detect[-1]:.2f} s "
+          f"(restart {', '.join(str(e['restart_s']) for e in gateway_events)} s after detection)", flush=True)
     h.check([e["epoch"] for e in events] == list(range(1, FAULTS + 2)),
             f"the supervisor restarted the zones {FAULTS + 1} times ({events})")
     h.check(events[-1]["reason"].startswith("hung"), f"the stopped rank's job was found hung ({events[-1]['reason']})")
@@ -138,7 +177,11 @@ players = {PLAYERS}
     skipped = sum(z["inputs_skipped"] for z in zones)
     h.check(skipped == 0, f"the restored zones applied every input in sequence, none skipped ({skipped})")
 
+    # The restarted gateway's figures: it took every player back and followed every zone restart.
     g = h.load_json(run / "gateway_summary.json")
+    h.check(g["sessions_resumed"] == PLAYERS and g["sessions_replaced"] == 0,
+            f"the restarted gateway took all {PLAYERS} players back by their resume tokens "
+            f"({g['sessions_resumed']} resumed, {g['sessions_replaced']} replaced)")
     h.check(g["epochs_entered"] == FAULTS + 1 and g["epoch"] == FAULTS + 1,
             f"the gateway followed {FAULTS + 1} restarts ({g['epochs_entered']})")
     h.check(g["sessions_expired"] == 0 and g["welcomes"] == PLAYERS,
@@ -151,7 +194,18 @@ players = {PLAYERS}
           f"max {g.get('epoch_jump_m_max', 0):.2f} m", flush=True)
 
     clients = h.load_json(run / "clients_summary.json")
-    h.check(clients["totals"]["welcomed"] == PLAYERS, "every player is still welcomed at the end")
+    t = clients["totals"]
+    h.check(t["welcomed"] == PLAYERS, "every player is still welcomed at the end")
+    h.check(t["resumes"] == PLAYERS * GATEWAY_FAULTS and t["resume_failed"] == 0 and t["resume_new_avatar"] == 0,
+            f"every player resumed after each gateway fault, as itself with its avatar ({t['resumes']} resumed, "
+            f"{t['resume_failed']} gave up, {t['resume_new_avatar']} with another avatar)")
+    h.check(t["resume_inputs_unresendable"] == 0,
+            f"the inputs the dead gateway lost were resent ({t['resume_inputs_resent']}), none beyond "
+            f"the history ({t['resume_inputs_unresendable']})")
+    h.check(t["resume_s_max"] < 2.0, f"each player was back within 2 s of its last datagram from the dead "
+            f"gateway (p50 {t['resume_s_p50']:.2f} s, max {t['resume_s_max']:.2f} s)")
+    print(f"resume, last datagram heard to the resumed Welcome: p50 {t['resume_s_p50']:.2f} s, "
+          f"max {t['resume_s_max']:.2f} s; {t['resume_inputs_resent']} inputs resent", flush=True)
     # Each player's own-avatar states, on this test's clock.
     base = clients["started_monotonic_s"]
     states = {}
@@ -162,7 +216,8 @@ players = {PLAYERS}
             if event == "U":
                 states.setdefault(int(player), []).append(base + float(t_ms) * 1e-3)
     # (fault time, when the supervisor restarted the job), on this test's clock.
-    faults = [(at, at + e["detected_unix"] - unix) for (at, _, unix), e in zip(kills, events)]
+    faults = [(at, at + e["detected_unix"] - unix) for (at, unix), e in zip(gateway_kills, gateway_events)]
+    faults += [(at, at + e["detected_unix"] - unix) for (at, _, unix), e in zip(kills, events)]
     faults.append((hung_mono, hung_mono + events[-1]["detected_unix"] - hung_at))
     recovery, silent = [], []
     for k, (at, restarted) in enumerate(faults):
@@ -171,11 +226,14 @@ players = {PLAYERS}
             # The first state after the restart: the restored world's.
             seen = [t for t in states.get(p, []) if restarted < t < until]
             if not seen:
-                silent.append((k + 1, p))
+                silent.append((f"gateway {k + 1}" if k < GATEWAY_FAULTS else k + 1 - GATEWAY_FAULTS, p))
                 continue
             recovery.append((k, seen[0] - at))
     h.check(not silent, f"every player received its avatar's state after every fault (silent: {silent})")
-    after_kill = sorted(r for k, r in recovery if k < len(kills))
+    after_gateway = sorted(r for k, r in recovery if k < GATEWAY_FAULTS)
+    print(f"gateway kill to the player's next own state: p50 {after_gateway[len(after_gateway) // 2]:.2f} s, "
+          f"max {after_gateway[-1]:.2f} s over {GATEWAY_FAULTS} faults x {PLAYERS} players", flush=True)
+    after_kill = sorted(r for k, r in recovery if GATEWAY_FAULTS <= k < GATEWAY_FAULTS + len(kills))
     detect = sorted(e["detected_unix"] - kill[2] for e, kill in zip(events, kills))
     print(f"kill to the supervisor's restart: p50 {detect[len(detect) // 2]:.2f} s, "
           f"max {detect[-1]:.2f} s", flush=True)
