@@ -52,6 +52,29 @@ def kind_figures(per_client):
     return out
 
 
+def fault_figures(run, per_client):
+    """What the supervisor restarted (supervisor.jsonl) and how the players came back; None for
+    a run without either."""
+    log = run / "supervisor.jsonl"
+    events = [json.loads(l) for l in log.read_text().splitlines() if l.strip()] if log.exists() else []
+    resumes = sum(c.get("resumes", 0) for c in per_client)
+    if not events and not resumes:
+        return None
+    # A line from before gateways were supervised has no kind: it was the zones'.
+    zones = [e for e in events if e.get("kind", "zones") == "zones"]
+    gateways = [e for e in events if e.get("kind") == "gateway"]
+    resumed = [c for c in per_client if c.get("resumes", 0)]
+    return {
+        "zone_restarts": len(zones),
+        "zone_restart_reasons": [e["reason"] for e in zones],
+        "gateway_restarts": len(gateways),
+        "resumes": resumes,
+        "resume_failed": sum(c.get("resume_failed", 0) for c in per_client),
+        "resume_new_avatar": sum(c.get("resume_new_avatar", 0) for c in per_client),
+        "resume_s_max": max((c.get("resume_s_max", 0) for c in resumed), default=0),
+    }
+
+
 def build_report(run):
     zones = sorted((load(p) for p in run.glob("zone_*_summary.json")), key=lambda z: z["rank"])
     # One fleet or gateway writes into the run folder itself; a cluster with several gives each
@@ -94,6 +117,7 @@ def build_report(run):
         "kinds": kind_figures(per_client),
         "gateway": gateway,
         "gateways": gateways if len(gateways) > 1 else None,
+        "faults": fault_figures(run, per_client),
     }
 
 
@@ -116,6 +140,11 @@ def print_report(r):
               f"{c['bytes_out_per_s']:>11.0f} {c['updates_per_s']:>9.1f} {c.get('handoffs', 0):>8}")
     print(f"mean per client: {t['bytes_in_per_s_mean']:.0f} B/s in, {t['bytes_out_per_s_mean']:.0f} B/s out, "
           f"{t['updates_per_s_mean']:.1f} updates/s")
+    f = r.get("faults")
+    if f:
+        print(f"\nfaults: restarts of the zone job {f['zone_restarts']}, of gateways {f['gateway_restarts']}; "
+              f"player resumes {f['resumes']} (given up {f['resume_failed']}, with another avatar "
+              f"{f['resume_new_avatar']}, slowest {f['resume_s_max']:.2f} s)")
     if len(r["kinds"]) > 1:
         print(f"\n{'kind':>6} {'players':>7} {'kbit/s in p50':>13} {'max':>6} {'error m p99 (worst)':>19} "
               f"{'max':>6} {'in view (mean)':>14}")

@@ -241,6 +241,11 @@ players = {PLAYERS}
           f"max {after_kill[-1]:.2f} s over {len(kills)} faults x {PLAYERS} players "
           f"(restart {', '.join(str(e['restart_s']) for e in events)} s after detection)", flush=True)
 
+    f = h.load_json(run / "report.json")["faults"]
+    h.check(f["zone_restarts"] == FAULTS + 1 and f["gateway_restarts"] == GATEWAY_FAULTS
+            and f["resumes"] == PLAYERS * GATEWAY_FAULTS,
+            f"the run report counts the restarts and resumes ({f})")
+
     left = [p for prog in ("zone_node", "gateway", "client_stub") for p in run_pids(run, prog)]
     h.check(not left, f"no process of the run is left ({left})")
 print("fault survival passed")
