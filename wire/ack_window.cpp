@@ -60,14 +60,7 @@ void ResendTracker::ackOne(std::uint32_t seq, std::int64_t now_ns) {
   ++acked_;
   newest_acked_sent_ns_ = std::max(newest_acked_sent_ns_, f.sent_ns);
   // RTT sample as in TCP (RFC 6298), from the first ack of each datagram.
-  double rtt = std::max(0.0, double(now_ns - f.sent_ns) * 1e-9);
-  if (srtt_s_ < 0) {
-    srtt_s_ = rtt;
-    rttvar_s_ = rtt / 2;
-  } else {
-    rttvar_s_ = 0.75 * rttvar_s_ + 0.25 * std::abs(srtt_s_ - rtt);
-    srtt_s_ = 0.875 * srtt_s_ + 0.125 * rtt;
-  }
+  rtt_.sample(double(now_ns - f.sent_ns) * 1e-9);
   // Only the datagram holding an entity's newest state (or despawn) settles it: an ack of an
   // older one says nothing about the newer state. But an ack of an older Spawn of the same run
   // says the client holds the entity: the newer state in flight is then an update. Without
@@ -90,8 +83,7 @@ bool ResendTracker::spawnPending(std::uint64_t id) const {
 }
 
 std::int64_t ResendTracker::rtoNs() const {
-  double rto = srtt_s_ < 0 ? max_rto_s_ * 0.25 : srtt_s_ + 4 * rttvar_s_;
-  return std::int64_t(std::clamp(rto, min_rto_s_, max_rto_s_) * 1e9);
+  return std::int64_t(rtt_.rtoS(min_rto_s_, max_rto_s_, max_rto_s_ * 0.25) * 1e9);
 }
 
 ResendDue ResendTracker::due(std::int64_t now_ns, LossDetection how) const {

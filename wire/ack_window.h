@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/flat_id_map.h"
+#include "wire/rtt_estimator.h"
 
 namespace zonesim::gateway {
 
@@ -114,7 +115,7 @@ class ResendTracker {
   // due() skips its scan while nothing can have timed out or been overtaken.
   mutable std::int64_t oldest_pending_ns_ = INT64_MAX;
   std::uint32_t next_seq_ = 1;
-  double srtt_s_ = -1, rttvar_s_ = 0;
+  RttEstimator rtt_;
   double min_rto_s_, max_rto_s_;
   std::uint64_t acked_ = 0;
   // Send time of the newest datagram acknowledged: anything unacknowledged sent in an earlier

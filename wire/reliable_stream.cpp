@@ -47,27 +47,17 @@ void ReliableSender::acknowledge(std::uint32_t cumulative, std::int64_t now_ns, 
   // for an earlier one's resend and would teach the timeout that wait.
   if (echo != 0 && !unacked_.empty() && echo >= unacked_.front().seq) {
     std::size_t i = echo - unacked_.front().seq;
-    if (i < unacked_.size() && !unacked_[i].resent && unacked_[i].first_sent_ns >= 0)
-      sampleRtt(now_ns - unacked_[i].first_sent_ns);
+    if (i < unacked_.size() && !unacked_[i].resent && unacked_[i].first_sent_ns >= 0) {
+      rtt_.sample(double(now_ns - unacked_[i].first_sent_ns) * 1e-9);
+      rto_ns_ = std::int64_t(
+          rtt_.rtoS(options_.min_rto_ns * 1e-9, options_.max_rto_ns * 1e-9, 0) * 1e9);
+    }
   }
   // An ack beyond anything pushed is a confused or forged peer: only what was sent counts.
   cumulative = std::min(cumulative, next_seq_ - 1);
   if (cumulative <= acked_) return;
   acked_ = cumulative;
   while (!unacked_.empty() && unacked_.front().seq <= cumulative) unacked_.pop_front();
-}
-
-void ReliableSender::sampleRtt(std::int64_t rtt_ns) {
-  double r = double(std::max<std::int64_t>(rtt_ns, 0));
-  if (srtt_ns_ < 0) {
-    srtt_ns_ = r;
-    rttvar_ns_ = r / 2;
-  } else {
-    rttvar_ns_ = 0.75 * rttvar_ns_ + 0.25 * std::abs(srtt_ns_ - r);
-    srtt_ns_ = 0.875 * srtt_ns_ + 0.125 * r;
-  }
-  rto_ns_ = std::clamp(std::int64_t(srtt_ns_ + 4 * rttvar_ns_), options_.min_rto_ns,
-                       options_.max_rto_ns);
 }
 
 void ReliableSender::resendAll() {

@@ -24,6 +24,8 @@
 #include <span>
 #include <vector>
 
+#include "wire/rtt_estimator.h"
+
 namespace zonesim::gateway {
 
 struct ReliableSenderOptions {
@@ -67,13 +69,11 @@ class ReliableSender {
     std::int64_t last_sent_ns = -1;
     bool resent = false;
   };
-  void sampleRtt(std::int64_t rtt_ns);
-
   ReliableSenderOptions options_;
   std::deque<Pending> unacked_;  // ascending seq
   std::uint32_t next_seq_ = 1, acked_ = 0;
   std::int64_t rto_ns_;
-  double srtt_ns_ = -1, rttvar_ns_ = 0;  // srtt < 0: no sample yet
+  RttEstimator rtt_;
   std::uint64_t retransmissions_ = 0;
 };
 
