@@ -2,8 +2,8 @@
 
 #include <chrono>
 
-#include "auth/hmac.h"
 #include "auth/little_endian.h"
+#include "auth/token_seal.h"
 
 namespace zonesim::auth {
 
@@ -15,8 +15,7 @@ TokenBytes signToken(const ConnectToken& t, const AuthKey& key) {
   putLittleEndian(&b[5], t.client_address, 4);
   putLittleEndian(&b[9], t.player_id, 8);
   putLittleEndian(&b[17], t.expiry_unix_ms, 8);
-  Digest tag = hmacSha256(key.bytes(), std::span(b).first(kConnectTokenBodyBytes));
-  std::copy(tag.begin(), tag.end(), b.begin() + kConnectTokenBodyBytes);
+  sealToken(b, kConnectTokenBodyBytes, key);
   return b;
 }
 
@@ -24,9 +23,8 @@ TokenVerdict checkToken(std::span<const std::uint8_t> bytes, const AuthKey& key,
                         std::uint16_t gateway_id, std::uint32_t from_address,
                         std::uint16_t from_port, std::uint64_t now_unix_ms) {
   TokenVerdict v;
-  if (bytes.size() != kConnectTokenBytes || bytes[0] != kConnectTokenVersion) return v;
-  Digest tag = hmacSha256(key.bytes(), bytes.first(kConnectTokenBodyBytes));
-  if (!constantTimeEqual(tag, bytes.subspan(kConnectTokenBodyBytes))) return v;
+  if (!tokenSealed(bytes, kConnectTokenBytes, kConnectTokenVersion, kConnectTokenBodyBytes, key))
+    return v;
   const std::uint8_t* p = bytes.data();
   v.token.gateway_id = std::uint16_t(getLittleEndian(p + 1, 2));
   v.token.client_port = std::uint16_t(getLittleEndian(p + 3, 2));

@@ -1,9 +1,7 @@
 #include "auth/resume_token.h"
 
-#include <algorithm>
-
-#include "auth/hmac.h"
 #include "auth/little_endian.h"
+#include "auth/token_seal.h"
 
 namespace zonesim::auth {
 
@@ -15,8 +13,7 @@ ResumeBytes signResume(const ResumeToken& t, const AuthKey& key) {
   putLittleEndian(&b[4], t.client_address, 4);
   putLittleEndian(&b[8], t.player_id, 8);
   putLittleEndian(&b[16], t.expiry_unix_ms, 8);
-  Digest tag = hmacSha256(key.bytes(), std::span(b).first(kResumeTokenBodyBytes));
-  std::copy(tag.begin(), tag.end(), b.begin() + kResumeTokenBodyBytes);
+  sealToken(b, kResumeTokenBodyBytes, key);
   return b;
 }
 
@@ -24,9 +21,8 @@ ResumeVerdict checkResume(std::span<const std::uint8_t> bytes, const AuthKey& ke
                           std::uint32_t from_address, std::uint16_t from_port,
                           std::uint64_t now_unix_ms) {
   ResumeVerdict v;
-  if (bytes.size() != kResumeTokenBytes || bytes[0] != kResumeTokenVersion) return v;
-  Digest tag = hmacSha256(key.bytes(), bytes.first(kResumeTokenBodyBytes));
-  if (!constantTimeEqual(tag, bytes.subspan(kResumeTokenBodyBytes))) return v;
+  if (!tokenSealed(bytes, kResumeTokenBytes, kResumeTokenVersion, kResumeTokenBodyBytes, key))
+    return v;
   const std::uint8_t* p = bytes.data();
   v.token.kind = p[1];
   v.token.client_port = std::uint16_t(getLittleEndian(p + 2, 2));
