@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/auth/test_key.h"
+#include "tests/auth/token_tampering.h"
 
 namespace zonesim::auth {
 namespace {
@@ -42,13 +43,7 @@ TEST(ConnectToken, SignedTokenChecksOkWithItsFields) {
 
 TEST(ConnectToken, EveryFlippedBitIsForged) {
   TokenBytes good = signToken(token(), key(1));
-  for (std::size_t i = 0; i < good.size(); ++i) {
-    for (int bit = 0; bit < 8; ++bit) {
-      TokenBytes b = good;
-      b[i] ^= std::uint8_t(1 << bit);
-      ASSERT_EQ(check(b), TokenCheck::Forged) << "byte " << i << " bit " << bit;
-    }
-  }
+  EXPECT_EQ(firstFlipAccepted(good, [](auto t) { return check(t) == TokenCheck::Forged; }), "");
 }
 
 TEST(ConnectToken, AnotherKeyIsForged) {
@@ -58,11 +53,7 @@ TEST(ConnectToken, AnotherKeyIsForged) {
 
 TEST(ConnectToken, WrongSizeOrVersionIsForged) {
   TokenBytes b = signToken(token(), key(1));
-  EXPECT_EQ(check(std::span(b).first(kConnectTokenBytes - 1)), TokenCheck::Forged);
-  std::vector<std::uint8_t> longer(b.begin(), b.end());
-  longer.push_back(0);
-  EXPECT_EQ(check(longer), TokenCheck::Forged);
-  EXPECT_EQ(check({}), TokenCheck::Forged);
+  EXPECT_EQ(firstSizeAccepted(b, [](auto t) { return check(t) == TokenCheck::Forged; }), "");
 }
 
 // A forged token claims a gateway or an expiry: none of it is believed before the tag.

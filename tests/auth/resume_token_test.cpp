@@ -7,6 +7,7 @@
 
 #include "auth/connect_token.h"
 #include "tests/auth/test_key.h"
+#include "tests/auth/token_tampering.h"
 
 namespace zonesim::auth {
 namespace {
@@ -47,13 +48,7 @@ TEST(ResumeToken, ChecksOkEveryTimeItIsPresented) {
 
 TEST(ResumeToken, EveryFlippedBitIsForged) {
   ResumeBytes good = signResume(token(), testKey(1));
-  for (std::size_t i = 0; i < good.size(); ++i) {
-    for (int bit = 0; bit < 8; ++bit) {
-      ResumeBytes b = good;
-      b[i] ^= std::uint8_t(1 << bit);
-      ASSERT_EQ(check(b), ResumeCheck::Forged) << "byte " << i << " bit " << bit;
-    }
-  }
+  EXPECT_EQ(firstFlipAccepted(good, [](auto t) { return check(t) == ResumeCheck::Forged; }), "");
 }
 
 TEST(ResumeToken, AnotherKeyIsForged) {
@@ -63,11 +58,7 @@ TEST(ResumeToken, AnotherKeyIsForged) {
 
 TEST(ResumeToken, WrongSizeIsForged) {
   ResumeBytes b = signResume(token(), testKey(1));
-  EXPECT_EQ(check(std::span(b).first(kResumeTokenBytes - 1)), ResumeCheck::Forged);
-  std::vector<std::uint8_t> longer(b.begin(), b.end());
-  longer.push_back(0);
-  EXPECT_EQ(check(longer), ResumeCheck::Forged);
-  EXPECT_EQ(check({}), ResumeCheck::Forged);
+  EXPECT_EQ(firstSizeAccepted(b, [](auto t) { return check(t) == ResumeCheck::Forged; }), "");
 }
 
 // A connect token under the same key never passes for a resume token: its length differs.
