@@ -36,7 +36,6 @@ SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64
       // Nonces only match replies to requests; mixing in the port keeps two runs apart.
       nonce_(splitmix64(config.seed ^ (std::uint64_t{index} << 32)) ^
              std::uint64_t(socket_.localPort())),
-      gateway_(config.gateway),
       start_ns_(start_ns),
       next_hello_ns_(start_ns),
       next_input_ns_(INT64_MAX),
@@ -54,8 +53,8 @@ double SimPlayer::welcomeSeconds() const {
 }
 
 void SimPlayer::send(const gateway::Bytes& bytes) {
-  bool ok = impairment_.active() ? impairment_.send(socket_, gateway_, bytes, nowNs())
-                                 : socket_.sendTo(gateway_, bytes);
+  bool ok = impairment_.active() ? impairment_.send(socket_, gateway(), bytes, nowNs())
+                                 : socket_.sendTo(gateway(), bytes);
   if (!ok) {
     ++counters_.send_failures;
     return;
@@ -97,35 +96,36 @@ std::int64_t SimPlayer::logDisplay(std::int64_t now_ns) {
   return now_ns + std::int64_t((double(tick + 1) - now_tick) / ticksPerSecond() * 1e9) + 1;
 }
 
-std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
-  if (!welcomed()) {
-    if (resuming_ && now_ns - resume_started_ns_ > seconds(config_.resume_give_up_s)) {
-      // No gateway took the player back: it comes as a new one (the lobby's token, if any,
-      // was for its first gateway: a gateway with a key refuses it, and the count says so).
-      ++counters_.resume_failed;
-      resuming_ = false;
-      resume_token_.clear();
-      player_id_ = avatar_id_ = 0;
-      seq_ = 0;  // a new avatar's inputs start at 1
-      sent_inputs_ = gateway::InputHistory();
-      startNewStream();
-    }
-    if (now_ns >= next_hello_ns_) {
-      if (resuming_ && now_ns - resume_gateway_since_ns_ >= seconds(kResumeStayS)) {
-        gateway_index_ = (gateway_index_ + 1) % (1 + config_.fallback_gateways.size());
-        gateway_ = knownGateway(gateway_index_);
-        resume_gateway_since_ns_ = now_ns;
-      }
-      send(gateway::encodeHello(nonce_, "player", config_.connect_token,
-                                std::uint8_t(config_.kind.id),
-                                resuming_ ? std::span(resume_token_)
-                                          : std::span<const std::uint8_t>()));
-      ++counters_.hellos;
-      if (first_hello_ns_ < 0) first_hello_ns_ = now_ns;
-      next_hello_ns_ = now_ns + seconds(resuming_ ? kResumeHelloRetryS : config_.hello_retry_s);
-    }
-    return next_hello_ns_;
+std::int64_t SimPlayer::helloDue(std::int64_t now_ns) {
+  if (resuming_ && now_ns - resume_started_ns_ > seconds(config_.resume_give_up_s)) {
+    // No gateway took the player back: it comes as a new one (the lobby's token, if any,
+    // was for its first gateway: a gateway with a key refuses it, and the count says so).
+    ++counters_.resume_failed;
+    resuming_ = false;
+    resume_token_.clear();
+    player_id_ = avatar_id_ = 0;
+    seq_ = 0;  // a new avatar's inputs start at 1
+    sent_inputs_ = gateway::InputHistory();
+    startNewStream();
   }
+  if (now_ns >= next_hello_ns_) {
+    if (resuming_ && now_ns - resume_gateway_since_ns_ >= seconds(kResumeStayS)) {
+      gateway_index_ = (gateway_index_ + 1) % (1 + config_.fallback_gateways.size());
+      resume_gateway_since_ns_ = now_ns;
+    }
+    send(gateway::encodeHello(nonce_, "player", config_.connect_token,
+                              std::uint8_t(config_.kind.id),
+                              resuming_ ? std::span(resume_token_)
+                                        : std::span<const std::uint8_t>()));
+    ++counters_.hellos;
+    if (first_hello_ns_ < 0) first_hello_ns_ = now_ns;
+    next_hello_ns_ = now_ns + seconds(resuming_ ? kResumeHelloRetryS : config_.hello_retry_s);
+  }
+  return next_hello_ns_;
+}
+
+std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
+  if (!welcomed()) return helloDue(now_ns);
   if (config_.resume_after_s > 0 && !resume_token_.empty() &&
       now_ns - last_heard_ns_ > seconds(config_.resume_after_s)) {
     beginResume(now_ns);
@@ -289,7 +289,7 @@ void SimPlayer::deliverHeld(std::int64_t now_ns) {
 void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from,
                        std::int64_t now_ns) {
   using gateway::DropReason;
-  if (from != gateway_) {
+  if (from != gateway()) {
     // A resuming player asked several gateways in turn: whichever welcomes it first is the
     // one it plays through (a Hello to another may still be answered).
     if (!resuming_ || !isKnownGateway(from)) {
@@ -318,7 +318,6 @@ void SimPlayer::handle(std::span<const std::uint8_t> bytes, const Endpoint& from
     bool was_welcomed = welcomed();
     onWelcome(d, now_ns);
     if (!was_welcomed && welcomed()) {
-      gateway_ = from;
       for (std::size_t i = 0; i <= config_.fallback_gateways.size(); ++i)
         if (knownGateway(i) == from) gateway_index_ = i;
     }

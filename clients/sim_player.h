@@ -144,7 +144,7 @@ class SimPlayer {
   std::uint64_t avatarId() const { return avatar_id_; }
   int zone() const { return zone_; }
   /// The gateway the player plays through now.
-  const Endpoint& gateway() const { return gateway_; }
+  const Endpoint& gateway() const { return knownGateway(gateway_index_); }
   /// Seconds from the first Hello to the Welcome (negative if none yet).
   double welcomeSeconds() const;
   const RemoteView& view() const { return view_; }
@@ -183,7 +183,11 @@ class SimPlayer {
   void take(std::span<const std::uint8_t> bytes, const gateway::Received& got, std::int64_t now_ns);
   /// Handles the datagrams the impaired downlink releases by now_ns.
   void deliverHeld(std::int64_t now_ns);
+  /// Sends what is due at now_ns (Hello, input, Ping, or a resume); returns when next.
   std::int64_t actDue(std::int64_t now_ns);
+  /// Not welcomed yet: Hello (with the resume token while resuming, to the next gateway in
+  /// turn), or give up resuming and come as a new player.
+  std::int64_t helloDue(std::int64_t now_ns);
   void sendInput(std::int64_t now_ns);
   void onWelcome(const proto::Datagram& d, std::int64_t now_ns);
   /// The gateway fell silent: say Hello with the resume token from now on, to the next
@@ -225,8 +229,7 @@ class SimPlayer {
   std::uint64_t token_ = 0, player_id_ = 0, avatar_id_ = 0;
   int zone_ = -1;
   std::uint32_t seq_ = 0;
-  Endpoint gateway_;                       // the gateway played through now
-  std::size_t gateway_index_ = 0;          // its place in [gateway, fallback_gateways...]
+  std::size_t gateway_index_ = 0;  // the gateway played through now: [gateway, fallbacks...]
   std::vector<std::uint8_t> resume_token_;  // the newest Welcome's (empty: none)
   bool resuming_ = false;
   std::int64_t last_heard_ns_ = 0, resume_started_ns_ = 0, resume_gateway_since_ns_ = 0;
