@@ -21,7 +21,6 @@ std::string differences(const Transaction& sent, const Transaction& stored) {
   field("counterparty", sent.counterparty, stored.counterparty);
   field("price", sent.price, stored.price);
   field("score", sent.score, stored.score);
-  field("tick", sent.tick, stored.tick);
   return out;
 }
 
@@ -58,7 +57,7 @@ std::vector<TxResult> batchResults(std::span<const Transaction> batch, const Bat
     const KeyWrite& write = writes[plan.slot[i]];
     if (write.inserted && plan.to_store[plan.slot[i]] == i) {
       results[i] = {TxStatus::Committed, {}};
-    } else if (batch[i] == write.stored) {
+    } else if (sameRequest(batch[i], write.stored)) {
       results[i] = {TxStatus::AlreadyCommitted, {}};
     } else {
       results[i] = {TxStatus::Conflict, describe(batch[i]) + " is stored with other content: " +

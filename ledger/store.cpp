@@ -31,6 +31,21 @@ std::string_view failureName(StoreFailure failure) {
   return "unknown";
 }
 
+StoreConfig parseStoreSpec(std::string_view spec) {
+  std::size_t colon = spec.find(':');
+  if (colon == std::string_view::npos)
+    throw std::invalid_argument("ledger '" + std::string(spec) +
+                                "': expected sqlite:PATH or postgres:CONNINFO");
+  StoreConfig c{std::string(spec.substr(0, colon)), std::string(spec.substr(colon + 1))};
+  if (c.backend != "sqlite" && c.backend != "postgres")
+    throw std::invalid_argument("ledger '" + std::string(spec) + "': unknown back end '" +
+                                c.backend + "' (sqlite or postgres)");
+  if (c.target.empty())
+    throw std::invalid_argument("ledger '" + std::string(spec) + "': no " +
+                                (c.backend == "sqlite" ? "file path" : "connection string"));
+  return c;
+}
+
 std::unique_ptr<LedgerStore> openStore(const StoreConfig& config) {
   if (config.backend == "sqlite") {
     if (config.target.empty()) {

@@ -6,8 +6,8 @@
 //   transaction, in order, and everything it reports committed is durable; or it throws
 //   StoreError and nothing of the batch was applied.
 // - (player, seq) is the idempotency key. A transaction whose key is stored already, with the
-//   same content, is AlreadyCommitted (not applied again); with other content it is a
-//   Conflict and the stored one stays. Within one batch the first of a key decides.
+//   same request (transaction.h, sameRequest: any tick), is AlreadyCommitted (not applied
+//   again); with another request it is a Conflict and the stored one stays. Within one batch the first of a key decides.
 // - An invalid transaction (transaction.h, invalidReason) is Failed with the reason; the rest
 //   of its batch goes on.
 
@@ -90,6 +90,10 @@ struct StoreConfig {
   std::string backend = "sqlite";
   std::string target;
 };
+
+/// "sqlite:PATH" or "postgres:CONNINFO" (the form of zone_node --ledger). Throws
+/// std::invalid_argument naming what is wrong (no colon, an unknown back end, no target).
+StoreConfig parseStoreSpec(std::string_view spec);
 
 /// Opens the store and creates or checks its schema. Throws std::invalid_argument for an
 /// unknown back end or an empty target, StoreError when the database cannot be opened.

@@ -33,6 +33,12 @@ std::optional<Kind> parseKind(std::string_view name) {
   return std::nullopt;
 }
 
+bool sameRequest(const Transaction& a, const Transaction& b) {
+  Transaction b_at_a = b;
+  b_at_a.tick = a.tick;
+  return a == b_at_a;
+}
+
 std::optional<std::string> invalidReason(const Transaction& tx) {
   if (tx.player == 0 || tx.player > kMaxKey) return "player id must be 1 .. 2^63-1";
   if (tx.seq == 0 || tx.seq > kMaxKey) return "sequence must be 1 .. 2^63-1";

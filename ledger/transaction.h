@@ -35,6 +35,11 @@ struct Transaction {
   bool operator==(const Transaction&) const = default;
 };
 
+/// True if a and b ask for the same thing: every field but `tick`. The tick is the zone's
+/// record of when it applied the transaction, not part of the player's request: a retry that
+/// another zone applies after a handoff or a restart, at another tick, is the same one.
+bool sameRequest(const Transaction& a, const Transaction& b);
+
 /// Why `tx` may not be stored (a key out of range, a trade with nobody), or nothing if it may.
 std::optional<std::string> invalidReason(const Transaction& tx);
 

@@ -88,6 +88,29 @@ TEST(SqliteStore, OpenStoreRejectsUnknownBackEndsAndEmptyTargets) {
   EXPECT_EQ(store->backend(), "sqlite");
 }
 
+// zone_node --ledger: BACKEND:TARGET, the target kept whole (a URI has colons of its own), and
+// each malformed form refused with what is wrong.
+TEST(SqliteStore, AStoreSpecNamesBackEndAndTargetOrSaysWhatIsWrong) {
+  StoreConfig c = parseStoreSpec("sqlite:/run/a:b.db");
+  EXPECT_EQ(c.backend, "sqlite");
+  EXPECT_EQ(c.target, "/run/a:b.db");
+  c = parseStoreSpec("postgres:postgresql://zs@localhost:5433/ledger");
+  EXPECT_EQ(c.backend, "postgres");
+  EXPECT_EQ(c.target, "postgresql://zs@localhost:5433/ledger");
+  auto why = [](std::string_view spec) {
+    try {
+      parseStoreSpec(spec);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(why("ledger.db").find("expected sqlite:PATH or postgres:CONNINFO"), std::string::npos);
+  EXPECT_NE(why("mysql:x").find("unknown back end 'mysql'"), std::string::npos);
+  EXPECT_NE(why("sqlite:").find("no file path"), std::string::npos);
+  EXPECT_NE(why("postgres:").find("no connection string"), std::string::npos);
+}
+
 // A batch that does not fit fails as Full and leaves nothing of itself behind; smaller
 // batches that fit still commit afterwards.
 TEST(SqliteStore, AFullDatabaseFailsTheWholeBatch) {

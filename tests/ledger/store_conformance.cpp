@@ -115,6 +115,19 @@ TEST_P(StoreConformance, ADifferentTransactionUnderAStoredKeyIsAConflict) {
   EXPECT_EQ(store_->counts().total, 1u);
 }
 
+// A zone that takes the avatar over after a handoff or a restart applies the resent
+// transaction at another tick: the same request, stored once, with its first tick.
+TEST_P(StoreConformance, ARetryAtAnotherTickIsAlreadyCommitted) {
+  Transaction first = makeTx(9, 4, Kind::Loot);
+  ASSERT_EQ(store_->commit({&first, 1})[0].status, TxStatus::Committed);
+  Transaction retry = first;
+  retry.tick += 500;
+  auto results = store_->commit({&retry, 1});
+  EXPECT_EQ(results[0].status, TxStatus::AlreadyCommitted) << results[0].reason;
+  EXPECT_EQ(store_->counts().total, 1u);
+  EXPECT_EQ(store_->highestSequence(9), 4u);
+}
+
 TEST_P(StoreConformance, TheFirstOfAKeyWithinABatchDecides) {
   Transaction a = makeTx(5, 1, Kind::Loot);
   Transaction changed = a;
