@@ -58,6 +58,23 @@ void ReliableSender::acknowledge(std::uint32_t cumulative, std::int64_t now_ns, 
   if (cumulative <= acked_) return;
   acked_ = cumulative;
   while (!unacked_.empty() && unacked_.front().seq <= cumulative) unacked_.pop_front();
+  // New data acknowledged: the path works again, so the backoff ends (as Linux does), even
+  // without a fresh sample. Else, over a lossy link where most messages get resent, Karn's rule
+  // leaves few samples and the doubled timeout would stay for good.
+  rto_ns_ = std::int64_t(rtt_.rtoS(options_.min_rto_ns * 1e-9, options_.max_rto_ns * 1e-9,
+                                    options_.initial_rto_ns * 1e-9) *
+                         1e9);
+}
+
+void ReliableSender::expedite(std::uint32_t seq, std::int64_t now_ns) {
+  if (unacked_.empty() || seq < unacked_.front().seq) return;
+  std::size_t i = seq - unacked_.front().seq;
+  if (i >= unacked_.size()) return;
+  Pending& p = unacked_[i];
+  // Not again within a round trip of the last copy: the answer to that one may be on its way.
+  auto round_trip = std::int64_t(rtt_.sampled() ? rtt_.srttS() * 1e9 : double(rto_ns_) / 2);
+  if (p.last_sent_ns < 0 || now_ns - p.last_sent_ns < round_trip) return;
+  p.last_sent_ns = now_ns - rto_ns_;  // due now, and counted as a retransmission when sent
 }
 
 void ReliableSender::resendAll() {
@@ -77,17 +94,17 @@ std::int64_t ReliableSender::nextDueNs() const {
 ReliableReceiver::ReliableReceiver(std::uint32_t delivered, std::size_t window)
     : delivered_(delivered), window_(window) {}
 
-Received ReliableReceiver::receive(
+Arrival ReliableReceiver::receive(
     std::uint32_t seq, std::span<const std::uint8_t> payload,
     const std::function<void(std::uint32_t, std::span<const std::uint8_t>)>& deliver) {
   if (seq <= delivered_ || held_.contains(seq)) {
     ++duplicates_;
-    return Received::Duplicate;
+    return Arrival::Duplicate;
   }
-  if (seq - delivered_ > window_) return Received::TooFar;
+  if (seq - delivered_ > window_) return Arrival::TooFar;
   if (seq != delivered_ + 1) {
     held_.emplace(seq, std::vector<std::uint8_t>(payload.begin(), payload.end()));
-    return Received::Held;
+    return Arrival::Held;
   }
   deliver(seq, payload);
   delivered_ = seq;
@@ -96,7 +113,7 @@ Received ReliableReceiver::receive(
     deliver(it->first, it->second);
     delivered_ = it->first;
   }
-  return Received::Delivered;
+  return Arrival::Delivered;
 }
 
 }  // namespace zonesim::gateway

@@ -10,7 +10,9 @@
 // The retransmission timeout follows RFC 6298: SRTT and RTTVAR from round trips of messages
 // sent once (Karn: a resent message's ack cannot say which copy it answers), timed by the
 // message each ack echoes, as TCP's timestamps do; RTO = SRTT + 4 RTTVAR within [min_rto,
-// max_rto], doubled when the oldest message times out, until a fresh sample comes.
+// max_rto], doubled when the oldest message times out, until new data is acknowledged. A
+// receiver that answers messages one by one (a zone's transaction outcomes) lets the sender
+// resend a gap at once (expedite) instead of at its timeout.
 //
 // A receiver's state is one number, the last sequence delivered: a zone keeps it in its
 // checkpoint, and a restored receiver asks for everything after it again.
@@ -49,6 +51,10 @@ class ReliableSender {
   /// The receiver has delivered every message up to and including `cumulative`; echo: the
   /// message whose arrival this acknowledgement answers (0: none), timed for the round trip.
   void acknowledge(std::uint32_t cumulative, std::int64_t now_ns, std::uint32_t echo = 0);
+  /// The receiver has answered messages after seq but not seq: it was probably lost, so it
+  /// goes at the next sendDue rather than at its timeout (as TCP's fast retransmit on
+  /// selective acks), unless its last copy went out less than a round trip ago.
+  void expedite(std::uint32_t seq, std::int64_t now_ns);
   /// The peer was replaced (a restarted zone, a new gateway session): every unacknowledged
   /// message goes again at the next sendDue.
   void resendAll();
@@ -78,7 +84,7 @@ class ReliableSender {
 };
 
 /// What became of one received message.
-enum class Received : std::uint8_t {
+enum class Arrival : std::uint8_t {
   Delivered,  ///< in order: handed over, with any held ones it unblocked
   Held,       ///< early: kept until the gap before it fills
   Duplicate,  ///< delivered before, or held already
@@ -92,7 +98,7 @@ class ReliableReceiver {
   explicit ReliableReceiver(std::uint32_t delivered = 0, std::size_t window = 64);
 
   /// Hands the message, and any held ones it unblocks, to deliver(seq, payload) in order.
-  Received receive(std::uint32_t seq, std::span<const std::uint8_t> payload,
+  Arrival receive(std::uint32_t seq, std::span<const std::uint8_t> payload,
                    const std::function<void(std::uint32_t, std::span<const std::uint8_t>)>& deliver);
   /// The cumulative acknowledgement to send back: every message up to it was delivered.
   std::uint32_t delivered() const { return delivered_; }

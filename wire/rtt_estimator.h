@@ -22,6 +22,8 @@ class RttEstimator {
     }
   }
   bool sampled() const { return srtt_s_ >= 0; }
+  /// The smoothed round trip, seconds (negative before any sample).
+  double srttS() const { return srtt_s_; }
   /// SRTT + 4 RTTVAR within [min_s, max_s]; before any sample, unsampled_s (also bounded).
   double rtoS(double min_s, double max_s, double unsampled_s) const {
     return std::clamp(sampled() ? srtt_s_ + 4 * rttvar_s_ : unsampled_s, min_s, max_s);

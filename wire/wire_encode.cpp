@@ -68,6 +68,25 @@ Bytes encodeBye(std::uint64_t token) {
   return finish(fbb, token, proto::Message::Bye, proto::CreateBye(fbb));
 }
 
+TransactionInfo transactionInfo(const proto::Transaction& t) {
+  return {t.seq(), t.kind(), t.item(), t.amount(), t.counterparty(), t.price(), t.score()};
+}
+
+Bytes encodeTransaction(std::uint64_t token, const TransactionInfo& t) {
+  flatbuffers::FlatBufferBuilder fbb(128);
+  auto msg = proto::CreateTransaction(fbb, t.seq, t.kind, t.item, t.amount, t.counterparty,
+                                      t.price, t.score);
+  return finish(fbb, token, proto::Message::Transaction, msg);
+}
+
+Bytes encodeTransactionOutcome(std::uint64_t token, std::uint32_t seq, std::uint8_t status,
+                               std::string_view reason) {
+  flatbuffers::FlatBufferBuilder fbb(96 + reason.size());
+  auto text = fbb.CreateString(reason.substr(0, kMaxReasonBytes));
+  auto msg = proto::CreateTransactionOutcome(fbb, seq, status, text);
+  return finish(fbb, token, proto::Message::TransactionOutcome, msg);
+}
+
 proto::CodecParams toProto(const dr::CodecParams& c) {
   return proto::CodecParams(proto::Vec3f(c.world_min[0], c.world_min[1], c.world_min[2]),
                             proto::Vec3f(c.world_max[0], c.world_max[1], c.world_max[2]),

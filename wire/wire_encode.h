@@ -51,6 +51,21 @@ struct HandoffInfo {
   std::uint32_t seq = 0;  ///< the session's datagram seq (0: unnumbered)
 };
 
+/// One transaction of a player's reliable channel (the Transaction table).
+struct TransactionInfo {
+  std::uint32_t seq = 0;
+  std::uint8_t kind = 0;  ///< ledger::Kind
+  std::uint64_t item = 0;
+  std::int64_t amount = 0;
+  std::uint64_t counterparty = 0;
+  std::int64_t price = 0;
+  std::int64_t score = 0;
+  bool operator==(const TransactionInfo&) const = default;
+};
+
+/// The fields of a verified Transaction.
+TransactionInfo transactionInfo(const proto::Transaction& t);
+
 /// connect_token: the lobby's token, opaque here (empty: none, for a gateway without a key);
 /// kind: the player's kind id (common/player_kind.h); resume_token: an earlier Welcome's, to come
 /// back as the same player after a gateway died (empty: a new player).
@@ -64,6 +79,10 @@ Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float mo
 Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack = 0,
                  std::uint32_t ack_bits = 0);
 Bytes encodeBye(std::uint64_t token);
+Bytes encodeTransaction(std::uint64_t token, const TransactionInfo& t);
+/// status: ledger::TxStatus; reason is cut to kMaxReasonBytes.
+Bytes encodeTransactionOutcome(std::uint64_t token, std::uint32_t seq, std::uint8_t status,
+                               std::string_view reason);
 /// The Datagram's token is the new session token too, so the client can check it.
 Bytes encodeWelcome(const WelcomeInfo& w);
 Bytes encodePong(std::uint64_t token, std::uint64_t client_time_us, std::uint64_t gateway_time_us,

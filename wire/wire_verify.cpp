@@ -42,6 +42,10 @@ bool checkToGateway(const proto::Datagram& d) {
       return in->seq() != 0 && finite(x) && finite(z) &&
              std::sqrt(double(x) * x + double(z) * z) <= 1.0 + kMoveEpsilon;
     }
+    case proto::Message::Transaction: {
+      const proto::Transaction* t = d.msg_as_Transaction();
+      return t->seq() != 0 && t->kind() >= 1 && t->kind() <= kMaxTransactionKind;
+    }
     default:  // Ping and Bye carry nothing to range-check beyond the token
       return true;
   }
@@ -64,6 +68,11 @@ bool checkToClient(const proto::Datagram& d) {
       const proto::Handoff* h = d.msg_as_Handoff();
       return h->from_zone() >= -1 && h->to_zone() >= 0 && h->avatar_id() != 0;
     }
+    case proto::Message::TransactionOutcome: {
+      const proto::TransactionOutcome* o = d.msg_as_TransactionOutcome();
+      return o->seq() != 0 && o->status() <= kMaxTransactionStatus &&
+             (o->reason() == nullptr || o->reason()->size() <= kMaxReasonBytes);
+    }
     default:  // Pong: timestamps are opaque to the check
       return true;
   }
@@ -75,10 +84,12 @@ bool allowed(proto::Message type, Direction direction) {
     case proto::Message::Input:
     case proto::Message::Ping:
     case proto::Message::Bye:
+    case proto::Message::Transaction:
       return direction == Direction::ToGateway;
     case proto::Message::Welcome:
     case proto::Message::Pong:
     case proto::Message::Handoff:
+    case proto::Message::TransactionOutcome:
       return direction == Direction::ToClient;
     default:  // StateBatch, Spawn and Despawn travel as lean frames (wire/downlink_frame.h)
       return false;

@@ -22,6 +22,12 @@ inline constexpr std::size_t kMaxNameBytes = 64;
 /// Longest connect or resume token accepted in a Hello: room above today's 57 and 56 bytes for
 /// a later version; the exact size is the token check's business (auth/).
 inline constexpr std::size_t kMaxConnectTokenBytes = 128;
+/// A transaction outcome's reason, at most (the zones cut theirs to it).
+inline constexpr std::size_t kMaxReasonBytes = 160;
+/// Transaction kinds (ledger::Kind: trade, loot, purchase, score) and outcome statuses
+/// (ledger::TxStatus: committed, already committed, conflict, failed) a datagram may carry.
+inline constexpr std::uint8_t kMaxTransactionKind = 4;
+inline constexpr std::uint8_t kMaxTransactionStatus = 3;
 /// Slack on |move| <= 1 for rounding on the client.
 inline constexpr float kMoveEpsilon = 1e-3f;
 /// Positions beyond this magnitude (metres) are nonsense whatever the scene.

@@ -187,9 +187,56 @@ TEST(ReliableStream, TheTimeoutFollowsTheRoundTripAndBacksOff) {
   EXPECT_EQ(s.sendDue(now + rto + 2 * rto - 1, none), 0u);
   EXPECT_EQ(s.sendDue(now + 3 * rto, none), 1u);
   EXPECT_EQ(s.retransmissions(), 2u);
-  // Its ack answers either copy: no sample (Karn), the backed-off timeout stays.
-  s.acknowledge(s.lastPushed(), now + 3 * rto + 10 * kMs, s.lastPushed());
+  // An ack of nothing new leaves the backoff.
+  s.acknowledge(s.lastPushed() - 1, now + 3 * rto + 5 * kMs, 0);
   EXPECT_EQ(s.rtoNs(), 4 * rto);
+  // Its ack answers either copy: no sample (Karn); but new data acknowledged ends the backoff,
+  // so the timeout is the estimate's again.
+  s.acknowledge(s.lastPushed(), now + 3 * rto + 10 * kMs, s.lastPushed());
+  EXPECT_EQ(s.rtoNs(), rto);
+}
+
+// Before any sample, the end of a backoff goes back to the initial timeout.
+TEST(ReliableStream, AnAckWithoutASampleEndsTheBackoffAtTheInitialTimeout) {
+  ReliableSender s({.window = 8, .initial_rto_ns = 250 * kMs, .min_rto_ns = 50 * kMs,
+                    .max_rto_ns = 2000 * kMs});
+  auto none = [](std::uint32_t, std::span<const std::uint8_t>) {};
+  s.push({1});
+  s.sendDue(0, none);
+  s.sendDue(250 * kMs, none);
+  EXPECT_EQ(s.rtoNs(), 500 * kMs);
+  s.acknowledge(1, 300 * kMs, 1);  // resent: no sample
+  EXPECT_EQ(s.rtoNs(), 250 * kMs);
+}
+
+// A receiver that answers later messages but not an earlier one (a zone holding later
+// transactions for a gap) lets the sender resend the earlier one at once, once a round trip.
+TEST(ReliableStream, AnExpeditedMessageGoesAtTheNextSendNotAtItsTimeout) {
+  ReliableSender s({.window = 8, .initial_rto_ns = 250 * kMs, .min_rto_ns = 50 * kMs,
+                    .max_rto_ns = 2000 * kMs});
+  std::vector<std::uint32_t> sent;
+  auto record = [&](std::uint32_t seq, std::span<const std::uint8_t>) { sent.push_back(seq); };
+  // Round trips of 60 and 140 ms in turn learnt first: SRTT about 100 ms, RTO well above.
+  for (int i = 0; i < 20; ++i) {
+    std::uint32_t seq = *s.push({1});
+    s.sendDue(std::int64_t(i) * 200 * kMs, record);
+    s.acknowledge(seq, std::int64_t(i) * 200 * kMs + (i % 2 ? 140 : 60) * kMs, seq);
+  }
+  ASSERT_GT(s.rtoNs(), 200 * kMs);
+  std::int64_t now = 4000 * kMs;
+  std::uint32_t lost = *s.push({2});
+  s.push({3});
+  sent.clear();
+  EXPECT_EQ(s.sendDue(now, record), 2u);
+  s.expedite(lost, now + 50 * kMs);  // within a round trip of its copy: its answer may come
+  EXPECT_EQ(s.sendDue(now + 50 * kMs, record), 0u);
+  s.expedite(lost, now + 110 * kMs);
+  EXPECT_EQ(s.sendDue(now + 110 * kMs, record), 1u) << "before its timeout of " << s.rtoNs();
+  EXPECT_EQ(sent.back(), lost);
+  EXPECT_EQ(s.retransmissions(), 1u);
+  s.expedite(99, now + 500 * kMs);  // never pushed: nothing
+  s.expedite(lost - 1, now + 500 * kMs);  // acknowledged: nothing
+  EXPECT_EQ(s.retransmissions(), 1u);
 }
 
 TEST(ReliableStream, TheReceiverHoldsEarlyMessagesWithinItsWindowOnly) {
@@ -197,14 +244,14 @@ TEST(ReliableStream, TheReceiverHoldsEarlyMessagesWithinItsWindowOnly) {
   std::vector<std::uint32_t> got;
   auto deliver = [&](std::uint32_t seq, std::span<const std::uint8_t>) { got.push_back(seq); };
   std::vector<std::uint8_t> p{0};
-  EXPECT_EQ(r.receive(3, p, deliver), Received::Held);
-  EXPECT_EQ(r.receive(5, p, deliver), Received::TooFar);
-  EXPECT_EQ(r.receive(3, p, deliver), Received::Duplicate);
-  EXPECT_EQ(r.receive(2, p, deliver), Received::Held);
-  EXPECT_EQ(r.receive(1, p, deliver), Received::Delivered);
+  EXPECT_EQ(r.receive(3, p, deliver), Arrival::Held);
+  EXPECT_EQ(r.receive(5, p, deliver), Arrival::TooFar);
+  EXPECT_EQ(r.receive(3, p, deliver), Arrival::Duplicate);
+  EXPECT_EQ(r.receive(2, p, deliver), Arrival::Held);
+  EXPECT_EQ(r.receive(1, p, deliver), Arrival::Delivered);
   EXPECT_EQ(got, (std::vector<std::uint32_t>{1, 2, 3}));
   EXPECT_EQ(r.delivered(), 3u);
-  EXPECT_EQ(r.receive(2, p, deliver), Received::Duplicate);
+  EXPECT_EQ(r.receive(2, p, deliver), Arrival::Duplicate);
   EXPECT_EQ(r.held(), 0u);
 }
 

@@ -94,6 +94,39 @@ TEST(Wire, DirectionDecidesWhichMessagesAreAccepted) {
   EXPECT_TRUE(verifyDatagram(encodePong(1, 2, 3), Direction::ToClient).ok());
 }
 
+// The reliable channel's two messages: each field comes back, each goes one way only, and a
+// sequence 0, an unknown kind or status or an overlong reason is out of range.
+TEST(Wire, TransactionsAndOutcomesRoundTripAndAreChecked) {
+  TransactionInfo t{7, 3, 901, -2, 5, 45, 0};
+  Bytes tb = encodeTransaction(9, t);  // the Verified points into it
+  Verified v = verifyDatagram(tb, Direction::ToGateway);
+  ASSERT_TRUE(v.ok());
+  EXPECT_EQ(v.datagram->token(), 9u);
+  EXPECT_EQ(transactionInfo(*v.datagram->msg_as_Transaction()), t);
+  EXPECT_EQ(reasonOf(encodeTransaction(9, t), Direction::ToClient), DropReason::UnexpectedType);
+  for (TransactionInfo bad : {TransactionInfo{0, 2}, TransactionInfo{1, 0}, TransactionInfo{1, 5}})
+    EXPECT_EQ(reasonOf(encodeTransaction(9, bad)), DropReason::OutOfRange)
+        << "seq " << bad.seq << " kind " << int(bad.kind);
+
+  Bytes ob = encodeTransactionOutcome(9, 7, 3, "database unavailable");
+  Verified o = verifyDatagram(ob, Direction::ToClient);
+  ASSERT_TRUE(o.ok());
+  const proto::TransactionOutcome* out = o.datagram->msg_as_TransactionOutcome();
+  EXPECT_EQ(out->seq(), 7u);
+  EXPECT_EQ(out->status(), 3u);
+  EXPECT_EQ(out->reason()->str(), "database unavailable");
+  EXPECT_EQ(reasonOf(encodeTransactionOutcome(9, 7, 0, "")), DropReason::UnexpectedType);
+  EXPECT_EQ(reasonOf(encodeTransactionOutcome(9, 0, 0, ""), Direction::ToClient),
+            DropReason::OutOfRange);
+  EXPECT_EQ(reasonOf(encodeTransactionOutcome(9, 7, 4, ""), Direction::ToClient),
+            DropReason::OutOfRange);
+  // The encoder cuts a reason to what the check allows.
+  Bytes long_reason = encodeTransactionOutcome(9, 7, 3, std::string(kMaxReasonBytes + 40, 'r'));
+  Verified cut = verifyDatagram(long_reason, Direction::ToClient);
+  ASSERT_TRUE(cut.ok());
+  EXPECT_EQ(cut.datagram->msg_as_TransactionOutcome()->reason()->size(), kMaxReasonBytes);
+}
+
 TEST(Wire, EmptyUnionIsNoMessage) {
   flatbuffers::FlatBufferBuilder fbb;
   proto::FinishDatagramBuffer(fbb, proto::CreateDatagram(fbb, 5));
