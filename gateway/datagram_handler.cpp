@@ -10,6 +10,7 @@ void Outbox::clear() {
   replies.clear();
   spawns.clear();
   inputs.clear();
+  transactions.clear();
   closed.clear();
   replaced.clear();
 }
@@ -78,6 +79,9 @@ void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint
           {from, s->token,
            encodePong(s->token, d.msg_as_Ping()->client_time_us(), wallTimeUs(), dilation_)});
       ++accepted_;
+      return;
+    case proto::Message::Transaction:
+      onTransaction(*d.msg_as_Transaction(), *s, out);
       return;
     case proto::Message::Bye: {
       Session ended = *s;
@@ -233,6 +237,17 @@ void DatagramHandler::onInput(const proto::Input& in, Session& s, Outbox& out) {
   s.inputs.record({in.seq(), in.move_x(), in.move_z()});
   ++s.traffic.inputs_forwarded;
   out.inputs.push_back({s.player_id, s.avatar_id, s.zone, in.seq(), in.move_x(), in.move_z()});
+  ++accepted_;
+}
+
+void DatagramHandler::onTransaction(const proto::Transaction& t, Session& s, Outbox& out) {
+  if (!s.welcomed) {
+    drops_.add(DropReason::NotReady);
+    return;
+  }
+  // Every copy goes on, repeats too: the zone answers a repeat with the outcome the client
+  // missed, and only the zone knows what it applied.
+  out.transactions.push_back({s.player_id, s.zone, transactionInfo(t)});
   ++accepted_;
 }
 

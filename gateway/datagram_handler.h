@@ -40,6 +40,14 @@ struct InputCommand {
   float move_x = 0, move_z = 0;
 };
 
+/// One transaction to forward to the avatar's owning zone, which applies it once and answers
+/// with its outcome (the client resends it until then).
+struct TransactionCommand {
+  std::uint64_t player_id = 0;
+  int zone = 0;
+  TransactionInfo tx;
+};
+
 /// A datagram to send back to the address a request came from.
 struct Reply {
   Endpoint to;
@@ -52,6 +60,7 @@ struct Outbox {
   std::vector<Reply> replies;
   std::vector<SpawnCommand> spawns;
   std::vector<InputCommand> inputs;
+  std::vector<TransactionCommand> transactions;
   std::vector<Session> closed;  ///< sessions ended by Bye (already erased): release interest
   /// Sessions a resumed Hello of the same player replaced (already erased): release interest,
   /// but keep the avatar, which the new session goes on with.
@@ -109,6 +118,7 @@ class DatagramHandler {
   std::optional<auth::ResumeToken> checkResume(std::span<const std::uint8_t> token,
                                                const Endpoint& from);
   void onInput(const proto::Input& in, Session& s, Outbox& out);
+  void onTransaction(const proto::Transaction& t, Session& s, Outbox& out);
   /// Takes one token from the session's bucket; false (drop) when it is empty.
   bool withinRate(Session& s, std::int64_t now_ns) const;
   /// The session the datagram's token names, if it comes from that session's address.

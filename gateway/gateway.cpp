@@ -36,11 +36,12 @@ HandlerConfig handlerConfig(const GatewayConfig& c) {
   return h;
 }
 
-/// A random non-zero 16-bit number per gateway process: player ids of a restarted gateway (and
-/// of gateways left at the same --gateway-id) differ from the ones the zones already saw.
+/// A random non-zero 15-bit number per gateway process: player ids of a restarted gateway (and
+/// of gateways left at the same --gateway-id) differ from the ones the zones already saw. Not
+/// 16 bits: ids stay below 2^63, the largest key the ledger's databases store (signed 64-bit).
 std::uint16_t randomIncarnation() {
   std::random_device rd;
-  return std::uint16_t(1 + rd() % 0xFFFF);
+  return std::uint16_t(1 + rd() % 0x7FFF);
 }
 
 std::int64_t graceNs(const GatewayConfig& c) {
@@ -200,6 +201,12 @@ void Gateway::carryOut(Outbox& out) {
     else
       ++counters_.input_write_failures;
   }
+  for (const TransactionCommand& c : out.transactions) {
+    if (link_.sendTransaction(c))
+      ++counters_.transactions_forwarded;
+    else
+      ++counters_.transaction_write_failures;
+  }
   CellDelta delta;
   for (const Session& s : out.closed) {
     retirePlayer(s, delta);
@@ -216,6 +223,7 @@ void Gateway::carryOut(Outbox& out) {
 void Gateway::tick(std::int64_t now_ns) {
   std::int64_t cpu_ns = threadCpuNs();
   for (const zonesim_dds_OwnershipEvent& e : link_.takeOwnership()) applyOwnership(e);
+  deliverOutcomes();
   link_.flushSpawns();
   counters_.dds_samples += link_.takeCells(cache_, clock_, timeline_, now_ns);
   followEpochs(now_ns);
@@ -237,6 +245,21 @@ void Gateway::tick(std::int64_t now_ns) {
     tick_window_ = {};
     tick_cpu_window_ = {};
     next_metrics_ns_ += kSecondNs;
+  }
+}
+
+void Gateway::deliverOutcomes() {
+  for (const TransactionOutcomeMsg& o : link_.takeOutcomes()) {
+    auto h = sessions_.findByPlayer(o.player_id);
+    Session* s = h ? sessions_.get(*h) : nullptr;
+    if (s == nullptr || !s->welcomed) {
+      // Another gateway's player, or one gone: it sends the transaction again wherever it
+      // plays now, and its zone answers again.
+      ++counters_.outcomes_foreign;
+      continue;
+    }
+    sendTo(*s, encodeTransactionOutcome(s->token, o.seq, o.status, o.reason));
+    ++counters_.outcomes_delivered;
   }
 }
 

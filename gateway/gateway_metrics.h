@@ -19,6 +19,10 @@ struct GatewayCounters {
   std::uint64_t updates_forwarded = 0, spawns_sent = 0, despawns_sent = 0;
   std::uint64_t resent = 0, acks_received = 0;
   std::uint64_t inputs_forwarded = 0, input_write_failures = 0;
+  /// Transactions passed on to zones (repeats included), their failed writes, and outcomes
+  /// told to this gateway's players or meant for another gateway's.
+  std::uint64_t transactions_forwarded = 0, transaction_write_failures = 0;
+  std::uint64_t outcomes_delivered = 0, outcomes_foreign = 0;
   std::uint64_t spawn_requests = 0, welcomes = 0, handoffs = 0;
   std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
   std::uint64_t clock_ticks = 0;      ///< empty StateBatches sent to quiet views

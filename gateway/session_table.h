@@ -75,7 +75,7 @@ struct Session {
 /// All sessions of one gateway.
 class SessionTable {
  public:
-  /// Player ids issued here are incarnation (16 bits) | gateway_id (16 bits) | counter (32
+  /// Player ids issued here are incarnation (15 bits) | gateway_id (16 bits) | counter (32
   /// bits): two gateways with different ids, or one gateway before and after a restart (a new
   /// random incarnation), never issue the same id.
   SessionTable(std::uint32_t gateway_id, std::size_t max_sessions, std::uint16_t incarnation = 0);

@@ -21,9 +21,14 @@ ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
                                              keep_all_qos_.get());
   ownership_reader_ = dds::makePartitionReader(participant_.get(), topics_.ownership.get(), "",
                                                keep_all_qos_.get());
+  outcome_reader_ = dds::makePartitionReader(
+      participant_.get(), topics_.transaction_outcomes.get(), "", keep_all_qos_.get());
   // Input writers for the zones we expect, created now so they are matched before the first
   // input: an input written before its reader is discovered would be lost.
-  for (int z = 0; z < expected_zones_; ++z) inputWriter(z);
+  for (int z = 0; z < expected_zones_; ++z) {
+    zoneWriter(input_writers_, topics_.player_input.get(), z);
+    zoneWriter(transaction_writers_, topics_.player_transactions.get(), z);
+  }
 }
 
 void ZoneLink::requestSpawn(const SpawnCommand& c) {
@@ -68,12 +73,13 @@ void ZoneLink::requestDespawn(std::uint64_t player_id, std::uint64_t session_id)
     ZS_WARN("despawn request for player %llu timed out", (unsigned long long)player_id);
 }
 
-dds::PartitionWriter& ZoneLink::inputWriter(int zone) {
-  auto it = input_writers_.find(zone);
-  if (it != input_writers_.end()) return it->second;
-  auto w = dds::makePartitionWriter(participant_.get(), topics_.player_input.get(),
-                                    dds::zonePartition(zone), input_qos_.get());
-  return input_writers_.emplace(zone, std::move(w)).first->second;
+dds::PartitionWriter& ZoneLink::zoneWriter(std::map<int, dds::PartitionWriter>& writers,
+                                           dds_entity_t topic, int zone) {
+  auto it = writers.find(zone);
+  if (it != writers.end()) return it->second;
+  auto w = dds::makePartitionWriter(participant_.get(), topic, dds::zonePartition(zone),
+                                    input_qos_.get());
+  return writers.emplace(zone, std::move(w)).first->second;
 }
 
 bool ZoneLink::sendInput(const InputCommand& c) {
@@ -85,7 +91,33 @@ bool ZoneLink::sendInput(const InputCommand& c) {
   in.move_z = c.move_z;
   // A zone that stops reading must not stall or kill the gateway: the input is dropped (the
   // zone applies later seqs in order) and counted.
-  return dds_write(inputWriter(c.zone).writer.get(), &in) >= 0;
+  return dds_write(zoneWriter(input_writers_, topics_.player_input.get(), c.zone).writer.get(),
+                   &in) >= 0;
+}
+
+bool ZoneLink::sendTransaction(const TransactionCommand& c) {
+  zonesim_dds_PlayerTransaction t{};
+  t.player_id = c.player_id;
+  t.seq = c.tx.seq;
+  t.kind = c.tx.kind;
+  t.item = c.tx.item;
+  t.amount = c.tx.amount;
+  t.counterparty = c.tx.counterparty;
+  t.price = c.tx.price;
+  t.score = c.tx.score;
+  dds_entity_t w =
+      zoneWriter(transaction_writers_, topics_.player_transactions.get(), c.zone).writer.get();
+  return dds_write(w, &t) >= 0;
+}
+
+std::vector<TransactionOutcomeMsg> ZoneLink::takeOutcomes() {
+  // Any epoch's: an outcome says what the database holds, which no restart takes back.
+  std::vector<TransactionOutcomeMsg> out;
+  dds::takeAll<zonesim_dds_TransactionOutcome>(
+      outcome_reader_.reader.get(), [&](const zonesim_dds_TransactionOutcome& o) {
+        out.push_back({o.player_id, o.seq, o.status, std::string(o.reason)});
+      });
+  return out;
 }
 
 void ZoneLink::subscribeCell(int cell, int ix, int iz) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "gateway/datagram_handler.h"
@@ -18,6 +19,14 @@
 #include "zonesim.h"
 
 namespace zonesim::gateway {
+
+/// A zone's answer to one of a player's transactions (status as ledger::TxStatus).
+struct TransactionOutcomeMsg {
+  std::uint64_t player_id = 0;
+  std::uint32_t seq = 0;
+  std::uint8_t status = 0;
+  std::string reason;
+};
 
 class ZoneLink {
  public:
@@ -35,6 +44,11 @@ class ZoneLink {
   void requestDespawn(std::uint64_t player_id, std::uint64_t session_id);
   /// Writes one input on the owning zone's partition; false if the write failed (timed out).
   bool sendInput(const InputCommand& c);
+  /// Writes one transaction on the owning zone's partition; false if the write failed (the
+  /// client sends it again).
+  bool sendTransaction(const TransactionCommand& c);
+  /// Takes every zone's pending transaction outcomes, for whichever gateway's players.
+  std::vector<TransactionOutcomeMsg> takeOutcomes();
 
   /// Creates the readers of cell (ix, iz) with id cell; nothing if already there.
   void subscribeCell(int cell, int ix, int iz);
@@ -57,7 +71,9 @@ class ZoneLink {
   struct CellReaders {
     dds::PartitionReader updates, keyframes;
   };
-  dds::PartitionWriter& inputWriter(int zone);
+  /// The writer of `topic` on zone's partition, created on first use.
+  dds::PartitionWriter& zoneWriter(std::map<int, dds::PartitionWriter>& writers,
+                                   dds_entity_t topic, int zone);
 
   int expected_zones_;
   // Declared first so it is deleted last; deleting it would delete every child anyway.
@@ -67,7 +83,9 @@ class ZoneLink {
   dds::PartitionWriter spawn_writer_;
   dds::PartitionWriter despawn_writer_;
   dds::PartitionReader ownership_reader_;
+  dds::PartitionReader outcome_reader_;
   std::map<int, dds::PartitionWriter> input_writers_;
+  std::map<int, dds::PartitionWriter> transaction_writers_;
   std::map<int, CellReaders> cells_;
   std::vector<SpawnCommand> held_spawns_;
 };

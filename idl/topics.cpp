@@ -15,6 +15,10 @@ Topics makeTopics(dds_entity_t participant) {
       makeTopic(participant, &zonesim_dds_DespawnRequest_desc, "zs_despawn_requests", nullptr);
   t.gateway_load =
       makeTopic(participant, &zonesim_dds_GatewayLoad_desc, "zs_gateway_load", nullptr);
+  t.player_transactions = makeTopic(participant, &zonesim_dds_PlayerTransaction_desc,
+                                    "zs_player_transactions", nullptr);
+  t.transaction_outcomes = makeTopic(participant, &zonesim_dds_TransactionOutcome_desc,
+                                     "zs_transaction_outcomes", nullptr);
   return t;
 }
 

@@ -6,6 +6,8 @@
 //   zs_player_input    PlayerInput      partition z.<rank>     gateway -> zone, reliableKeepAll
 //   zs_spawn_requests  SpawnRequest     default partition      gateway -> zones, reliableKeepAll
 //   zs_despawn_requests DespawnRequest  default partition      gateway -> zones, reliableKeepAll
+//   zs_player_transactions PlayerTransaction partition z.<rank> gateway -> zone, reliableKeepAll
+//   zs_transaction_outcomes TransactionOutcome default partition zone -> gateways, reliableKeepAll
 //   zs_gateway_load    GatewayLoad      default partition      gateway -> lobby, gatewayLoadQos
 
 #include "idl/dds_entity.h"
@@ -20,6 +22,8 @@ struct Topics {
   Entity spawn_requests;
   Entity despawn_requests;
   Entity gateway_load;
+  Entity player_transactions;
+  Entity transaction_outcomes;
 };
 
 /// Creates all zonesim topics on the participant.

@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
     zonesim::auth::AuthKey key = zonesim::auth::loadAuthKey(key_file);
     cfg.login.token_lifetime_ms = std::uint64_t(lifetime_s * 1000);
     // Player ids of a restarted lobby differ from the ones it issued before.
-    cfg.login.incarnation = std::uint16_t(1 + std::random_device{}() % 0xFFFF);
+    // 15 bits, as a gateway's: player ids stay below 2^63 for the ledger (gateway/gateway.cpp).
+    cfg.login.incarnation = std::uint16_t(1 + std::random_device{}() % 0x7FFF);
     std::optional<zonesim::lobby::Lobby> bound;
     try {
       bound.emplace(cfg, std::move(key));

@@ -146,6 +146,29 @@ TEST_F(HandlerTest, ValidInputIsForwardedOnceInOrder) {
   EXPECT_EQ(out_.inputs.size(), 1u);
 }
 
+// Every copy of a transaction goes to the avatar's zone, repeats too (the zone answers a
+// repeat with the outcome the client missed); before the Welcome it is not ready.
+TEST_F(HandlerTest, TransactionsGoToTheAvatarsZoneRepeatsIncluded) {
+  feed(encodeHello(42, "p"));
+  Session* early = sessions_.get(*sessions_.findByHello(kClient, 42));
+  feed(encodeTransaction(early->token, {1, 2, 7, 1}));
+  EXPECT_TRUE(out_.transactions.empty());
+  EXPECT_EQ(dropped(DropReason::NotReady), 1u);
+  Session& s = welcomedSession();
+  s.zone = 3;
+  TransactionInfo t{1, 3, 12, 1, 0, 40, 0};
+  for (int copy = 0; copy < 2; ++copy) {
+    feed(encodeTransaction(s.token, t));
+    ASSERT_EQ(out_.transactions.size(), 1u) << "copy " << copy;
+    EXPECT_EQ(out_.transactions[0].player_id, s.player_id);
+    EXPECT_EQ(out_.transactions[0].zone, 3);
+    EXPECT_EQ(out_.transactions[0].tx, t);
+  }
+  feed(encodeTransaction(s.token ^ 1, t));
+  EXPECT_TRUE(out_.transactions.empty());
+  EXPECT_EQ(dropped(DropReason::BadToken), 1u);
+}
+
 TEST_F(HandlerTest, InputBeforeWelcomeIsNotReady) {
   feed(encodeHello(42, "p"));
   const Session* s = sessions_.get(*sessions_.findByHello(kClient, 42));
