@@ -85,6 +85,9 @@ struct AvatarData {
   bool announced = false;  ///< its owner told the gateways (creation announced)
   std::uint8_t kind = 0;   ///< the player's kind (common/player_kind.h)
   double height = 0;       ///< metres above the ground a flyer holds; 0: it walks on the ground
+  /// The player's last transaction handed to the ledger in sequence order (zone_node/
+  /// transactions.h): the zone that owns the avatar next goes on from it.
+  std::uint32_t last_transaction_seq = 0;
 
   bool operator==(const AvatarData&) const = default;
 };

@@ -35,6 +35,7 @@ struct Options {
   std::string time_dilation = "scene";  ///< on, off, or as the scene says
   std::int64_t epoch = -1;              ///< -1: 0 for a fresh start, 1 after --restart
   double orphan_grace_s = 30;
+  std::string ledger;  ///< sqlite:PATH or postgres:CONNINFO; empty: no ledger
   zonesim::zone::ZoneOptions zone;
   zonesim::CommonOptions common;
 };
@@ -188,9 +189,21 @@ int main(int argc, char** argv) {
                  "slow the cluster's clock under overload: on, off, or scene (its time_dilation "
                  "key; absent: off)")
       ->check(CLI::IsMember({"on", "off", "scene"}));
+  app.add_option("--ledger", o.ledger,
+                 "commit players' transactions here: sqlite:PATH (every rank may share one "
+                 "file) or postgres:CONNINFO; without it, transactions fail with that reason")
+      ->check([](const std::string& spec) {
+        try {
+          zonesim::ledger::parseStoreSpec(spec);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
   zonesim::addCommonOptions(app, o.common);
   CLI11_PARSE(app, argc, argv);
   o.zone.dds = !no_dds;
+  if (!o.ledger.empty()) o.zone.ledger = zonesim::ledger::parseStoreSpec(o.ledger);
   zonesim::applyCommonOptions(o.common, "zone");
 
   MPI_Init(&argc, &argv);

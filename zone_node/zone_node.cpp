@@ -24,6 +24,7 @@
 #include "zone_node/systems/rigid_bodies.h"
 #include "zone_node/systems/road_movement.h"
 #include "zone_node/systems/step_context.h"
+#include "zone_node/transactions.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_map.h"
 
@@ -129,6 +130,10 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
                                                  rank_, scene_, options_.epoch);
     coverZone();
   }
+  std::unique_ptr<ledger::LedgerCommitter> committer;
+  if (options_.ledger)
+    committer = std::make_unique<ledger::LedgerCommitter>(ledger::openStore(*options_.ledger));
+  transactions_ = std::make_unique<Transactions>(std::move(committer));
   PlayerZone zone = playerZone();
   players_.restored(zone);
   emitters_ = std::make_unique<EmitterSystem>(scene_.emitters, gpu_mode, thresholds);
@@ -203,6 +208,8 @@ StepContext ZoneNode::stepContext() {
 void ZoneNode::input() {
   PlayerZone zone = playerZone();
   players_.input(zone);
+  // After the spawns: a player's first transaction may come with its avatar.
+  transactions_->input(zone);
 }
 
 void ZoneNode::ai() {
@@ -294,6 +301,8 @@ void ZoneNode::coverZone() {
 
 void ZoneNode::publish() {
   if (!publisher_) return;
+  PlayerZone zone = playerZone();
+  transactions_->publish(zone);
   publisher_->setDilation(dilation_.factor());
   PublishStats s = publisher_->publish(store_, leavers_, tick_, double(tick_) * scene_.dt);
   counters_.published_updates = s.updates;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "common/interest_grid.h"
 #include "common/scene.h"
 #include "crowd/vec2.h"
+#include "ledger/store.h"
 #include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/load_balancer.h"
 #include "zone_node/cluster/migration.h"
@@ -38,6 +40,7 @@ class FlowMovement;
 class FormationMovement;
 class RoadMovement;
 class AntMovement;
+class Transactions;
 class WanderMovement;
 struct WorldMap;
 class ZoneMap;
@@ -55,6 +58,9 @@ struct ZoneOptions {
   BalanceSettings balance;     ///< moving zone boundaries (every = 0: fixed)
   std::uint32_t epoch = 0;     ///< the cluster epoch every DDS sample carries
   int orphan_grace_ticks = 0;  ///< an avatar with no input this long is removed (0: never)
+  /// Where players' transactions are committed (zone_node --ledger); nullopt: no ledger, and
+  /// every transaction fails with that reason.
+  std::optional<ledger::StoreConfig> ledger;
 };
 
 struct CheckpointImage;
@@ -88,6 +94,8 @@ class ZoneNode {
   const EntityStore& store() const { return store_; }
   const TickProfile& profile() const { return profile_; }
   const TickCounters& counters() const { return counters_; }
+  /// The players' transaction channels (zone_node/transactions.h).
+  const Transactions& transactions() const { return *transactions_; }
   /// Read-only copies of the neighbours' entities within the halo (refreshed every tick).
   const GhostStore& ghosts() const { return halo_.ghosts(); }
   const ConservationTally& conservation() const { return conservation_; }
@@ -170,6 +178,7 @@ class ZoneNode {
   Collectives collectives_;               // what the systems may ask of the whole cluster
   std::vector<crowd::Vec2> lod_players_;  // every avatar of the cluster, for crowd LOD
   Players players_;                       // the player protocol
+  std::unique_ptr<Transactions> transactions_;  // players' reliable transaction channels
 
   std::uint64_t tick_ = 0;
   std::uint64_t link_failures_seen_ = 0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "common/stats.h"
+#include "zone_node/transactions.h"
 
 namespace zonesim::zone {
 
@@ -99,6 +100,16 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.add("flock_backend", zone.flockBackend());
   s.addRaw("migrated_out_to", byRank(migrated_to_));
   s.addRaw("avatars_out_to", byRank(avatars_to_));
+  const TransactionCounters& t = zone.transactions().counters();
+  s.add("transactions_received", t.received).add("transactions_submitted", t.submitted);
+  s.add("transactions_resubmitted", t.resubmitted)
+      .add("transactions_answered_again", t.answered_again);
+  s.add("transactions_not_here", t.not_here).add("transactions_too_far", t.too_far);
+  s.add("transactions_gap_notices", t.gap_notices);
+  s.add("transactions_committed", t.committed)
+      .add("transactions_already_committed", t.already_committed);
+  s.add("transactions_conflicts", t.conflicts).add("transactions_failed", t.failed);
+  s.add("ledger_batches", zone.transactions().ledgerStats().batches);
   s.add("handoffs_timed", std::uint64_t(handoff_latency_ms_.size()));
   if (!handoff_latency_ms_.empty()) {
     s.add("handoff_latency_ms_p50", percentile(handoff_latency_ms_, 50))

@@ -126,13 +126,14 @@ flatbuffers::Offset<fb::AvatarState> encodeAvatar(Builder& b, const AvatarData& 
                                                   EntityKind kind) {
   if (kind != EntityKind::Avatar) return {};
   return fb::CreateAvatarState(b, a.player_id, a.last_input_seq, a.move_x, a.move_z, a.max_speed,
-                               a.announced, a.kind, a.height);
+                               a.announced, a.kind, a.height, a.last_transaction_seq);
 }
 
 void decodeAvatar(const fb::AvatarState& s, AvatarData& a) {
   if (s.kind() >= kPlayerKindCount) throw CodecError("avatar record with unknown player kind");
-  a = {s.player_id(), s.last_input_seq(), s.move_x(), s.move_z(),
-       s.max_speed(), s.announced(),      s.kind(),   s.height()};
+  a = {s.player_id(), s.last_input_seq(), s.move_x(),  s.move_z(),
+       s.max_speed(), s.announced(),      s.kind(),    s.height(),
+       s.last_transaction_seq()};
 }
 
 flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, EntityKind kind) {

@@ -1,5 +1,7 @@
 #include "zone_node/net/gateway_link.h"
 
+#include <algorithm>
+
 #include "idl/dds_qos.h"
 #include "idl/dds_take.h"
 #include "zonesim.h"
@@ -17,6 +19,35 @@ GatewayLink::GatewayLink(int domain, int rank, std::uint32_t epoch)
   despawns_ =
       dds::makePartitionReader(participant_.get(), topics_.despawn_requests.get(), "", q.get());
   ownership_ = dds::makePartitionWriter(participant_.get(), topics_.ownership.get(), "", q.get());
+  transactions_ = dds::makePartitionReader(participant_.get(), topics_.player_transactions.get(),
+                                           dds::zonePartition(rank), q.get());
+  outcomes_ =
+      dds::makePartitionWriter(participant_.get(), topics_.transaction_outcomes.get(), "", q.get());
+}
+
+std::vector<PlayerTransactionMsg> GatewayLink::takeTransactions() {
+  std::vector<PlayerTransactionMsg> out;
+  dds::takeAll<zonesim_dds_PlayerTransaction>(
+      transactions_.reader.get(), [&](const zonesim_dds_PlayerTransaction& t) {
+        out.push_back(
+            {t.player_id, t.seq, t.kind, t.item, t.amount, t.counterparty, t.price, t.score});
+      });
+  return out;
+}
+
+void GatewayLink::publishOutcome(std::uint64_t player_id, std::uint32_t seq, std::uint8_t status,
+                                 std::string_view reason) {
+  zonesim_dds_TransactionOutcome o{};
+  o.player_id = player_id;
+  o.seq = seq;
+  o.status = status;
+  std::size_t n = std::min(reason.size(), sizeof(o.reason) - 1);
+  std::copy_n(reason.data(), n, o.reason);
+  o.reason[n] = '\0';
+  o.epoch = epoch_;
+  // As for announcements: a gateway that stopped reading must not stall the zone. The client
+  // asks again, and the zone answers again.
+  if (dds_write(outcomes_.writer.get(), &o) < 0) ++write_failures_;
 }
 
 std::vector<PlayerInputMsg> GatewayLink::takeInputs() {

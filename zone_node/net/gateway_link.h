@@ -3,6 +3,7 @@
 // zone (partition z.<rank>), avatar spawn requests, and ownership announcements.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "idl/dds_entity.h"
@@ -15,6 +16,18 @@ struct PlayerInputMsg {
   std::uint64_t player_id = 0;
   std::uint32_t seq = 0;
   float move_x = 0, move_z = 0;
+};
+
+/// One of a player's transactions as its gateway passed it on (fields as ledger::Transaction).
+struct PlayerTransactionMsg {
+  std::uint64_t player_id = 0;
+  std::uint32_t seq = 0;
+  std::uint8_t kind = 0;
+  std::uint64_t item = 0;
+  std::int64_t amount = 0;
+  std::uint64_t counterparty = 0;
+  std::int64_t price = 0;
+  std::int64_t score = 0;
 };
 
 /// A request to create a player's avatar at a ground-plane position.
@@ -57,6 +70,12 @@ class GatewayLink {
   /// Players whose avatars are to be removed (the player left), since the last call.
   std::vector<DespawnRequestMsg> takeDespawnRequests();
   void announce(const OwnershipMsg& m);
+  /// All transactions received since the last call, in arrival order.
+  std::vector<PlayerTransactionMsg> takeTransactions();
+  /// Tells the gateways what became of a player's transaction (status: ledger::TxStatus);
+  /// the reason is cut to what the topic holds.
+  void publishOutcome(std::uint64_t player_id, std::uint32_t seq, std::uint8_t status,
+                      std::string_view reason);
   /// Announcements whose write timed out.
   std::uint64_t writeFailures() const { return write_failures_; }
 
@@ -67,6 +86,8 @@ class GatewayLink {
   dds::PartitionReader spawns_;
   dds::PartitionReader despawns_;
   dds::PartitionWriter ownership_;
+  dds::PartitionReader transactions_;
+  dds::PartitionWriter outcomes_;
   std::uint64_t write_failures_ = 0;
   std::uint32_t epoch_;
 };

@@ -43,7 +43,8 @@ EntityRecordData everyColumnSet() {
               .max_speed = 6.5,
               .announced = true,
               .kind = 2,
-              .height = 80};
+              .height = 80,
+              .last_transaction_seq = 17};
   r.body = {.radius = 0.75,
             .mass = 3,
             .restitution = 0.6,
@@ -220,6 +221,7 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   avatar.avatar.player_id = 555;
   avatar.avatar.last_input_seq = 41;
   avatar.avatar.move_x = -0.5f;
+  avatar.avatar.last_transaction_seq = 17;
   p.entities = {npc, avatar};
   p.inputs = {{555, 42, 1.0f, 0.0f}};
 
@@ -252,6 +254,7 @@ TEST(EntityCodec, MigrationBatchRoundTripsBitForBit) {
   EXPECT_EQ(q.entities[1].avatar.player_id, 555u);
   EXPECT_EQ(q.entities[1].avatar.last_input_seq, 41u);
   EXPECT_EQ(q.entities[1].avatar.move_x, -0.5f);
+  EXPECT_EQ(q.entities[1].avatar.last_transaction_seq, 17u) << "the next owner goes on from it";
   ASSERT_EQ(q.inputs.size(), 1u);
   EXPECT_EQ(q.inputs[0].seq, 42u);
 }
