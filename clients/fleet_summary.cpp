@@ -111,6 +111,43 @@ std::string clientJson(const SimPlayer& p, double s) {
   return j.str();
 }
 
+// The fleet's transaction channels together (clients/transaction_stream.h).
+std::string transactionsJson(const std::vector<std::unique_ptr<SimPlayer>>& players) {
+  TransactionCounters t;
+  std::uint64_t pending = 0;
+  for (const auto& p : players) {
+    const TransactionCounters& c = p->transactionCounters();
+    t.made += c.made;
+    t.sent += c.sent;
+    t.resent += c.resent;
+    t.committed += c.committed;
+    t.already_committed += c.already_committed;
+    t.conflicts += c.conflicts;
+    t.failed += c.failed;
+    t.outcome_repeats += c.outcome_repeats;
+    t.outcome_unknown += c.outcome_unknown;
+    t.refused_window_full += c.refused_window_full;
+    t.latency_ms.merge(c.latency_ms);
+    pending += p->pendingTransactions();
+  }
+  JsonLine j;
+  j.add("made", t.made)
+      .add("sent", t.sent)
+      .add("resent", t.resent)
+      .add("committed", t.committed)
+      .add("already_committed", t.already_committed)
+      .add("conflicts", t.conflicts)
+      .add("failed", t.failed)
+      .add("pending", pending)
+      .add("outcome_repeats", t.outcome_repeats)
+      .add("outcome_unknown", t.outcome_unknown)
+      .add("refused_window_full", t.refused_window_full)
+      .add("latency_ms_p50", percentile(t.latency_ms.samples(), 50))
+      .add("latency_ms_p99", percentile(t.latency_ms.samples(), 99))
+      .add("latency_ms_max", t.latency_ms.max());
+  return j.str();
+}
+
 }  // namespace
 
 PlayerCounters totalCounters(const std::vector<std::unique_ptr<SimPlayer>>& players, bool samples) {
@@ -185,6 +222,7 @@ std::string fleetSummaryJson(const std::vector<std::unique_ptr<SimPlayer>>& play
       .add("fleet_wakeups_per_s", wakeupsPerSecond(cost))
       .addRaw("clients", list)
       .addRaw("totals", totals.str())
+      .addRaw("transactions", transactionsJson(players))
       .addRaw("kinds", kindsSummaryJson(players, duration_s));
   return j.str();
 }

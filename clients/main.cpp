@@ -85,6 +85,11 @@ int main(int argc, char** argv) {
                  "a gateway silent this long is taken for dead: the player says Hello again with "
                  "its resume token, to it (restarted) or a --fallback-gateway (0: never)")
       ->check(CLI::NonNegativeNumber);
+  double transactions_per_s = 0;
+  app.add_option("--transactions-per-s", transactions_per_s,
+                 "transactions (loot, purchases, scores) each player makes a second on its "
+                 "reliable channel; the zones commit them to their ledger (0: none)")
+      ->check(CLI::Range(0.0, 1000.0));
   std::vector<std::string> fallback_gateways;
   app.add_option("--fallback-gateway", fallback_gateways,
                  "HOST:PORT of another gateway of the cluster to resume at (repeatable)");
@@ -138,6 +143,7 @@ int main(int argc, char** argv) {
     cfg.player.truth_every = truth_every;
     cfg.player.max_lead_s = max_lead_s;
     cfg.player.resume_after_s = resume_after_s;
+    cfg.player.transactions_per_s = transactions_per_s;
     for (const std::string& g : fallback_gateways) {
       try {
         cfg.player.fallback_gateways.push_back(zonesim::gateway::resolveEndpoint(g));

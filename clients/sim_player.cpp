@@ -36,6 +36,7 @@ SimPlayer::SimPlayer(const PlayerConfig& config, std::uint32_t index, std::int64
       // Nonces only match replies to requests; mixing in the port keeps two runs apart.
       nonce_(splitmix64(config.seed ^ (std::uint64_t{index} << 32)) ^
              std::uint64_t(socket_.localPort())),
+      transactions_(config.transactions_per_s, splitmix64(config.seed ^ 0x7a ^ index), start_ns),
       start_ns_(start_ns),
       next_hello_ns_(start_ns),
       next_input_ns_(INT64_MAX),
@@ -106,6 +107,7 @@ std::int64_t SimPlayer::helloDue(std::int64_t now_ns) {
     player_id_ = avatar_id_ = 0;
     seq_ = 0;  // a new avatar's inputs start at 1
     sent_inputs_ = gateway::InputHistory();
+    transactions_.restart(now_ns);
     startNewStream();
   }
   if (now_ns >= next_hello_ns_) {
@@ -145,6 +147,9 @@ std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
     next_ping_ns_ = now_ns + seconds(probing ? kProbeEveryS : config_.ping_every_s);
   }
   std::int64_t due = std::min(next_input_ns_, next_ping_ns_);
+  due = std::min(due, transactions_.due(now_ns, [&](const gateway::TransactionInfo& t) {
+    send(gateway::encodeTransaction(token_, t));
+  }));
   if (config_.resume_after_s > 0 && !resume_token_.empty()) {
     std::int64_t probe_at = last_heard_ns_ + seconds(config_.resume_after_s / 2) + 1;
     std::int64_t resume_at = last_heard_ns_ + seconds(config_.resume_after_s) + 1;
@@ -370,6 +375,8 @@ void SimPlayer::onResumed(const proto::Welcome& w, std::int64_t now_ns) {
   counters_.resume_s.add(double(now_ns - last_heard_ns_) * 1e-9);
   if (w.avatar_id() != avatar_id_) ++counters_.resume_new_avatar;
   startNewStream();
+  // The old session's outcomes may be lost with its gateway: ask again at once.
+  transactions_.onNewSession();
   // What the zone did not apply (sent to the dead gateway, or lost with it) goes again, in
   // order, before anything new: the zone applies each seq once.
   std::uint32_t applied = w.last_input_seq();
@@ -495,6 +502,11 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
       if (h->avatar_id() != 0) avatar_id_ = h->avatar_id();
       ++counters_.handoffs;
       logOwn(now_ns, h->tick(), true);
+      return;
+    }
+    case proto::Message::TransactionOutcome: {
+      const proto::TransactionOutcome* o = d.msg_as_TransactionOutcome();
+      transactions_.onOutcome(o->seq(), o->status(), now_ns);
       return;
     }
     case proto::Message::Pong: {

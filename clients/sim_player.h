@@ -15,6 +15,7 @@
 
 #include "clients/remote_view.h"
 #include "clients/reservoir.h"
+#include "clients/transaction_stream.h"
 #include "clients/wander.h"
 #include "common/scene_clients.h"
 #include "common/scene_geometry.h"
@@ -66,6 +67,9 @@ struct PlayerConfig {
   /// Other gateways of the cluster to resume at, tried in turn after `gateway` (which may be
   /// restarted on its address).
   std::vector<Endpoint> fallback_gateways;
+  /// Transactions (loot, purchases, scores) each player makes a second on its reliable
+  /// channel (clients/transaction_stream.h); 0: none.
+  double transactions_per_s = 0;
 };
 
 /// Where a player showed a sampled entity (dr/truth_sample.h) at a server tick.
@@ -143,6 +147,10 @@ class SimPlayer {
   std::uint64_t playerId() const { return player_id_; }
   std::uint64_t avatarId() const { return avatar_id_; }
   int zone() const { return zone_; }
+  /// What the player's transaction channel did.
+  const TransactionCounters& transactionCounters() const { return transactions_.counters(); }
+  /// Transactions made and not decided yet.
+  std::size_t pendingTransactions() const { return transactions_.pending(); }
   /// The gateway the player plays through now.
   const Endpoint& gateway() const { return knownGateway(gateway_index_); }
   /// Seconds from the first Hello to the Welcome (negative if none yet).
@@ -235,6 +243,7 @@ class SimPlayer {
   std::int64_t last_heard_ns_ = 0, resume_started_ns_ = 0, resume_gateway_since_ns_ = 0;
   std::int64_t last_ping_ns_ = 0;
   gateway::InputHistory sent_inputs_;  // the newest inputs, resent after a resume
+  TransactionStream transactions_;     // the reliable transaction channel
   std::int64_t start_ns_, first_hello_ns_ = -1, welcome_ns_ = -1;
   std::int64_t next_hello_ns_, next_input_ns_, next_ping_ns_;
   std::int64_t input_period_ns_;
