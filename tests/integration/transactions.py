@@ -1,0 +1,109 @@
+"""Players' transactions, end to end, under 19% injected loss each way and across handoffs.
+
+Four zone ranks share one SQLite ledger; each player's link loses 19% of the datagrams each
+way (client_stub --inject-loss drops on sending and on receiving), so transactions, their
+outcomes, or both are lost often. Each of 8 players makes 10 transactions a second (loot, purchases, scores) for 20 s on
+its reliable channel (clients/transaction_stream.h) while it wanders across the zones. The
+client resends until an outcome comes; the zone owning the avatar hands each to the ledger in
+sequence order and answers only once the database holds it (zone_node/transactions.h).
+
+Afterwards, from the ledger file itself:
+- each player's stored sequences are exactly 1..k, no gap (applied in order, none lost);
+- every transaction a client was told is committed is stored; none stored twice (one row per
+  key, and the zones' fresh inserts add up to the rows);
+- nothing a client made is unaccounted for: committed + failed + still pending = made, and
+  nothing failed;
+- avatars changed zones while their transactions flowed (handoffs > 0).
+Prints the latency of an outcome (p50, p99) and how many sends were resends."""
+import sqlite3
+import sys
+import tempfile
+from pathlib import Path
+
+import harness as h
+
+SCENE = h.SOURCE_DIR / "scenes/test_e2e.yaml"
+PLAYERS = 8
+RATE = 10
+CLIENT_SECONDS = 20
+# Arguments, for measuring: LOSS (default 0.19) and ZONES (default 4).
+LOSS = float(sys.argv[1]) if len(sys.argv) > 1 else 0.19
+ZONES = int(sys.argv[2]) if len(sys.argv) > 2 else 4
+
+with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp:
+    out = Path(tmp)
+    ledger = out / "ledger.sqlite"
+    domain = h.free_dds_domain()
+    env = h.base_env()
+    zones = h.start(h.mpirun(ZONES, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 600,
+                             "--realtime", "--dds-domain", domain, "--metrics", out,
+                             "--ledger", f"sqlite:{ledger}"), out / "zones.log", env)
+    gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
+                       out / "port", "--dds-domain", domain, "--metrics", out, "--expect-zones",
+                       ZONES], out / "gateway.log", env)
+    port = h.wait_for_port(out / "port", gateway, out / "gateway.log")
+    h.wait_for_zone_ticks(out, zones, out / "zones.log")
+    clients = h.start([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway",
+                       f"127.0.0.1:{port}", "--players", PLAYERS, "--duration", CLIENT_SECONDS,
+                       "--summary", out / "clients.json", "--inject-loss", LOSS,
+                       "--transactions-per-s", RATE], out / "clients.log", env)
+    try:
+        rc = clients.wait(timeout=120)
+    except Exception:
+        h.fail(f"client_stub did not finish\n{h.tail(out / 'clients.log')}")
+    h.check(rc == 0, f"client_stub exited cleanly\n{h.tail(out / 'clients.log')}")
+    h.stop(gateway)
+    h.stop(zones, grace=30)
+
+    s = h.load_json(out / "clients.json")
+    tx, cs = s["transactions"], s["clients"]
+    zone_sums = {}
+    for r in range(ZONES):
+        z = h.load_json(out / f"zone_{r}_summary.json")
+        for k, v in z.items():
+            if k.startswith("transactions_") and isinstance(v, int):
+                zone_sums[k] = zone_sums.get(k, 0) + v
+    db = sqlite3.connect(ledger)
+    rows = db.execute("SELECT player, seq FROM ledger_tx").fetchall()
+    db.close()
+    by_player = {}
+    for player, seq in rows:
+        by_player.setdefault(player, []).append(seq)
+    players = {c["player_id"] for c in cs if c["player_id"] != 0}
+
+    print(f"made {tx['made']}, committed {tx['committed']} (already committed "
+          f"{tx['already_committed']}), failed {tx['failed']}, pending {tx['pending']}; sent "
+          f"{tx['sent']}, resent {tx['resent']}; outcome repeats {tx['outcome_repeats']}")
+    print(f"outcome latency p50 {tx['latency_ms_p50']:.0f} ms, p99 {tx['latency_ms_p99']:.0f} ms, "
+          f"max {tx['latency_ms_max']:.0f} ms")
+    print("zones: " + ", ".join(f"{k[len('transactions_'):]} {v}" for k, v in sorted(zone_sums.items())))
+    print(f"ledger: {len(rows)} rows for {len(by_player)} players")
+    g = h.load_json(out / "gateway_summary.json")
+    print(f"gateway: forwarded {g['transactions_forwarded']}, outcomes delivered "
+          f"{g['outcomes_delivered']}, dropped {g['dropped']}")
+    batches = sum(h.load_json(out / f"zone_{r}_summary.json")["ledger_batches"] for r in range(ZONES))
+    print(f"ledger batches {batches}")
+
+    h.check(len(players) == PLAYERS, f"all {PLAYERS} players welcomed")
+    h.check(tx["made"] >= PLAYERS * RATE * CLIENT_SECONDS * 0.8,
+            f"the players made their transactions ({tx['made']})")
+    h.check(tx["resent"] > 0, f"loss made the clients resend ({tx['resent']} resends)")
+    h.check(tx["failed"] == 0 and tx["conflicts"] == 0,
+            f"no transaction failed or conflicted ({tx['failed']}, {tx['conflicts']})")
+    h.check(tx["committed"] + tx["pending"] == tx["made"],
+            f"committed {tx['committed']} + pending {tx['pending']} = made {tx['made']}")
+    h.check(tx["outcome_unknown"] == 0, "no outcome for a transaction never made")
+    h.check(set(by_player) <= players, "the ledger holds only these players")
+    for player, seqs in sorted(by_player.items()):
+        seqs.sort()
+        h.check(seqs == list(range(1, len(seqs) + 1)),
+                f"player {player}: stored sequences are 1..{len(seqs)} without a gap")
+    h.check(len(rows) >= tx["committed"], f"every transaction told committed is stored "
+                                          f"({len(rows)} rows >= {tx['committed']})")
+    h.check(len(rows) <= tx["made"], f"nothing stored that was not made ({len(rows)} <= {tx['made']})")
+    h.check(zone_sums["transactions_committed"] == len(rows),
+            f"the zones' fresh inserts ({zone_sums['transactions_committed']}) are the rows: "
+            f"none applied twice")
+    handoffs = s["totals"]["handoffs"]
+    h.check(handoffs > 0, f"avatars changed zones during the run ({handoffs} handoffs)")
+print("transactions passed")
