@@ -100,6 +100,11 @@ std::string clientJson(const SimPlayer& p, double s) {
       .add("welcomed", p.welcomed() ? 1 : 0)
       .add("welcome_ms", p.welcomed() ? p.welcomeSeconds() * 1e3 : -1.0);
   addTraffic(j, p.counters(), s);
+  const TransactionCounters& t = p.transactionCounters();
+  j.add("transactions_made", t.made)
+      .add("transactions_committed", t.committed)
+      .add("transactions_failed", t.failed + t.conflicts)
+      .add("transactions_pending", std::uint64_t(p.pendingTransactions()));
   std::int64_t now = nowNs();
   j.add("visible_entities", std::uint64_t(p.view().size()))
       .add("visible_entities_mean", p.meanVisible())

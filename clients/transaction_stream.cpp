@@ -64,6 +64,7 @@ std::int64_t TransactionStream::due(
     } else {
       ++counters_.resent;
     }
+    p->second.decided = decided_;
     send(p->second);
   });
   return std::min(next_make_ns_, sender_.nextDueNs() == INT64_MIN ? now_ns : sender_.nextDueNs());

@@ -105,6 +105,7 @@ bool ZoneLink::sendTransaction(const TransactionCommand& c) {
   t.counterparty = c.tx.counterparty;
   t.price = c.tx.price;
   t.score = c.tx.score;
+  t.decided = c.tx.decided;
   dds_entity_t w =
       zoneWriter(transaction_writers_, topics_.player_transactions.get(), c.zone).writer.get();
   return dds_write(w, &t) >= 0;

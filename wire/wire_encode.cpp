@@ -69,13 +69,14 @@ Bytes encodeBye(std::uint64_t token) {
 }
 
 TransactionInfo transactionInfo(const proto::Transaction& t) {
-  return {t.seq(), t.kind(), t.item(), t.amount(), t.counterparty(), t.price(), t.score()};
+  return {t.seq(),   t.kind(),  t.item(), t.amount(), t.counterparty(),
+          t.price(), t.score(), t.decided()};
 }
 
 Bytes encodeTransaction(std::uint64_t token, const TransactionInfo& t) {
   flatbuffers::FlatBufferBuilder fbb(128);
   auto msg = proto::CreateTransaction(fbb, t.seq, t.kind, t.item, t.amount, t.counterparty,
-                                      t.price, t.score);
+                                      t.price, t.score, t.decided);
   return finish(fbb, token, proto::Message::Transaction, msg);
 }
 

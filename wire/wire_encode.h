@@ -60,6 +60,8 @@ struct TransactionInfo {
   std::uint64_t counterparty = 0;
   std::int64_t price = 0;
   std::int64_t score = 0;
+  /// The client's acknowledgement point: every transaction up to it has its outcome.
+  std::uint32_t decided = 0;
   bool operator==(const TransactionInfo&) const = default;
 };
 

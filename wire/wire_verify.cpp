@@ -44,7 +44,8 @@ bool checkToGateway(const proto::Datagram& d) {
     }
     case proto::Message::Transaction: {
       const proto::Transaction* t = d.msg_as_Transaction();
-      return t->seq() != 0 && t->kind() >= 1 && t->kind() <= kMaxTransactionKind;
+      return t->seq() != 0 && t->decided() < t->seq() && t->kind() >= 1 &&
+             t->kind() <= kMaxTransactionKind;
     }
     default:  // Ping and Bye carry nothing to range-check beyond the token
       return true;

@@ -53,7 +53,14 @@ void Transactions::take(PlayerZone& zone, const PlayerTransactionMsg& m) {
     held_.erase(m.player_id);  // the avatar left: its next owner holds its own
     return;
   }
-  const AvatarData& a = zone.store.avatar[*i];
+  AvatarData& a = zone.store.avatar[*i];
+  if (m.decided > a.last_transaction_seq) {
+    // The client has the outcome of everything up to m.decided, so each of those was decided
+    // somewhere: by this zone before a restart from an older checkpoint, or by the avatar's
+    // owner before a handoff. Waiting for them would wait for ever: none is sent again.
+    a.last_transaction_seq = m.decided;
+    ++counters_.fast_forwards;
+  }
   if (m.seq <= a.last_transaction_seq) {
     // A repeat: its outcome did not reach the client, or is still to come.
     if (in_flight_[m.player_id].contains(m.seq)) return;

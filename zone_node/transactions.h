@@ -6,7 +6,9 @@
 //   database) once, in sequence order; an early one waits, up to kWindow ahead, for the gap
 //   before it to fill (the client resends what was lost);
 // - the last one handed over is the avatar's (AvatarData::last_transaction_seq): it migrates
-//   with the avatar and is in every checkpoint, so the next owner goes on from it;
+//   with the avatar and is in every checkpoint, so the next owner goes on from it; a zone
+//   restored from an older checkpoint goes on from where the client says every outcome
+//   reached it (Transaction::decided), since none of those is sent again;
 // - an outcome is published once the database holds the transaction (committed or already
 //   committed) or refused it, and remembered: a repeat whose outcome was lost is answered from
 //   memory or, where this zone has none (it took the avatar over, or restarted), handed to the
@@ -40,6 +42,7 @@ struct TransactionCounters {
   std::uint64_t not_here = 0;        ///< for a player whose avatar is not in this zone
   std::uint64_t too_far = 0;         ///< more than kWindow past the last handed over
   std::uint64_t gap_notices = 0;     ///< last outcomes repeated for an early arrival
+  std::uint64_t fast_forwards = 0;   ///< went on to the client's decided point (restored zone)
   std::uint64_t committed = 0, already_committed = 0, conflicts = 0, failed = 0;  ///< outcomes
 };
 

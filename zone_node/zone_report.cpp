@@ -105,7 +105,8 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.add("transactions_resubmitted", t.resubmitted)
       .add("transactions_answered_again", t.answered_again);
   s.add("transactions_not_here", t.not_here).add("transactions_too_far", t.too_far);
-  s.add("transactions_gap_notices", t.gap_notices);
+  s.add("transactions_gap_notices", t.gap_notices)
+      .add("transactions_fast_forwards", t.fast_forwards);
   s.add("transactions_committed", t.committed)
       .add("transactions_already_committed", t.already_committed);
   s.add("transactions_conflicts", t.conflicts).add("transactions_failed", t.failed);

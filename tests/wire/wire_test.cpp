@@ -97,14 +97,17 @@ TEST(Wire, DirectionDecidesWhichMessagesAreAccepted) {
 // The reliable channel's two messages: each field comes back, each goes one way only, and a
 // sequence 0, an unknown kind or status or an overlong reason is out of range.
 TEST(Wire, TransactionsAndOutcomesRoundTripAndAreChecked) {
-  TransactionInfo t{7, 3, 901, -2, 5, 45, 0};
+  TransactionInfo t{7, 3, 901, -2, 5, 45, 0, 6};
   Bytes tb = encodeTransaction(9, t);  // the Verified points into it
   Verified v = verifyDatagram(tb, Direction::ToGateway);
   ASSERT_TRUE(v.ok());
   EXPECT_EQ(v.datagram->token(), 9u);
   EXPECT_EQ(transactionInfo(*v.datagram->msg_as_Transaction()), t);
   EXPECT_EQ(reasonOf(encodeTransaction(9, t), Direction::ToClient), DropReason::UnexpectedType);
-  for (TransactionInfo bad : {TransactionInfo{0, 2}, TransactionInfo{1, 0}, TransactionInfo{1, 5}})
+  TransactionInfo decided_itself{3, 2};
+  decided_itself.decided = 3;  // a client cannot hold the outcome of what it is still sending
+  for (TransactionInfo bad :
+       {TransactionInfo{0, 2}, TransactionInfo{1, 0}, TransactionInfo{1, 5}, decided_itself})
     EXPECT_EQ(reasonOf(encodeTransaction(9, bad)), DropReason::OutOfRange)
         << "seq " << bad.seq << " kind " << int(bad.kind);
 

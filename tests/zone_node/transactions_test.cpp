@@ -89,10 +89,11 @@ class TransactionsTest : public ::testing::Test {
     dds::check(dds_write(spawns_.writer.get(), &r), "write SpawnRequest");
     ASSERT_TRUE(tickUntil(t, [&] { return store_.avatarOf(kPlayer).has_value(); }));
   }
-  void send(std::uint32_t seq, std::uint64_t player = kPlayer) {
+  void send(std::uint32_t seq, std::uint64_t player = kPlayer, std::uint32_t decided = 0) {
     zonesim_dds_PlayerTransaction m{};
     m.player_id = player;
     m.seq = seq;
+    m.decided = decided;
     m.kind = 2;  // loot
     m.item = 100 + seq;
     m.amount = 1;
@@ -175,6 +176,19 @@ TEST_F(TransactionsTest, AZoneThatTookTheAvatarOverAnswersARepeatThroughTheLedge
   EXPECT_EQ(answers_[4].status, std::uint8_t(ledger::TxStatus::Committed));
   EXPECT_EQ(next.counters().resubmitted, 1u);
   EXPECT_EQ(storedRows(), 4u) << "3 is stored once";
+}
+
+// Restored from a checkpoint older than what the client was told: the client's decided point
+// says where to go on, since nothing up to it is sent again.
+TEST_F(TransactionsTest, ARestoredZoneGoesOnFromTheClientsDecidedPoint) {
+  Transactions t(committer());
+  spawnAvatar(t);
+  store_.avatar[*store_.avatarOf(kPlayer)].last_transaction_seq = 2;  // the checkpoint's
+  send(6, kPlayer, 5);  // the client had outcomes up to 5 from the zone before the crash
+  ASSERT_TRUE(tickUntil(t, [&] { return answers_.size() == 1; }));
+  EXPECT_EQ(answers_[6].status, std::uint8_t(ledger::TxStatus::Committed));
+  EXPECT_EQ(lastHandedOver(), 6u);
+  EXPECT_EQ(t.counters().fast_forwards, 1u);
 }
 
 TEST_F(TransactionsTest, OneForAnAvatarElsewhereIsDroppedAndCounted) {

@@ -30,7 +30,8 @@ std::vector<PlayerTransactionMsg> GatewayLink::takeTransactions() {
   dds::takeAll<zonesim_dds_PlayerTransaction>(
       transactions_.reader.get(), [&](const zonesim_dds_PlayerTransaction& t) {
         out.push_back(
-            {t.player_id, t.seq, t.kind, t.item, t.amount, t.counterparty, t.price, t.score});
+            {t.player_id, t.seq, t.kind, t.item, t.amount, t.counterparty, t.price, t.score,
+             t.decided});
       });
   return out;
 }

@@ -28,6 +28,7 @@ struct PlayerTransactionMsg {
   std::uint64_t counterparty = 0;
   std::int64_t price = 0;
   std::int64_t score = 0;
+  std::uint32_t decided = 0;  ///< the client has the outcome of every one up to it
 };
 
 /// A request to create a player's avatar at a ground-plane position.
