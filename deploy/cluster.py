@@ -221,6 +221,9 @@ class Launch:
         zone_argv = [self.bin / "zone_node", "--scene", self.c.scene, "--realtime",
                      "--duration", int(self.c.duration + ZONE_SAFETY_S), "--metrics", self.run,
                      "--dds-domain", self.c.dds_domain, "--truth-every", self.c.truth_every, *self.c.zone_args]
+        if self.c.ledger != "none":
+            zone_argv += ["--ledger", f"sqlite:{self.run / 'ledger.sqlite'}" if self.c.ledger == "sqlite"
+                          else self.c.ledger]
         if self.c.checkpoint_every:
             zone_argv += ["--checkpoint-dir", self.run / "checkpoints", "--checkpoint-every", self.c.checkpoint_every]
         if self.epoch:

@@ -16,7 +16,10 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
               of their Welcome, as the same players with the same avatars), checkpoint_every
               (ticks between checkpoints, default 60 when supervising), hang_s (a zone job whose
               metrics stay unwritten this long is hung, default 10), restart_zones (the rank count
-              of restarted jobs, default the same)
+              of restarted jobs, default the same), ledger (where zones commit players'
+              transactions: sqlite, the default where every zone host is this machine, a file
+              ledger.sqlite in the run folder that all ranks share; sqlite:PATH; postgres:CONNINFO;
+              none, the default across machines, where one file cannot be shared safely)
   [host NAME] reach (local | netns NAMESPACE | ssh [USER@]HOST | slurm NODE), address (IPv4 on
               the cluster network; default 127.0.0.1 for local, else NAME resolved), zones
               (ranks there, default 0), cores (default: nproc there)
@@ -45,7 +48,7 @@ ROOT = Path(__file__).resolve().parents[1]
 KEYS = {
     "cluster": {"scene", "duration", "network", "btl", "yield", "dds_domain", "truth_every",
                 "zone_args", "client_args", "shared_storage", "ssh_options", "supervise",
-                "checkpoint_every", "hang_s", "restart_zones"},
+                "checkpoint_every", "hang_s", "restart_zones", "ledger"},
     "host": {"reach", "address", "zones", "cores"},
     "gateway": {"host", "bind", "id", "args"},
     "lobby": {"host", "bind", "args"},
@@ -136,6 +139,7 @@ class Cluster:
     hang_s: float = 10
     restart_zones: int = 0  # 0: as many ranks as the first job
     supervise_gateways: bool = False
+    ledger: str = "none"  # none, sqlite (the run folder's file), sqlite:PATH or postgres:CONNINFO
 
 
 def expand(text, where):
@@ -289,6 +293,16 @@ def load(path):
     restart_zones = number(c.get("restart_zones", "0"), f"{where} restart_zones")
     if restart_zones and len([h for h in hosts.values() if h.zones]) > 1:
         raise ClusterError(f"{where} restart_zones: only for zones on one host")
+    one_machine = all(h.reach in ("local", "netns") for h in hosts.values() if h.zones)
+    ledger = c.get("ledger", "sqlite" if one_machine else "none")
+    backend, _, target = ledger.partition(":")
+    if ledger not in ("none", "sqlite") and not (backend in ("sqlite", "postgres") and target):
+        raise ClusterError(f"{where} ledger: '{ledger}' (expected none, sqlite, sqlite:PATH or "
+                           f"postgres:CONNINFO)")
+    if ledger == "sqlite" and not one_machine:
+        raise ClusterError(f"{where} ledger: sqlite in the run folder needs every zone host on this "
+                           f"machine (each ssh or slurm host would write its own file); use "
+                           f"postgres:CONNINFO")
     return Cluster(scene, number(c.get("duration", "20"), f"{where} duration", float, 1), network,
                    c.get("btl", ""), yield_mode, domain, number(c.get("truth_every", "0"), f"{where} truth_every"),
                    shlex.split(c.get("zone_args", "")), shlex.split(c.get("client_args", "")),
@@ -296,7 +310,7 @@ def load(path):
                    "zones" in supervise,
                    number(c.get("checkpoint_every", "60" if "zones" in supervise else "0"), f"{where} checkpoint_every"),
                    number(c.get("hang_s", "10"), f"{where} hang_s", float, 1), restart_zones,
-                   "gateways" in supervise)
+                   "gateways" in supervise, ledger)
 
 
 def plan(cluster):
@@ -309,6 +323,8 @@ def plan(cluster):
                      + (f" on {cluster.restart_zones} ranks" if cluster.restart_zones else ""))
     if cluster.supervise_gateways:
         lines.append("supervised: a dead gateway restarts on its address; its players resume there")
+    lines.append("ledger: " + {"none": "none (players' transactions fail with that reason)",
+                               "sqlite": "sqlite, ledger.sqlite in the run folder"}.get(cluster.ledger, cluster.ledger))
     for h in cluster.hosts.values():
         lines.append(f"{h.describe()} at {h.address}: {h.zones} zone ranks")
     for g in cluster.gateways:

@@ -71,6 +71,15 @@ with tempfile.TemporaryDirectory(prefix="zs_cluster_file_") as tmp:
     r = dry_run(gateways)
     h.check(r.returncode == 0 and "checkpoint" not in r.stdout and "a dead gateway restarts" in r.stdout,
             f"supervise = gateways plans gateways only ({r.stdout.strip()} {r.stderr.strip()})")
+    refused(tmp, "bad_ledger", GOOD_HEAD + "ledger = mysql:x\n" + LOCAL,
+            "[cluster] ledger: 'mysql:x' (expected none, sqlite, sqlite:PATH or postgres:CONNINFO)")
+    refused(tmp, "ledger_without_target", GOOD_HEAD + "ledger = postgres:\n" + LOCAL, "[cluster] ledger: 'postgres:'")
+    refused(tmp, "sqlite_across_machines", GOOD_HEAD + "ledger = sqlite\nnetwork = 10.0.0.0/24\n"
+            + LOCAL + "[host b]\nreach = ssh b.example\naddress = 10.0.0.2\nzones = 1\n",
+            "[cluster] ledger: sqlite in the run folder needs every zone host on this machine")
+    r = dry_run(both)
+    h.check("ledger: sqlite, ledger.sqlite in the run folder" in r.stdout,
+            f"one machine: the zones share a SQLite ledger by default ({r.stdout.strip()})")
     refused(tmp, "bad_hang", GOOD_HEAD + "supervise = zones\nhang_s = 0\n" + LOCAL, "[cluster] hang_s: 0 is below 1")
     refused(tmp, "unset_variable", GOOD_HEAD + LOCAL.replace("players = 2", "players = ${ZONESIM_NO_SUCH_VAR}"),
             "${ZONESIM_NO_SUCH_VAR} is not set")

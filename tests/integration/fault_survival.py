@@ -13,6 +13,10 @@ times, then SIGSTOPs one (a hung job). Afterwards:
     avatar's state after every fault; the time from each kill to that state is printed;
   - no input was lost: the restored zones applied every sequence number in order (none skipped)
     and the gateway still held every input it had to resend;
+  - every player made transactions all along (TX_RATE a second, over 10,000 in all), committed
+    by the zones to the run's SQLite ledger through every fault: each player's stored
+    sequences are 1..k without a gap, every one its client was told is committed is stored
+    (none can be stored twice: the ledger's key is player and seq), none failed;
   - no zone_node, gateway or client_stub of the run is left.
 Usage: fault_survival.py [SEED [FAULTS [GATEWAY_FAULTS]]]: SEED default random (printed), FAULTS
 zone kills, default 3 (one every 16 s), GATEWAY_FAULTS default 1 (one every 6 s, before them);
@@ -30,6 +34,7 @@ from pathlib import Path
 import harness as h
 
 PLAYERS = 8
+TX_RATE = 25  # transactions per player a second: 8 x 25 x 80 s = 16,000
 FAULTS = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 GATEWAY_FAULTS = int(sys.argv[3]) if len(sys.argv) > 3 else 1
 # The gateway's kills at a random moment in each 4 s window, 6 s apart from 4 s after the players
@@ -98,6 +103,7 @@ host = here
 [fleet players]
 host = here
 players = {PLAYERS}
+args = --transactions-per-s {TX_RATE}
 """)
     env = h.base_env(h.free_dds_domain())
     env["ZONESIM_BIN"] = str(h.bin_dir())
@@ -240,6 +246,30 @@ players = {PLAYERS}
     print(f"kill to the player's next own state: p50 {after_kill[len(after_kill) // 2]:.2f} s, "
           f"max {after_kill[-1]:.2f} s over {len(kills)} faults x {PLAYERS} players "
           f"(restart {', '.join(str(e['restart_s']) for e in events)} s after detection)", flush=True)
+
+    # Transactions, from the ledger itself.
+    import sqlite3
+    db = sqlite3.connect(run / "ledger.sqlite")
+    stored = {}
+    for player, seq in db.execute("SELECT player, seq FROM ledger_tx"):
+        stored.setdefault(player, []).append(seq)
+    db.close()
+    tx = clients["transactions"]
+    print(f"transactions: {tx['made']} made, {tx['committed']} committed ({tx['already_committed']} "
+          f"found stored already), {tx['pending']} pending at the end, {tx['resent']} resends, "
+          f"{tx['refused_window_full']} not made (window full); outcome p50 {tx['latency_ms_p50']:.0f} ms, "
+          f"p99 {tx['latency_ms_p99']:.0f} ms, max {tx['latency_ms_max']:.0f} ms", flush=True)
+    h.check(tx["made"] >= 10000, f"over 10,000 transactions ({tx['made']})")
+    h.check(tx["failed"] == 0 and tx["conflicts"] == 0 and tx["outcome_unknown"] == 0,
+            f"none failed or conflicted ({tx['failed']}, {tx['conflicts']}, {tx['outcome_unknown']} unknown)")
+    lost = []
+    for c in clients["clients"]:
+        seqs = sorted(stored.get(c["player_id"], []))
+        if seqs != list(range(1, len(seqs) + 1)) or not (c["transactions_committed"] <= len(seqs)
+                                                         <= c["transactions_made"]):
+            lost.append((c["player_id"], len(seqs), c["transactions_committed"], c["transactions_made"]))
+    h.check(not lost, f"every player's stored transactions are 1..k without a gap, and hold every one "
+                      f"its client was told is committed (bad: {lost})")
 
     f = h.load_json(run / "report.json")["faults"]
     h.check(f["zone_restarts"] == FAULTS + 1 and f["gateway_restarts"] == GATEWAY_FAULTS
