@@ -1,6 +1,6 @@
 """Players' transactions, end to end, under 19% injected loss each way and across handoffs.
 
-Four zone ranks share one SQLite ledger; each player's link loses 19% of the datagrams each
+Four zone ranks share one ledger (SQLite, or a PostgreSQL server this test starts); each player's link loses 19% of the datagrams each
 way (client_stub --inject-loss drops on sending and on receiving), so transactions, their
 outcomes, or both are lost often. Each of 8 players makes 10 transactions a second (loot, purchases, scores) for 20 s on
 its reliable channel (clients/transaction_stream.h) while it wanders across the zones. The
@@ -14,13 +14,16 @@ Afterwards, from the ledger file itself:
 - nothing a client made is unaccounted for: committed + failed + still pending = made, and
   nothing failed;
 - avatars changed zones while their transactions flowed (handoffs > 0).
-Prints the latency of an outcome (p50, p99) and how many sends were resends."""
+Prints the latency of an outcome (p50, p99) and how many sends were resends.
+Usage: transactions.py [LOSS [ZONES [BACKEND]]]: defaults 0.19, 4, sqlite (or postgres)."""
+import contextlib
 import sqlite3
 import sys
 import tempfile
 from pathlib import Path
 
 import harness as h
+from pg_server import PgServer
 
 SCENE = h.SOURCE_DIR / "scenes/test_e2e.yaml"
 PLAYERS = 8
@@ -29,15 +32,19 @@ CLIENT_SECONDS = 20
 # Arguments, for measuring: LOSS (default 0.19) and ZONES (default 4).
 LOSS = float(sys.argv[1]) if len(sys.argv) > 1 else 0.19
 ZONES = int(sys.argv[2]) if len(sys.argv) > 2 else 4
+BACKEND = sys.argv[3] if len(sys.argv) > 3 else "sqlite"
+if BACKEND not in ("sqlite", "postgres"):
+    h.fail(f"back end '{BACKEND}': expected sqlite or postgres")
 
-with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp:
+with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp, \
+        (PgServer() if BACKEND == "postgres" else contextlib.nullcontext()) as pg:
     out = Path(tmp)
-    ledger = out / "ledger.sqlite"
+    ledger = f"postgres:{pg.conninfo}" if pg else f"sqlite:{out / 'ledger.sqlite'}"
     domain = h.free_dds_domain()
     env = h.base_env()
     zones = h.start(h.mpirun(ZONES, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 600,
                              "--realtime", "--dds-domain", domain, "--metrics", out,
-                             "--ledger", f"sqlite:{ledger}"), out / "zones.log", env)
+                             "--ledger", ledger), out / "zones.log", env)
     gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
                        out / "port", "--dds-domain", domain, "--metrics", out, "--expect-zones",
                        ZONES], out / "gateway.log", env)
@@ -63,9 +70,12 @@ with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp:
         for k, v in z.items():
             if k.startswith("transactions_") and isinstance(v, int):
                 zone_sums[k] = zone_sums.get(k, 0) + v
-    db = sqlite3.connect(ledger)
-    rows = db.execute("SELECT player, seq FROM ledger_tx").fetchall()
-    db.close()
+    if pg:
+        rows = [(int(p), int(q)) for p, q in pg.query("SELECT player, seq FROM ledger_tx")]
+    else:
+        db = sqlite3.connect(out / "ledger.sqlite")
+        rows = db.execute("SELECT player, seq FROM ledger_tx").fetchall()
+        db.close()
     by_player = {}
     for player, seq in rows:
         by_player.setdefault(player, []).append(seq)
@@ -77,7 +87,7 @@ with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp:
     print(f"outcome latency p50 {tx['latency_ms_p50']:.0f} ms, p99 {tx['latency_ms_p99']:.0f} ms, "
           f"max {tx['latency_ms_max']:.0f} ms")
     print("zones: " + ", ".join(f"{k[len('transactions_'):]} {v}" for k, v in sorted(zone_sums.items())))
-    print(f"ledger: {len(rows)} rows for {len(by_player)} players")
+    print(f"ledger ({BACKEND}): {len(rows)} rows for {len(by_player)} players")
     g = h.load_json(out / "gateway_summary.json")
     print(f"gateway: forwarded {g['transactions_forwarded']}, outcomes delivered "
           f"{g['outcomes_delivered']}, dropped {g['dropped']}")
