@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Players' transactions on a real cluster (issue 15): 4 zone ranks, a gateway and client_stub,
+scenes/test_e2e.yaml in real time. Two tables, each from runs in one invocation:
+
+1. Latency, from a transaction's first send to its outcome at the client (which comes only
+   once the ledger holds it), for 8 players making 10 a second on an unimpaired link and on
+   client_stub --link 4g and --link congested (wire/link_profile.cpp), SQLite ledger.
+2. Commit rate and the zone tick: PLAYERS players making RATE a second each, with no
+   transactions, with the SQLite ledger (one file, every rank) and with a PostgreSQL server
+   started for the run (tests/integration/pg_server.py); committed per second (rows stored over
+   the players' seconds), outcome p50/p99, and the zone tick's p99 (the slowest rank's).
+
+Usage: bench/cluster/transaction_bench.py [SECONDS [PLAYERS [RATE]]]  (defaults 20, 32, 50)
+"""
+import contextlib
+import sqlite3
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests/integration"))
+import harness as h  # noqa: E402
+from pg_server import PgServer  # noqa: E402
+
+SECONDS = float(sys.argv[1]) if len(sys.argv) > 1 else 20
+PLAYERS = int(sys.argv[2]) if len(sys.argv) > 2 else 32
+RATE = float(sys.argv[3]) if len(sys.argv) > 3 else 50
+SCENE = ROOT / "scenes/test_e2e.yaml"
+ZONES = 4
+
+
+def run(name, players, rate, link=None, backend="sqlite"):
+    """One cluster run; its figures."""
+    print(f"-- {name}: {players} players x {rate:g} a second for {SECONDS:g} s"
+          f"{', link ' + link if link else ''}, ledger {backend if rate else 'unused'}", flush=True)
+    with tempfile.TemporaryDirectory(prefix="zs_txbench_") as tmp, \
+            (PgServer() if backend == "postgres" else contextlib.nullcontext()) as pg:
+        out = Path(tmp)
+        ledger = f"postgres:{pg.conninfo}" if pg else f"sqlite:{out / 'ledger.sqlite'}"
+        domain = h.free_dds_domain()
+        env = h.base_env()
+        zones = h.start(h.mpirun(ZONES, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 900,
+                                 "--realtime", "--dds-domain", domain, "--metrics", out,
+                                 "--ledger", ledger), out / "zones.log", env)
+        gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
+                           out / "port", "--dds-domain", domain, "--metrics", out, "--expect-zones",
+                           ZONES], out / "gateway.log", env)
+        port = h.wait_for_port(out / "port", gateway, out / "gateway.log")
+        h.wait_for_zone_ticks(out, zones, out / "zones.log")
+        clients = h.start([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway",
+                           f"127.0.0.1:{port}", "--players", players, "--duration", SECONDS,
+                           "--summary", out / "clients.json", "--transactions-per-s", rate,
+                           *(["--link", link] if link else [])], out / "clients.log", env)
+        if clients.wait(timeout=SECONDS + 120) != 0:
+            h.fail(f"client_stub failed\n{h.tail(out / 'clients.log')}")
+        h.stop(gateway)
+        h.stop(zones, grace=30)
+        tx = h.load_json(out / "clients.json")["transactions"]
+        zs = [h.load_json(out / f"zone_{r}_summary.json") for r in range(ZONES)]
+        if pg:
+            rows = int(pg.query("SELECT COUNT(*) FROM ledger_tx")[0][0])
+        elif rate:
+            db = sqlite3.connect(out / "ledger.sqlite")
+            rows = db.execute("SELECT COUNT(*) FROM ledger_tx").fetchone()[0]
+            db.close()
+        else:
+            rows = 0
+        return {"name": name, "made": tx["made"], "committed": tx["committed"], "rows": rows,
+                "resent": tx["resent"], "refused": tx["refused_window_full"],
+                "p50": tx["latency_ms_p50"], "p99": tx["latency_ms_p99"], "max": tx["latency_ms_max"],
+                "tick_p99": max(z["tick_ms_p99"] for z in zs), "tick_p50": max(z["tick_ms_p50"] for z in zs)}
+
+
+latency = [run(f"link {link or 'none'}", 8, 10, link) for link in (None, "4g", "congested")]
+rate = [run("no transactions", PLAYERS, 0), run("sqlite", PLAYERS, RATE),
+        run("postgres", PLAYERS, RATE, backend="postgres")]
+
+print(f"\nOutcome latency, 4 ranks, 8 players x 10 a second, {SECONDS:g} s, SQLite ledger")
+print(f"{'link':>16} {'made':>6} {'committed':>9} {'resends/tx':>10} {'p50 ms':>7} {'p99 ms':>7} {'max ms':>7}")
+for r in latency:
+    print(f"{r['name']:>16} {r['made']:>6} {r['committed']:>9} {r['resent'] / max(1, r['made']):>10.2f} "
+          f"{r['p50']:>7.0f} {r['p99']:>7.0f} {r['max']:>7.0f}")
+print(f"\nCommit rate and zone tick, 4 ranks, {PLAYERS} players x {RATE:g} a second offered, {SECONDS:g} s")
+print(f"{'ledger':>16} {'made':>6} {'stored':>6} {'stored/s':>8} {'refused':>7} {'p50 ms':>7} {'p99 ms':>7} "
+      f"{'tick p50':>8} {'tick p99':>8}")
+for r in rate:
+    print(f"{r['name']:>16} {r['made']:>6} {r['rows']:>6} {r['rows'] / SECONDS:>8.0f} {r['refused']:>7} "
+          f"{r['p50']:>7.0f} {r['p99']:>7.0f} {r['tick_p50']:>8.2f} {r['tick_p99']:>8.2f}")
+base = rate[0]["tick_p99"]
+print(f"zone tick p99 against no transactions: sqlite x{rate[1]['tick_p99'] / base:.2f}, "
+      f"postgres x{rate[2]['tick_p99'] / base:.2f}")
