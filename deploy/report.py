@@ -75,6 +75,18 @@ def fault_figures(run, per_client):
     }
 
 
+def transaction_figures(per_client):
+    """What the players' transaction channels did (client_stub --transactions-per-s); None for
+    a run without transactions."""
+    made = sum(c.get("transactions_made", 0) for c in per_client)
+    if not made:
+        return None
+    return {"made": made,
+            "committed": sum(c.get("transactions_committed", 0) for c in per_client),
+            "failed": sum(c.get("transactions_failed", 0) for c in per_client),
+            "pending": sum(c.get("transactions_pending", 0) for c in per_client)}
+
+
 def build_report(run):
     zones = sorted((load(p) for p in run.glob("zone_*_summary.json")), key=lambda z: z["rank"])
     # One fleet or gateway writes into the run folder itself; a cluster with several gives each
@@ -118,6 +130,7 @@ def build_report(run):
         "gateway": gateway,
         "gateways": gateways if len(gateways) > 1 else None,
         "faults": fault_figures(run, per_client),
+        "transactions": transaction_figures(per_client),
     }
 
 
@@ -145,6 +158,10 @@ def print_report(r):
         print(f"\nfaults: restarts of the zone job {f['zone_restarts']}, of gateways {f['gateway_restarts']}; "
               f"player resumes {f['resumes']} (given up {f['resume_failed']}, with another avatar "
               f"{f['resume_new_avatar']}, slowest {f['resume_s_max']:.2f} s)")
+    x = r.get("transactions")
+    if x:
+        print(f"transactions: {x['made']} made, {x['committed']} committed to the ledger, {x['failed']} failed, "
+              f"{x['pending']} still waiting for their outcome at the end")
     if len(r["kinds"]) > 1:
         print(f"\n{'kind':>6} {'players':>7} {'kbit/s in p50':>13} {'max':>6} {'error m p99 (worst)':>19} "
               f"{'max':>6} {'in view (mean)':>14}")

@@ -271,7 +271,11 @@ args = --transactions-per-s {TX_RATE}
     h.check(not lost, f"every player's stored transactions are 1..k without a gap, and hold every one "
                       f"its client was told is committed (bad: {lost})")
 
-    f = h.load_json(run / "report.json")["faults"]
+    report = h.load_json(run / "report.json")
+    h.check(report["transactions"] and report["transactions"]["made"] == tx["made"]
+            and report["transactions"]["committed"] == tx["committed"],
+            f"the run report counts the transactions ({report['transactions']})")
+    f = report["faults"]
     h.check(f["zone_restarts"] == FAULTS + 1 and f["gateway_restarts"] == GATEWAY_FAULTS
             and f["resumes"] == PLAYERS * GATEWAY_FAULTS,
             f"the run report counts the restarts and resumes ({f})")
