@@ -12,21 +12,17 @@ scenes/test_e2e.yaml in real time. Two tables, each from runs in one invocation:
 
 Usage: bench/cluster/transaction_bench.py [SECONDS [PLAYERS [RATE]]]  (defaults 20, 32, 50)
 """
-import contextlib
-import sqlite3
 import sys
 import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests/integration"))
-import harness as h  # noqa: E402
-from pg_server import PgServer  # noqa: E402
+import transaction_cluster  # noqa: E402
 
 SECONDS = float(sys.argv[1]) if len(sys.argv) > 1 else 20
 PLAYERS = int(sys.argv[2]) if len(sys.argv) > 2 else 32
 RATE = float(sys.argv[3]) if len(sys.argv) > 3 else 50
-SCENE = ROOT / "scenes/test_e2e.yaml"
 ZONES = 4
 
 
@@ -35,37 +31,12 @@ def run(name, players, rate, link=None, backend="sqlite"):
     print(f"-- {name}: {players} players x {rate:g} a second for {SECONDS:g} s"
           f"{', link ' + link if link else ''}, ledger {backend if rate else 'unused'}", flush=True)
     with tempfile.TemporaryDirectory(prefix="zs_txbench_") as tmp, \
-            (PgServer() if backend == "postgres" else contextlib.nullcontext()) as pg:
+            transaction_cluster.ledger(tmp, backend) as (ledger, pg):
         out = Path(tmp)
-        ledger = f"postgres:{pg.conninfo}" if pg else f"sqlite:{out / 'ledger.sqlite'}"
-        domain = h.free_dds_domain()
-        env = h.base_env()
-        zones = h.start(h.mpirun(ZONES, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 900,
-                                 "--realtime", "--dds-domain", domain, "--metrics", out,
-                                 "--ledger", ledger), out / "zones.log", env)
-        gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
-                           out / "port", "--dds-domain", domain, "--metrics", out, "--expect-zones",
-                           ZONES], out / "gateway.log", env)
-        port = h.wait_for_port(out / "port", gateway, out / "gateway.log")
-        h.wait_for_zone_ticks(out, zones, out / "zones.log")
-        clients = h.start([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway",
-                           f"127.0.0.1:{port}", "--players", players, "--duration", SECONDS,
-                           "--summary", out / "clients.json", "--transactions-per-s", rate,
-                           *(["--link", link] if link else [])], out / "clients.log", env)
-        if clients.wait(timeout=SECONDS + 120) != 0:
-            h.fail(f"client_stub failed\n{h.tail(out / 'clients.log')}")
-        h.stop(gateway)
-        h.stop(zones, grace=30)
-        tx = h.load_json(out / "clients.json")["transactions"]
-        zs = [h.load_json(out / f"zone_{r}_summary.json") for r in range(ZONES)]
-        if pg:
-            rows = int(pg.query("SELECT COUNT(*) FROM ledger_tx")[0][0])
-        elif rate:
-            db = sqlite3.connect(out / "ledger.sqlite")
-            rows = db.execute("SELECT COUNT(*) FROM ledger_tx").fetchone()[0]
-            db.close()
-        else:
-            rows = 0
+        summary, zs, _ = transaction_cluster.run(out, ZONES, players, rate, SECONDS, ledger,
+                                                 ["--link", link] if link else [])
+        tx = summary["transactions"]
+        rows = len(transaction_cluster.stored(out, pg))
         return {"name": name, "made": tx["made"], "committed": tx["committed"], "rows": rows,
                 "resent": tx["resent"], "refused": tx["refused_window_full"],
                 "p50": tx["latency_ms_p50"], "p99": tx["latency_ms_p99"], "max": tx["latency_ms_max"],

@@ -16,16 +16,13 @@ Afterwards, from the ledger file itself:
 - avatars changed zones while their transactions flowed (handoffs > 0).
 Prints the latency of an outcome (p50, p99) and how many sends were resends.
 Usage: transactions.py [LOSS [ZONES [BACKEND]]]: defaults 0.19, 4, sqlite (or postgres)."""
-import contextlib
-import sqlite3
 import sys
 import tempfile
 from pathlib import Path
 
 import harness as h
-from pg_server import PgServer
+import transaction_cluster
 
-SCENE = h.SOURCE_DIR / "scenes/test_e2e.yaml"
 PLAYERS = 8
 RATE = 10
 CLIENT_SECONDS = 20
@@ -37,45 +34,17 @@ if BACKEND not in ("sqlite", "postgres"):
     h.fail(f"back end '{BACKEND}': expected sqlite or postgres")
 
 with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp, \
-        (PgServer() if BACKEND == "postgres" else contextlib.nullcontext()) as pg:
+        transaction_cluster.ledger(tmp, BACKEND) as (ledger, pg):
     out = Path(tmp)
-    ledger = f"postgres:{pg.conninfo}" if pg else f"sqlite:{out / 'ledger.sqlite'}"
-    domain = h.free_dds_domain()
-    env = h.base_env()
-    zones = h.start(h.mpirun(ZONES, h.bin_dir() / "zone_node", "--scene", SCENE, "--duration", 600,
-                             "--realtime", "--dds-domain", domain, "--metrics", out,
-                             "--ledger", ledger), out / "zones.log", env)
-    gateway = h.start([h.bin_dir() / "gateway", "--scene", SCENE, "--port", 0, "--port-file",
-                       out / "port", "--dds-domain", domain, "--metrics", out, "--expect-zones",
-                       ZONES], out / "gateway.log", env)
-    port = h.wait_for_port(out / "port", gateway, out / "gateway.log")
-    h.wait_for_zone_ticks(out, zones, out / "zones.log")
-    clients = h.start([h.bin_dir() / "client_stub", "--scene", SCENE, "--gateway",
-                       f"127.0.0.1:{port}", "--players", PLAYERS, "--duration", CLIENT_SECONDS,
-                       "--summary", out / "clients.json", "--inject-loss", LOSS,
-                       "--transactions-per-s", RATE], out / "clients.log", env)
-    try:
-        rc = clients.wait(timeout=120)
-    except Exception:
-        h.fail(f"client_stub did not finish\n{h.tail(out / 'clients.log')}")
-    h.check(rc == 0, f"client_stub exited cleanly\n{h.tail(out / 'clients.log')}")
-    h.stop(gateway)
-    h.stop(zones, grace=30)
-
-    s = h.load_json(out / "clients.json")
+    s, zone_summaries, g = transaction_cluster.run(out, ZONES, PLAYERS, RATE, CLIENT_SECONDS, ledger,
+                                                   ["--inject-loss", LOSS])
     tx, cs = s["transactions"], s["clients"]
     zone_sums = {}
-    for r in range(ZONES):
-        z = h.load_json(out / f"zone_{r}_summary.json")
+    for z in zone_summaries:
         for k, v in z.items():
             if k.startswith("transactions_") and isinstance(v, int):
                 zone_sums[k] = zone_sums.get(k, 0) + v
-    if pg:
-        rows = [(int(p), int(q)) for p, q in pg.query("SELECT player, seq FROM ledger_tx")]
-    else:
-        db = sqlite3.connect(out / "ledger.sqlite")
-        rows = db.execute("SELECT player, seq FROM ledger_tx").fetchall()
-        db.close()
+    rows = transaction_cluster.stored(out, pg)
     by_player = {}
     for player, seq in rows:
         by_player.setdefault(player, []).append(seq)
@@ -88,10 +57,9 @@ with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp, \
           f"max {tx['latency_ms_max']:.0f} ms")
     print("zones: " + ", ".join(f"{k[len('transactions_'):]} {v}" for k, v in sorted(zone_sums.items())))
     print(f"ledger ({BACKEND}): {len(rows)} rows for {len(by_player)} players")
-    g = h.load_json(out / "gateway_summary.json")
     print(f"gateway: forwarded {g['transactions_forwarded']}, outcomes delivered "
           f"{g['outcomes_delivered']}, dropped {g['dropped']}")
-    batches = sum(h.load_json(out / f"zone_{r}_summary.json")["ledger_batches"] for r in range(ZONES))
+    batches = sum(z["ledger_batches"] for z in zone_summaries)
     print(f"ledger batches {batches}")
 
     h.check(len(players) == PLAYERS, f"all {PLAYERS} players welcomed")
