@@ -9,17 +9,9 @@
 #include <chrono>
 #include <thread>
 
-#include "common/scene.h"
-#include "idl/dds_entity.h"
-#include "idl/dds_qos.h"
 #include "idl/dds_take.h"
-#include "idl/topics.h"
-#include "support/dds_test_domain.h"
-#include "zone_fixture.h"
+#include "player_zone_fixture.h"
 #include "zone_node/cluster/migration.h"
-#include "zone_node/net/gateway_link.h"
-#include "zone_node/tick_profile.h"
-#include "zonesim.h"
 
 namespace zonesim::zone {
 namespace {
@@ -27,25 +19,15 @@ namespace {
 constexpr std::uint64_t kPlayer = (std::uint64_t{3} << 32) | 9;
 constexpr int kGraceTicks = 60;  // two seconds at 30 Hz
 
-class PlayersTest : public ::testing::Test {
+class PlayersTest : public PlayerZoneTest {
  protected:
   PlayersTest()
-      : scene_(testing::npcScene(0)),
-        link_(testing::privateDdsDomain(), 0, 0),
-        players_(scene_, 0, 1, kGraceTicks),
-        gateway_(dds::makeParticipant(testing::privateDdsDomain())),
-        topics_(dds::makeTopics(gateway_.get())),
-        keep_all_(dds::reliableKeepAllQos()),
-        spawns_(dds::makePartitionWriter(gateway_.get(), topics_.spawn_requests.get(), "",
-                                         keep_all_.get())),
+      : players_(scene_, 0, 1, kGraceTicks),
         despawns_(dds::makePartitionWriter(gateway_.get(), topics_.despawn_requests.get(), "",
                                            keep_all_.get())),
         ownership_(dds::makePartitionReader(gateway_.get(), topics_.ownership.get(), "",
                                             keep_all_.get())) {}
 
-  PlayerZone zone() {
-    return {store_, ledger_, ids_, leavers_, counters_, &link_, tick_};
-  }
   // One tick's input and migrate phases.
   void tick() {
     ++tick_;
@@ -65,13 +47,7 @@ class PlayersTest : public ::testing::Test {
     return false;
   }
 
-  void requestSpawn(std::uint64_t session) {
-    zonesim_dds_SpawnRequest r{};
-    r.player_id = kPlayer;
-    r.position = {50, 0, 50};
-    r.session = session;
-    dds::check(dds_write(spawns_.writer.get(), &r), "write SpawnRequest");
-  }
+  void requestSpawn(std::uint64_t session) { PlayerZoneTest::requestSpawn(kPlayer, session); }
   void requestDespawn(std::uint64_t session) {
     zonesim_dds_DespawnRequest r{};
     r.player_id = kPlayer;
@@ -88,19 +64,8 @@ class PlayersTest : public ::testing::Test {
   }
   bool hasAvatar() const { return store_.avatarOf(kPlayer).has_value(); }
 
-  Scene scene_;
-  GatewayLink link_;
   Players players_;
-  EntityStore store_;
-  IdSetDigest ledger_;
-  EntityIdAllocator ids_{0};
-  std::vector<Departure> leavers_;
-  TickCounters counters_;
-  std::uint64_t tick_ = 0;
-  dds::Entity gateway_;
-  dds::Topics topics_;
-  dds::Qos keep_all_;
-  dds::PartitionWriter spawns_, despawns_;
+  dds::PartitionWriter despawns_;
   dds::PartitionReader ownership_;
   std::size_t announcements_ = 0;
 };

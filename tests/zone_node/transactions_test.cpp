@@ -12,19 +12,10 @@
 #include <map>
 #include <thread>
 
-#include "common/scene.h"
-#include "idl/dds_entity.h"
-#include "idl/dds_qos.h"
 #include "idl/dds_take.h"
-#include "idl/topics.h"
 #include "ledger/temp_dir.h"
-#include "support/dds_test_domain.h"
-#include "zone_fixture.h"
+#include "player_zone_fixture.h"
 #include "zone_node/cluster/migration.h"
-#include "zone_node/net/gateway_link.h"
-#include "zone_node/players.h"
-#include "zone_node/tick_profile.h"
-#include "zonesim.h"
 
 namespace zonesim::zone {
 namespace {
@@ -36,17 +27,10 @@ struct Answer {
   std::string reason;
 };
 
-class TransactionsTest : public ::testing::Test {
+class TransactionsTest : public PlayerZoneTest {
  protected:
   TransactionsTest()
-      : scene_(testing::npcScene(0)),
-        link_(testing::privateDdsDomain(), 0, 0),
-        players_(scene_, 0, 1),
-        gateway_(dds::makeParticipant(testing::privateDdsDomain())),
-        topics_(dds::makeTopics(gateway_.get())),
-        keep_all_(dds::reliableKeepAllQos()),
-        spawns_(dds::makePartitionWriter(gateway_.get(), topics_.spawn_requests.get(), "",
-                                         keep_all_.get())),
+      : players_(scene_, 0, 1),
         transactions_(dds::makePartitionWriter(gateway_.get(), topics_.player_transactions.get(),
                                                dds::zonePartition(0), keep_all_.get())),
         outcomes_(dds::makePartitionReader(gateway_.get(), topics_.transaction_outcomes.get(), "",
@@ -56,7 +40,6 @@ class TransactionsTest : public ::testing::Test {
     return std::make_unique<ledger::LedgerCommitter>(
         ledger::openStore({.backend = "sqlite", .target = dir_.file("ledger.db")}));
   }
-  PlayerZone zone() { return {store_, digest_, ids_, leavers_, counters_, &link_, tick_}; }
   // One tick: input, then the outcomes; 5 ms of wall time for DDS and the committer.
   void tick(Transactions& t) {
     ++tick_;
@@ -82,11 +65,7 @@ class TransactionsTest : public ::testing::Test {
     return false;
   }
   void spawnAvatar(Transactions& t) {
-    zonesim_dds_SpawnRequest r{};
-    r.player_id = kPlayer;
-    r.position = {50, 0, 50};
-    r.session = 1;
-    dds::check(dds_write(spawns_.writer.get(), &r), "write SpawnRequest");
+    requestSpawn(kPlayer, 1);
     ASSERT_TRUE(tickUntil(t, [&] { return store_.avatarOf(kPlayer).has_value(); }));
   }
   void send(std::uint32_t seq, std::uint64_t player = kPlayer, std::uint32_t decided = 0) {
@@ -107,19 +86,8 @@ class TransactionsTest : public ::testing::Test {
   }
 
   ledger::test::TempDir dir_;
-  Scene scene_;
-  GatewayLink link_;
   Players players_;
-  EntityStore store_;
-  IdSetDigest digest_;
-  EntityIdAllocator ids_{0};
-  std::vector<Departure> leavers_;
-  TickCounters counters_;
-  std::uint64_t tick_ = 0;
-  dds::Entity gateway_;
-  dds::Topics topics_;
-  dds::Qos keep_all_;
-  dds::PartitionWriter spawns_, transactions_;
+  dds::PartitionWriter transactions_;
   dds::PartitionReader outcomes_;
   std::map<std::uint32_t, Answer> answers_;  // the first answer per seq
   std::uint64_t answered_ = 0;
