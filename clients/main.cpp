@@ -85,6 +85,11 @@ int main(int argc, char** argv) {
                  "a gateway silent this long is taken for dead: the player says Hello again with "
                  "its resume token, to it (restarted) or a --fallback-gateway (0: never)")
       ->check(CLI::NonNegativeNumber);
+  std::uint32_t input_redundancy = zonesim::clients::PlayerConfig{}.input_redundancy;
+  app.add_option("--input-redundancy", input_redundancy,
+                 "earlier inputs each input datagram carries again, so that a lost one reaches "
+                 "the zone with the next (0: none)")
+      ->check(CLI::Range(0, int(zonesim::gateway::kMaxEarlierInputs)));
   double transactions_per_s = 0;
   app.add_option("--transactions-per-s", transactions_per_s,
                  "transactions (loot, purchases, scores) each player makes a second on its "
@@ -144,6 +149,7 @@ int main(int argc, char** argv) {
     cfg.player.max_lead_s = max_lead_s;
     cfg.player.resume_after_s = resume_after_s;
     cfg.player.transactions_per_s = transactions_per_s;
+    cfg.player.input_redundancy = input_redundancy;
     for (const std::string& g : fallback_gateways) {
       try {
         cfg.player.fallback_gateways.push_back(zonesim::gateway::resolveEndpoint(g));

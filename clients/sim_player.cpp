@@ -241,7 +241,13 @@ void SimPlayer::sendInput(std::int64_t now_ns) {
   // Until the avatar's own state arrives the player does not know where it is: stand still.
   if (auto self = view_.predicted(avatar_id_, serverTick(now_ns)))
     m = wander_.step(self->x, self->z, double(now_ns - start_ns_) * 1e-9);
-  send(gateway::encodeInput(token_, ++seq_, m.x, m.z, acks_.ack(), acks_.bits()));
+  // The last few again, so that one lost datagram costs the zone no input.
+  earlier_.clear();
+  const std::uint32_t r = config_.input_redundancy;
+  if (r > 0)
+    sent_inputs_.since(seq_ + 1 > r ? seq_ + 1 - r : 1,
+                       [&](const gateway::InputRecord& in) { earlier_.push_back(in); });
+  send(gateway::encodeInput(token_, ++seq_, m.x, m.z, acks_.ack(), acks_.bits(), earlier_));
   sent_inputs_.record({seq_, m.x, m.z});
   ++counters_.inputs;
   visible_sum_ += double(view_.size());

@@ -70,6 +70,8 @@ struct PlayerConfig {
   /// Transactions (loot, purchases, scores) each player makes a second on its reliable
   /// channel (clients/transaction_stream.h); 0: none.
   double transactions_per_s = 0;
+  /// Earlier inputs each Input carries again (at most gateway::kMaxEarlierInputs; 0: none).
+  std::uint32_t input_redundancy = 3;
 };
 
 /// Where a player showed a sampled entity (dr/truth_sample.h) at a server tick.
@@ -243,6 +245,7 @@ class SimPlayer {
   std::int64_t last_heard_ns_ = 0, resume_started_ns_ = 0, resume_gateway_since_ns_ = 0;
   std::int64_t last_ping_ns_ = 0;
   gateway::InputHistory sent_inputs_;  // the newest inputs, resent after a resume
+  std::vector<gateway::InputRecord> earlier_;  // the ones the next Input carries again
   TransactionStream transactions_;     // the reliable transaction channel
   std::int64_t start_ns_, first_hello_ns_ = -1, welcome_ns_ = -1;
   std::int64_t next_hello_ns_, next_input_ns_, next_ping_ns_;

@@ -233,11 +233,24 @@ void DatagramHandler::onInput(const proto::Input& in, Session& s, Outbox& out) {
     drops_.add(DropReason::StaleInput);
     return;
   }
-  s.last_input_seq = in.seq();
-  s.inputs.record({in.seq(), in.move_x(), in.move_z()});
-  ++s.traffic.inputs_forwarded;
-  out.inputs.push_back({s.player_id, s.avatar_id, s.zone, in.seq(), in.move_x(), in.move_z()});
+  // Earlier ones whose own datagrams never came go first, in order: the zone applies each
+  // seq once and holds a gap only briefly.
+  if (const auto* earlier = in.earlier()) {
+    for (const proto::InputMove* e : *earlier) {
+      if (e->seq() <= s.last_input_seq) continue;
+      forwardInput({e->seq(), e->move_x(), e->move_z()}, s, out);
+      ++inputs_recovered_;
+    }
+  }
+  forwardInput({in.seq(), in.move_x(), in.move_z()}, s, out);
   ++accepted_;
+}
+
+void DatagramHandler::forwardInput(const InputRecord& in, Session& s, Outbox& out) {
+  s.last_input_seq = in.seq;
+  s.inputs.record(in);
+  ++s.traffic.inputs_forwarded;
+  out.inputs.push_back({s.player_id, s.avatar_id, s.zone, in.seq, in.move_x, in.move_z});
 }
 
 void DatagramHandler::onTransaction(const proto::Transaction& t, Session& s, Outbox& out) {

@@ -108,6 +108,8 @@ class DatagramHandler {
   /// Counts an oversize datagram the socket truncated before it reached handle().
   void countTooLarge() { drops_.add(DropReason::TooLarge); }
   std::uint64_t accepted() const { return accepted_; }
+  /// Inputs whose own datagram was lost, forwarded from a later one that carried them again.
+  std::uint64_t inputsRecovered() const { return inputs_recovered_; }
   /// The connect-token check, when the gateway has a key (nullptr otherwise).
   const TokenGate* tokenGate() const { return gate_ ? &*gate_ : nullptr; }
 
@@ -118,6 +120,8 @@ class DatagramHandler {
   std::optional<auth::ResumeToken> checkResume(std::span<const std::uint8_t> token,
                                                const Endpoint& from);
   void onInput(const proto::Input& in, Session& s, Outbox& out);
+  /// Passes one input on to the avatar's zone and keeps it for a resend after a restart.
+  void forwardInput(const InputRecord& in, Session& s, Outbox& out);
   void onTransaction(const proto::Transaction& t, Session& s, Outbox& out);
   /// Takes one token from the session's bucket; false (drop) when it is empty.
   bool withinRate(Session& s, std::int64_t now_ns) const;
@@ -130,6 +134,7 @@ class DatagramHandler {
   std::optional<TokenGate> gate_;
   DropCounters drops_;
   std::uint64_t accepted_ = 0;
+  std::uint64_t inputs_recovered_ = 0;
   float dilation_ = 1.0f;  // the zones' clock rate, for Pongs
 };
 

@@ -201,6 +201,7 @@ void Gateway::carryOut(Outbox& out) {
     else
       ++counters_.input_write_failures;
   }
+  counters_.inputs_recovered = handler_.inputsRecovered();
   for (const TransactionCommand& c : out.transactions) {
     if (link_.sendTransaction(c))
       ++counters_.transactions_forwarded;

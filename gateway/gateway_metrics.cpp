@@ -41,6 +41,7 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("epochs_entered", c.epochs_entered)
       .add("epoch_stale", c.epoch_stale)
       .add("inputs_resent", c.inputs_resent)
+      .add("inputs_recovered", c.inputs_recovered)
       .add("inputs_unresendable", c.inputs_unresendable)
       .add("avatars_reasked", c.avatars_reasked)
       .add("entities_retired", c.entities_retired);

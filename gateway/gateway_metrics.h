@@ -35,6 +35,7 @@ struct GatewayCounters {
   std::uint64_t epochs_entered = 0;      ///< cluster restarts followed
   std::uint64_t epoch_stale = 0;         ///< samples and events of an older epoch, dropped
   std::uint64_t inputs_resent = 0;       ///< inputs sent again to a restored zone (first burst)
+  std::uint64_t inputs_recovered = 0;  ///< lost on the way here, forwarded from a later copy
   std::uint64_t inputs_unresendable = 0;  ///< ones it lacked that the history no longer held
   std::uint64_t avatars_reasked = 0;     ///< spawns asked again: the restored world lacked them
   std::uint64_t entities_retired = 0;    ///< cached entities the restored world did not bring

@@ -50,10 +50,16 @@ Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
 }
 
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
-                  std::uint32_t ack, std::uint32_t ack_bits) {
-  flatbuffers::FlatBufferBuilder fbb(96);
+                  std::uint32_t ack, std::uint32_t ack_bits, std::span<const InputRecord> earlier) {
+  flatbuffers::FlatBufferBuilder fbb(96 + 12 * earlier.size());
+  flatbuffers::Offset<flatbuffers::Vector<const proto::InputMove*>> moves;
+  if (!earlier.empty()) {
+    proto::InputMove* out = nullptr;
+    moves = fbb.CreateUninitializedVectorOfStructs(earlier.size(), &out);
+    for (const InputRecord& e : earlier) *out++ = proto::InputMove(e.seq, e.move_x, e.move_z);
+  }
   return finish(fbb, token, proto::Message::Input,
-                proto::CreateInput(fbb, seq, move_x, move_z, ack, ack_bits));
+                proto::CreateInput(fbb, seq, move_x, move_z, ack, ack_bits, moves));
 }
 
 Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack,

@@ -11,6 +11,7 @@
 #include "client_protocol_generated.h"
 #include "dr/state_codec.h"
 #include "wire/downlink_frame.h"
+#include "wire/input_history.h"
 #include "wire/wire_verify.h"
 
 namespace zonesim::gateway {
@@ -74,9 +75,11 @@ TransactionInfo transactionInfo(const proto::Transaction& t);
 Bytes encodeHello(std::uint64_t client_nonce, std::string_view name,
                   std::span<const std::uint8_t> connect_token = {}, std::uint8_t kind = 0,
                   std::span<const std::uint8_t> resume_token = {});
-/// ack / ack_bits: the client's acknowledgement of gateway datagrams (wire/ack_window.h).
+/// ack / ack_bits: the client's acknowledgement of gateway datagrams (wire/ack_window.h);
+/// earlier: the inputs just before this one, oldest first, sent again (none: not written).
 Bytes encodeInput(std::uint64_t token, std::uint32_t seq, float move_x, float move_z,
-                  std::uint32_t ack = 0, std::uint32_t ack_bits = 0);
+                  std::uint32_t ack = 0, std::uint32_t ack_bits = 0,
+                  std::span<const InputRecord> earlier = {});
 /// ack / ack_bits as in encodeInput.
 Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_t ack = 0,
                  std::uint32_t ack_bits = 0);

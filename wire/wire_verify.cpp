@@ -23,6 +23,11 @@ bool position(const proto::Vec3f& p) {
   return coordinate(p.x()) && coordinate(p.y()) && coordinate(p.z());
 }
 
+// A desired planar motion: |move| <= 1 (with slack for the client's rounding).
+bool move(float x, float z) {
+  return finite(x) && finite(z) && std::sqrt(double(x) * x + double(z) * z) <= 1.0 + kMoveEpsilon;
+}
+
 bool step(float v, float lo, float hi) {
   return finite(v) && v >= lo && v <= hi;
 }
@@ -38,9 +43,18 @@ bool checkToGateway(const proto::Datagram& d) {
     }
     case proto::Message::Input: {
       const proto::Input* in = d.msg_as_Input();
-      float x = in->move_x(), z = in->move_z();
-      return in->seq() != 0 && finite(x) && finite(z) &&
-             std::sqrt(double(x) * x + double(z) * z) <= 1.0 + kMoveEpsilon;
+      if (in->seq() == 0 || !move(in->move_x(), in->move_z())) return false;
+      // Earlier ones: before this one, oldest first, each a valid move.
+      if (const auto* earlier = in->earlier()) {
+        if (earlier->size() > kMaxEarlierInputs) return false;
+        std::uint32_t before = 0;
+        for (const proto::InputMove* e : *earlier) {
+          if (e->seq() <= before || e->seq() >= in->seq() || !move(e->move_x(), e->move_z()))
+            return false;
+          before = e->seq();
+        }
+      }
+      return true;
     }
     case proto::Message::Transaction: {
       const proto::Transaction* t = d.msg_as_Transaction();

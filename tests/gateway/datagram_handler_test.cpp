@@ -146,6 +146,25 @@ TEST_F(HandlerTest, ValidInputIsForwardedOnceInOrder) {
   EXPECT_EQ(out_.inputs.size(), 1u);
 }
 
+// An input whose datagram was lost reaches the zone from the next one, which carries it again:
+// in order, before the newer one, and once.
+TEST_F(HandlerTest, AnInputCarriedAgainStandsInForOneLost) {
+  Session& s = welcomedSession();
+  feed(encodeInput(s.token, 1, 0, 1));
+  std::vector<InputRecord> earlier{{1, 0, 1}, {2, 0.6f, 0}};  // 2's own datagram was lost
+  feed(encodeInput(s.token, 3, 0, -1, 0, 0, earlier));
+  ASSERT_EQ(out_.inputs.size(), 2u);
+  EXPECT_EQ(out_.inputs[0].seq, 2u);
+  EXPECT_FLOAT_EQ(out_.inputs[0].move_x, 0.6f);
+  EXPECT_EQ(out_.inputs[1].seq, 3u);
+  EXPECT_EQ(handler_.inputsRecovered(), 1u);
+  std::vector<InputRecord> again{{2, 0.6f, 0}, {3, 0, -1}};
+  feed(encodeInput(s.token, 4, 0, 0, 0, 0, again));
+  ASSERT_EQ(out_.inputs.size(), 1u) << "2 and 3 went on already";
+  EXPECT_EQ(out_.inputs[0].seq, 4u);
+  EXPECT_EQ(handler_.inputsRecovered(), 1u);
+}
+
 // Every copy of a transaction goes to the avatar's zone, repeats too (the zone answers a
 // repeat with the outcome the client missed); before the Welcome it is not ready.
 TEST_F(HandlerTest, TransactionsGoToTheAvatarsZoneRepeatsIncluded) {

@@ -94,6 +94,33 @@ TEST(Wire, DirectionDecidesWhichMessagesAreAccepted) {
   EXPECT_TRUE(verifyDatagram(encodePong(1, 2, 3), Direction::ToClient).ok());
 }
 
+// An Input carries the inputs before it again: they come back in order, and any that is not
+// before it, not in order, not a valid move, or one too many is out of range.
+TEST(Wire, InputsCarryEarlierOnesChecked) {
+  std::vector<InputRecord> earlier{{4, 0.5f, 0}, {5, 0, -0.5f}, {6, 0.6f, 0.8f}};
+  Bytes b = encodeInput(9, 7, 0, 1, 0, 0, earlier);
+  Verified v = verifyDatagram(b, Direction::ToGateway);
+  ASSERT_TRUE(v.ok());
+  const auto* got = v.datagram->msg_as_Input()->earlier();
+  ASSERT_NE(got, nullptr);
+  ASSERT_EQ(got->size(), 3u);
+  EXPECT_EQ(got->Get(0)->seq(), 4u);
+  EXPECT_EQ(got->Get(2)->move_z(), 0.8f);
+  EXPECT_EQ(verifyDatagram(encodeInput(9, 7, 0, 1), Direction::ToGateway).datagram->msg_as_Input()->earlier(),
+            nullptr) << "none: not written";
+  std::vector<std::vector<InputRecord>> bad{
+      {{20, 0, 0}},                  // not before the input
+      {{5, 0, 0}, {4, 0, 0}},        // not in order
+      {{0, 0, 0}},                   // seq 0
+      {{5, 1, 1}},                   // |move| > 1
+      std::vector<InputRecord>(kMaxEarlierInputs + 1, {1, 0, 0}),
+  };
+  for (std::size_t i = 0; i < kMaxEarlierInputs + 1; ++i) bad.back()[i].seq = std::uint32_t(i + 1);
+  for (const auto& e : bad)
+    EXPECT_EQ(reasonOf(encodeInput(9, 20, 0, 1, 0, 0, e)), DropReason::OutOfRange)
+        << "first earlier seq " << e.front().seq << ", " << e.size() << " of them";
+}
+
 // The reliable channel's two messages: each field comes back, each goes one way only, and a
 // sequence 0, an unknown kind or status or an overlong reason is out of range.
 TEST(Wire, TransactionsAndOutcomesRoundTripAndAreChecked) {
