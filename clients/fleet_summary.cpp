@@ -31,6 +31,9 @@ void addSum(PlayerCounters& t, const PlayerCounters& c, bool samples) {
   t.resume_new_avatar += c.resume_new_avatar;
   t.inputs_resent += c.inputs_resent;
   t.inputs_unresendable += c.inputs_unresendable;
+  t.leaderboard_queries += c.leaderboard_queries;
+  t.leaderboards += c.leaderboards;
+  t.leaderboards_unordered += c.leaderboards_unordered;
   t.min_dilation = std::min(t.min_dilation, c.min_dilation);
   for (std::size_t r = 0; r < std::size_t(gateway::DropReason::Count); ++r)
     t.drops.add(gateway::DropReason(r), c.drops[gateway::DropReason(r)]);
@@ -74,7 +77,12 @@ void addTraffic(JsonLine& j, const PlayerCounters& c, double s) {
       .add("resume_inputs_resent", c.inputs_resent)
       .add("resume_inputs_unresendable", c.inputs_unresendable)
       .add("resume_s_p50", percentile(c.resume_s.samples(), 50))
-      .add("resume_s_max", c.resume_s.max());
+      .add("resume_s_max", c.resume_s.max())
+      .add("leaderboard_queries", c.leaderboard_queries)
+      .add("leaderboards", c.leaderboards)
+      .add("leaderboards_unordered", c.leaderboards_unordered)
+      .add("leaderboard_rows", c.leaderboard_rows)
+      .add("leaderboard_top", c.leaderboard_top);
 }
 
 // The player's link profile and what its models did to the datagrams each way.

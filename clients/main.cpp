@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
                  "earlier inputs each input datagram carries again, so that a lost one reaches "
                  "the zone with the next (0: none)")
       ->check(CLI::Range(0, int(zonesim::gateway::kMaxEarlierInputs)));
+  double leaderboard_every_s = 0;
+  app.add_option("--leaderboard-every-s", leaderboard_every_s,
+                 "each player asks for the leaderboard this often (0: never)")
+      ->check(CLI::NonNegativeNumber);
   double transactions_per_s = 0;
   app.add_option("--transactions-per-s", transactions_per_s,
                  "transactions (loot, purchases, scores) each player makes a second on its "
@@ -150,6 +154,7 @@ int main(int argc, char** argv) {
     cfg.player.resume_after_s = resume_after_s;
     cfg.player.transactions_per_s = transactions_per_s;
     cfg.player.input_redundancy = input_redundancy;
+    cfg.player.leaderboard_every_s = leaderboard_every_s;
     for (const std::string& g : fallback_gateways) {
       try {
         cfg.player.fallback_gateways.push_back(zonesim::gateway::resolveEndpoint(g));

@@ -147,6 +147,16 @@ std::int64_t SimPlayer::actDue(std::int64_t now_ns) {
     next_ping_ns_ = now_ns + seconds(probing ? kProbeEveryS : config_.ping_every_s);
   }
   std::int64_t due = std::min(next_input_ns_, next_ping_ns_);
+  if (config_.leaderboard_every_s > 0) {
+    if (next_leaderboard_ns_ == INT64_MAX)
+      next_leaderboard_ns_ = now_ns + seconds(config_.leaderboard_every_s);
+    if (now_ns >= next_leaderboard_ns_) {
+      send(gateway::encodeLeaderboardQuery(token_, std::uint8_t(gateway::kMaxLeaderboardRows)));
+      ++counters_.leaderboard_queries;
+      next_leaderboard_ns_ = now_ns + seconds(config_.leaderboard_every_s);
+    }
+    due = std::min(due, next_leaderboard_ns_);
+  }
   due = std::min(due, transactions_.due(now_ns, [&](const gateway::TransactionInfo& t) {
     send(gateway::encodeTransaction(token_, t));
   }));
@@ -508,6 +518,18 @@ void SimPlayer::onMessage(const proto::Datagram& d, std::int64_t now_ns) {
       if (h->avatar_id() != 0) avatar_id_ = h->avatar_id();
       ++counters_.handoffs;
       logOwn(now_ns, h->tick(), true);
+      return;
+    }
+    case proto::Message::Leaderboard: {
+      const auto* rows = d.msg_as_Leaderboard()->rows();
+      ++counters_.leaderboards;
+      counters_.leaderboard_rows = rows ? rows->size() : 0;
+      counters_.leaderboard_top = rows && rows->size() > 0 ? rows->Get(0)->score() : 0;
+      for (std::size_t i = 1; rows && i < rows->size(); ++i)
+        if (rows->Get(i)->score() > rows->Get(i - 1)->score()) {
+          ++counters_.leaderboards_unordered;
+          break;
+        }
       return;
     }
     case proto::Message::TransactionOutcome: {

@@ -70,6 +70,8 @@ struct PlayerConfig {
   /// Transactions (loot, purchases, scores) each player makes a second on its reliable
   /// channel (clients/transaction_stream.h); 0: none.
   double transactions_per_s = 0;
+  /// Seconds between the player's leaderboard queries (0: it never asks).
+  double leaderboard_every_s = 0;
   /// Earlier inputs each Input carries again (at most gateway::kMaxEarlierInputs; 0: none).
   std::uint32_t input_redundancy = 3;
 };
@@ -109,6 +111,11 @@ struct PlayerCounters {
   std::uint64_t inputs_resent = 0;      ///< inputs sent again after a resume
   std::uint64_t inputs_unresendable = 0;  ///< ones the zone lacked that were no longer kept
   Reservoir resume_s;  ///< from the last datagram heard to the resumed Welcome, seconds
+  // The leaderboard (LeaderboardQuery -> Leaderboard):
+  std::uint64_t leaderboard_queries = 0, leaderboards = 0;
+  std::uint64_t leaderboards_unordered = 0;  ///< answers not best first (never, if all is well)
+  std::uint64_t leaderboard_rows = 0;        ///< rows of the newest answer
+  std::int64_t leaderboard_top = 0;          ///< its best score
 };
 
 class SimPlayer {
@@ -249,6 +256,7 @@ class SimPlayer {
   TransactionStream transactions_;     // the reliable transaction channel
   std::int64_t start_ns_, first_hello_ns_ = -1, welcome_ns_ = -1;
   std::int64_t next_hello_ns_, next_input_ns_, next_ping_ns_;
+  std::int64_t next_leaderboard_ns_ = INT64_MAX;
   std::int64_t input_period_ns_;
   Wander wander_;
   RemoteView view_;

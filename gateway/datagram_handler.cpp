@@ -11,6 +11,7 @@ void Outbox::clear() {
   spawns.clear();
   inputs.clear();
   transactions.clear();
+  leaderboards.clear();
   closed.clear();
   replaced.clear();
 }
@@ -82,6 +83,14 @@ void DatagramHandler::handle(std::span<const std::uint8_t> bytes, const Endpoint
       return;
     case proto::Message::Transaction:
       onTransaction(*d.msg_as_Transaction(), *s, out);
+      return;
+    case proto::Message::LeaderboardQuery:
+      if (!s->welcomed) {
+        drops_.add(DropReason::NotReady);
+        return;
+      }
+      out.leaderboards.push_back({s->player_id, s->zone, d.msg_as_LeaderboardQuery()->count()});
+      ++accepted_;
       return;
     case proto::Message::Bye: {
       Session ended = *s;

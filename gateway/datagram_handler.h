@@ -48,6 +48,13 @@ struct TransactionCommand {
   TransactionInfo tx;
 };
 
+/// A player asks for the leaderboard; its avatar's zone answers.
+struct LeaderboardCommand {
+  std::uint64_t player_id = 0;
+  int zone = 0;
+  std::uint8_t count = 0;
+};
+
 /// A datagram to send back to the address a request came from.
 struct Reply {
   Endpoint to;
@@ -61,6 +68,7 @@ struct Outbox {
   std::vector<SpawnCommand> spawns;
   std::vector<InputCommand> inputs;
   std::vector<TransactionCommand> transactions;
+  std::vector<LeaderboardCommand> leaderboards;
   std::vector<Session> closed;  ///< sessions ended by Bye (already erased): release interest
   /// Sessions a resumed Hello of the same player replaced (already erased): release interest,
   /// but keep the avatar, which the new session goes on with.

@@ -202,6 +202,12 @@ void Gateway::carryOut(Outbox& out) {
       ++counters_.input_write_failures;
   }
   counters_.inputs_recovered = handler_.inputsRecovered();
+  for (const LeaderboardCommand& c : out.leaderboards) {
+    if (link_.askLeaderboard(c))
+      ++counters_.leaderboard_queries;
+    else
+      ++counters_.transaction_write_failures;
+  }
   for (const TransactionCommand& c : out.transactions) {
     if (link_.sendTransaction(c))
       ++counters_.transactions_forwarded;
@@ -261,6 +267,13 @@ void Gateway::deliverOutcomes() {
     }
     sendTo(*s, encodeTransactionOutcome(s->token, o.seq, o.status, o.reason));
     ++counters_.outcomes_delivered;
+  }
+  for (const LeaderboardReplyMsg& r : link_.takeLeaderboards()) {
+    auto h = sessions_.findByPlayer(r.player_id);
+    Session* s = h ? sessions_.get(*h) : nullptr;
+    if (s == nullptr || !s->welcomed) continue;  // another gateway's player, or one gone
+    sendTo(*s, encodeLeaderboard(s->token, r.rows, r.reason));
+    ++counters_.leaderboards_delivered;
   }
 }
 

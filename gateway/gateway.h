@@ -99,7 +99,8 @@ class Gateway {
   /// Hands the queued datagrams to the kernel and counts what it took.
   void flushSends();
   void tick(std::int64_t now_ns);
-  /// Tells this gateway's players the outcomes of their transactions the zones decided.
+  /// Tells this gateway's players the outcomes of their transactions the zones decided, and
+  /// the leaderboards they asked for.
   void deliverOutcomes();
   void applyOwnership(const zonesim_dds_OwnershipEvent& e);
   /// After a restart (gateway_epochs.cpp): the first announcement of s's avatar in the new

@@ -23,6 +23,8 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("transaction_write_failures", c.transaction_write_failures)
       .add("outcomes_delivered", c.outcomes_delivered)
       .add("outcomes_foreign", c.outcomes_foreign)
+      .add("leaderboard_queries", c.leaderboard_queries)
+      .add("leaderboards_delivered", c.leaderboards_delivered)
       .add("spawn_requests", c.spawn_requests)
       .add("welcomes", c.welcomes)
       .add("handoffs", c.handoffs)

@@ -23,6 +23,8 @@ ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
                                                keep_all_qos_.get());
   outcome_reader_ = dds::makePartitionReader(
       participant_.get(), topics_.transaction_outcomes.get(), "", keep_all_qos_.get());
+  leaderboard_reader_ = dds::makePartitionReader(
+      participant_.get(), topics_.leaderboard_replies.get(), "", keep_all_qos_.get());
   // Input writers for the zones we expect, created now so they are matched before the first
   // input: an input written before its reader is discovered would be lost.
   for (int z = 0; z < expected_zones_; ++z) {
@@ -109,6 +111,27 @@ bool ZoneLink::sendTransaction(const TransactionCommand& c) {
   dds_entity_t w =
       zoneWriter(transaction_writers_, topics_.player_transactions.get(), c.zone).writer.get();
   return dds_write(w, &t) >= 0;
+}
+
+bool ZoneLink::askLeaderboard(const LeaderboardCommand& c) {
+  zonesim_dds_LeaderboardRequest r{};
+  r.player_id = c.player_id;
+  r.count = c.count;
+  dds_entity_t w =
+      zoneWriter(leaderboard_writers_, topics_.leaderboard_requests.get(), c.zone).writer.get();
+  return dds_write(w, &r) >= 0;
+}
+
+std::vector<LeaderboardReplyMsg> ZoneLink::takeLeaderboards() {
+  std::vector<LeaderboardReplyMsg> out;
+  dds::takeAll<zonesim_dds_LeaderboardReply>(
+      leaderboard_reader_.reader.get(), [&](const zonesim_dds_LeaderboardReply& r) {
+        LeaderboardReplyMsg m{r.player_id, {}, std::string(r.reason)};
+        for (std::uint32_t i = 0; i < r.rows._length; ++i)
+          m.rows.push_back({r.rows._buffer[i].player, r.rows._buffer[i].score, r.rows._buffer[i].tick});
+        out.push_back(std::move(m));
+      });
+  return out;
 }
 
 std::vector<TransactionOutcomeMsg> ZoneLink::takeOutcomes() {

@@ -28,6 +28,13 @@ struct TransactionOutcomeMsg {
   std::string reason;
 };
 
+/// A zone's answer to a player's leaderboard query.
+struct LeaderboardReplyMsg {
+  std::uint64_t player_id = 0;
+  std::vector<LeaderboardLine> rows;
+  std::string reason;
+};
+
 class ZoneLink {
  public:
   /// Joins the domain; spawn requests are held until expected_zones readers listen, so the
@@ -49,6 +56,10 @@ class ZoneLink {
   bool sendTransaction(const TransactionCommand& c);
   /// Takes every zone's pending transaction outcomes, for whichever gateway's players.
   std::vector<TransactionOutcomeMsg> takeOutcomes();
+  /// Asks the player's avatar's zone for the leaderboard; false if the write failed.
+  bool askLeaderboard(const LeaderboardCommand& c);
+  /// Takes every zone's pending leaderboard answers, for whichever gateway's players.
+  std::vector<LeaderboardReplyMsg> takeLeaderboards();
 
   /// Creates the readers of cell (ix, iz) with id cell; nothing if already there.
   void subscribeCell(int cell, int ix, int iz);
@@ -84,8 +95,10 @@ class ZoneLink {
   dds::PartitionWriter despawn_writer_;
   dds::PartitionReader ownership_reader_;
   dds::PartitionReader outcome_reader_;
+  dds::PartitionReader leaderboard_reader_;
   std::map<int, dds::PartitionWriter> input_writers_;
   std::map<int, dds::PartitionWriter> transaction_writers_;
+  std::map<int, dds::PartitionWriter> leaderboard_writers_;
   std::map<int, CellReaders> cells_;
   std::vector<SpawnCommand> held_spawns_;
 };

@@ -19,6 +19,10 @@ Topics makeTopics(dds_entity_t participant) {
                                     "zs_player_transactions", nullptr);
   t.transaction_outcomes = makeTopic(participant, &zonesim_dds_TransactionOutcome_desc,
                                      "zs_transaction_outcomes", nullptr);
+  t.leaderboard_requests = makeTopic(participant, &zonesim_dds_LeaderboardRequest_desc,
+                                     "zs_leaderboard_requests", nullptr);
+  t.leaderboard_replies = makeTopic(participant, &zonesim_dds_LeaderboardReply_desc,
+                                    "zs_leaderboard_replies", nullptr);
   return t;
 }
 

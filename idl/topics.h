@@ -8,6 +8,8 @@
 //   zs_despawn_requests DespawnRequest  default partition      gateway -> zones, reliableKeepAll
 //   zs_player_transactions PlayerTransaction partition z.<rank> gateway -> zone, reliableKeepAll
 //   zs_transaction_outcomes TransactionOutcome default partition zone -> gateways, reliableKeepAll
+//   zs_leaderboard_requests LeaderboardRequest partition z.<rank> gateway -> zone, reliableKeepAll
+//   zs_leaderboard_replies LeaderboardReply default partition zone -> gateways, reliableKeepAll
 //   zs_gateway_load    GatewayLoad      default partition      gateway -> lobby, gatewayLoadQos
 
 #include "idl/dds_entity.h"
@@ -24,6 +26,8 @@ struct Topics {
   Entity gateway_load;
   Entity player_transactions;
   Entity transaction_outcomes;
+  Entity leaderboard_requests;
+  Entity leaderboard_replies;
 };
 
 /// Creates all zonesim topics on the participant.

@@ -1,5 +1,6 @@
 #include "wire/wire_encode.h"
 
+#include <algorithm>
 #include <cassert>
 #include <stdexcept>
 
@@ -84,6 +85,25 @@ Bytes encodeTransaction(std::uint64_t token, const TransactionInfo& t) {
   auto msg = proto::CreateTransaction(fbb, t.seq, t.kind, t.item, t.amount, t.counterparty,
                                       t.price, t.score, t.decided);
   return finish(fbb, token, proto::Message::Transaction, msg);
+}
+
+Bytes encodeLeaderboardQuery(std::uint64_t token, std::uint8_t count) {
+  flatbuffers::FlatBufferBuilder fbb(64);
+  return finish(fbb, token, proto::Message::LeaderboardQuery,
+                proto::CreateLeaderboardQuery(fbb, count));
+}
+
+Bytes encodeLeaderboard(std::uint64_t token, std::span<const LeaderboardLine> rows,
+                        std::string_view reason) {
+  rows = rows.first(std::min(rows.size(), kMaxLeaderboardRows));
+  flatbuffers::FlatBufferBuilder fbb(96 + 24 * rows.size() + reason.size());
+  proto::LeaderboardEntry* out = nullptr;
+  auto entries = fbb.CreateUninitializedVectorOfStructs(rows.size(), &out);
+  for (const LeaderboardLine& r : rows) *out++ = proto::LeaderboardEntry(r.player, r.score, r.tick);
+  auto text = reason.empty() ? flatbuffers::Offset<flatbuffers::String>()
+                             : fbb.CreateString(reason.substr(0, kMaxReasonBytes));
+  return finish(fbb, token, proto::Message::Leaderboard,
+                proto::CreateLeaderboard(fbb, entries, text));
 }
 
 Bytes encodeTransactionOutcome(std::uint64_t token, std::uint32_t seq, std::uint8_t status,

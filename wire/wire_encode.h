@@ -85,6 +85,19 @@ Bytes encodePing(std::uint64_t token, std::uint64_t client_time_us, std::uint32_
                  std::uint32_t ack_bits = 0);
 Bytes encodeBye(std::uint64_t token);
 Bytes encodeTransaction(std::uint64_t token, const TransactionInfo& t);
+/// count: 1 .. kMaxLeaderboardRows.
+Bytes encodeLeaderboardQuery(std::uint64_t token, std::uint8_t count);
+/// One row of a Leaderboard.
+struct LeaderboardLine {
+  std::uint64_t player = 0;
+  std::int64_t score = 0;
+  std::uint64_t tick = 0;
+  bool operator==(const LeaderboardLine&) const = default;
+};
+/// At most kMaxLeaderboardRows of `rows`; reason (cut to kMaxReasonBytes): why it could not be
+/// read ("" if it was).
+Bytes encodeLeaderboard(std::uint64_t token, std::span<const LeaderboardLine> rows,
+                        std::string_view reason);
 /// status: ledger::TxStatus; reason is cut to kMaxReasonBytes.
 Bytes encodeTransactionOutcome(std::uint64_t token, std::uint32_t seq, std::uint8_t status,
                                std::string_view reason);

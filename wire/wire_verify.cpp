@@ -56,6 +56,10 @@ bool checkToGateway(const proto::Datagram& d) {
       }
       return true;
     }
+    case proto::Message::LeaderboardQuery: {
+      auto n = d.msg_as_LeaderboardQuery()->count();
+      return n >= 1 && n <= kMaxLeaderboardRows;
+    }
     case proto::Message::Transaction: {
       const proto::Transaction* t = d.msg_as_Transaction();
       return t->seq() != 0 && t->decided() < t->seq() && t->kind() >= 1 &&
@@ -83,6 +87,11 @@ bool checkToClient(const proto::Datagram& d) {
       const proto::Handoff* h = d.msg_as_Handoff();
       return h->from_zone() >= -1 && h->to_zone() >= 0 && h->avatar_id() != 0;
     }
+    case proto::Message::Leaderboard: {
+      const proto::Leaderboard* l = d.msg_as_Leaderboard();
+      return (l->rows() == nullptr || l->rows()->size() <= kMaxLeaderboardRows) &&
+             (l->reason() == nullptr || l->reason()->size() <= kMaxReasonBytes);
+    }
     case proto::Message::TransactionOutcome: {
       const proto::TransactionOutcome* o = d.msg_as_TransactionOutcome();
       return o->seq() != 0 && o->status() <= kMaxTransactionStatus &&
@@ -100,11 +109,13 @@ bool allowed(proto::Message type, Direction direction) {
     case proto::Message::Ping:
     case proto::Message::Bye:
     case proto::Message::Transaction:
+    case proto::Message::LeaderboardQuery:
       return direction == Direction::ToGateway;
     case proto::Message::Welcome:
     case proto::Message::Pong:
     case proto::Message::Handoff:
     case proto::Message::TransactionOutcome:
+    case proto::Message::Leaderboard:
       return direction == Direction::ToClient;
     default:  // StateBatch, Spawn and Despawn travel as lean frames (wire/downlink_frame.h)
       return false;

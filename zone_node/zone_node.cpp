@@ -24,6 +24,7 @@
 #include "zone_node/systems/rigid_bodies.h"
 #include "zone_node/systems/road_movement.h"
 #include "zone_node/systems/step_context.h"
+#include "zone_node/leaderboard_service.h"
 #include "zone_node/transactions.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_map.h"
@@ -31,6 +32,9 @@
 namespace zonesim::zone {
 
 namespace {
+// The rows a leaderboard reading holds: as many as a player may ask for (wire_verify.h).
+constexpr std::size_t kLeaderboardRows = 32;
+
 int rankIn(MPI_Comm comm) {
   int r = 0;
   MPI_Comm_rank(comm, &r);
@@ -134,6 +138,11 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   if (options_.ledger)
     committer = std::make_unique<ledger::LedgerCommitter>(ledger::openStore(*options_.ledger));
   transactions_ = std::make_unique<Transactions>(std::move(committer));
+  // The leaderboard on a connection of its own: its reads never wait behind a commit batch.
+  leaderboard_ = std::make_unique<LeaderboardService>(
+      options_.ledger ? std::make_unique<ledger::LeaderboardCache>(
+                            ledger::openStore(*options_.ledger), kLeaderboardRows)
+                      : nullptr);
   PlayerZone zone = playerZone();
   players_.restored(zone);
   emitters_ = std::make_unique<EmitterSystem>(scene_.emitters, gpu_mode, thresholds);
@@ -146,6 +155,10 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
 }
 
 ZoneNode::~ZoneNode() = default;
+
+std::uint64_t ZoneNode::leaderboardsAnswered() const {
+  return leaderboard_->answered();
+}
 
 std::vector<std::array<double, 6>> ZoneNode::liveParticles() const {
   std::vector<std::array<double, 6>> out;
@@ -303,6 +316,7 @@ void ZoneNode::publish() {
   if (!publisher_) return;
   PlayerZone zone = playerZone();
   transactions_->publish(zone);
+  leaderboard_->serve(*link_);
   publisher_->setDilation(dilation_.factor());
   PublishStats s = publisher_->publish(store_, leavers_, tick_, double(tick_) * scene_.dt);
   counters_.published_updates = s.updates;

@@ -41,6 +41,7 @@ class FormationMovement;
 class RoadMovement;
 class AntMovement;
 class Transactions;
+class LeaderboardService;
 class WanderMovement;
 struct WorldMap;
 class ZoneMap;
@@ -96,6 +97,8 @@ class ZoneNode {
   const TickCounters& counters() const { return counters_; }
   /// The players' transaction channels (zone_node/transactions.h).
   const Transactions& transactions() const { return *transactions_; }
+  /// Leaderboard queries answered.
+  std::uint64_t leaderboardsAnswered() const;
   /// Read-only copies of the neighbours' entities within the halo (refreshed every tick).
   const GhostStore& ghosts() const { return halo_.ghosts(); }
   const ConservationTally& conservation() const { return conservation_; }
@@ -179,6 +182,7 @@ class ZoneNode {
   std::vector<crowd::Vec2> lod_players_;  // every avatar of the cluster, for crowd LOD
   Players players_;                       // the player protocol
   std::unique_ptr<Transactions> transactions_;  // players' reliable transaction channels
+  std::unique_ptr<LeaderboardService> leaderboard_;  // answers players' leaderboard queries
 
   std::uint64_t tick_ = 0;
   std::uint64_t link_failures_seen_ = 0;

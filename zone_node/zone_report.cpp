@@ -111,6 +111,7 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
       .add("transactions_already_committed", t.already_committed);
   s.add("transactions_conflicts", t.conflicts).add("transactions_failed", t.failed);
   s.add("ledger_batches", zone.transactions().ledgerStats().batches);
+  s.add("leaderboards_answered", zone.leaderboardsAnswered());
   s.add("handoffs_timed", std::uint64_t(handoff_latency_ms_.size()));
   if (!handoff_latency_ms_.empty()) {
     s.add("handoff_latency_ms_p50", percentile(handoff_latency_ms_, 50))

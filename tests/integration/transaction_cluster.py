@@ -55,14 +55,19 @@ def ledger(out, backend):
     return made()
 
 
-def stored(out, pg):
-    """(player, seq) of every transaction the run's ledger holds."""
+def query(out, pg, sql):
+    """Rows of integers a query on the run's ledger returns ([] where it has none)."""
     if pg:
-        return [(int(p), int(q)) for p, q in pg.query("SELECT player, seq FROM ledger_tx")]
+        return [tuple(int(v) for v in row) for row in pg.query(sql)]
     path = Path(out) / "ledger.sqlite"
     if not path.exists():
         return []
     db = sqlite3.connect(path)
-    rows = db.execute("SELECT player, seq FROM ledger_tx").fetchall()
+    rows = db.execute(sql).fetchall()
     db.close()
     return rows
+
+
+def stored(out, pg):
+    """(player, seq) of every transaction the run's ledger holds."""
+    return query(out, pg, "SELECT player, seq FROM ledger_tx")

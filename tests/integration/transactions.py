@@ -14,6 +14,8 @@ Afterwards, from the ledger file itself:
 - nothing a client made is unaccounted for: committed + failed + still pending = made, and
   nothing failed;
 - avatars changed zones while their transactions flowed (handoffs > 0);
+- every player asked for the leaderboard every 2 s and got it, best first, topped by a score
+  the ledger holds;
 - inputs lost on the link reached the zones anyway, carried again by the next inputs: at most
   1% skipped (four datagrams in a row lost, 0.13% at 19%).
 Prints the latency of an outcome (p50, p99) and how many sends were resends.
@@ -39,7 +41,7 @@ with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp, \
         transaction_cluster.ledger(tmp, BACKEND) as (ledger, pg):
     out = Path(tmp)
     s, zone_summaries, g = transaction_cluster.run(out, ZONES, PLAYERS, RATE, CLIENT_SECONDS, ledger,
-                                                   ["--inject-loss", LOSS])
+                                                   ["--inject-loss", LOSS, "--leaderboard-every-s", 2])
     tx, cs = s["transactions"], s["clients"]
     zone_sums = {}
     for z in zone_summaries:
@@ -92,6 +94,16 @@ with tempfile.TemporaryDirectory(prefix="zs_tx_") as tmp, \
     h.check(g["inputs_recovered"] > 0 and skipped <= 0.01 * applied,
             f"inputs lost on the link were recovered from the next ones ({g['inputs_recovered']}); at most "
             f"1% skipped ({skipped} of {applied})")
+    # The leaderboard, asked for every 2 s: best first, and never a score the ledger lacks.
+    best = transaction_cluster.query(out, pg, "SELECT MAX(score) FROM ledger_tx WHERE kind = 4")[0][0]
+    answered = sum(z["leaderboards_answered"] for z in zone_summaries)
+    print(f"leaderboard: {s['totals']['leaderboards']} answers to {s['totals']['leaderboard_queries']} "
+          f"queries ({answered} sent by the zones); best score in the ledger {best}")
+    h.check(all(c["leaderboards"] > 0 and c["leaderboard_rows"] > 0 for c in cs),
+            "every player got the leaderboard, with rows")
+    h.check(s["totals"]["leaderboards_unordered"] == 0, "every leaderboard came best first")
+    h.check(all(0 < c["leaderboard_top"] <= best for c in cs),
+            f"each player's newest top score is one the ledger holds (<= {best})")
     handoffs = s["totals"]["handoffs"]
     h.check(handoffs > 0, f"avatars changed zones during the run ({handoffs} handoffs)")
 print("transactions passed")

@@ -121,6 +121,30 @@ TEST(Wire, InputsCarryEarlierOnesChecked) {
         << "first earlier seq " << e.front().seq << ", " << e.size() << " of them";
 }
 
+// The leaderboard's query and answer: one way each, the rows back in order, a query for 0 or
+// more than a datagram holds refused, an answer cut to what the check allows.
+TEST(Wire, LeaderboardQueriesAndAnswersAreChecked) {
+  EXPECT_TRUE(verifyDatagram(encodeLeaderboardQuery(9, 10), Direction::ToGateway).ok());
+  EXPECT_EQ(reasonOf(encodeLeaderboardQuery(9, 0)), DropReason::OutOfRange);
+  EXPECT_EQ(reasonOf(encodeLeaderboardQuery(9, kMaxLeaderboardRows + 1)), DropReason::OutOfRange);
+  EXPECT_EQ(reasonOf(encodeLeaderboardQuery(9, 10), Direction::ToClient), DropReason::UnexpectedType);
+  std::vector<LeaderboardLine> rows{{7, 900, 30}, {3, 800, 12}};
+  Bytes b = encodeLeaderboard(9, rows, "");
+  Verified v = verifyDatagram(b, Direction::ToClient);
+  ASSERT_TRUE(v.ok());
+  const proto::Leaderboard* l = v.datagram->msg_as_Leaderboard();
+  ASSERT_EQ(l->rows()->size(), 2u);
+  EXPECT_EQ(l->rows()->Get(1)->player(), 3u);
+  EXPECT_EQ(l->rows()->Get(0)->score(), 900);
+  EXPECT_EQ(l->reason(), nullptr);
+  EXPECT_EQ(reasonOf(b), DropReason::UnexpectedType);
+  std::vector<LeaderboardLine> many(kMaxLeaderboardRows + 5, {1, 1, 1});
+  Bytes cut = encodeLeaderboard(9, many, "");
+  Verified c = verifyDatagram(cut, Direction::ToClient);
+  ASSERT_TRUE(c.ok()) << "at most kMaxLeaderboardRows go, and they fit a datagram";
+  EXPECT_EQ(c.datagram->msg_as_Leaderboard()->rows()->size(), kMaxLeaderboardRows);
+}
+
 // The reliable channel's two messages: each field comes back, each goes one way only, and a
 // sequence 0, an unknown kind or status or an overlong reason is out of range.
 TEST(Wire, TransactionsAndOutcomesRoundTripAndAreChecked) {

@@ -23,6 +23,37 @@ GatewayLink::GatewayLink(int domain, int rank, std::uint32_t epoch)
                                            dds::zonePartition(rank), q.get());
   outcomes_ =
       dds::makePartitionWriter(participant_.get(), topics_.transaction_outcomes.get(), "", q.get());
+  leaderboard_requests_ = dds::makePartitionReader(
+      participant_.get(), topics_.leaderboard_requests.get(), dds::zonePartition(rank), q.get());
+  leaderboard_replies_ =
+      dds::makePartitionWriter(participant_.get(), topics_.leaderboard_replies.get(), "", q.get());
+}
+
+std::vector<LeaderboardRequestMsg> GatewayLink::takeLeaderboardRequests() {
+  std::vector<LeaderboardRequestMsg> out;
+  dds::takeAll<zonesim_dds_LeaderboardRequest>(
+      leaderboard_requests_.reader.get(),
+      [&](const zonesim_dds_LeaderboardRequest& r) { out.push_back({r.player_id, r.count}); });
+  return out;
+}
+
+void GatewayLink::publishLeaderboard(std::uint64_t player_id,
+                                     std::span<const ledger::LeaderboardRow> rows,
+                                     std::string_view reason) {
+  constexpr std::size_t kMaxRows = 32;  // idl/zonesim.idl: sequence<LeaderboardEntry, 32>
+  zonesim_dds_LeaderboardEntry entries[kMaxRows];
+  std::size_t n = std::min(rows.size(), kMaxRows);
+  for (std::size_t i = 0; i < n; ++i)
+    entries[i] = {rows[i].player, rows[i].score, rows[i].tick};
+  zonesim_dds_LeaderboardReply r{};
+  r.player_id = player_id;
+  r.rows._buffer = entries;
+  r.rows._length = r.rows._maximum = std::uint32_t(n);
+  r.rows._release = false;
+  std::size_t k = std::min(reason.size(), sizeof(r.reason) - 1);
+  std::copy_n(reason.data(), k, r.reason);
+  r.reason[k] = '\0';
+  if (dds_write(leaderboard_replies_.writer.get(), &r) < 0) ++write_failures_;
 }
 
 std::vector<PlayerTransactionMsg> GatewayLink::takeTransactions() {

@@ -6,7 +6,10 @@
 #include <string_view>
 #include <vector>
 
+#include <span>
+
 #include "idl/dds_entity.h"
+#include "ledger/store.h"
 #include "idl/topics.h"
 
 namespace zonesim::zone {
@@ -29,6 +32,12 @@ struct PlayerTransactionMsg {
   std::int64_t price = 0;
   std::int64_t score = 0;
   std::uint32_t decided = 0;  ///< the client has the outcome of every one up to it
+};
+
+/// A player asks for the top `count` of the leaderboard.
+struct LeaderboardRequestMsg {
+  std::uint64_t player_id = 0;
+  std::uint8_t count = 0;
 };
 
 /// A request to create a player's avatar at a ground-plane position.
@@ -77,6 +86,11 @@ class GatewayLink {
   /// the reason is cut to what the topic holds.
   void publishOutcome(std::uint64_t player_id, std::uint32_t seq, std::uint8_t status,
                       std::string_view reason);
+  /// All leaderboard queries received since the last call.
+  std::vector<LeaderboardRequestMsg> takeLeaderboardRequests();
+  /// Answers a player's query (at most the topic's 32 rows; reason: why it could not be read).
+  void publishLeaderboard(std::uint64_t player_id, std::span<const ledger::LeaderboardRow> rows,
+                          std::string_view reason);
   /// Announcements whose write timed out.
   std::uint64_t writeFailures() const { return write_failures_; }
 
@@ -89,6 +103,8 @@ class GatewayLink {
   dds::PartitionWriter ownership_;
   dds::PartitionReader transactions_;
   dds::PartitionWriter outcomes_;
+  dds::PartitionReader leaderboard_requests_;
+  dds::PartitionWriter leaderboard_replies_;
   std::uint64_t write_failures_ = 0;
   std::uint32_t epoch_;
 };
