@@ -63,7 +63,8 @@ void Transactions::take(PlayerZone& zone, const PlayerTransactionMsg& m) {
   }
   if (m.seq <= a.last_transaction_seq) {
     // A repeat: its outcome did not reach the client, or is still to come.
-    if (in_flight_[m.player_id].contains(m.seq)) return;
+    auto f = in_flight_.find(m.player_id);
+    if (f != in_flight_.end() && f->second.contains(m.seq)) return;
     auto r = remembered_.find(m.player_id);
     if (r != remembered_.end()) {
       auto o = std::find_if(r->second.begin(), r->second.end(),
