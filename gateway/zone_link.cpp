@@ -7,6 +7,9 @@
 
 namespace zonesim::gateway {
 
+static_assert(kMaxLeaderboardRows == dds::kLeaderboardRows,
+              "a player may ask for as many rows as the zones' reply holds");
+
 ZoneLink::ZoneLink(dds_domainid_t domain, int expected_zones)
     : expected_zones_(std::max(1, expected_zones)),
       participant_(dds::makeParticipant(domain)),

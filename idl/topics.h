@@ -12,9 +12,15 @@
 //   zs_leaderboard_replies LeaderboardReply default partition zone -> gateways, reliableKeepAll
 //   zs_gateway_load    GatewayLoad      default partition      gateway -> lobby, gatewayLoadQos
 
+#include <cstddef>
+
 #include "idl/dds_entity.h"
 
 namespace zonesim::dds {
+
+/// Rows a LeaderboardReply holds: the bound of its sequence in idl/zonesim.idl, and what a
+/// player may ask for (wire/wire_verify.h, kMaxLeaderboardRows).
+inline constexpr std::size_t kLeaderboardRows = 32;
 
 struct Topics {
   Entity cell_updates;

@@ -22,7 +22,8 @@ inline constexpr std::size_t kMaxNameBytes = 64;
 /// Longest connect or resume token accepted in a Hello: room above today's 57 and 56 bytes for
 /// a later version; the exact size is the token check's business (auth/).
 inline constexpr std::size_t kMaxConnectTokenBytes = 128;
-/// Rows of a leaderboard a player may ask for (they fit one datagram).
+/// Rows of a leaderboard a player may ask for (they fit one datagram; the zones' reply topic
+/// holds as many: idl/topics.h, dds::kLeaderboardRows, checked in gateway/zone_link.cpp).
 inline constexpr std::size_t kMaxLeaderboardRows = 32;
 /// Earlier inputs one Input may carry again.
 inline constexpr std::size_t kMaxEarlierInputs = 8;

@@ -32,9 +32,6 @@
 namespace zonesim::zone {
 
 namespace {
-// The rows a leaderboard reading holds: as many as a player may ask for (wire_verify.h).
-constexpr std::size_t kLeaderboardRows = 32;
-
 int rankIn(MPI_Comm comm) {
   int r = 0;
   MPI_Comm_rank(comm, &r);
@@ -141,7 +138,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   // The leaderboard on a connection of its own: its reads never wait behind a commit batch.
   leaderboard_ = std::make_unique<LeaderboardService>(
       options_.ledger ? std::make_unique<ledger::LeaderboardCache>(
-                            ledger::openStore(*options_.ledger), kLeaderboardRows)
+                            ledger::openStore(*options_.ledger), dds::kLeaderboardRows)
                       : nullptr);
   PlayerZone zone = playerZone();
   players_.restored(zone);

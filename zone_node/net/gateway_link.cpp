@@ -8,6 +8,16 @@
 
 namespace zonesim::zone {
 
+namespace {
+// Into a topic's bounded string (char[N + 1]): cut to fit, always terminated.
+template <std::size_t N>
+void copyBounded(std::string_view text, char (&out)[N]) {
+  std::size_t n = std::min(text.size(), N - 1);
+  std::copy_n(text.data(), n, out);
+  out[n] = '\0';
+}
+}  // namespace
+
 GatewayLink::GatewayLink(int domain, int rank, std::uint32_t epoch)
     : participant_(dds::makeParticipant(domain)),
       topics_(dds::makeTopics(participant_.get())),
@@ -40,9 +50,8 @@ std::vector<LeaderboardRequestMsg> GatewayLink::takeLeaderboardRequests() {
 void GatewayLink::publishLeaderboard(std::uint64_t player_id,
                                      std::span<const ledger::LeaderboardRow> rows,
                                      std::string_view reason) {
-  constexpr std::size_t kMaxRows = 32;  // idl/zonesim.idl: sequence<LeaderboardEntry, 32>
-  zonesim_dds_LeaderboardEntry entries[kMaxRows];
-  std::size_t n = std::min(rows.size(), kMaxRows);
+  zonesim_dds_LeaderboardEntry entries[dds::kLeaderboardRows];
+  std::size_t n = std::min(rows.size(), dds::kLeaderboardRows);
   for (std::size_t i = 0; i < n; ++i)
     entries[i] = {rows[i].player, rows[i].score, rows[i].tick};
   zonesim_dds_LeaderboardReply r{};
@@ -50,9 +59,7 @@ void GatewayLink::publishLeaderboard(std::uint64_t player_id,
   r.rows._buffer = entries;
   r.rows._length = r.rows._maximum = std::uint32_t(n);
   r.rows._release = false;
-  std::size_t k = std::min(reason.size(), sizeof(r.reason) - 1);
-  std::copy_n(reason.data(), k, r.reason);
-  r.reason[k] = '\0';
+  copyBounded(reason, r.reason);
   if (dds_write(leaderboard_replies_.writer.get(), &r) < 0) ++write_failures_;
 }
 
@@ -73,9 +80,7 @@ void GatewayLink::publishOutcome(std::uint64_t player_id, std::uint32_t seq, std
   o.player_id = player_id;
   o.seq = seq;
   o.status = status;
-  std::size_t n = std::min(reason.size(), sizeof(o.reason) - 1);
-  std::copy_n(reason.data(), n, o.reason);
-  o.reason[n] = '\0';
+  copyBounded(reason, o.reason);
   o.epoch = epoch_;
   // As for announcements: a gateway that stopped reading must not stall the zone. The client
   // asks again, and the zone answers again.
