@@ -206,7 +206,7 @@ void Gateway::carryOut(Outbox& out) {
     if (link_.askLeaderboard(c))
       ++counters_.leaderboard_queries;
     else
-      ++counters_.transaction_write_failures;
+      ++counters_.leaderboard_write_failures;
   }
   for (const TransactionCommand& c : out.transactions) {
     if (link_.sendTransaction(c))
@@ -255,11 +255,16 @@ void Gateway::tick(std::int64_t now_ns) {
   }
 }
 
+Session* Gateway::welcomedSessionOf(std::uint64_t player_id) {
+  auto h = sessions_.findByPlayer(player_id);
+  Session* s = h ? sessions_.get(*h) : nullptr;
+  return s != nullptr && s->welcomed ? s : nullptr;
+}
+
 void Gateway::deliverOutcomes() {
   for (const TransactionOutcomeMsg& o : link_.takeOutcomes()) {
-    auto h = sessions_.findByPlayer(o.player_id);
-    Session* s = h ? sessions_.get(*h) : nullptr;
-    if (s == nullptr || !s->welcomed) {
+    Session* s = welcomedSessionOf(o.player_id);
+    if (s == nullptr) {
       // Another gateway's player, or one gone: it sends the transaction again wherever it
       // plays now, and its zone answers again.
       ++counters_.outcomes_foreign;
@@ -269,9 +274,8 @@ void Gateway::deliverOutcomes() {
     ++counters_.outcomes_delivered;
   }
   for (const LeaderboardReplyMsg& r : link_.takeLeaderboards()) {
-    auto h = sessions_.findByPlayer(r.player_id);
-    Session* s = h ? sessions_.get(*h) : nullptr;
-    if (s == nullptr || !s->welcomed) continue;  // another gateway's player, or one gone
+    Session* s = welcomedSessionOf(r.player_id);
+    if (s == nullptr) continue;  // another gateway's player, or one gone
     sendTo(*s, encodeLeaderboard(s->token, r.rows, r.reason));
     ++counters_.leaderboards_delivered;
   }

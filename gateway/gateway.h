@@ -102,6 +102,8 @@ class Gateway {
   /// Tells this gateway's players the outcomes of their transactions the zones decided, and
   /// the leaderboards they asked for.
   void deliverOutcomes();
+  /// The welcomed session of a player of this gateway, or null.
+  Session* welcomedSessionOf(std::uint64_t player_id);
   void applyOwnership(const zonesim_dds_OwnershipEvent& e);
   /// After a restart (gateway_epochs.cpp): the first announcement of s's avatar in the new
   /// epoch; resends the inputs the restored zone lacks, and tells the client of a new avatar

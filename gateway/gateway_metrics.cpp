@@ -24,6 +24,7 @@ void addCounters(JsonLine& j, const GatewayCounters& c) {
       .add("outcomes_delivered", c.outcomes_delivered)
       .add("outcomes_foreign", c.outcomes_foreign)
       .add("leaderboard_queries", c.leaderboard_queries)
+      .add("leaderboard_write_failures", c.leaderboard_write_failures)
       .add("leaderboards_delivered", c.leaderboards_delivered)
       .add("spawn_requests", c.spawn_requests)
       .add("welcomes", c.welcomes)

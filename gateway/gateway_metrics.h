@@ -24,7 +24,8 @@ struct GatewayCounters {
   std::uint64_t transactions_forwarded = 0, transaction_write_failures = 0;
   std::uint64_t outcomes_delivered = 0, outcomes_foreign = 0;
   /// Leaderboard queries passed on to zones, and answers passed on to players.
-  std::uint64_t leaderboard_queries = 0, leaderboards_delivered = 0;
+  std::uint64_t leaderboard_queries = 0, leaderboard_write_failures = 0;
+  std::uint64_t leaderboards_delivered = 0;
   std::uint64_t spawn_requests = 0, welcomes = 0, handoffs = 0;
   std::uint64_t handoffs_resent = 0;  ///< Handoff notices sent again for want of an ack
   std::uint64_t clock_ticks = 0;      ///< empty StateBatches sent to quiet views
