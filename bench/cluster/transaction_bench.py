@@ -10,7 +10,12 @@ scenes/test_e2e.yaml in real time. Two tables, each from runs in one invocation:
    started for the run (tests/integration/pg_server.py); committed per second (rows stored over
    the players' seconds), outcome p50/p99, and the zone tick's p99 (the slowest rank's).
 
-Usage: bench/cluster/transaction_bench.py [SECONDS [PLAYERS [RATE]]]  (defaults 20, 32, 50)
+3. With --inputs instead: inputs under 19% loss each way (8 players, 20 a second, no
+   transactions) with client_stub --input-redundancy 0 and 3: how many the zones skipped as
+   never arrived, how many the gateway recovered from later datagrams, the uplink per player.
+
+Usage: bench/cluster/transaction_bench.py [--inputs] [SECONDS [PLAYERS [RATE]]]
+       (defaults 20, 32, 50)
 """
 import sys
 import tempfile
@@ -20,9 +25,11 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests/integration"))
 import transaction_cluster  # noqa: E402
 
-SECONDS = float(sys.argv[1]) if len(sys.argv) > 1 else 20
-PLAYERS = int(sys.argv[2]) if len(sys.argv) > 2 else 32
-RATE = float(sys.argv[3]) if len(sys.argv) > 3 else 50
+INPUTS = "--inputs" in sys.argv[1:]
+ARGS = [a for a in sys.argv[1:] if a != "--inputs"]
+SECONDS = float(ARGS[0]) if len(ARGS) > 0 else 20
+PLAYERS = int(ARGS[1]) if len(ARGS) > 1 else 32
+RATE = float(ARGS[2]) if len(ARGS) > 2 else 50
 ZONES = 4
 
 
@@ -42,6 +49,19 @@ def run(name, players, rate, link=None, backend="sqlite"):
                 "p50": tx["latency_ms_p50"], "p99": tx["latency_ms_p99"], "max": tx["latency_ms_max"],
                 "tick_p99": max(z["tick_ms_p99"] for z in zs), "tick_p50": max(z["tick_ms_p50"] for z in zs)}
 
+
+if INPUTS:
+    print(f"\nInputs under 19% loss each way, 4 ranks, 8 players, {SECONDS:g} s")
+    print(f"{'redundancy':>10} {'applied':>7} {'skipped':>7} {'share':>7} {'recovered':>9} {'up B/s':>7}")
+    for redundancy in (0, 3):
+        with tempfile.TemporaryDirectory(prefix="zs_inbench_") as tmp:
+            s, zs, g = transaction_cluster.run(tmp, ZONES, 8, 0, SECONDS, f"sqlite:{tmp}/ledger.sqlite",
+                                               ["--inject-loss", 0.19, "--input-redundancy", redundancy])
+        applied = sum(z["inputs_applied"] for z in zs)
+        skipped = sum(z["inputs_skipped"] for z in zs)
+        print(f"{redundancy:>10} {applied:>7} {skipped:>7} {skipped / max(1, applied + skipped):>7.2%} "
+              f"{g['inputs_recovered']:>9} {s['totals']['bytes_out_per_s'] / 8:>7.0f}")
+    sys.exit(0)
 
 latency = [run(f"link {link or 'none'}", 8, 10, link) for link in (None, "4g", "congested")]
 rate = [run("no transactions", PLAYERS, 0), run("sqlite", PLAYERS, RATE),
