@@ -15,6 +15,7 @@
 #include "common/scene_dead_reckoning.h"
 #include "common/scene_emitters.h"
 #include "common/scene_geometry.h"
+#include "common/scene_interactions.h"
 #include "common/scene_interest.h"
 #include "common/scene_lod.h"
 #include "common/scene_map.h"
@@ -48,6 +49,7 @@ struct Scene {
   AgentSettings agents;    ///< AI agent types and populations (common/scene_agents.h)
   CrowdLod lod;            ///< level of detail of the crowd systems
   TimeDilationSettings time_dilation;  ///< slowing the clock under overload
+  InteractionSettings interactions;    ///< hits and gifts between entities, by message
 };
 
 /// A scene file problem; what() is "file:line: field: what is wrong".

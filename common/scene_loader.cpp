@@ -18,6 +18,7 @@
 #include "common/scene_loader_crowd.h"
 #include "common/scene_loader_document.h"
 #include "common/scene_loader_node.h"
+#include "common/scene_loader_interactions.h"
 #include "common/scene_loader_physics.h"
 #include "common/scene_loader_time_dilation.h"
 
@@ -375,7 +376,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   SceneMap root =
       document.map({"name", "world", "tick", "seed", "zones", "interest", "halo", "dead_reckoning",
                     "physics", "populations", "clients", "map", "agents", "lod",
-                    "time_dilation"});
+                    "time_dilation", "interactions"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -397,6 +398,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readAgents(root, scene);
   readCrowdLod(root, scene);
   readTimeDilation(root, scene.time_dilation);
+  readInteractions(root, scene.halo_width, scene.interactions);
   return scene;
 }
 

@@ -119,6 +119,10 @@ def build_report(run):
             "migrations": sum(z["migrated_out"] for z in zones),
             "avatar_handoffs": sum(z["handoffs_in"] for z in zones),
             "conservation_failures": sum(z["conservation_failures"] for z in zones),
+            # Messages between entities (a scene's interactions), over the last zone job.
+            "entity_messages": {k: sum(z.get(k, 0) for z in zones)
+                                for k in ("mail_posted", "mail_applied", "mail_cross_zone",
+                                          "mail_forwarded", "mail_refused", "mail_failures")},
             "clients": len(per_client),
             "client_handoffs_observed": sum(c.get("handoffs", 0) for c in per_client),
             "bytes_in_per_s_mean": statistics.mean([c["bytes_in_per_s"] for c in per_client]) if per_client else 0,
@@ -146,6 +150,11 @@ def print_report(r):
     print(f"total entities {t['entities_start']} -> {t['entities_end']}, migrations {t['migrations']}, "
           f"avatar handoffs {t['avatar_handoffs']} (clients observed {t['client_handoffs_observed']}), "
           f"conservation failures {t['conservation_failures']}")
+    m = t["entity_messages"]
+    if m["mail_posted"]:
+        print(f"entity messages: {m['mail_posted']} posted, {m['mail_applied']} applied "
+              f"({m['mail_cross_zone']} across a zone border, {m['mail_forwarded']} after their target), "
+              f"{m['mail_refused']} refused (target gone); unbalanced audits {m['mail_failures']}")
     print(f"\n{'client':>6} {'player':>14} {'kind':>6} {'bytes/s in':>11} {'bytes/s out':>11} "
           f"{'updates/s':>9} {'handoffs':>8}")
     for i, c in enumerate(r["clients"]):

@@ -20,6 +20,8 @@ std::optional<EntityRecordData> newAvatar(const Scene& scene, std::uint64_t play
   r.avatar.max_speed = k->speed;
   r.avatar.kind = kind;
   r.avatar.height = k->height;
+  // A player arrives with the items the scene's interactions give (nothing to give without).
+  if (scene.interactions.enabled) r.combat.items = scene.interactions.items_per_avatar;
   return r;
 }
 

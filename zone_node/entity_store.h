@@ -159,6 +159,19 @@ struct AgentData {
   bool operator==(const AgentData&) const = default;
 };
 
+/// What the scene's interactions (systems/interactions.h) keep per entity: its health, the
+/// kills its victims' owners confirmed, its items, and the numbering of the messages it posts
+/// (cluster/entity_mail.h: (id, mail_seq) names each one, across migrations and restarts).
+struct CombatData {
+  double health = 100;          ///< 0..100; a hit that takes it to 0 kills, and it starts again
+  std::uint32_t kills = 0;      ///< hits that killed, as the victim's owner confirmed
+  std::uint32_t deaths = 0;     ///< times it was killed
+  std::int32_t items = 0;       ///< items it holds (avatars hand them to each other)
+  std::uint32_t mail_seq = 0;   ///< messages it posted
+
+  bool operator==(const CombatData&) const = default;
+};
+
 /// One entity with all its components, for creation and migration.
 struct EntityRecordData {
   EntityId id;
@@ -172,6 +185,7 @@ struct EntityRecordData {
   BodyData body;
   EmitterData emitter;
   AgentData agent;
+  CombatData combat;
 };
 
 class EntityStore {
@@ -201,6 +215,7 @@ class EntityStore {
   std::vector<BodyData> body;
   std::vector<EmitterData> emitter;
   std::vector<AgentData> agent;  ///< type -1 for entities that are not AI agents
+  std::vector<CombatData> combat;
   std::vector<DeadReckoningState> dr;
 
  private:
@@ -236,7 +251,8 @@ inline constexpr auto kEntityColumns =
                EntityColumn<&EntityStore::avatar, &EntityRecordData::avatar>{"avatar"},
                EntityColumn<&EntityStore::body, &EntityRecordData::body>{"body"},
                EntityColumn<&EntityStore::emitter, &EntityRecordData::emitter>{"emitter"},
-               EntityColumn<&EntityStore::agent, &EntityRecordData::agent>{"agent"}};
+               EntityColumn<&EntityStore::agent, &EntityRecordData::agent>{"agent"},
+               EntityColumn<&EntityStore::combat, &EntityRecordData::combat>{"combat"}};
 
 /// Calls f(column) for every column of kEntityColumns, in order.
 template <typename F>

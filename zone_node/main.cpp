@@ -132,7 +132,8 @@ int run(const Options& o, MPI_Comm comm) {
   std::fflush(stdout);
   if (!o.dump_state.empty())
     zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
-  return node.conservation().failures == 0 ? 0 : 3;
+  const zone::ConservationTally& c = node.conservation();
+  return c.failures == 0 && c.mail_failures == 0 ? 0 : 3;
 }
 
 }  // namespace

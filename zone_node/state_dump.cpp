@@ -64,6 +64,12 @@ void writeLine(std::FILE* f, const EntityRecordData& e) {
       separator = ",";
     }
   });
+  // Only where the scene's interactions touched it: every other scene's dump stays as it was.
+  if (!(e.combat == CombatData{})) {
+    const CombatData& c = e.combat;
+    std::fprintf(f, ",\"combat\":[%.17g,%u,%u,%d,%u]", c.health, c.kills, c.deaths, c.items,
+                 c.mail_seq);
+  }
   std::fputs("}\n", f);
 }
 

@@ -19,6 +19,7 @@ enum class Stage {
   AiDoors,
   AiNeighbours,
   AiLod,
+  AiInteractions,
   AiAgents,
   AiWander,
   AiFlock,
@@ -33,12 +34,14 @@ enum class Stage {
   PhysicsSolve,
   PhysicsIslands,
   PhysicsBorder,
+  MigrateMail,
   Count
 };
 constexpr std::size_t kStageCount = std::size_t(Stage::Count);
 constexpr std::array<const char*, kStageCount> kStageNames = {"ai.doors",
                                                               "ai.neighbours",
                                                               "ai.lod",
+                                                              "ai.interactions",
                                                               "ai.agents",
                                                               "ai.wander",
                                                               "ai.flock",
@@ -52,7 +55,8 @@ constexpr std::array<const char*, kStageCount> kStageNames = {"ai.doors",
                                                               "physics.prepare",
                                                               "physics.solve",
                                                               "physics.islands",
-                                                              "physics.border"};
+                                                              "physics.border",
+                                                              "migrate.mail"};
 
 /// Seconds per phase of one tick, and per named step inside them.
 struct TickProfile : PhaseProfile<Phase, kPhaseCount> {
@@ -104,6 +108,17 @@ struct TickCounters {
   std::uint64_t paths_queued = 0;       ///< path requests left waiting for a later tick
   std::uint64_t path_replans = 0;       ///< agents whose path a closing door cut
   std::uint64_t quarantined = 0;        ///< entities frozen for a non-finite state (quarantine.h)
+  // Messages between entities (cluster/entity_mail.h) and what the interactions made of them.
+  std::uint64_t mail_posted = 0;      ///< messages and replies posted on this rank
+  std::uint64_t mail_applied = 0;     ///< applied to this rank's entities
+  std::uint64_t mail_cross_zone = 0;  ///< of those, posted on another rank
+  std::uint64_t mail_forwarded = 0;   ///< passed on after their target migrated away
+  std::uint64_t mail_refused = 0;     ///< target gone
+  std::uint64_t mail_bytes = 0;
+  std::uint64_t hits = 0;             ///< hits this rank's entities took
+  std::uint64_t kills = 0;            ///< of those, killing ones (confirmed to the hitter)
+  std::uint64_t gifts = 0;            ///< items this rank's avatars received
+  std::uint64_t gifts_returned = 0;   ///< gifts given back to their giver (recipient gone)
 };
 
 /// Every counter with its name: totals, metrics lines and summaries iterate this one list.
@@ -150,6 +165,16 @@ inline constexpr CounterField kCounterFields[] = {
     {"paths_planned", &TickCounters::paths_planned, false},
     {"paths_queued", &TickCounters::paths_queued, true},
     {"path_replans", &TickCounters::path_replans, false},
-    {"quarantined", &TickCounters::quarantined, false}};
+    {"quarantined", &TickCounters::quarantined, false},
+    {"mail_posted", &TickCounters::mail_posted, false},
+    {"mail_applied", &TickCounters::mail_applied, false},
+    {"mail_cross_zone", &TickCounters::mail_cross_zone, false},
+    {"mail_forwarded", &TickCounters::mail_forwarded, false},
+    {"mail_refused", &TickCounters::mail_refused, false},
+    {"mail_bytes", &TickCounters::mail_bytes, false},
+    {"hits", &TickCounters::hits, false},
+    {"kills", &TickCounters::kills, false},
+    {"gifts", &TickCounters::gifts, false},
+    {"gifts_returned", &TickCounters::gifts_returned, false}};
 
 }  // namespace zonesim::zone

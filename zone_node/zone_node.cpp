@@ -19,6 +19,7 @@
 #include "zone_node/systems/flock_movement.h"
 #include "zone_node/systems/flow_movement.h"
 #include "zone_node/systems/formation_movement.h"
+#include "zone_node/systems/interactions.h"
 #include "zone_node/systems/npc_movement.h"
 #include "zone_node/systems/offload_probe.h"
 #include "zone_node/systems/rigid_bodies.h"
@@ -58,6 +59,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       balancer_(comm, options.balance),
       // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
       halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)),
+      mail_(comm, rank_, size_),
       players_(scene, rank_, size_, options.orphan_grace_ticks),
       dilation_(scene.time_dilation, scene.tick_rate) {
   // Jointed bodies do not migrate together and a cloth belongs to no entity: one zone only
@@ -90,6 +92,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   ants_ = std::make_unique<AntMovement>(scene, walls);
   agents_ = std::make_unique<AgentSystem>(scene, map_.get());
   wanderers_ = std::make_unique<WanderMovement>(scene);
+  interactions_ = std::make_unique<InteractionSystem>(scene.interactions, scene.dt, mail_, rank_);
   // The path budget is the cluster's: zones share their oldest requests' keys every tick. The
   // ants' trail deposits are summed in integers, the same on every rank.
   if (size_ > 1)
@@ -97,8 +100,10 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       return gatherValues(comm_, v);
     };
   collectives_.sum = [this](std::span<std::int64_t> v) { sumTrailDeltas(comm_, v); };
-  // Agents first: they sense the walkers where the tick found them, as their ghosts are.
-  ai_systems_ = {{Stage::AiAgents, agents_.get()},
+  // Hits, gifts and agents first: they read everyone where the tick found them, as their
+  // ghosts are.
+  ai_systems_ = {{Stage::AiInteractions, interactions_.get()},
+                 {Stage::AiAgents, agents_.get()},
                  {Stage::AiWander, wanderers_.get()},
                  {Stage::AiFlock, flocks_.get()},
                  {Stage::AiFlow, flows_.get()},
@@ -108,7 +113,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   // Flocks and flow crowds read their neighbours across borders as ghosts too, and agents see
   // enemies there.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active() ||
-                 formations_->active() || (agents_->active() && agents_->reach() > 0);
+                 formations_->active() || (agents_->active() && agents_->reach() > 0) ||
+                 interactions_->active();
 
   auto keepIfMine = [&](const EntityRecordData& r) {
     if (layout_.ownerOf(r.pos.x(), r.pos.z()) != rank_) return;
@@ -292,6 +298,26 @@ void ZoneNode::migrate() {
   PlayerZone zone = playerZone();
   players_.migrated(zone, last_migration_);
   leavers_.insert(leavers_.end(), last_migration_.departed.begin(), last_migration_.departed.end());
+  deliverMail();
+}
+
+void ZoneNode::deliverMail() {
+  if (!interactions_->active()) return;  // the scene decides: every rank skips alike
+  ScopedTimer t(profile_[Stage::MigrateMail]);
+  auto receive = [this](EntityStore& store, std::span<const EntityMessage> arrived,
+                        std::vector<EntityMessage>& replies) {
+    interactions_->receive(store, arrived, replies, counters_);
+  };
+  auto refused = [this](const EntityMessage& m, MailRefusal, std::vector<EntityMessage>& replies) {
+    interactions_->refused(m, replies, counters_);
+  };
+  MailStats s = mail_.deliver(store_, last_migration_.departed, receive, refused);
+  counters_.mail_posted = s.posted;
+  counters_.mail_applied = s.applied;
+  counters_.mail_cross_zone = s.cross_zone;
+  counters_.mail_forwarded = s.forwarded;
+  counters_.mail_refused = s.refused;
+  counters_.mail_bytes = s.bytes_sent;
 }
 
 void ZoneNode::halo() {
@@ -368,6 +394,15 @@ void ZoneNode::checkConservationNow() {
         (unsigned long long)tick_, (unsigned long long)r.actual.count,
         (unsigned long long)r.actual.hash, (unsigned long long)r.expected.count,
         (unsigned long long)r.expected.hash);
+  }
+  if (!interactions_->active()) return;
+  MailBalance mail = sumMailAudit(comm_, mail_.audit());
+  conservation_.last_mail_posted = mail.posted.count;
+  if (!mail.ok()) {
+    ++conservation_.mail_failures;
+    ZS_ERROR("entity messages unbalanced at tick %llu: %llu posted, %llu applied or refused",
+             (unsigned long long)tick_, (unsigned long long)mail.posted.count,
+             (unsigned long long)mail.settled.count);
   }
 }
 

@@ -17,6 +17,7 @@
 #include "common/scene.h"
 #include "crowd/vec2.h"
 #include "ledger/store.h"
+#include "zone_node/cluster/entity_mail.h"
 #include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/load_balancer.h"
 #include "zone_node/cluster/migration.h"
@@ -46,6 +47,7 @@ class WanderMovement;
 struct WorldMap;
 class ZoneMap;
 class AgentSystem;
+class InteractionSystem;
 class ZoneSystem;
 struct StepContext;
 
@@ -71,6 +73,8 @@ struct ConservationTally {
   std::uint64_t checks = 0;
   std::uint64_t failures = 0;
   std::uint64_t last_count = 0;
+  std::uint64_t mail_failures = 0;  ///< checks at which entity messages did not balance
+  std::uint64_t last_mail_posted = 0;  ///< messages posted over the cluster, at the last check
 };
 
 class ZoneNode {
@@ -132,6 +136,8 @@ class ZoneNode {
   void physics();
   void gpu();
   void migrate();
+  /// Delivers this tick's entity messages (after the exchange: targets are where they stay).
+  void deliverMail();
   void halo();
   void publish();
   void checks();
@@ -158,6 +164,7 @@ class ZoneNode {
   Migrator migrator_;
   LoadBalancer balancer_;
   HaloExchange halo_;
+  EntityMail mail_;  // messages between entities, delivered in the migrate phase
   bool halo_needed_ = false;      // some system reads ghosts (decided from the scene: all agree)
   bool bodies_in_scene_ = false;  // rigid bodies may touch across borders
   double walker_reach_ = 0;       // widest radius at which walkers see each other
@@ -176,6 +183,7 @@ class ZoneNode {
   std::unique_ptr<AntMovement> ants_;              // ant colonies (need map_)
   std::unique_ptr<AgentSystem> agents_;            // AI agents (scene key `agents`)
   std::unique_ptr<WanderMovement> wanderers_;      // NPCs between random waypoints
+  std::unique_ptr<InteractionSystem> interactions_;  // hits and gifts (scene key `interactions`)
   /// The AI phase's systems in the order they step, each with its stage of the profile.
   std::vector<std::pair<Stage, ZoneSystem*>> ai_systems_;
   Collectives collectives_;               // what the systems may ask of the whole cluster

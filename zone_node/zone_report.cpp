@@ -93,6 +93,8 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   for (const CounterField& f : kCounterFields) s.add(f.name, totals_.*f.field);
   s.add("conservation_checks", zone.conservation().checks);
   s.add("conservation_failures", zone.conservation().failures);
+  s.add("mail_failures", zone.conservation().mail_failures);
+  s.add("mail_posted_cluster", zone.conservation().last_mail_posted);
   s.add("dilation_min", min_factor_).add("dilation_changes", zone.dilation().changes());
   s.add("dilated_ticks", dilated_ticks_).add("dilated_wall_s", dilated_wall_s_);
   s.add("late_ticks", late_ticks_);

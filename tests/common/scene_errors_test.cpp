@@ -97,7 +97,21 @@ const InlineCase kInlineCases[] = {
      "8: populations[0].size: only boxes have a size"},
     {"unknown_top_level", withBase("colour: red\n"),
      "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
-     "dead_reckoning, physics, populations, clients, map, agents, lod, time_dilation)"},
+     "dead_reckoning, physics, populations, clients, map, agents, lod, time_dilation, "
+     "interactions)"},
+    {"hit_reach_past_halo", withBase("interactions: {hit_reach: 12}\n"),
+     "5: interactions.hit_reach: 12 m is beyond halo.width (10 m): targets across a zone border "
+     "would not be seen"},
+    {"gift_reach_past_halo", withBase("halo: {width: 2}\ninteractions:\n  gift_reach: 3\n"),
+     "7: interactions.gift_reach: 3 m is beyond halo.width (2 m): targets across a zone border "
+     "would not be seen"},
+    {"hit_damage_over_health", withBase("interactions: {hit_damage: 150}\n"),
+     "5: interactions.hit_damage: must be in [0, 100], got 150"},
+    {"hit_never", withBase("interactions: {hit_every_s: 0}\n"),
+     "5: interactions.hit_every_s: must be > 0, got 0"},
+    {"interactions_unknown_key", withBase("interactions: {heal: 5}\n"),
+     "5: interactions.heal: unknown key (allowed: enabled, hit_reach, hit_every_s, hit_damage, knockback, "
+     "gift_reach, gift_every_s, items_per_avatar)"},
     {"agent_unknown_action",
      withBase("agents:\n  types:\n    - {name: a, behaviour: tree, tree: dance}\n"),
      "7: agents.types[0].tree: unknown action 'dance' (allowed: idle, wander, chase, flee, "

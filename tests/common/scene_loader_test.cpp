@@ -191,6 +191,26 @@ TEST(SceneDefaults, ExplicitValuesOverrideThem) {
   EXPECT_DOUBLE_EQ(s.clients.downlink_error_angle_deg, 1);
 }
 
+TEST(SceneDefaults, InteractionsOffWithoutTheKeyAndOnWithIt) {
+  EXPECT_FALSE(parseScene(kMinimal, "x").interactions.enabled);
+  Scene s = parseScene(std::string(kMinimal) +
+                           "interactions: {hit_reach: 2, hit_every_s: 0.5, hit_damage: 40,\n"
+                           "               knockback: 0, gift_reach: 3, gift_every_s: 1.5,\n"
+                           "               items_per_avatar: 4}\n",
+                       "x");
+  const InteractionSettings& in = s.interactions;
+  EXPECT_TRUE(in.enabled);
+  EXPECT_DOUBLE_EQ(in.hit_reach, 2);
+  EXPECT_DOUBLE_EQ(in.hit_every_s, 0.5);
+  EXPECT_EQ(in.hit_damage, 40);
+  EXPECT_DOUBLE_EQ(in.knockback, 0);
+  EXPECT_DOUBLE_EQ(in.gift_reach, 3);
+  EXPECT_DOUBLE_EQ(in.gift_every_s, 1.5);
+  EXPECT_EQ(in.items_per_avatar, 4);
+  EXPECT_FALSE(parseScene(std::string(kMinimal) + "interactions: {enabled: false}\n", "x")
+                   .interactions.enabled);
+}
+
 TEST(SceneDefaults, DeadReckoningModelsAndQuantisation) {
   Scene plain = parseScene(kMinimal, "x");
   EXPECT_EQ(plain.dead_reckoning.npc.order, DeadReckoningModel::Order::First);

@@ -20,7 +20,10 @@ members carry their rejoin paths when they migrate and push apart through ghosts
 (scenes/courtyard_ants.yaml) ants that carry their routes across borders and lay trail on a grid
 summed over the ranks in integers every tick; (scenes/roads.yaml) NPCs on a waypoint graph whose
 next node and goal migrate with them, deciding at each node from the graph and its timed closure
-alone."""
+alone; (scenes/skirmish.yaml) NPCs hitting each other where four zones meet, by messages to the
+target's owner (the entity mail) that are forwarded when the target crosses a border in the
+same tick: health, kills and knockback end bitwise equal only if every hit lands once, in the
+same order."""
 import json
 import tempfile
 from pathlib import Path
@@ -30,13 +33,15 @@ import harness as h
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "courtyard_formation": 700,
-          "courtyard_ants": 1200, "flock_lod": 300, "roads": 1200}
+          "courtyard_ants": 1200, "flock_lod": 300, "roads": 1200, "skirmish": 300}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
          "flock_lod": ["--gpu", "off"]}
 GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents",
-                "courtyard_formation", "flock_lod")
+                "courtyard_formation", "flock_lod", "skirmish")
+MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition
+MAIL_FIGURES = ("hits", "kills", "mail_posted", "mail_applied", "mail_refused")
 # No ghosts read: the ants' trails are summed instead; road NPCs decide from the graph alone.
 MIGRATION_SCENES = ("courtyard_ants", "roads")
 
@@ -46,6 +51,7 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
         dumps = {}
         ghosts_sent = {}
         migrated = {}
+        mail = {}
         for ranks in (1, 2, 4):
             dump = out / f"{scene}_{ranks}.jsonl"
             metrics = out / f"{scene}_{ranks}_metrics"
@@ -61,6 +67,9 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
                 h.check(backends == {"opencl"}, f"{scene}: flocks on OpenCL ({sorted(backends)})")
             ghosts_sent[ranks] = sum(s.get("ghosts_sent", 0) for s in summaries)
             migrated[ranks] = sum(s.get("migrated_out", 0) for s in summaries)
+            mail[ranks] = {k: sum(s.get(k, 0) for s in summaries)
+                           for k in MAIL_FIGURES + ("mail_cross_zone", "mail_forwarded",
+                                                    "mail_failures")}
             if scene == "agents_paths_budget" and ranks == 4:
                 waiting = {}  # tick -> zones with requests still waiting after it
                 for p in metrics.glob("zone_*.jsonl"):
@@ -92,6 +101,18 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
                     f"{scene}: ghosts were exchanged ({ghosts_sent[2]} copies on 2 ranks, "
                     f"{ghosts_sent[4]} on 4)")
             h.check(migrated[4] > 0, f"{scene}: {migrated[4]} NPCs crossed borders on 4 ranks")
+        if scene in MAIL_SCENES:
+            same = {k: {r: mail[r][k] for r in mail} for k in MAIL_FIGURES}
+            for k, by_ranks in same.items():
+                h.check(len(set(by_ranks.values())) == 1, f"{scene}: {k} the same on 1, 2 and 4 "
+                        f"ranks ({by_ranks})")
+            h.check(mail[1]["hits"] > 1000 and mail[1]["kills"] > 100,
+                    f"{scene}: {mail[1]['hits']} hits, {mail[1]['kills']} kills")
+            h.check(mail[4]["mail_cross_zone"] > 100 and mail[4]["mail_forwarded"] > 0,
+                    f"{scene}: on 4 ranks {mail[4]['mail_cross_zone']} messages crossed a border,"
+                    f" {mail[4]['mail_forwarded']} followed a target that crossed in that tick")
+            h.check(all(m["mail_failures"] == 0 for m in mail.values()),
+                    f"{scene}: every audit of the mail balanced")
         if scene in MIGRATION_SCENES:
             h.check(migrated[4] > 0, f"{scene}: {migrated[4]} NPCs crossed borders on 4 ranks")
 print("decomposition invariance passed")

@@ -17,6 +17,10 @@ times, then SIGSTOPs one (a hung job). Afterwards:
     by the zones to the run's SQLite ledger through every fault: each player's stored
     sequences are 1..k without a gap, every one its client was told is committed is stored
     (none can be stored twice: the ledger's key is player and seq), none failed;
+  - entities messaged each other across zone borders all along (scenes/test_faults.yaml: NPCs
+    hit each other where the four zones meet, players hand each other items), and every job's
+    audit balanced at every check (each message posted applied or refused once: none lost,
+    none applied twice), over the transactions and cross-zone messages together > 10,000;
   - no zone_node, gateway or client_stub of the run is left.
 Usage: fault_survival.py [SEED [FAULTS [GATEWAY_FAULTS]]]: SEED default random (printed), FAULTS
 zone kills, default 3 (one every 16 s), GATEWAY_FAULTS default 1 (one every 6 s, before them);
@@ -89,7 +93,7 @@ with tempfile.TemporaryDirectory(prefix="zs_fault_") as tmp:
     run = Path(tmp) / "run"
     cluster = Path(tmp) / "fault.cluster"
     cluster.write_text(f"""[cluster]
-scene = scenes/test_e2e.yaml
+scene = scenes/test_faults.yaml
 duration = {SECONDS}
 supervise = zones, gateways
 zone_args = ${{ZONESIM_FAULT_ZONE_ARGS:-}}
@@ -270,6 +274,31 @@ args = --transactions-per-s {TX_RATE}
             lost.append((c["player_id"], len(seqs), c["transactions_committed"], c["transactions_made"]))
     h.check(not lost, f"every player's stored transactions are 1..k without a gap, and hold every one "
                       f"its client was told is committed (bad: {lost})")
+
+    # Messages between entities, over every job: the killed ones' ticks from their metrics, and
+    # their audits from the zones' logs (an unbalanced check is logged; the last job's summary
+    # counts them too).
+    mail = {k: 0 for k in ("mail_posted", "mail_applied", "mail_cross_zone", "mail_forwarded",
+                           "mail_refused", "hits", "kills", "gifts", "gifts_returned")}
+    for metrics in list(run.glob("epoch-*/zone_*.jsonl")) + list(run.glob("zone_*.jsonl")):
+        for line in metrics.read_text().splitlines():
+            try:
+                row = json.loads(line)
+            except ValueError:
+                continue  # the line a SIGKILL cut short
+            for k in mail:
+                mail[k] += row.get(k, 0)
+    print("entity messages over every job: " + ", ".join(f"{v} {k}" for k, v in mail.items()), flush=True)
+    unbalanced = [p.name for p in run.glob("zones*.log") if "entity messages unbalanced" in p.read_text()]
+    h.check(not unbalanced and sum(z["mail_failures"] for z in zones) == 0
+            and all(z["mail_posted_cluster"] > 0 for z in zones),
+            f"every job's mail audit balanced at every check: none lost, none applied twice "
+            f"(unbalanced in: {unbalanced})")
+    h.check(mail["mail_cross_zone"] > 500 and mail["hits"] > 1000,
+            f"entities messaged each other across borders ({mail['mail_cross_zone']} cross-zone, "
+            f"{mail['mail_forwarded']} forwarded after their target)")
+    h.check(tx["made"] + mail["mail_cross_zone"] >= 10000,
+            f"over 10,000 transactions and cross-zone messages ({tx['made']} + {mail['mail_cross_zone']})")
 
     report = h.load_json(run / "report.json")
     h.check(report["transactions"] and report["transactions"]["made"] == tx["made"]

@@ -215,6 +215,18 @@ void decodeAgent(const fb::AgentState& g, AgentData& a) {
   if (a.path.size() % 2 != 0) throw CodecError("agent record with an odd path");
 }
 
+flatbuffers::Offset<fb::CombatState> encodeCombat(Builder& b, const CombatData& c, EntityKind) {
+  if (c == CombatData{}) return {};  // untouched: scenes without interactions carry nothing
+  return fb::CreateCombatState(b, c.health, c.kills, c.deaths, c.items, c.mail_seq);
+}
+
+void decodeCombat(const fb::CombatState& s, CombatData& c) {
+  if (!(s.health() >= 0 && s.health() <= 100))
+    throw CodecError("combat record with health outside 0..100");
+  if (s.items() < 0) throw CodecError("combat record with negative items");
+  c = {s.health(), s.kills(), s.deaths(), s.items(), s.mail_seq()};
+}
+
 // ---- One schema field per entity column (kEntityColumns) ----
 
 /// How a column's value type is kept in one of EntityRecord's own fields.
@@ -321,6 +333,7 @@ template <> struct SchemaField<&EntityRecordData::avatar> : TableField<&RecordBu
 template <> struct SchemaField<&EntityRecordData::body> : TableField<&RecordBuilder::add_body, &Record::body, encodeBody, decodeBody> {};
 template <> struct SchemaField<&EntityRecordData::emitter> : TableField<&RecordBuilder::add_emitter, &Record::emitter, encodeEmitter, decodeEmitter> {};
 template <> struct SchemaField<&EntityRecordData::agent> : TableField<&RecordBuilder::add_agent, &Record::agent, encodeAgent, decodeAgent> {};
+template <> struct SchemaField<&EntityRecordData::combat> : TableField<&RecordBuilder::add_combat, &Record::combat, encodeCombat, decodeCombat> {};
 // clang-format on
 
 /// The schema field of a column of kEntityColumns.

@@ -92,6 +92,7 @@ EntityRecordData everyColumnSet() {
   a.replans = 3;
   a.arrivals = 8;
   a.path = {7, 8, 8, 9};
+  r.combat = {.health = 37.5, .kills = 3, .deaths = 2, .items = 7, .mail_seq = 99};
   return r;
 }
 
@@ -180,6 +181,9 @@ TEST(EntityCodec, OutOfRangeValuesAreRefusedWithTheirReason) {
        }},
       {"agent record with a long plan",
        [](EntityRecordData& r) { r.agent.plan_length = AgentData::kMaxPlan + 1; }},
+      {"combat record with health outside 0..100",
+       [](EntityRecordData& r) { r.combat.health = 101; }},
+      {"combat record with negative items", [](EntityRecordData& r) { r.combat.items = -1; }},
   };
   for (const Case& c : cases) {
     MigrationPayload p;

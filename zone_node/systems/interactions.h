@@ -1,0 +1,59 @@
+#pragma once
+// What entities do to each other (the scene's `interactions` key), as messages through the
+// entity mail (cluster/entity_mail.h), so a target across a zone border, or migrating in this
+// very tick, is reached exactly once:
+// - an NPC hits the nearest other NPC or avatar within reach, every hit_every_s: the target
+//   loses health and is pushed away; a hit that takes the health to 0 kills, and the victim's
+//   owner confirms the kill to the hitter (seed 3.3.3: the killer waits for the victim);
+// - an avatar with items hands one to the nearest other avatar within reach, every
+//   gift_every_s; a gift whose recipient is gone goes back to its giver, so items are never
+//   lost or made.
+// Choices are made in the AI phase, first, from positions at the tick's start (the ghosts'
+// too); messages are applied in the migrate phase, sorted, so every decomposition agrees.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/scene_interactions.h"
+#include "zone_node/cluster/entity_mail.h"
+#include "zone_node/systems/step_context.h"
+
+namespace zonesim::zone {
+
+struct TickCounters;
+
+class InteractionSystem : public ZoneSystem {
+ public:
+  /// Posts into `mail` (which the zone delivers in its migrate phase); `rank`: this zone's.
+  InteractionSystem(const InteractionSettings& settings, double dt, EntityMail& mail, int rank);
+
+  bool active() const override { return settings_.enabled; }
+  /// NPCs due to hit and avatars due to give choose their targets and post.
+  void step(StepContext& ctx) override;
+  /// Applies a tick's arrivals to this zone's entities (EntityMail's receiver).
+  void receive(EntityStore& store, std::span<const EntityMessage> arrived,
+               std::vector<EntityMessage>& replies, TickCounters& counters) const;
+  /// A gift whose recipient is gone goes back to its giver (EntityMail's refusal hook).
+  void refused(const EntityMessage& m, std::vector<EntityMessage>& replies,
+               TickCounters& counters) const;
+
+ private:
+  struct Candidate {
+    EntityId id;
+    EntityKind kind;
+    double x, z;
+    int rank;
+  };
+  /// Whether entity `id` acts this tick, once every `every` ticks (phases spread by id).
+  static bool due(EntityId id, std::uint64_t tick, std::uint64_t every);
+  void post(EntityStore& store, std::size_t sender, const Candidate& target, MailKind kind,
+            std::int32_t amount);
+
+  InteractionSettings settings_;
+  std::uint64_t hit_every_, gift_every_;  // in ticks
+  EntityMail& mail_;
+  int rank_;
+};
+
+}  // namespace zonesim::zone
