@@ -2,6 +2,9 @@
 // The scene's `interactions` key: what entities do to each other across zone borders, by
 // message (zone_node/systems/interactions.h, zone_node/cluster/entity_mail.h).
 
+#include <array>
+#include <vector>
+
 namespace zonesim {
 
 /// NPCs hit whoever is nearest within reach (another NPC or an avatar, in this zone or a
@@ -16,6 +19,11 @@ struct InteractionSettings {
   double gift_reach = 4.0;     ///< m: an avatar hands an item to the nearest other avatar this close
   double gift_every_s = 2.0;   ///< seconds between one avatar's gifts
   int items_per_avatar = 10;   ///< items a new avatar holds
+  /// Unique items lying on the ground at these [x, z]: the nearest NPC or avatar within
+  /// pickup_reach takes one, as its owner decides (a contest goes to the nearest claimant, the
+  /// lowest id on a tie); it then counts among the taker's items.
+  std::vector<std::array<double, 2>> items;
+  double pickup_reach = 1.0;  ///< m
 };
 
 }  // namespace zonesim

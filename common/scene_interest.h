@@ -12,6 +12,7 @@ struct AuraNimbus {
   double avatar = 150;          ///< metres
   double rigid_body = 100;      ///< metres
   double emitter = 200;         ///< metres
+  double item = 100;            ///< metres: unique items lying about (interactions.items)
   double nimbus_per_speed = 4;  ///< seconds: the nimbus grows by speed * this
   double max_nimbus = 150;      ///< metres: cap of the grown nimbus
 };

@@ -256,11 +256,13 @@ void readInterest(const SceneMap& root, Scene& scene) {
   interest.read("cell_size", scene.interest_cell_size, Limit::above(0));
   interest.read("keyframe_every", scene.keyframe_every, Limit::atLeast(1));
   AuraNimbus& an = scene.aura_nimbus;
-  SceneMap aura = interest.section("aura", {"npc", "avatar", "rigid_body", "particle_emitter"});
+  SceneMap aura =
+      interest.section("aura", {"npc", "avatar", "rigid_body", "particle_emitter", "item"});
   aura.read("npc", an.npc, Limit::above(0));
   aura.read("avatar", an.avatar, Limit::above(0));
   aura.read("rigid_body", an.rigid_body, Limit::above(0));
   aura.read("particle_emitter", an.emitter, Limit::above(0));
+  aura.read("item", an.item, Limit::above(0));
   interest.read("nimbus_per_speed", an.nimbus_per_speed, Limit::atLeast(0));
   interest.read("max_nimbus", an.max_nimbus, Limit::above(0));
   double size = scene.interest_cell_size;
@@ -398,7 +400,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readAgents(root, scene);
   readCrowdLod(root, scene);
   readTimeDilation(root, scene.time_dilation);
-  readInteractions(root, scene.halo_width, scene.interactions);
+  readInteractions(root, scene.world, scene.halo_width, scene.interactions);
   return scene;
 }
 

@@ -41,21 +41,6 @@ int senseOf(const SceneNode& node, const std::string& name) {
   return s;
 }
 
-void checkInWorld(const SceneNode& node, double x, double z, const Scene& scene) {
-  if (x < scene.world.min.x || x > scene.world.max.x || z < scene.world.min.z ||
-      z > scene.world.max.z)
-    node.fail("(" + formatNumber(x) + ", " + formatNumber(z) + ") is outside the world");
-}
-
-// A point on the ground written [x, z].
-std::pair<double, double> groundPoint(const SceneNode& node, const Scene& scene) {
-  std::vector<SceneNode> items = node.items();
-  if (items.size() != 2) node.fail("expected a point [x, z]");
-  std::pair<double, double> p{items[0].number(), items[1].number()};
-  checkInWorld(node, p.first, p.second, scene);
-  return p;
-}
-
 // A tree node: an action name (leaf) or {if: "sense < number", then: node, else: node}.
 int readTreeNode(const SceneNode& node, std::vector<AgentTreeNode>& tree, int depth) {
   if (depth > 32) node.fail("tree is deeper than 32 tests");
@@ -154,7 +139,7 @@ void readGoap(const SceneMap& type, const Scene& scene, AgentType& t) {
     if (act.effect_mask == 0) a.failAt("effects", "must set at least one fact");
     a.read("cost", act.cost, Limit::above(0));
     SceneNode at = a.required("at");
-    std::tie(act.x, act.z) = groundPoint(at, scene);
+    std::tie(act.x, act.z) = groundPointXZ(at, scene.world);
     a.read("duration_s", act.duration_s, Limit::atLeast(0));
     g.actions.push_back(act);
   }
@@ -228,7 +213,7 @@ void readType(const SceneNode& node, Scene& scene) {
   energy.read("drain_per_s", t.energy_drain_per_s, Limit::atLeast(0));
   energy.read("recover_per_s", t.energy_recover_per_s, Limit::atLeast(0));
   if (std::optional<SceneNode> goals = m.optional("goals")) {
-    for (const SceneNode& g : goals->items()) t.goals.push_back(groundPoint(g, scene));
+    for (const SceneNode& g : goals->items()) t.goals.push_back(groundPointXZ(g, scene.world));
   }
   if (t.behaviour == AgentType::Behaviour::Travel && t.goals.empty())
     m.failAt("goals", "a travelling type needs at least one goal");
@@ -259,8 +244,8 @@ void readPopulation(const SceneNode& node, Scene& scene) {
   if (std::optional<SceneNode> region = m.optional("region")) {
     SceneMap r = region->map({"min", "max"});
     SceneNode lo = r.required("min"), hi = r.required("max");
-    std::tie(p.min_x, p.min_z) = groundPoint(lo, scene);
-    std::tie(p.max_x, p.max_z) = groundPoint(hi, scene);
+    std::tie(p.min_x, p.min_z) = groundPointXZ(lo, scene.world);
+    std::tie(p.max_x, p.max_z) = groundPointXZ(hi, scene.world);
     if (p.max_x < p.min_x || p.max_z < p.min_z) hi.fail("must not be below region.min");
   }
   scene.agents.populations.push_back(p);

@@ -7,7 +7,9 @@
 namespace zonesim {
 
 /// Reads the optional top-level `interactions` key (absent: off). `halo_width`: the halo the
-/// scene gives its zones; a reach beyond it would miss targets across a border.
-void readInteractions(const SceneMap& root, double halo_width, InteractionSettings& in);
+/// scene gives its zones; a reach beyond it would miss targets across a border. Items lie
+/// inside `world`.
+void readInteractions(const SceneMap& root, const SceneBox& world, double halo_width,
+                      InteractionSettings& in);
 
 }  // namespace zonesim

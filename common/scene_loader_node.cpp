@@ -275,4 +275,13 @@ int SceneMap::choice(std::string_view key, std::initializer_list<std::string_vie
   value->fail("unknown value '" + t + "' (allowed: " + allowed + ")");
 }
 
+std::pair<double, double> groundPointXZ(const SceneNode& node, const SceneBox& world) {
+  std::vector<SceneNode> items = node.items();
+  if (items.size() != 2) node.fail("expected a point [x, z]");
+  const double x = items[0].number(), z = items[1].number();
+  if (x < world.min.x || x > world.max.x || z < world.min.z || z > world.max.z)
+    node.fail("(" + formatNumber(x) + ", " + formatNumber(z) + ") is outside the world");
+  return {x, z};
+}
+
 }  // namespace zonesim

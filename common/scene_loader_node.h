@@ -143,4 +143,7 @@ class SceneMap {
   SceneNode node_;
 };
 
+/// A point on the ground written [x, z], inside `world` (the message names it otherwise).
+std::pair<double, double> groundPointXZ(const SceneNode& node, const SceneBox& world);
+
 }  // namespace zonesim

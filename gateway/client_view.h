@@ -66,8 +66,8 @@ class ClientView {
   std::uint64_t epoch_ = 0;
 };
 
-/// Auras by entity kind (0 NPC, 1 avatar, 2 rigid body, 3 emitter), metres.
-using Auras = std::array<double, 4>;
+/// Auras by entity kind (0 NPC, 1 avatar, 2 rigid body, 3 emitter, 4 item), metres.
+using Auras = std::array<double, 5>;
 
 /// The seed's rule: A sees B when A is inside B's aura and B inside A's nimbus, i.e. when
 /// their distance is within both. Takes the squared distance (no square root per pair).
@@ -89,7 +89,7 @@ struct ViewPoint {
   double keep = 66;    ///< entities already shown stay until beyond this (no edge flicker)
   /// Per-kind auras; an entity is shown within min(aura, nimbus), kept within
   /// min(aura, nimbus) * keep / nimbus. Default: no aura limit.
-  Auras aura{1e30, 1e30, 1e30, 1e30};
+  Auras aura{1e30, 1e30, 1e30, 1e30, 1e30};
   std::uint64_t self = 0;  ///< the player's avatar: always visible once known
   std::uint64_t self_version = 0;  ///< its cache version (0: not cached yet)
   double sim_now = 0;      ///< positions are extrapolated to this time before measuring

@@ -29,7 +29,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
     // Under a budget the view may be narrowed (DownlinkBudget::adaptRadius).
     at.nimbus = config_.budget.enabled() ? std::min(nimbus, s.budget.viewRadius()) : nimbus;
     at.keep = at.nimbus * 1.1;
-    at.aura = {an.npc, an.avatar, an.rigid_body, an.emitter};
+    at.aura = {an.npc, an.avatar, an.rigid_body, an.emitter, an.item};
     at.self = s.avatar_id;
     const CachedEntity* self = s.avatar_id != 0 ? cache_.find(s.avatar_id) : nullptr;
     at.self_version = self != nullptr ? self->version : 0;

@@ -39,8 +39,8 @@ inline constexpr float kMoveEpsilon = 1e-3f;
 inline constexpr float kMaxCoordinate = 1e7f;
 /// Speeds beyond this (m/s) are nonsense for anything zonesim simulates.
 inline constexpr float kMaxSpeed = 1e4f;
-/// Entity kinds: 0 NPC, 1 avatar, 2 rigid body, 3 particle emitter.
-inline constexpr std::uint8_t kMaxEntityKind = 3;
+/// Entity kinds: 0 NPC, 1 avatar, 2 rigid body, 3 particle emitter, 4 unique item.
+inline constexpr std::uint8_t kMaxEntityKind = 4;
 
 /// Which side receives: the set of acceptable messages and checks differ.
 enum class Direction { ToGateway, ToClient };

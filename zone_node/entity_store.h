@@ -17,8 +17,10 @@
 
 namespace zonesim::zone {
 
-enum class EntityKind : std::uint8_t { Npc = 0, Avatar = 1, RigidBody = 2, Emitter = 3 };
-constexpr int kEntityKindCount = 4;
+/// Item: a unique thing lying on the ground, taken by whoever its owner decides
+/// (systems/interactions.h).
+enum class EntityKind : std::uint8_t { Npc = 0, Avatar = 1, RigidBody = 2, Emitter = 3, Item = 4 };
+constexpr int kEntityKindCount = 5;
 
 /// A formation member's own state (systems/formation_movement.h: crowd::MemberState).
 struct FormationMemberData {
@@ -168,6 +170,9 @@ struct CombatData {
   std::uint32_t deaths = 0;     ///< times it was killed
   std::int32_t items = 0;       ///< items it holds (avatars hand them to each other)
   std::uint32_t mail_seq = 0;   ///< messages it posted
+  /// An item granted to a claimant: 1 + the tick it was decided in (0: not taken). It leaves
+  /// the world once a checkpoint holds the decision, so no restart can undo what clients saw.
+  std::uint64_t taken_at = 0;
 
   bool operator==(const CombatData&) const = default;
 };

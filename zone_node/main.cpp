@@ -16,6 +16,7 @@
 #include "common/scene.h"
 #include "common/stop_signal.h"
 #include "zone_node/cluster/checkpoint.h"
+#include "zone_node/item_log.h"
 #include "zone_node/state_dump.h"
 #include "zone_node/truth_log.h"
 #include "zone_node/zone_node.h"
@@ -96,6 +97,10 @@ int run(const Options& o, MPI_Comm comm) {
   zone::TruthLog truth(
       o.metrics_dir.empty() ? "" : o.metrics_dir + "/truth_" + std::to_string(node.rank()) + ".csv",
       o.truth_every);
+  zone::ItemLog items(o.metrics_dir.empty()
+                          ? ""
+                          : o.metrics_dir + "/zone_" + std::to_string(node.rank()) + "_items.csv");
+  if (!o.restart.empty()) items.restored(node.tickCount(), node.store());
   ZS_INFO(
       "zone %d/%d rect [%.1f,%.1f]-[%.1f,%.1f]: %zu entities, particles on %s, flocks on "
       "%s, %llu ticks",
@@ -120,6 +125,7 @@ int run(const Options& o, MPI_Comm comm) {
     }
     report.recordTick(node, tick_seconds, metrics);
     truth.record(node.tickCount() - 1, node.store());  // the tick just published
+    items.left(node.tickCount(), node.itemsLeftThisTick());
     if (o.realtime) sleepUntil(next);
   }
   metrics.flush();

@@ -210,6 +210,12 @@ void forEachInitialEntity(const Scene& scene,
       keep(r);
     }
   }
+  // Items after them: a scene that gains items keeps every other entity's id.
+  for (const auto& at : scene.interactions.items) {
+    auto [r, rng] = nextSceneEntity(scene, EntityKind::Item, counter);
+    r.pos = Vec3(at[0], scene.world.min.y, at[1]);
+    keep(r);
+  }
 }
 
 EntityId namedBodyId(const Scene& scene, std::size_t k) {

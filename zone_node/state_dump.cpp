@@ -23,6 +23,8 @@ const char* kindName(EntityKind k) {
       return "rigid_body";
     case EntityKind::Emitter:
       return "emitter";
+    case EntityKind::Item:
+      return "item";
   }
   return "unknown";
 }
@@ -67,8 +69,8 @@ void writeLine(std::FILE* f, const EntityRecordData& e) {
   // Only where the scene's interactions touched it: every other scene's dump stays as it was.
   if (!(e.combat == CombatData{})) {
     const CombatData& c = e.combat;
-    std::fprintf(f, ",\"combat\":[%.17g,%u,%u,%d,%u]", c.health, c.kills, c.deaths, c.items,
-                 c.mail_seq);
+    std::fprintf(f, ",\"combat\":[%.17g,%u,%u,%d,%u,%llu]", c.health, c.kills, c.deaths, c.items,
+                 c.mail_seq, (unsigned long long)c.taken_at);
   }
   std::fputs("}\n", f);
 }

@@ -119,6 +119,10 @@ struct TickCounters {
   std::uint64_t kills = 0;            ///< of those, killing ones (confirmed to the hitter)
   std::uint64_t gifts = 0;            ///< items this rank's avatars received
   std::uint64_t gifts_returned = 0;   ///< gifts given back to their giver (recipient gone)
+  std::uint64_t pickups = 0;          ///< items taken, as their owner granted them
+  std::uint64_t pickups_contested = 0;  ///< of those, claimed by more than one in the tick
+  std::uint64_t pickups_denied = 0;     ///< claims that lost (nearer claimant, or item gone)
+  std::uint64_t items_removed = 0;      ///< taken items that left the world (decision checkpointed)
 };
 
 /// Every counter with its name: totals, metrics lines and summaries iterate this one list.
@@ -175,6 +179,10 @@ inline constexpr CounterField kCounterFields[] = {
     {"hits", &TickCounters::hits, false},
     {"kills", &TickCounters::kills, false},
     {"gifts", &TickCounters::gifts, false},
-    {"gifts_returned", &TickCounters::gifts_returned, false}};
+    {"gifts_returned", &TickCounters::gifts_returned, false},
+    {"pickups", &TickCounters::pickups, false},
+    {"pickups_contested", &TickCounters::pickups_contested, false},
+    {"pickups_denied", &TickCounters::pickups_denied, false},
+    {"items_removed", &TickCounters::items_removed, false}};
 
 }  // namespace zonesim::zone

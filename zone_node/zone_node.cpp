@@ -123,6 +123,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   };
   if (restart) {
     tick_ = restart->tick;
+    last_checkpoint_tick_ = restart->tick;
     inherited_counters_ = restart->id_counters;
     auto counter = restart->id_counters.find(std::uint32_t(rank_));
     if (counter != restart->id_counters.end())
@@ -185,6 +186,7 @@ void ZoneNode::tick() {
   profile_ = {};
   counters_ = {};
   leavers_.clear();
+  items_left_.clear();
   players_.startTick();
   last_tick_factor_ = dilation_.factor();
   std::int64_t cpu0 = threadCpuNs();
@@ -312,12 +314,29 @@ void ZoneNode::deliverMail() {
     interactions_->refused(m, replies, counters_);
   };
   MailStats s = mail_.deliver(store_, last_migration_.departed, receive, refused);
+  removeTakenItems();
   counters_.mail_posted = s.posted;
   counters_.mail_applied = s.applied;
   counters_.mail_cross_zone = s.cross_zone;
   counters_.mail_forwarded = s.forwarded;
   counters_.mail_refused = s.refused;
   counters_.mail_bytes = s.bytes_sent;
+}
+
+void ZoneNode::removeTakenItems() {
+  if (store_.count(EntityKind::Item) == 0) return;
+  // Without checkpoints nothing is ever rolled back: a decision is final at once.
+  const bool checkpointing = options_.checkpoint_every > 0 && !options_.checkpoint_dir.empty();
+  for (std::size_t i = store_.size(); i-- > 0;) {
+    const std::uint64_t taken_at = store_.combat[i].taken_at;
+    if (store_.kind[i] != EntityKind::Item || taken_at == 0) continue;
+    if (checkpointing && last_checkpoint_tick_ < taken_at) continue;
+    leavers_.push_back({store_.id[i], EntityKind::Item, -1, store_.dr[i].cell, 0, false});
+    items_left_.push_back(store_.id[i]);
+    ledger_.remove(store_.id[i]);
+    store_.removeAt(i);
+    ++counters_.items_removed;
+  }
 }
 
 void ZoneNode::halo() {
@@ -354,9 +373,11 @@ void ZoneNode::publish() {
 
 void ZoneNode::checks() {
   if (options_.checkpoint_every > 0 && !options_.checkpoint_dir.empty() &&
-      tick_ % std::uint64_t(options_.checkpoint_every) == 0)
+      tick_ % std::uint64_t(options_.checkpoint_every) == 0) {
     writeCheckpoint(comm_, store_, tick_, ids_.issued(), inherited_counters_,
                     options_.checkpoint_dir);
+    last_checkpoint_tick_ = tick_;  // written by every rank and named LATEST (collective)
+  }
   if (options_.check_every > 0 && tick_ % std::uint64_t(options_.check_every) == 0)
     checkConservationNow();
   // Moved boundaries take effect in the next migrate phase: leavers go to their new owners.

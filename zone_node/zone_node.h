@@ -118,6 +118,8 @@ class ZoneNode {
   }
   /// Entities this tick's exchange moved to other ranks (with their destination).
   const std::vector<Departure>& migratedThisTick() const { return last_migration_.departed; }
+  /// Taken items that left the world this tick (their decision checkpointed).
+  const std::vector<EntityId>& itemsLeftThisTick() const { return items_left_; }
   /// Position and velocity of every live particle of this zone's emitters.
   std::vector<std::array<double, 6>> liveParticles() const;
   /// Which backend the particle emitters use ("cpu", "opencl" or "none").
@@ -138,6 +140,9 @@ class ZoneNode {
   void migrate();
   /// Delivers this tick's entity messages (after the exchange: targets are where they stay).
   void deliverMail();
+  /// Removes the items granted to a claimant once a checkpoint holds the decision (at once
+  /// without checkpoints): what clients see go never comes back after a restart.
+  void removeTakenItems();
   void halo();
   void publish();
   void checks();
@@ -193,6 +198,7 @@ class ZoneNode {
   std::unique_ptr<LeaderboardService> leaderboard_;  // answers players' leaderboard queries
 
   std::uint64_t tick_ = 0;
+  std::uint64_t last_checkpoint_tick_ = 0;  // the newest complete checkpoint's (or the restored)
   std::uint64_t link_failures_seen_ = 0;
   std::map<std::uint32_t, std::uint64_t> inherited_counters_;  // id counters a restart read
   TickProfile profile_;
@@ -203,6 +209,7 @@ class ZoneNode {
   double own_work_seconds_ = 0;  // CPU time of this tick's input..gpu and publish
   MigrationResult last_migration_;
   std::vector<Departure> leavers_;  // migrated away or destroyed this tick: publish says so
+  std::vector<EntityId> items_left_;  // taken items removed this tick
 };
 
 }  // namespace zonesim::zone

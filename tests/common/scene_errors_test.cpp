@@ -110,8 +110,12 @@ const InlineCase kInlineCases[] = {
     {"hit_never", withBase("interactions: {hit_every_s: 0}\n"),
      "5: interactions.hit_every_s: must be > 0, got 0"},
     {"interactions_unknown_key", withBase("interactions: {heal: 5}\n"),
-     "5: interactions.heal: unknown key (allowed: enabled, hit_reach, hit_every_s, hit_damage, knockback, "
-     "gift_reach, gift_every_s, items_per_avatar)"},
+     "5: interactions.heal: unknown key (allowed: enabled, hit_reach, hit_every_s, hit_damage, "
+     "knockback, gift_reach, gift_every_s, items_per_avatar, items, pickup_reach)"},
+    {"item_outside_world", withBase("interactions:\n  items: [[10, 10], [150, 5]]\n"),
+     "6: interactions.items[1]: (150, 5) is outside the world"},
+    {"item_not_a_point", withBase("interactions:\n  items: [[10, 10, 3]]\n"),
+     "6: interactions.items[0]: expected a point [x, z]"},
     {"agent_unknown_action",
      withBase("agents:\n  types:\n    - {name: a, behaviour: tree, tree: dance}\n"),
      "7: agents.types[0].tree: unknown action 'dance' (allowed: idle, wander, chase, flee, "

@@ -196,7 +196,8 @@ TEST(SceneDefaults, InteractionsOffWithoutTheKeyAndOnWithIt) {
   Scene s = parseScene(std::string(kMinimal) +
                            "interactions: {hit_reach: 2, hit_every_s: 0.5, hit_damage: 40,\n"
                            "               knockback: 0, gift_reach: 3, gift_every_s: 1.5,\n"
-                           "               items_per_avatar: 4}\n",
+                           "               items_per_avatar: 4, pickup_reach: 2,\n"
+                           "               items: [[1, 2], [30, -5]]}\n",
                        "x");
   const InteractionSettings& in = s.interactions;
   EXPECT_TRUE(in.enabled);
@@ -207,6 +208,10 @@ TEST(SceneDefaults, InteractionsOffWithoutTheKeyAndOnWithIt) {
   EXPECT_DOUBLE_EQ(in.gift_reach, 3);
   EXPECT_DOUBLE_EQ(in.gift_every_s, 1.5);
   EXPECT_EQ(in.items_per_avatar, 4);
+  EXPECT_DOUBLE_EQ(in.pickup_reach, 2);
+  ASSERT_EQ(in.items.size(), 2u);
+  EXPECT_DOUBLE_EQ(in.items[1][0], 30);
+  EXPECT_DOUBLE_EQ(in.items[1][1], -5);
   EXPECT_FALSE(parseScene(std::string(kMinimal) + "interactions: {enabled: false}\n", "x")
                    .interactions.enabled);
 }

@@ -71,6 +71,18 @@ TEST(WorldCache, NonFiniteStatesNeverEnter) {
   EXPECT_EQ(c.stats().invalid, 1u);
 }
 
+// Every kind a zone publishes enters, unique items (kind 4) too; a kind no zone has does not.
+TEST(WorldCache, ItemsEnterAndUnknownKindsDoNot) {
+  WorldCache c(kGrace);
+  zonesim_dds_EntityUpdate item = entity(1, 0, 5, 5);
+  item.kind = 4;
+  EXPECT_TRUE(c.upsert(kCell, 0, 1.0, item));
+  zonesim_dds_EntityUpdate unknown = entity(2, 0, 5, 5);
+  unknown.kind = 5;
+  EXPECT_FALSE(c.upsert(kCell, 0, 1.0, unknown));
+  EXPECT_EQ(c.stats().invalid, 1u);
+}
+
 // Handoff: zone A says "left (migrated)", zone B says "entered", same tick, either order.
 TEST(WorldCache, HandoffLeaveThenEnterNeverRemoves) {
   WorldCache c(kGrace);

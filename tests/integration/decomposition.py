@@ -23,7 +23,7 @@ next node and goal migrate with them, deciding at each node from the graph and i
 alone; (scenes/skirmish.yaml) NPCs hitting each other where four zones meet, by messages to the
 target's owner (the entity mail) that are forwarded when the target crosses a border in the
 same tick: health, kills and knockback end bitwise equal only if every hit lands once, in the
-same order."""
+same order, and unique items claimed by several in one tick go to the same claimant."""
 import json
 import tempfile
 from pathlib import Path
@@ -41,7 +41,8 @@ EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float
 GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents",
                 "courtyard_formation", "flock_lod", "skirmish")
 MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition
-MAIL_FIGURES = ("hits", "kills", "mail_posted", "mail_applied", "mail_refused")
+MAIL_FIGURES = ("hits", "kills", "pickups", "pickups_contested", "pickups_denied", "mail_posted",
+                "mail_applied", "mail_refused")
 # No ghosts read: the ants' trails are summed instead; road NPCs decide from the graph alone.
 MIGRATION_SCENES = ("courtyard_ants", "roads")
 
@@ -108,6 +109,9 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
                         f"ranks ({by_ranks})")
             h.check(mail[1]["hits"] > 1000 and mail[1]["kills"] > 100,
                     f"{scene}: {mail[1]['hits']} hits, {mail[1]['kills']} kills")
+            h.check(mail[1]["pickups"] > 0 and mail[1]["pickups_contested"] > 0,
+                    f"{scene}: {mail[1]['pickups']} items taken, {mail[1]['pickups_contested']} of "
+                    f"them contested ({mail[1]['pickups_denied']} claims denied), alike everywhere")
             h.check(mail[4]["mail_cross_zone"] > 100 and mail[4]["mail_forwarded"] > 0,
                     f"{scene}: on 4 ranks {mail[4]['mail_cross_zone']} messages crossed a border,"
                     f" {mail[4]['mail_forwarded']} followed a target that crossed in that tick")

@@ -21,6 +21,9 @@ times, then SIGSTOPs one (a hung job). Afterwards:
     hit each other where the four zones meet, players hand each other items), and every job's
     audit balanced at every check (each message posted applied or refused once: none lost,
     none applied twice), over the transactions and cross-zone messages together > 10,000;
+  - unique items were taken through the faults (a contest goes to the nearest claimant) and
+    none that a job showed leaving was restored untaken by a later one: events shown and then
+    retracted, 0 (an item leaves only once a checkpoint holds its taking);
   - no zone_node, gateway or client_stub of the run is left.
 Usage: fault_survival.py [SEED [FAULTS [GATEWAY_FAULTS]]]: SEED default random (printed), FAULTS
 zone kills, default 3 (one every 16 s), GATEWAY_FAULTS default 1 (one every 6 s, before them);
@@ -279,7 +282,8 @@ args = --transactions-per-s {TX_RATE}
     # their audits from the zones' logs (an unbalanced check is logged; the last job's summary
     # counts them too).
     mail = {k: 0 for k in ("mail_posted", "mail_applied", "mail_cross_zone", "mail_forwarded",
-                           "mail_refused", "hits", "kills", "gifts", "gifts_returned")}
+                           "mail_refused", "hits", "kills", "gifts", "gifts_returned", "pickups",
+                           "pickups_contested", "pickups_denied")}
     for metrics in list(run.glob("epoch-*/zone_*.jsonl")) + list(run.glob("zone_*.jsonl")):
         for line in metrics.read_text().splitlines():
             try:
@@ -299,6 +303,21 @@ args = --transactions-per-s {TX_RATE}
             f"{mail['mail_forwarded']} forwarded after their target)")
     h.check(tx["made"] + mail["mail_cross_zone"] >= 10000,
             f"over 10,000 transactions and cross-zone messages ({tx['made']} + {mail['mail_cross_zone']})")
+
+    # Unique items: what each job showed leaving, and what each restart began with untaken.
+    jobs = sorted(run.glob("epoch-*"), key=lambda d: int(d.name.split("-")[1])) + [run]
+    left, retracted = set(), []  # items some job showed leaving; those a later job restored
+    for job in jobs:
+        rows = [line.split(",") for f in job.glob("zone_*_items.csv")
+                for line in f.read_text().splitlines()[1:]]
+        rows = [r for r in rows if len(r) == 3]  # a SIGKILL may cut the last line short
+        retracted += [(job.name, int(i)) for _, event, i in rows if event == "restored" and int(i) in left]
+        left |= {int(i) for _, event, i in rows if event == "left"}
+    print(f"unique items: {len(left)} left the world over every job ({mail['pickups']} takings, "
+          f"{mail['pickups_contested']} contested, {mail['pickups_denied']} claims denied, counting "
+          f"re-run ticks); shown and later retracted: {len(retracted)}", flush=True)
+    h.check(len(left) > 0, f"items were taken and left the world ({len(left)})")
+    h.check(not retracted, f"no item shown leaving came back after a restart (retracted: {retracted})")
 
     report = h.load_json(run / "report.json")
     h.check(report["transactions"] and report["transactions"]["made"] == tx["made"]

@@ -217,14 +217,14 @@ void decodeAgent(const fb::AgentState& g, AgentData& a) {
 
 flatbuffers::Offset<fb::CombatState> encodeCombat(Builder& b, const CombatData& c, EntityKind) {
   if (c == CombatData{}) return {};  // untouched: scenes without interactions carry nothing
-  return fb::CreateCombatState(b, c.health, c.kills, c.deaths, c.items, c.mail_seq);
+  return fb::CreateCombatState(b, c.health, c.kills, c.deaths, c.items, c.mail_seq, c.taken_at);
 }
 
 void decodeCombat(const fb::CombatState& s, CombatData& c) {
   if (!(s.health() >= 0 && s.health() <= 100))
     throw CodecError("combat record with health outside 0..100");
   if (s.items() < 0) throw CodecError("combat record with negative items");
-  c = {s.health(), s.kills(), s.deaths(), s.items(), s.mail_seq()};
+  c = {s.health(), s.kills(), s.deaths(), s.items(), s.mail_seq(), s.taken_at()};
 }
 
 // ---- One schema field per entity column (kEntityColumns) ----

@@ -37,14 +37,18 @@ enum class MailKind : std::uint8_t {
   Gift = 1,           ///< take `amount` items from the sender
   KillConfirmed = 2,  ///< reply: the target of your hit died of it
   GiftReturned = 3,   ///< reply: your gift could not be delivered; take the items back
-  Count = 4
+  Pickup = 4,         ///< to an item: the sender takes it (its owner decides a contest)
+  PickupGranted = 5,  ///< reply: the item is yours
+  PickupDenied = 6,   ///< reply: someone nearer took it, or it was gone
+  Count = 7
 };
 /// Names as counters and logs write them, in MailKind order.
-inline constexpr std::string_view kMailKindNames[] = {"hit", "gift", "kill_confirmed",
-                                                      "gift_returned"};
+inline constexpr std::string_view kMailKindNames[] = {
+    "hit", "gift", "kill_confirmed", "gift_returned", "pickup", "pickup_granted", "pickup_denied"};
 /// Whether a kind is a reply (which never makes one).
 constexpr bool isReply(MailKind k) {
-  return k == MailKind::KillConfirmed || k == MailKind::GiftReturned;
+  return k == MailKind::KillConfirmed || k == MailKind::GiftReturned ||
+         k == MailKind::PickupGranted || k == MailKind::PickupDenied;
 }
 
 /// One message. Raw, fixed-size and trivially copyable (ranks of one job share the layout; the

@@ -17,6 +17,8 @@ dr::V3 toDr(const Vec3& v) {
 dr::Model modelFor(const DeadReckoning& cfg, EntityKind kind) {
   const DeadReckoningModel* m = &cfg.npc;
   switch (kind) {
+    case EntityKind::Item:  // lies where it is until taken
+      return {dr::Order::Static, dr::Spin::Fixed};
     case EntityKind::Npc:
       m = &cfg.npc;
       break;

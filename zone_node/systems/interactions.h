@@ -7,7 +7,13 @@
 //   owner confirms the kill to the hitter (seed 3.3.3: the killer waits for the victim);
 // - an avatar with items hands one to the nearest other avatar within reach, every
 //   gift_every_s; a gift whose recipient is gone goes back to its giver, so items are never
-//   lost or made.
+//   lost or made;
+// - an NPC or avatar within reach of a unique item claims it; the item's owner alone decides:
+//   of the claims of one tick (seed 3.3.3's contested event, say two players across a border)
+//   the nearest claimant wins, the lowest id on a tie, whatever the decomposition. The winner
+//   is told (the item joins its items), the others are denied, and the item is marked taken:
+//   the zone removes it once a checkpoint holds the decision (ZoneNode::removeTakenItems), so
+//   a client never sees an item go that a restart would bring back.
 // Choices are made in the AI phase, first, from positions at the tick's start (the ghosts'
 // too); messages are applied in the migrate phase, sorted, so every decomposition agrees.
 
@@ -31,10 +37,13 @@ class InteractionSystem : public ZoneSystem {
   bool active() const override { return settings_.enabled; }
   /// NPCs due to hit and avatars due to give choose their targets and post.
   void step(StepContext& ctx) override;
+  /// Whether items are taken, on ghosts too (a taken item is claimed no more).
+  std::vector<GhostColumn> ghostColumns() const override;
   /// Applies a tick's arrivals to this zone's entities (EntityMail's receiver).
   void receive(EntityStore& store, std::span<const EntityMessage> arrived,
-               std::vector<EntityMessage>& replies, TickCounters& counters) const;
-  /// A gift whose recipient is gone goes back to its giver (EntityMail's refusal hook).
+               std::vector<EntityMessage>& replies, TickCounters& counters);
+  /// A gift whose recipient is gone goes back to its giver, a claim on an item that is gone is
+  /// denied (EntityMail's refusal hook).
   void refused(const EntityMessage& m, std::vector<EntityMessage>& replies,
                TickCounters& counters) const;
 
@@ -49,11 +58,15 @@ class InteractionSystem : public ZoneSystem {
   static bool due(EntityId id, std::uint64_t tick, std::uint64_t every);
   void post(EntityStore& store, std::size_t sender, const Candidate& target, MailKind kind,
             std::int32_t amount);
+  /// Decides the claims on item `item` (one tick's, sorted by claimant): replies to each.
+  void decideClaims(EntityStore& store, std::size_t item, std::span<const EntityMessage> claims,
+                    std::vector<EntityMessage>& replies, TickCounters& counters);
 
   InteractionSettings settings_;
   std::uint64_t hit_every_, gift_every_;  // in ticks
   EntityMail& mail_;
   int rank_;
+  std::uint64_t tick_ = 0;  // the tick being stepped (decisions are stamped with it)
 };
 
 }  // namespace zonesim::zone

@@ -92,7 +92,12 @@ EntityRecordData everyColumnSet() {
   a.replans = 3;
   a.arrivals = 8;
   a.path = {7, 8, 8, 9};
-  r.combat = {.health = 37.5, .kills = 3, .deaths = 2, .items = 7, .mail_seq = 99};
+  r.combat = {.health = 37.5,
+              .kills = 3,
+              .deaths = 2,
+              .items = 7,
+              .mail_seq = 99,
+              .taken_at = 12345678901ull};
   return r;
 }
 
