@@ -65,6 +65,11 @@ std::vector<Actor> scenario() {
   // 6. A giver crossing a border whose recipient logged out: the return follows the giver.
   a.push_back({"leaver", EntityKind::Avatar, 10, 49.5, 10, 51.0, 100, 5, false, 100, 5});
   a.push_back({"absent", EntityKind::Avatar, 10, 50.5, 10, 50.5, 100, 0, true});
+  // 7. A claim on an item across a border whose claimant crosses into the item's zone in this
+  //    tick: the grant follows it, and the item is taken once.
+  a.push_back({"loot", EntityKind::Item, 90, 50.4, 90, 50.4});
+  a.back().taken = true;
+  a.push_back({"claimer", EntityKind::Avatar, 90, 49.6, 88, 51, 100, 0, false, 100, 1});
   return a;
 }
 
@@ -174,17 +179,21 @@ TEST_F(EntityMailTest, EveryKindIsAppliedOnceAcrossHandoff) {
   std::vector<Actor> actors = scenario();
   EntityStore store;
   MailStats s = runTick(actors, store);
-  // Hits: 6 (3 pairs, both ways); gifts: 3; one kill confirmed; two gifts returned.
-  EXPECT_EQ(sum(s.posted), 12u);
-  EXPECT_EQ(sum(s.applied), 10u);   // the two gifts to the logged-out avatars were refused
+  // Hits: 6 (3 pairs, both ways); gifts: 3; one kill confirmed; two gifts returned; one
+  // claim and its grant.
+  EXPECT_EQ(sum(s.posted), 14u);
+  EXPECT_EQ(sum(s.applied), 12u);  // the two gifts to the logged-out avatars were refused
   EXPECT_EQ(sum(s.refused), 2u);
   // Forwarded after their target left: the hit on "mover", the gift to "crosser" and the hit
-  // the killer's victim sent after it (victim -> killer, who crossed).
+  // the killer's victim sent after it (victim -> killer, who crossed). Replies go to the rank
+  // the claimant (or hitter) moved to, as the kill confirmation does: the grant to "claimer"
+  // needs no forwarding.
   EXPECT_EQ(sum(s.forwarded), 3u);
   // Applied on a rank other than the one it was posted on: the hits of pair 1, the mover's
-  // hit, the killer's hit and the gift returned to "giver". The rest met their target on the
-  // rank they were posted on, after it (or the reply's sender) crossed.
-  EXPECT_EQ(sum(s.cross_zone), 5u);
+  // hit, the killer's hit, the gift returned to "giver" and the claim on "loot". The rest met
+  // their target on the rank they were posted on, after it (or the reply's sender) crossed.
+  EXPECT_EQ(sum(s.cross_zone), 6u);
+  EXPECT_EQ(sum(figures_.pickups), 1u);
   EXPECT_GT(sum(s.bytes_sent), 0u);
 }
 
