@@ -20,6 +20,7 @@
 #include "zone_node/state_dump.h"
 #include "zone_node/truth_log.h"
 #include "zone_node/zone_node.h"
+#include "zone_node/zone_recorder.h"
 #include "zone_node/zone_report.h"
 
 namespace {
@@ -37,6 +38,8 @@ struct Options {
   std::int64_t epoch = -1;              ///< -1: 0 for a fresh start, 1 after --restart
   double orphan_grace_s = 30;
   std::string ledger;  ///< sqlite:PATH or postgres:CONNINFO; empty: no ledger
+  std::string record_dir;          ///< empty: no recording
+  std::uint32_t record_every = 1;  ///< record one entity id in this many
   zonesim::zone::ZoneOptions zone;
   zonesim::CommonOptions common;
 };
@@ -101,6 +104,12 @@ int run(const Options& o, MPI_Comm comm) {
                           ? ""
                           : o.metrics_dir + "/zone_" + std::to_string(node.rank()) + "_items.csv");
   if (!o.restart.empty()) items.restored(node.tickCount(), node.store());
+  std::unique_ptr<zone::ZoneRecorder> recorder;
+  if (!o.record_dir.empty()) {
+    std::filesystem::create_directories(o.record_dir);
+    recorder = std::make_unique<zone::ZoneRecorder>(o.record_dir, scene, node, o.record_every,
+                                                    !o.restart.empty());
+  }
   ZS_INFO(
       "zone %d/%d rect [%.1f,%.1f]-[%.1f,%.1f]: %zu entities, particles on %s, flocks on "
       "%s, %llu ticks",
@@ -126,9 +135,11 @@ int run(const Options& o, MPI_Comm comm) {
     report.recordTick(node, tick_seconds, metrics);
     truth.record(node.tickCount() - 1, node.store());  // the tick just published
     items.left(node.tickCount(), node.itemsLeftThisTick());
+    if (recorder) recorder->record(node, tick_seconds);
     if (o.realtime) sleepUntil(next);
   }
   metrics.flush();
+  if (recorder) recorder->close();
   std::string summary = report.summaryJson(node, wall.elapsedSeconds());
   if (!o.metrics_dir.empty()) {
     std::ofstream(o.metrics_dir + "/zone_" + std::to_string(node.rank()) + "_summary.json")
@@ -196,6 +207,12 @@ int main(int argc, char** argv) {
                  "slow the cluster's clock under overload: on, off, or scene (its time_dilation "
                  "key; absent: off)")
       ->check(CLI::IsMember({"on", "off", "scene"}));
+  app.add_option("--record", o.record_dir,
+                 "write a recording of every tick into this folder (zone_<rank>.zsrec: entities, "
+                 "zone rectangle, handoffs, checkpoints, tick profile) for deploy/inspect.sh");
+  app.add_option("--record-every", o.record_every,
+                 "with --record: record one entity id in this many (1: every entity)")
+      ->check(CLI::Range(1u, 1000000u));
   app.add_option("--ledger", o.ledger,
                  "commit players' transactions here: sqlite:PATH (every rank may share one "
                  "file) or postgres:CONNINFO; without it, transactions fail with that reason")

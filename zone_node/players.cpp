@@ -175,7 +175,7 @@ void Players::applyInput(PlayerZone& zone, std::uint64_t player_id, std::uint32_
     ++zone.counters.inputs_applied;
     auto started = handoff_started_.find(player_id);
     if (started != handoff_started_.end()) {
-      handoff_latency_ticks_.push_back(zone.tick - started->second);
+      handoffs_completed_.push_back({player_id, zone.tick - started->second});
       handoff_started_.erase(started);
     }
     return;

@@ -28,6 +28,13 @@ struct SpawnRequestMsg;
 struct DespawnRequestMsg;
 struct TickCounters;
 
+/// A handoff that completed: the avatar's player, and the ticks from its arrival at this zone
+/// (the tick it crossed the border) to the first input applied here.
+struct CompletedHandoff {
+  std::uint64_t player_id;
+  std::uint64_t ticks;
+};
+
 /// What the protocol changes in its zone during a tick.
 struct PlayerZone {
   EntityStore& store;
@@ -64,9 +71,9 @@ class Players {
   std::vector<std::vector<ForwardedInput>>& forwardQueues() { return forward_; }
   /// Handoffs completed this tick: ticks from the avatar's arrival at this zone to the first
   /// input applied here.
-  const std::vector<std::uint64_t>& handoffLatencyTicks() const { return handoff_latency_ticks_; }
+  const std::vector<CompletedHandoff>& handoffsCompleted() const { return handoffs_completed_; }
   /// Forgets the last tick's handoff figures.
-  void startTick() { handoff_latency_ticks_.clear(); }
+  void startTick() { handoffs_completed_.clear(); }
 
  private:
   void spawnAvatar(PlayerZone& zone, const SpawnRequestMsg& request);
@@ -109,7 +116,7 @@ class Players {
   std::unordered_map<std::uint64_t, std::uint64_t> last_input_tick_;  // player -> tick heard
   std::map<std::uint64_t, std::map<std::uint32_t, HeldInput>> held_inputs_;  // player -> seq
   std::unordered_map<std::uint64_t, std::uint64_t> handoff_started_;  // player -> arrival tick
-  std::vector<std::uint64_t> handoff_latency_ticks_;                  // completed this tick
+  std::vector<CompletedHandoff> handoffs_completed_;                  // completed this tick
 };
 
 }  // namespace zonesim::zone

@@ -22,6 +22,8 @@ class Quarantine {
   std::uint64_t apply(EntityStore& store);
   /// Entities of this zone held frozen.
   std::size_t frozen() const { return frozen_.size(); }
+  /// Whether entity `id` is held frozen.
+  bool holds(EntityId id) const { return frozen_.contains(id.value); }
 
  private:
   std::vector<Vec3> start_;                         // by index, as begin() found the store

@@ -113,9 +113,15 @@ class ZoneNode {
   double lastTickFactor() const { return last_tick_factor_; }
   /// Handoffs completed this tick: ticks from the avatar's arrival at this zone (the tick it
   /// crossed the border) to the first input applied here.
-  const std::vector<std::uint64_t>& handoffLatencyTicks() const {
-    return players_.handoffLatencyTicks();
+  const std::vector<CompletedHandoff>& handoffsCompleted() const {
+    return players_.handoffsCompleted();
   }
+  /// Entities this tick's exchange brought here (with the rank they came from).
+  const std::vector<Arrival>& arrivedThisTick() const { return last_migration_.arrived; }
+  /// The tick of the newest complete checkpoint (or of the one the zone restarted from).
+  std::uint64_t lastCheckpointTick() const { return last_checkpoint_tick_; }
+  /// Movers held frozen because their state became non-finite.
+  const Quarantine& quarantine() const { return quarantine_; }
   /// Entities this tick's exchange moved to other ranks (with their destination).
   const std::vector<Departure>& migratedThisTick() const { return last_migration_.departed; }
   /// Taken items that left the world this tick (their decision checkpointed).

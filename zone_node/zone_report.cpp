@@ -46,8 +46,8 @@ void ZoneReport::recordTick(const ZoneNode& zone, double tick_seconds, MetricsWr
   for (std::size_t i = 0; i < kPhaseCount; ++i) phase_totals_.seconds[i] += p.seconds[i];
   for (std::size_t i = 0; i < kStageCount; ++i)
     phase_totals_.stage_seconds[i] += p.stage_seconds[i];
-  for (std::uint64_t t : zone.handoffLatencyTicks())
-    handoff_latency_ms_.push_back(double(t) * zone.tickSeconds() * 1e3);
+  for (const CompletedHandoff& h : zone.handoffsCompleted())
+    handoff_latency_ms_.push_back(double(h.ticks) * zone.tickSeconds() * 1e3);
   for (const Departure& d : zone.migratedThisTick()) {
     if (d.to_rank < 0) continue;
     ++migrated_to_[d.to_rank];

@@ -38,7 +38,7 @@ MigrationResult Migrator::exchange(EntityStore& store, const ZoneLayout& layout,
     std::span<const std::uint8_t> bytes = bytes_.received(r);
     if (bytes.empty()) continue;
     MigrationPayload in = decodeMigration(bytes);
-    for (const EntityRecordData& e : in.entities) result.arrived.push_back({store.add(e), r});
+    for (const EntityRecordData& e : in.entities) result.arrived.push_back({store.add(e), r, e.id});
     result.inputs.insert(result.inputs.end(), in.inputs.begin(), in.inputs.end());
   }
   return result;

@@ -20,6 +20,7 @@ namespace zonesim::zone {
 struct Arrival {
   std::size_t index;  ///< its index in the store right after the exchange
   int from_rank;
+  EntityId id;
 };
 
 struct MigrationResult {
