@@ -12,7 +12,9 @@ namespace zonesim::dr {
 
 namespace {
 constexpr double kSqrtHalf = 0.70710678118654752440;
-constexpr int kKindBits = 2, kOrderBits = 2, kSpinBits = 1, kLargestBits = 2;
+// Kinds 0..4 (NPC, avatar, rigid body, emitter, unique item): three bits.
+constexpr int kKindBits = 3, kOrderBits = 2, kSpinBits = 1, kLargestBits = 2;
+constexpr std::uint64_t kMaxKind = 4;
 
 int bitsFor(std::uint64_t codes) {
   int b = 1;
@@ -161,12 +163,25 @@ Quantiser StateCodec::horizontal(int index_along, double world_min) const {
 }
 
 int StateCodec::stateBits(const Model& m) const {
-  int bits = kKindBits + kOrderBits + kSpinBits + cell_bits_ + 2 * px_.bits + py_.bits;
-  if (m.order != Order::Static) bits += 3 * vel_.bits;
-  if (m.order == Order::Second) bits += 3 * acc_.bits;
-  bits += kLargestBits + 3 * rot_.bits;
-  if (m.spin == Spin::Rotating) bits += 3 * angvel_.bits;
-  return bits;
+  return fieldBits(m).total();
+}
+
+FieldBits StateCodec::fieldBits(const Model& m) const {
+  FieldBits f;
+  f.descriptor = kKindBits + kOrderBits + kSpinBits;
+  f.position = cell_bits_ + 2 * px_.bits + py_.bits;
+  if (m.order != Order::Static) f.velocity += 3 * vel_.bits;
+  if (m.order == Order::Second) f.velocity += 3 * acc_.bits;
+  f.orientation = kLargestBits + 3 * rot_.bits;
+  if (m.spin == Spin::Rotating) f.orientation += 3 * angvel_.bits;
+  return f;
+}
+
+FieldBits StateCodec::fieldBits(const EncodedState& s) const {
+  // The model sits right after the kind, as encodeState writes it.
+  const std::uint64_t order = (s.words[0] >> kKindBits) & ((1u << kOrderBits) - 1);
+  const std::uint64_t spin = (s.words[0] >> (kKindBits + kOrderBits)) & ((1u << kSpinBits) - 1);
+  return fieldBits({Order(order), Spin(spin)});
 }
 
 void smallestThree(const Q4& q, int& largest, double (&rest)[3], int force) {
@@ -251,7 +266,9 @@ std::optional<WireEntity> StateCodec::read(BitReader& r, std::uint64_t prev_id,
   if (delta == 0 || delta > ~prev_id || age > batch_tick) return std::nullopt;
   e.id = prev_id + delta;
   e.tick = batch_tick - age;
-  e.kind = std::uint8_t(r.read(kKindBits));
+  const std::uint64_t kind = r.read(kKindBits);
+  if (kind > kMaxKind) return std::nullopt;
+  e.kind = std::uint8_t(kind);
   std::uint64_t order = r.read(kOrderBits);
   if (order > std::uint64_t(Order::Second)) return std::nullopt;
   e.model.order = Order(order);

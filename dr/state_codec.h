@@ -69,6 +69,19 @@ struct EncodedState {
   }
 };
 
+/// A record's state bits by what they carry: what the entity is (kind and model), where it is
+/// (cell and position), how it moves (velocity, acceleration) and how it is turned
+/// (orientation, angular velocity).
+struct FieldBits {
+  int descriptor = 0, position = 0, velocity = 0, orientation = 0;
+  int total() const { return descriptor + position + velocity + orientation; }
+};
+
+/// Bits BitWriter::writeVar takes for v: a 7-bit width, then the width's bits.
+constexpr int varBits(std::uint64_t v) {
+  return 7 + (v == 0 ? 0 : 64 - __builtin_clzll(v));
+}
+
 /// An entity ready to pack from its encoded state (which must outlive it).
 struct EncodedEntity {
   std::uint64_t id = 0;
@@ -129,6 +142,10 @@ class StateCodec {
   int columns() const { return columns_; }
   /// Bits of a record without the id and tick prefixes, for the given model.
   int stateBits(const Model& m) const;
+  /// The same bits by what they say (a bandwidth profile's field groups).
+  FieldBits fieldBits(const Model& m) const;
+  /// The field bits of an encoded state (its model read back from its first bits).
+  FieldBits fieldBits(const EncodedState& s) const;
   const CodecParams& params() const { return params_; }
   /// Orientation component step (smallest-three).
   double rotationStep() const { return rot_.resolution; }

@@ -48,6 +48,13 @@ TEST(StateCodec, BitStreamRoundTripsAndRefusesOverruns) {
   EXPECT_TRUE(r.ok());
   r.read(16);
   EXPECT_FALSE(r.ok());
+  // varBits says what writeVar takes.
+  for (std::uint64_t v :
+       {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{77}, ~std::uint64_t{0}}) {
+    BitWriter one;
+    one.writeVar(v);
+    EXPECT_EQ(int(one.bits()), varBits(v)) << v;
+  }
 }
 
 TEST(StateCodec, RoundTripErrorsStayWithinHalfAStep) {
@@ -134,7 +141,7 @@ TEST(StateCodec, PacksIntoBoundedChunksAndUnpacksThemExactly) {
     WireEntity e;
     id += 1 + rng() % 1000;
     e.id = id;
-    e.kind = std::uint8_t(i % 4);
+    e.kind = std::uint8_t(i % 5);
     e.tick = 1000 - rng() % 200;
     e.model = {Order(i % 3), Spin(i % 2)};
     e.state.pos = {x(rng), 0.5, z(rng)};
@@ -179,7 +186,7 @@ TEST(StateCodec, EncodedStatesPackIntoTheSameStreamsAsTheEntities) {
     WireEntity e;
     id += 1 + rng() % 5000;
     e.id = id;
-    e.kind = std::uint8_t(i % 4);
+    e.kind = std::uint8_t(i % 5);
     e.tick = 1000 - rng() % 300;
     e.model = {Order(i % 3), Spin((i / 3) % 2)};
     e.state.pos = {x(rng), 3.25, z(rng)};
@@ -195,6 +202,10 @@ TEST(StateCodec, EncodedStatesPackIntoTheSameStreamsAsTheEntities) {
   for (const WireEntity& e : in) {
     states.push_back(codec.encodeState(e));
     EXPECT_EQ(states.back().bits, codec.stateBits(e.model));
+    // The field groups of a bandwidth profile add up to the record, read back from its bits.
+    FieldBits f = codec.fieldBits(states.back());
+    EXPECT_EQ(f.total(), states.back().bits);
+    EXPECT_EQ(f.velocity > 0, e.model.order != Order::Static);
   }
   std::vector<EncodedEntity> encoded;
   for (std::size_t i = 0; i < in.size(); ++i) encoded.push_back({in[i].id, in[i].tick, &states[i]});
