@@ -228,6 +228,9 @@ class Launch:
             zone_argv += ["--checkpoint-dir", self.run / "checkpoints", "--checkpoint-every", self.c.checkpoint_every]
         if self.epoch:
             zone_argv += ["--epoch", self.epoch] + (["--restart", restart] if restart else [])
+        if self.c.record:
+            record = self.run / "record" / (f"epoch-{self.epoch}" if self.epoch else "")
+            zone_argv += ["--record", record]
         contexts = []
         for h in zone_hosts:
             contexts += [":"] if contexts else []
@@ -364,6 +367,8 @@ class Launch:
         argv = [self.bin / "gateway", "--scene", self.c.scene, "--bind", bind, "--dds-domain",
                 self.c.dds_domain, "--gateway-id", g.id, "--metrics", g.folder, "--expect-zones", expect,
                 "--duration", int(self.c.duration + ZONE_SAFETY_S), "--resume-key-file", self.key, *g.args]
+        if self.c.record:
+            argv += ["--record", self.run / "record"]
         if self.c.lobby:
             # The lobby tells players where the gateway is: one bound to every interface
             # names its host's cluster address.

@@ -19,7 +19,10 @@ ${VAR:-default} from the environment. Relative paths are relative to the source 
               of restarted jobs, default the same), ledger (where zones commit players'
               transactions: sqlite, the default where every zone host is this machine, a file
               ledger.sqlite in the run folder that all ranks share; sqlite:PATH; postgres:CONNINFO;
-              none, the default across machines, where one file cannot be shared safely)
+              none, the default across machines, where one file cannot be shared safely),
+              record (no | yes: zones and gateways write a recording of every tick into the
+              run folder's record/ for deploy/inspect.sh; a restarted zone job into
+              record/epoch-N/)
   [host NAME] reach (local | netns NAMESPACE | ssh [USER@]HOST | slurm NODE), address (IPv4 on
               the cluster network; default 127.0.0.1 for local, else NAME resolved), zones
               (ranks there, default 0), cores (default: nproc there)
@@ -48,7 +51,7 @@ ROOT = Path(__file__).resolve().parents[1]
 KEYS = {
     "cluster": {"scene", "duration", "network", "btl", "yield", "dds_domain", "truth_every",
                 "zone_args", "client_args", "shared_storage", "ssh_options", "supervise",
-                "checkpoint_every", "hang_s", "restart_zones", "ledger"},
+                "checkpoint_every", "hang_s", "restart_zones", "ledger", "record"},
     "host": {"reach", "address", "zones", "cores"},
     "gateway": {"host", "bind", "id", "args"},
     "lobby": {"host", "bind", "args"},
@@ -140,6 +143,7 @@ class Cluster:
     restart_zones: int = 0  # 0: as many ranks as the first job
     supervise_gateways: bool = False
     ledger: str = "none"  # none, sqlite (the run folder's file), sqlite:PATH or postgres:CONNINFO
+    record: bool = False  # zones and gateways write record/ (deploy/inspect.sh)
 
 
 def expand(text, where):
@@ -303,6 +307,9 @@ def load(path):
         raise ClusterError(f"{where} ledger: sqlite in the run folder needs every zone host on this "
                            f"machine (each ssh or slurm host would write its own file); use "
                            f"postgres:CONNINFO")
+    record = c.get("record", "no")
+    if record not in ("yes", "no"):
+        raise ClusterError(f"{where} record: '{record}' (expected yes or no)")
     return Cluster(scene, number(c.get("duration", "20"), f"{where} duration", float, 1), network,
                    c.get("btl", ""), yield_mode, domain, number(c.get("truth_every", "0"), f"{where} truth_every"),
                    shlex.split(c.get("zone_args", "")), shlex.split(c.get("client_args", "")),
@@ -310,7 +317,7 @@ def load(path):
                    "zones" in supervise,
                    number(c.get("checkpoint_every", "60" if "zones" in supervise else "0"), f"{where} checkpoint_every"),
                    number(c.get("hang_s", "10"), f"{where} hang_s", float, 1), restart_zones,
-                   "gateways" in supervise, ledger)
+                   "gateways" in supervise, ledger, record == "yes")
 
 
 def plan(cluster):
@@ -325,6 +332,8 @@ def plan(cluster):
         lines.append("supervised: a dead gateway restarts on its address; its players resume there")
     lines.append("ledger: " + {"none": "none (players' transactions fail with that reason)",
                                "sqlite": "sqlite, ledger.sqlite in the run folder"}.get(cluster.ledger, cluster.ledger))
+    if cluster.record:
+        lines.append("recorded: zones and gateways write record/ in the run folder (deploy/inspect.sh)")
     for h in cluster.hosts.values():
         lines.append(f"{h.describe()} at {h.address}: {h.zones} zone ranks")
     for g in cluster.gateways:

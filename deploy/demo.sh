@@ -8,6 +8,8 @@
 #    showed of it, for the error-against-truth table of the report; 0 = off;
 #    ZONESIM_DEMO_CLIENT_ARGS: more client_stub options, e.g. "--max-lead-s 0" to compare;
 #    ZONESIM_DEMO_GATEWAY_ARGS: more gateway options, e.g. "--budget-kbps 20";
+#    ZONESIM_DEMO_RECORD: yes (default) or no: zones and gateway record every tick into
+#    RUN_DIR/record/ for deploy/inspect.sh;
 #    ZONESIM_DDS_DOMAIN: the DDS domain (default: a random one of 1-90);
 #    ZONESIM_BIN: run the programs already built there, without setup.sh's apt-get and build,
 #    as tests/integration/demo_smoke.py does)

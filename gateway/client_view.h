@@ -56,6 +56,11 @@ class ClientView {
   /// diff counts from 1; version 0 is older than any state).
   void holdDespawn(std::uint64_t id) { known_.insertOrAssign(id, Sent{0, 0}); }
   std::size_t size() const { return known_.size(); }
+  /// Calls f(id) for every entity the client holds, in no particular order.
+  template <typename F>
+  void forEachKnown(F&& f) const {
+    known_.forEach([&](std::uint64_t id, const Sent&) { f(id); });
+  }
 
  private:
   struct Sent {

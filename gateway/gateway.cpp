@@ -91,6 +91,9 @@ Gateway::Gateway(GatewayConfig config)
       codec_(dr::codecParams(config_.scene)),
       impairment_(config_.impairment, 0x9a7e) {
   if (!config_.metrics_path.empty()) metrics_ = MetricsWriter(config_.metrics_path);
+  if (!config_.record_dir.empty())
+    recorder_ = std::make_unique<GatewayRecorder>(config_.record_dir, int(config_.gateway_id),
+                                                  config_.scene, grid_, codec_);
   if (config_.auth_key) {
     LoadIdentity id{std::uint16_t(config_.gateway_id), randomIncarnation(),
                     publicAddress(config_.public_address, socket_.local()),
@@ -240,6 +243,7 @@ void Gateway::tick(std::int64_t now_ns) {
   expireSessions(now_ns);
   updateInterest(now_ns);
   sendViews(now_ns);
+  if (recorder_) recordTick(clock_.simNow(now_ns));
   flushSends();
   double ms = double(nowNs() - now_ns) * 1e-6, cpu_ms = double(threadCpuNs() - cpu_ns) * 1e-6;
   tick_window_.add(ms);
@@ -436,6 +440,7 @@ void Gateway::applyCellDelta(const CellDelta& delta) {
 void Gateway::sendTo(Session& s, const Bytes& bytes) {
   ++s.traffic.datagrams_out;
   s.traffic.bytes_out += bytes.size();
+  if (recorder_ && !isDownlinkFrame(bytes)) recorder_->controlDatagram(s.player_id, bytes.size());
   if (config_.budget.enabled()) s.budget.spend(bytes.size());
   sendTo(s.address, bytes);
 }
@@ -515,6 +520,7 @@ std::string Gateway::summaryJson() {
   std::sort(kbps.begin(), kbps.end());
   g.client_kbps_p50 = kbps.empty() ? 0.0 : kbps[kbps.size() / 2];
   g.client_kbps_max = worst_client_kbps_;
+  if (recorder_) g.record_frames_mismatched = recorder_->framesMismatched();
   const std::vector<float>& jumps = cache_.epochJumps();
   if (!jumps.empty()) {
     std::vector<double> m(jumps.begin(), jumps.end());

@@ -21,6 +21,7 @@
 #include "gateway/datagram_handler.h"
 #include "gateway/epoch_timeline.h"
 #include "gateway/gateway_metrics.h"
+#include "gateway/gateway_recorder.h"
 #include "gateway/interest_manager.h"
 #include "gateway/load_report.h"
 #include "gateway/session_table.h"
@@ -75,6 +76,8 @@ struct GatewayConfig {
   /// The key the cluster's gateways share for resume tokens (--resume-key-file, by default the
   /// cluster's key): a player whose gateway died comes back to any of them as itself.
   std::optional<auth::AuthKey> resume_key{};
+  /// gateway --record DIR: a recording of every tick (gateway/gateway_recorder.h); empty: none.
+  std::string record_dir;
 };
 
 class Gateway {
@@ -153,6 +156,10 @@ class Gateway {
   void resendHandoff(Session& s, std::int64_t now_ns);
   void sendTo(Session& s, const Bytes& bytes);
   void sendTo(const Endpoint& to, const Bytes& bytes);
+  /// With --record (gateway_record.cpp): a player's view as it holds it now, and the tick's
+  /// frame with the subscribed cells.
+  void recordView(const Session& s, const ViewPoint& at);
+  void recordTick(double sim_now);
   void closeSession(SlotHandle h, bool expired);
   /// Bookkeeping for a player whose session ended: its figures, its interest, its avatar.
   void retirePlayer(const Session& s, CellDelta& delta);
@@ -211,6 +218,9 @@ class Gateway {
   ReceiveBatch rx_batch_;  // recvmmsg buffers
   SendQueue send_queue_;   // datagrams of this tick or wake, sent with sendmmsg
   dr::StateCodec codec_;   // packs states for clients exactly as the zones quantised them
+  std::unique_ptr<GatewayRecorder> recorder_;        // --record; null: nothing recorded
+  std::vector<RecordedVisible> recorded_visible_;    // one player's, reused
+  std::vector<std::pair<int, int>> recorded_cells_;  // the tick's cells and holders, reused
   // This tick's encoded states by id (cleared by sendViews): each entity is quantised once a
   // tick and shared by every player it goes to. Mutable: a memo that sizing fills too.
   mutable FlatIdMap<dr::EncodedState> encoded_;

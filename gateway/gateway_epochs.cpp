@@ -66,6 +66,7 @@ void Gateway::followEpochs(std::int64_t now_ns) {
     counters_.epochs_entered = timeline_.epochsEntered();
     resync_due_ns_ = now_ns + std::int64_t(kResyncSeconds * 1e9);
     ZS_INFO("zones restarted: cluster epoch %u", unsigned(timeline_.epoch()));
+    if (recorder_) recorder_->epoch(timeline_.epoch());
   }
   if (resync_due_ns_ == 0 || now_ns < resync_due_ns_) return;
   resync_due_ns_ = 0;

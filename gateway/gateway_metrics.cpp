@@ -69,6 +69,7 @@ void addGauges(JsonLine& j, const GatewayGauges& g) {
       .add("process_cpu_ms_per_tick", g.process_cpu_ms_per_tick)
       .add("client_kbps_p50", g.client_kbps_p50)
       .add("client_kbps_max", g.client_kbps_max);
+  if (g.record_frames_mismatched) j.add("record_frames_mismatched", *g.record_frames_mismatched);
   if (g.epoch_jumps > 0)
     j.add("epoch_jumps", std::uint64_t(g.epoch_jumps))
         .add("epoch_jump_m_p50", g.epoch_jump_m_p50)

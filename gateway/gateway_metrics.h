@@ -3,6 +3,7 @@
 // summary at exit that adds per-player traffic.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,8 @@ struct GatewayGauges {
   std::uint32_t epoch = 0;  ///< the newest cluster epoch seen
   /// Summary only: how far entities jumped when a restored world replaced them (metres).
   std::size_t epoch_jumps = 0;
+  /// With --record: lean frames whose bits the bandwidth attribution could not account for.
+  std::optional<std::uint64_t> record_frames_mismatched;
   double epoch_jump_m_p50 = 0, epoch_jump_m_p99 = 0, epoch_jump_m_max = 0;
   /// The zones' time dilation factor in the newest sample, and the lowest seen in the run.
   double zone_dilation = 1, zone_dilation_min = 1;

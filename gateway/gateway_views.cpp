@@ -65,6 +65,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
       ++counters_.clock_ticks;
     }
     if (config_.budget.enabled()) s.budget.endTick();
+    if (recorder_) recordView(s, at);
   });
 }
 
@@ -111,7 +112,7 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   ChunkSeq seq{[](void* t) { return static_cast<ResendTracker*>(t)->nextSeq(); }, &s.resend,
                &chunk_counts_};
   auto send = [&](std::uint32_t first, std::size_t frames, const std::vector<std::uint64_t>& ids,
-                  Carried what) {
+                  Carried what, std::uint64_t batch_tick = 0) {
     std::size_t at = 0;
     for (std::size_t i = 0; i < frames; ++i) {
       sendTo(s, frames_.frames[i]);
@@ -119,6 +120,14 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
         s.resend.sent(first + std::uint32_t(i), std::span(ids).subspan(at, chunk_counts_[i]), what,
                       now_ns);
       at += chunk_counts_[i];
+    }
+    if (recorder_) {
+      std::span<const Bytes> sent(frames_.frames.data(), frames);
+      if (what == Carried::Despawn)
+        recorder_->despawnFrames(s.player_id, sent, chunk_counts_, ids);
+      else
+        recorder_->stateFrames(s.player_id, sent, chunk_counts_, encoded_scratch_, batch_tick,
+                               what == Carried::Spawn);
     }
     chunk_counts_.clear();
   };
@@ -129,11 +138,11 @@ void Gateway::sendView(Session& s, const ViewDiff& diff, std::int64_t now_ns) {
   first = s.resend.upcoming();
   std::uint64_t batch = encodedStates(diff.spawns, states);
   send(first, encodeSpawnFrames(s.token, batch, codec_, states, seq, frames_), diff.spawns,
-       Carried::Spawn);
+       Carried::Spawn, batch);
   first = s.resend.upcoming();
   batch = encodedStates(diff.updates, states);
   send(first, encodeStateFrames(s.token, batch, codec_, states, seq, frames_), diff.updates,
-       Carried::Update);
+       Carried::Update, batch);
   if (config_.budget.enabled()) {
     for (std::uint64_t id : diff.despawns) s.budget.forget(id);
     for (std::uint64_t id : diff.spawns) s.budget.sent(id, *cache_.find(id));

@@ -59,4 +59,9 @@ int InterestManager::refcount(int cell) const {
   return it == refcount_.end() ? 0 : it->second;
 }
 
+void InterestManager::cellsHeld(std::vector<std::pair<int, int>>& out) const {
+  out.assign(refcount_.begin(), refcount_.end());
+  std::sort(out.begin(), out.end());
+}
+
 }  // namespace zonesim::gateway

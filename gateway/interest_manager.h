@@ -35,6 +35,8 @@ class InterestManager {
   int refcount(int cell) const;
   /// Cells in the union.
   std::size_t subscribedCells() const { return refcount_.size(); }
+  /// The cells in the union with how many players hold each, ascending by cell (into out).
+  void cellsHeld(std::vector<std::pair<int, int>>& out) const;
 
  private:
   void acquire(int cell, CellDelta& delta);

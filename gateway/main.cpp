@@ -37,6 +37,10 @@ int main(int argc, char** argv) {
                  "gateway id, unique per gateway of a cluster (bits 32-47 of player ids)")
       ->check(CLI::Range(1u, 0xffffu));
   app.add_option("--metrics", metrics_dir, "write DIR/gateway.jsonl and DIR/gateway_summary.json");
+  app.add_option("--record", cfg.record_dir,
+                 "write a recording of every tick into this folder (gateway_<id>.zsrec: "
+                 "subscribed cells, each player's visible set and bytes by field) for "
+                 "deploy/inspect.sh");
   app.add_option("--duration", duration, "exit after this many seconds (0 = until signalled)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "seed of avatar spawn positions (default: the scene seed)");
@@ -140,6 +144,7 @@ int main(int argc, char** argv) {
       std::filesystem::create_directories(metrics_dir);
       cfg.metrics_path = metrics_dir + "/gateway.jsonl";
     }
+    if (!cfg.record_dir.empty()) std::filesystem::create_directories(cfg.record_dir);
     std::optional<zonesim::gateway::Gateway> bound;
     try {
       bound.emplace(cfg);

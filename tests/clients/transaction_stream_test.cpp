@@ -43,7 +43,9 @@ TEST(TransactionStream, MakesAtItsRateNumberedFromOneWithValidContent) {
     const gateway::TransactionInfo& t = w.sent[i];
     EXPECT_EQ(t.seq, i + 1);
     EXPECT_TRUE(t.kind >= 2 && t.kind <= 4) << int(t.kind);
-    if (t.kind != 4) EXPECT_GE(t.item, 1u);
+    if (t.kind != 4) {
+      EXPECT_GE(t.item, 1u);
+    }
   }
   EXPECT_FALSE(TransactionStream(0, 1, 0).active());
 }
