@@ -14,6 +14,7 @@ PACKAGES=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   python3 python3-matplotlib
+  python3-flatbuffers python3-numpy  # recordings read from Python (inspector/, tests)
   libbullet-dev
   clang libclang-rt-14-dev
   iproute2  # ip netns, veth and bridge for the multi_host test (deploy/netns.sh)

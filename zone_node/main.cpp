@@ -100,7 +100,8 @@ int run(const Options& o, MPI_Comm comm) {
   zone::TruthLog truth(
       o.metrics_dir.empty() ? "" : o.metrics_dir + "/truth_" + std::to_string(node.rank()) + ".csv",
       o.truth_every);
-  zone::ItemLog items(o.metrics_dir.empty()
+  // Only scenes with unique items have a story to tell about them.
+  zone::ItemLog items(o.metrics_dir.empty() || scene.interactions.items.empty()
                           ? ""
                           : o.metrics_dir + "/zone_" + std::to_string(node.rank()) + "_items.csv");
   if (!o.restart.empty()) items.restored(node.tickCount(), node.store());
