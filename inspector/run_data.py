@@ -117,16 +117,18 @@ class RunData:
                 markers.append({"tick": int(tick), "kind": "restart",
                                 "text": f"zone {rank} restarted from tick {int(e['value'])}, "
                                         f"epoch {int(e['other'])}"})
+        # A zone job's fault shows where the gateway first heard the restored world; the
+        # supervisor (supervisor.jsonl) says why the job was restarted.
+        why = {int(line["epoch"]): line.get("reason", "") for line in self._supervisor
+               if line.get("kind") == "zones" and "epoch" in line}
         for gid, rec in self.gateways.items():
             for i in range(len(rec)):
                 f = rec.gateway_tick(i)
                 for e in f["events"]:
+                    epoch = int(e["other"])
+                    reason = f" ({why[epoch]})" if epoch in why else ""
                     markers.append({"tick": int(f["tick"]), "kind": "fault",
-                                    "text": f"gateway {gid}: zones restarted, epoch {int(e['other'])}"})
-        for line in self._supervisor:
-            if "tick" in line and line.get("event") in ("killed", "lost", "restart", "hung"):
-                markers.append({"tick": int(line["tick"]), "kind": "fault",
-                                "text": line.get("reason", line.get("event"))})
+                                    "text": f"zones restarted{reason}: gateway {gid} in epoch {epoch}"})
         markers.sort(key=lambda m: (m["tick"], m["kind"]))
         grid = h["grid"]
         return {
