@@ -29,6 +29,7 @@ import process_group  # noqa: E402  (deploy/process_group.py)
 
 # Zones outlive the players by this much at most: they are stopped once the fleets are done.
 ZONE_SAFETY_S = 300
+DEBIAN_PYTHON = "/usr/bin/python3"  # where python3-matplotlib is (report_html.py's plots)
 
 
 # A command run over ssh without a terminal is not signalled when its connection goes: a SIGTERM
@@ -340,6 +341,11 @@ class Launch:
                 if (g.folder / name).exists():
                     (g.folder / name).rename(old / name)
             g.log.rename(old / g.log.name)
+            # Its recording too: the restarted gateway writes a new one under the same name.
+            recording = self.run / "record" / f"gateway_{g.id}.zsrec"
+            if recording.exists():
+                (self.run / "record" / f"before-restart-{g.name}-{g.restarts}").mkdir(exist_ok=True)
+                recording.rename(self.run / "record" / f"before-restart-{g.name}-{g.restarts}" / recording.name)
             slot = next(i for i, p in enumerate(self.procs) if p[0] is g.proc)
             bind = g.bind.split(":")[0] + ":" + g.address.rsplit(":", 1)[1]
             self.launch_gateway(g, dds, bind)
@@ -552,6 +558,11 @@ class Launch:
         r = subprocess.run([sys.executable, ROOT / "deploy" / "report.py", self.run])
         if r.returncode != 0:
             raise ClusterError(f"report.py {self.run}: exited with {r.returncode}")
+        # The same report as one page with plots: matplotlib is Debian's, for Debian's python3.
+        page = subprocess.run([DEBIAN_PYTHON if Path(DEBIAN_PYTHON).exists() else sys.executable,
+                               ROOT / "deploy" / "report_html.py", self.run])
+        if page.returncode != 0:
+            raise ClusterError(f"report_html.py {self.run}: exited with {page.returncode}")
 
 
 def main():

@@ -120,6 +120,9 @@ Gateway::Gateway(GatewayConfig config)
         std::max(budget_bytes_per_tick_ * budget_ticks_per_send_, double(one_spawn));
     budget_cap_bytes_ = budget_send_bytes_ + budget_bytes_per_tick_;
   }
+  if (config_.record_every_ticks < 1)
+    throw std::invalid_argument("gateway: --record-every-ticks must be at least 1, not " +
+                                std::to_string(config_.record_every_ticks));
   if (config_.full_scan_every_ticks < 1)
     throw std::invalid_argument("gateway: --full-scan-every must be at least 1, not " +
                                 std::to_string(config_.full_scan_every_ticks));
@@ -243,7 +246,6 @@ void Gateway::tick(std::int64_t now_ns) {
   expireSessions(now_ns);
   updateInterest(now_ns);
   sendViews(now_ns);
-  if (recorder_) recordTick(clock_.simNow(now_ns));
   flushSends();
   double ms = double(nowNs() - now_ns) * 1e-6, cpu_ms = double(threadCpuNs() - cpu_ns) * 1e-6;
   tick_window_.add(ms);

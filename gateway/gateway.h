@@ -76,8 +76,12 @@ struct GatewayConfig {
   /// The key the cluster's gateways share for resume tokens (--resume-key-file, by default the
   /// cluster's key): a player whose gateway died comes back to any of them as itself.
   std::optional<auth::AuthKey> resume_key{};
-  /// gateway --record DIR: a recording of every tick (gateway/gateway_recorder.h); empty: none.
+  /// gateway --record DIR: a recording (gateway/gateway_recorder.h); empty: none.
   std::string record_dir;
+  /// A recorded frame every this many ticks: the players' views as they stand then, their
+  /// bytes since the frame before. Each player's view is most of a frame (its visible set with
+  /// positions, ~24 bytes an entity): every tick, 32 players of the demo would write ~10 MB/s.
+  int record_every_ticks = 6;
 };
 
 class Gateway {

@@ -69,10 +69,11 @@ class GatewayRecorder {
                      std::span<const std::size_t> counts, std::span<const std::uint64_t> ids);
   /// Any other datagram to a player (counted as headers whole).
   void controlDatagram(std::uint64_t player, std::size_t bytes);
-  /// A player's view this tick; socket_bytes_total: all bytes ever sent to it.
+  /// A player's view at a recorded tick; socket_bytes_total: all bytes ever sent to it (its
+  /// frame holds the bytes since its previous frame).
   void view(std::uint64_t player, std::uint64_t avatar, double x, double z, double nimbus,
             std::span<const RecordedVisible> visible, std::uint64_t socket_bytes_total);
-  /// Writes the tick's frame: the views given since the last call, the cells with subscribers.
+  /// Writes a frame: the views given since the last call, the cells with subscribers.
   void endTick(std::uint64_t tick, double sim_time, std::span<const std::pair<int, int>> cells);
   /// A new cluster epoch's samples arrived.
   void epoch(std::uint32_t epoch);

@@ -19,6 +19,7 @@ void Gateway::sendViews(std::int64_t now_ns) {
                             : 1.0;
   last_views_ns_ = now_ns;
   ++views_;
+  const bool record_views = recorder_ && views_ % std::uint64_t(config_.record_every_ticks) == 0;
   snapshot_.rebuild(cache_, grid_, sim_now);
   sessions_.forEach([&](SlotHandle, Session& s) {
     if (!s.welcomed) return;
@@ -65,8 +66,9 @@ void Gateway::sendViews(std::int64_t now_ns) {
       ++counters_.clock_ticks;
     }
     if (config_.budget.enabled()) s.budget.endTick();
-    if (recorder_) recordView(s, at);
+    if (record_views) recordView(s, at);
   });
+  if (record_views) recordTick(sim_now);
 }
 
 void Gateway::addResends(Session& s, ViewDiff& diff, std::int64_t now_ns) {

@@ -41,6 +41,9 @@ int main(int argc, char** argv) {
                  "write a recording of every tick into this folder (gateway_<id>.zsrec: "
                  "subscribed cells, each player's visible set and bytes by field) for "
                  "deploy/inspect.sh");
+  app.add_option("--record-every-ticks", cfg.record_every_ticks,
+                 "with --record: a frame every this many ticks (the players' views then, their "
+                 "bytes since the frame before)");
   app.add_option("--duration", duration, "exit after this many seconds (0 = until signalled)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--seed", seed, "seed of avatar spawn positions (default: the scene seed)");

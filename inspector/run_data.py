@@ -182,7 +182,8 @@ class RunData:
                 "truncated": truncated}
 
     def _truth(self, tick):
-        """{id: (x, z)} of every recorded owned entity at exactly this tick."""
+        """{id: (x, z)} of every recorded owned entity at exactly this tick (zones record
+        every tick)."""
         if tick not in self._truth_cache:
             truth = {}
             for rec in self.zones.values():
@@ -221,7 +222,7 @@ class RunData:
                 return {"id": str(pid), "avatar": str(p["avatar"]), "tick": int(f["tick"]),
                         "gateway": gid, "x": float(p["x"]), "z": float(p["z"]),
                         "nimbus": float(p["nimbus"]), "visible": visible,
-                        "bytes": {"total": int(p["socket_bytes"]),
+                        "bytes": {"total": int(p["socket_bytes"]),  # since its previous frame
                                   "by_field": {g: int(b) for g, b in zip(groups, p["field_bytes"])},
                                   "by_entity": [{"id": str(e), "bytes": b} for e, b in by_entity]}}
         raise KeyError(f"player {player_id} is in no gateway recording at or before tick {t}")
@@ -277,15 +278,23 @@ class RunData:
             phases = np.array([f["phase_ms"] for f in rows]) if rows else np.zeros((0, 0))
             ranks[str(rank)] = {name: [round(float(v), 4) for v in phases[:, k]]
                                 for k, name in enumerate(h["phase_names"])} if len(rows) else {}
-        per_player, rate = {}, 30.0
+        # A gateway frame holds each player's bytes since its previous frame (gateway
+        # --record-every-ticks): a rate over that interval, held over the ticks it covers.
+        rates = {}  # player -> ([frame tick], [kbit/s])
         for rec in self.gateways.values():
-            rate = 1.0 / rec.header["dt"] if rec.header["dt"] else rate
+            dt = rec.header["dt"] or 1 / 30
+            last = {}
             for i in range(len(rec)):
                 f = rec.gateway_tick(i)
                 for p in f["players"]:
-                    d = per_player.setdefault(str(p["player"]), {})
-                    d[int(f["tick"])] = d.get(int(f["tick"]), 0) + p["socket_bytes"]
-        kbps = {pid: [round(d.get(t, 0) * 8 / 1000 * rate, 2) for t in ticks]
-                for pid, d in per_player.items()}
+                    pid, tick = str(p["player"]), int(f["tick"])
+                    if pid in last and tick > last[pid]:
+                        ts, vs = rates.setdefault(pid, ([], []))
+                        ts.append(tick)
+                        vs.append(p["socket_bytes"] * 8 / 1000 / ((tick - last[pid]) * dt))
+                    last[pid] = tick
+        kbps = {}
+        for pid, (ts, vs) in rates.items():
+            kbps[pid] = [round(vs[min(bisect.bisect_left(ts, t), len(vs) - 1)], 2) for t in ticks]
         return {"ticks": ticks, "phases": h["phase_names"] if h else [], "ranks": ranks,
                 "clients": kbps}

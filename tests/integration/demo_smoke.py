@@ -37,4 +37,9 @@ with tempfile.TemporaryDirectory(prefix="zs_demo_") as tmp:
     h.check(1 < per_update < 1400, f"bytes per update plausible ({per_update:.1f})")
     h.check(t["bytes_in_per_s_mean"] < 1e6, f"download per player plausible ({t['bytes_in_per_s_mean']:.0f} B/s)")
     h.check(bool(r["gateway"]), "the gateway's last metrics line is in the report")
+    page = (run / "report.html").read_text() if (run / "report.html").exists() else ""
+    h.check("Zones" in page and "report_tick.png" in page and (run / "report_tick.png").exists(),
+            "the report is also one HTML page, with its plots")
+    h.check(f"deploy/inspect.sh {run}" in page and (run / "record").is_dir(),
+            "the demo was recorded and its page says how to open the inspector on it")
 print("demo smoke passed")
