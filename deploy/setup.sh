@@ -15,6 +15,7 @@ PACKAGES=(
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   python3 python3-matplotlib
   python3-flatbuffers python3-numpy  # recordings read from Python (inspector/, tests)
+  chromium python3-websockets  # the inspector_browser test: headless Chromium over its DevTools protocol
   libbullet-dev
   clang libclang-rt-14-dev
   iproute2  # ip netns, veth and bridge for the multi_host test (deploy/netns.sh)

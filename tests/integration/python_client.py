@@ -3,11 +3,14 @@ classes the build generates) logs in to a live gateway in front of 4 zone ranks,
 sends inputs and decodes the states the gateway streams. What it decoded of its own avatar is
 checked against the zones' recording of the truth at the same ticks: within the codec's
 position resolution (half a step each axis), so every bit of the packing was read right.
+Meanwhile the inspector attaches live (deploy/inspect.sh --live) to the zones' growing
+recordings: it must follow them, and cap the entities it answers per tick.
 Runs under Debian's python3 (python3-flatbuffers, python3-numpy)."""
-import math
+import json
 import sys
 import tempfile
 import time
+import urllib.request
 from pathlib import Path
 
 import harness as h
@@ -45,6 +48,24 @@ with tempfile.TemporaryDirectory(prefix="zs_pyclient_") as tmp:
         av = c.avatar()
         if av and (not seen or seen[-1][0] != av["tick"]):
             seen.append((av["tick"], av["pos"][0], av["pos"][2]))
+    # The inspector attached live to the running zones: it follows the recordings as they
+    # grow, at most one re-read a second, and answers at most --max-entities a tick.
+    server_env = dict(env, ZONESIM_BUILD_DIR=str(h.bin_dir().parent))
+    server = h.start(["bash", h.SOURCE_DIR / "deploy/inspect.sh", out, "--live", "--port", "0",
+                      "--port-file", out / "inspect_port", "--max-entities", "40"],
+                     out / "inspect.log", server_env)
+    inspect_port = h.wait_for_port(out / "inspect_port", server, out / "inspect.log")
+    base = f"http://127.0.0.1:{inspect_port}/api"
+    first = json.load(urllib.request.urlopen(f"{base}/meta"))
+    time.sleep(2.5)
+    later = json.load(urllib.request.urlopen(f"{base}/meta"))
+    capped = json.load(urllib.request.urlopen(f"{base}/tick?t={later['last_tick']}"))
+    h.stop(server)
+    h.check(later["live"] and later["last_tick"] > first["last_tick"],
+            f"live: the inspector followed the growing recordings (tick {first['last_tick']} -> "
+            f"{later['last_tick']})")
+    h.check(len(capped["entities"]) == 40 and capped["truncated"],
+            "live: at most --max-entities entities a tick answered")
     h.stop(gateway)
     h.stop(zones, grace=30)
 
