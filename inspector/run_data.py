@@ -44,13 +44,16 @@ class RunData:
 
     def _reset_caches(self):
         self._truth_cache = {}
-        self._events = None
+        # Gathered from the frames read so far and extended with new ones only: a live run's
+        # meta must not cost a pass over its whole history every second.
+        self._events, self._events_read = [], {}
+        self._players, self._gateway_events, self._gateway_read = {}, [], {}
 
     def refresh(self):
         """Reads what the recordings gained (live mode); True if any gained frames."""
         grew = sum(r.refresh() for r in list(self.zones.values()) + list(self.gateways.values()))
         if grew:
-            self._reset_caches()
+            self._truth_cache = {}
             self._supervisor = self._read_supervisor()
         return grew > 0
 
@@ -72,27 +75,29 @@ class RunData:
         return rec.header
 
     def _zone_events(self):
-        """[(tick, rank, event row)] over every zone frame, in tick order (cached)."""
-        if self._events is None:
-            ev = []
-            for rank, rec in self.zones.items():
-                for i in range(len(rec)):
-                    f = rec.zone_tick(i)
-                    for e in f["events"]:
-                        ev.append((f["tick"], rank, e))
+        """[(tick, rank, event row)] over every zone frame, in tick order."""
+        new = False
+        for rank, rec in self.zones.items():
+            for i in range(self._events_read.get(rank, 0), len(rec)):
+                f = rec.zone_tick(i)
+                self._events.extend((f["tick"], rank, e) for e in f["events"])
+                new = new or len(f["events"]) > 0
+            self._events_read[rank] = len(rec)
+        if new:
             # Within a tick: departures, then arrivals, then first inputs (EventKind order).
-            ev.sort(key=lambda x: (x[0], int(x[2]["kind"]), x[1]))
-            self._events = ev
+            self._events.sort(key=lambda x: (x[0], int(x[2]["kind"]), x[1]))
         return self._events
 
-    def _players(self):
-        seen = {}
+    def _gateway_frames_read(self):
+        """Players (id -> newest avatar, gateway) and epoch events [(tick, gateway, epoch)]."""
         for gid, rec in self.gateways.items():
-            # The last frame names the newest avatar of each player; earlier ones those who left.
-            for i in range(len(rec)):
-                for p in rec.gateway_tick(i)["players"]:
-                    seen[p["player"]] = (p["avatar"], gid)
-        return seen
+            for i in range(self._gateway_read.get(gid, 0), len(rec)):
+                f = rec.gateway_tick(i)
+                for p in f["players"]:
+                    self._players[p["player"]] = (p["avatar"], gid)
+                self._gateway_events.extend((int(f["tick"]), gid, int(e["other"])) for e in f["events"])
+            self._gateway_read[gid] = len(rec)
+        return self._players, self._gateway_events
 
     def meta(self):
         h = self._any_header()
@@ -121,14 +126,11 @@ class RunData:
         # supervisor (supervisor.jsonl) says why the job was restarted.
         why = {int(line["epoch"]): line.get("reason", "") for line in self._supervisor
                if line.get("kind") == "zones" and "epoch" in line}
-        for gid, rec in self.gateways.items():
-            for i in range(len(rec)):
-                f = rec.gateway_tick(i)
-                for e in f["events"]:
-                    epoch = int(e["other"])
-                    reason = f" ({why[epoch]})" if epoch in why else ""
-                    markers.append({"tick": int(f["tick"]), "kind": "fault",
-                                    "text": f"zones restarted{reason}: gateway {gid} in epoch {epoch}"})
+        players, epochs = self._gateway_frames_read()
+        for tick, gid, epoch in epochs:
+            reason = f" ({why[epoch]})" if epoch in why else ""
+            markers.append({"tick": tick, "kind": "fault",
+                            "text": f"zones restarted{reason}: gateway {gid} in epoch {epoch}"})
         markers.sort(key=lambda m: (m["tick"], m["kind"]))
         grid = h["grid"]
         return {
@@ -141,7 +143,7 @@ class RunData:
             "interest": {"origin": grid["origin"], "cell": grid["cell"], "cols": grid["cols"],
                          "rows": grid["rows"]},
             "players": [{"id": str(p), "avatar": str(a), "gateway": g}
-                        for p, (a, g) in sorted(self._players().items())],
+                        for p, (a, g) in sorted(players.items())],
             "markers": markers,
             "truth": bool(self.zones),
             "live": self.live,

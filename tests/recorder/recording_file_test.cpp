@@ -63,6 +63,18 @@ std::vector<char> writeSample(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Where each chunk of a finished file starts, walking the lengths from the first.
+std::vector<std::size_t> chunkOffsets(const std::vector<char>& bytes) {
+  std::vector<std::size_t> chunks;
+  for (std::size_t at = 8; at + 8 <= bytes.size() - 16;) {
+    chunks.push_back(at);
+    std::uint32_t size;
+    std::memcpy(&size, bytes.data() + at, 4);
+    at += 8 + size;
+  }
+  return chunks;
+}
+
 void save(const std::string& path, const std::vector<char>& bytes) {
   std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
 }
@@ -120,15 +132,7 @@ TEST(RecordingFile, AFlippedBitIsRefusedAtItsChunk) {
   const std::string path = tempPath("flip.zsrec");
   std::vector<char> bytes = writeSample(path);
   std::filesystem::remove(path);
-  // The second tick frame: find its chunk by walking the lengths from the first chunk.
-  std::size_t at = 8;
-  std::vector<std::size_t> chunks;
-  while (at + 8 <= bytes.size() - 16) {
-    chunks.push_back(at);
-    std::uint32_t size;
-    std::memcpy(&size, bytes.data() + at, 4);
-    at += 8 + size;
-  }
+  const std::vector<std::size_t> chunks = chunkOffsets(bytes);
   ASSERT_EQ(chunks.size(), 5u);  // Header, 3 ticks, Index
   std::vector<char> damaged = bytes;
   damaged[chunks[2] + 8 + 40] ^= 0x10;
@@ -144,14 +148,7 @@ TEST(RecordingFile, TruncatedFilesAreRefusedOrReadToTheirLastCompleteFrame) {
   std::vector<char> bytes = writeSample(path);
   std::filesystem::remove(path);
   // Cut inside the third tick frame: no footer, and a partial chunk.
-  std::size_t at = 8;
-  std::vector<std::size_t> chunks;
-  while (at + 8 <= bytes.size() - 16) {
-    chunks.push_back(at);
-    std::uint32_t size;
-    std::memcpy(&size, bytes.data() + at, 4);
-    at += 8 + size;
-  }
+  const std::vector<std::size_t> chunks = chunkOffsets(bytes);
   std::vector<char> cut(bytes.begin(), bytes.begin() + std::ptrdiff_t(chunks[3] + 20));
   std::uint64_t offset = 0;
   const std::string why = refusal(cut, &offset);
