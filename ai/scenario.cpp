@@ -12,6 +12,19 @@ namespace {
 // The seven numeric fields after the map path: width, height, sx, sy, gx, gy, length.
 constexpr int kTrailingFields = 7;
 
+// 10^-d for a decimal number written with d digits after its point (1 without one).
+double lastDecimalPlace(std::string_view s) {
+  std::size_t point = s.find('.');
+  if (point == std::string_view::npos) return 1.0;
+  std::size_t digits = 0;
+  while (point + 1 + digits < s.size() && s[point + 1 + digits] >= '0' &&
+         s[point + 1 + digits] <= '9')
+    ++digits;
+  double step = 1.0;
+  for (std::size_t i = 0; i < digits; ++i) step /= 10.0;
+  return step;
+}
+
 int intField(std::string_view s, const std::string& file, int lineNo, const char* name) {
   int v = 0;
   if (!parseInt(s, v)) {
@@ -60,6 +73,7 @@ std::vector<ScenarioProblem> parseScenario(std::istream& in, const std::string& 
     if (!parseDouble(f[pathEnd + 6], p.optimal) || p.optimal < 0) {
       throw ParseError(file, lineNo, "bad optimal length '" + std::string(f[pathEnd + 6]) + "'");
     }
+    p.optimal_step = lastDecimalPlace(f[pathEnd + 6]);
     if (p.map_width <= 0 || p.map_height <= 0) {
       throw ParseError(file, lineNo, "map size must be positive");
     }
@@ -79,6 +93,12 @@ std::vector<ScenarioProblem> loadScenario(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ParseError(path, 0, "cannot open scenario file");
   return parseScenario(in, path);
+}
+
+bool agreesWithListed(double length, const ScenarioProblem& p) {
+  // A hair over half a step: the listed value and ours both carry binary rounding.
+  return std::fabs(length - p.optimal) <= 0.5 * p.optimal_step * (1.0 + 1e-9) + 1e-12 ||
+         lengthsAgree(length, p.optimal);
 }
 
 }  // namespace zonesim::ai

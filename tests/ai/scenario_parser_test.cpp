@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "ai/parse_error.h"
@@ -26,6 +27,25 @@ int errorLine(const std::string& text) {
   }
   ADD_FAILURE() << "no error for:\n" << text;
   return -1;
+}
+
+// Each optimum keeps the precision it was listed with; a length agrees within its rounding.
+TEST(ScenarioParser, ComparesAtTheListedPrecision) {
+  auto p = parse(
+      "version 1\n0 a.map 8 8 0 0 1 1 1.41\n0 a.map 8 8 0 0 1 1 1.41421356\n"
+      "0 a.map 8 8 0 0 3 0 3\n0 a.map 8 8 0 0 2 1 2.41421\n");
+  ASSERT_EQ(p.size(), 4u);
+  EXPECT_DOUBLE_EQ(p[0].optimal_step, 0.01);
+  EXPECT_DOUBLE_EQ(p[1].optimal_step, 1e-8);
+  EXPECT_DOUBLE_EQ(p[2].optimal_step, 1.0);
+  EXPECT_DOUBLE_EQ(p[3].optimal_step, 1e-5);
+  const double diagonal = std::sqrt(2.0);
+  EXPECT_TRUE(agreesWithListed(diagonal, p[0]));  // 0.0042 off: within 2 decimals' rounding
+  EXPECT_FALSE(agreesWithListed(1.43, p[0]));     // a step and a half off
+  EXPECT_TRUE(agreesWithListed(diagonal, p[1]));
+  EXPECT_FALSE(agreesWithListed(diagonal + 0.01, p[1]));
+  EXPECT_TRUE(agreesWithListed(3.0, p[2]));
+  EXPECT_FALSE(agreesWithListed(1.0 + 2 * diagonal, p[3]));  // 3.83, not 2.41
 }
 
 TEST(ScenarioParser, ReadsTabSeparatedVersion1) {
