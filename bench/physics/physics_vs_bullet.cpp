@@ -1,9 +1,16 @@
-// Runs one of issue 3's benchmark scenes on zonesim_physics and on Bullet (float; the
+// Runs a benchmark scene on zonesim_physics and on Bullet (float; the
 // physics_vs_bullet_double build links Bullet's double-precision libraries), single
-// thread, dt 1/60, 10 velocity iterations (ours: plus 2 split-impulse position iterations;
-// Bullet: split impulse on), sleeping off, and prints ms per step and the stability figures.
+// thread, dt 1/60, sleeping off, and prints ms per step, where our step went by stage, and the
+// stability figures.
 //
-//   physics_vs_bullet pyramid [steps]   physics_vs_bullet spheres [steps]
+//   physics_vs_bullet pyramid [steps] [soft|pgs|both]: Jolt's pyramid, 10 velocity iterations
+//     (ours: plus 2 split-impulse position iterations; Bullet: split impulse on).
+//   physics_vs_bullet large_pyramid [steps] [base]: Box3D's large_pyramid (5,050 boxes at base
+//     100), set as Box3D sets it: soft step with 4 sub-steps of one solve and one relax pass;
+//     Bullet at 10 iterations.
+//   physics_vs_bullet many_pyramids [steps] [rows]: Box3D's many_pyramids (14 x 14 pyramids of
+//     base 10), the same settings.
+//   physics_vs_bullet spheres [steps]: 5,000 spheres in a box.
 //   physics_vs_bullet sleeping [steps]: zonesim only, the pyramid after it settles, with
 //   sleeping on and off (the cost of a scene at rest against awake).
 
@@ -16,6 +23,7 @@
 #include <cstring>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "physics/broadphase.h"
@@ -34,7 +42,6 @@ constexpr const char* kBullet = "bullet";
 #endif
 
 constexpr double kDt = 1.0 / 60.0;
-constexpr double kDensity = 1000.0;
 
 struct Timing {
   double median_ms = 0.0, mean_ms = 0.0;
@@ -55,43 +62,80 @@ double timeMs(F&& f) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Our solver as a benchmark sets it.
+struct OurSettings {
+  zp::SolverKind kind = zp::SolverKind::SoftStep;
+  int velocity_iterations = 10;  ///< Soft step: two per sub-step.
+  int position_iterations = 2;   ///< Soft step: relax passes per sub-step.
+  bool sleeping = false;
+  int settle = 0;  ///< Untimed steps before the timed ones.
+};
+
+/// Where our steps went, summed over the timed steps (ms).
+struct Stages {
+  double integrate = 0, broadphase = 0, narrowphase = 0, prepare = 0, solve = 0, islands = 0;
+  void add(const zp::StepProfile& p) {
+    integrate += 1e3 * p.integrate;
+    broadphase += 1e3 * p.broadphase;
+    narrowphase += 1e3 * p.narrowphase;
+    prepare += 1e3 * p.prepare;
+    solve += 1e3 * p.solve;
+    islands += 1e3 * p.islands;
+  }
+  void print(const char* engine, int steps) const {
+    const double total = integrate + broadphase + narrowphase + prepare + solve + islands;
+    const auto pct = [&](double x) { return 100.0 * x / total; };
+    std::printf(
+        "%-8s stages, ms/step: broadphase %.2f (%.0f%%), narrowphase %.2f (%.0f%%), prepare "
+        "%.2f (%.0f%%), solve+integrate positions %.2f (%.0f%%), integrate forces %.2f "
+        "(%.0f%%), islands %.2f\n",
+        engine, broadphase / steps, pct(broadphase), narrowphase / steps, pct(narrowphase),
+        prepare / steps, pct(prepare), solve / steps, pct(solve), integrate / steps,
+        pct(integrate), islands / steps);
+  }
+};
+
 std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timing,
-                          zp::SolverKind kind = zp::SolverKind::SoftStep, bool sleeping = false,
-                          int settle = 0, std::size_t* asleep = nullptr) {
+                          const OurSettings& ours = {}, std::size_t* asleep = nullptr,
+                          Stages* stages = nullptr) {
   zp::WorldSettings settings;
-  settings.solver.kind = kind;
-  settings.sleep.enabled = sleeping;
-  settings.solver.velocity_iterations = 10;
-  settings.solver.position_iterations = 2;
+  settings.solver.kind = ours.kind;
+  settings.sleep.enabled = ours.sleeping;
+  settings.solver.velocity_iterations = ours.velocity_iterations;
+  settings.solver.position_iterations = ours.position_iterations;
   zp::World world(settings);
   for (const auto& b : scene.bodies) {
     zp::BodyDesc d;
     d.type = b.is_static ? zp::BodyType::Static : zp::BodyType::Dynamic;
     d.shape = b.is_box ? zp::Shape::box(b.half) : zp::Shape::sphere(b.radius);
     d.position = b.position;
-    d.density = kDensity;
+    d.density = scene.density;
     d.friction = scene.friction;
     d.restitution = 0.0;
     d.linear_damping = scene.damping;
     d.angular_damping = scene.damping;
     world.addBody(d);
   }
-  for (int s = 0; s < settle; ++s) world.step(kDt);
+  for (int s = 0; s < ours.settle; ++s) world.step(kDt);
   std::vector<double> ms;
-  for (int s = 0; s < steps; ++s) ms.push_back(timeMs([&] { world.step(kDt); }));
+  for (int s = 0; s < steps; ++s) {
+    ms.push_back(timeMs([&] { world.step(kDt); }));
+    if (stages) stages->add(world.profile());
+  }
   timing = summarise(ms);
   if (asleep) *asleep = world.sleepingCount();
   return world.bodies().position;
 }
 
-std::vector<Vec3> runBullet(const zp::bench::Scene& scene, int steps, Timing& timing) {
+std::vector<Vec3> runBullet(const zp::bench::Scene& scene, int steps, Timing& timing,
+                            int iterations = 10) {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher(&config);
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
   world.setGravity(btVector3(0, -9.81f, 0));
-  world.getSolverInfo().m_numIterations = 10;
+  world.getSolverInfo().m_numIterations = iterations;
   world.getSolverInfo().m_splitImpulse = 1;
   std::vector<btCollisionShape*> shapes;
   std::vector<btRigidBody*> bodies;
@@ -101,7 +145,7 @@ std::vector<Vec3> runBullet(const zp::bench::Scene& scene, int steps, Timing& ti
                                        : new btSphereShape(b.radius);
     shapes.push_back(shape);
     const double volume = b.is_box ? 8.0 * b.half.prod() : 4.0 / 3.0 * M_PI * std::pow(b.radius, 3);
-    const btScalar mass = b.is_static ? 0.0f : btScalar(kDensity * volume);
+    const btScalar mass = b.is_static ? 0.0f : btScalar(scene.density * volume);
     btVector3 inertia(0, 0, 0);
     if (mass > 0) shape->calculateLocalInertia(mass, inertia);
     btTransform t;
@@ -152,6 +196,52 @@ void reportPyramid(const char* engine, const zp::bench::Scene& scene, const std:
       engine, t.median_ms, t.mean_ms, worst, off);
 }
 
+// Box3D's pyramids start touching: every box's start is its rest place, and the figure is how
+// far the farthest box moved from it and how many moved more than 1 cm and 0.1 m.
+void reportHeld(const char* engine, const char* name, const zp::bench::Scene& scene,
+                const std::vector<Vec3>& p, const Timing& t) {
+  double worst = 0.0;
+  int off_cm = 0, off_dm = 0, boxes = 0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].is_static) continue;
+    const double d = (p[i] - scene.bodies[i].rest).norm();
+    worst = std::max(worst, d);
+    off_cm += d > 0.01;
+    off_dm += d > 0.1;
+    ++boxes;
+  }
+  std::printf(
+      "%-8s %s: %.2f ms/step median, %.2f mean; farthest box %.4f m from its start, %d of %d "
+      "moved > 1 cm, %d > 0.1 m\n",
+      engine, name, t.median_ms, t.mean_ms, worst, off_cm, boxes, off_dm);
+}
+
+// Box3D's scenes: ours as Box3D sets its solver (soft step, 4 sub-steps of one solve and one
+// relax pass), ours with Gauss-Seidel as the Jolt pyramid sets it (10 + 2 iterations), then
+// Bullet at 10 iterations, in one run; the ratios of mean step times are printed last.
+int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
+  std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off\n", name, scene.bodies.size(),
+              steps);
+  OurSettings soft;
+  soft.velocity_iterations = 8;
+  soft.position_iterations = 1;
+  OurSettings pgs;
+  pgs.kind = zp::SolverKind::GaussSeidel;
+  Timing soft_t, pgs_t, bullet_t;
+  for (auto [label, settings, timing] :
+       {std::tuple{"zs-soft", soft, &soft_t}, std::tuple{"zs-pgs", pgs, &pgs_t}}) {
+    Stages stages;
+    const auto p = runOurs(scene, steps, *timing, settings, nullptr, &stages);
+    reportHeld(label, name, scene, p, *timing);
+    stages.print(label, steps);
+  }
+  const auto q = runBullet(scene, steps, bullet_t, 10);
+  reportHeld(kBullet, name, scene, q, bullet_t);
+  std::printf("speed, Bullet mean / ours mean: soft step %.2f, Gauss-Seidel %.2f\n",
+              bullet_t.mean_ms / soft_t.mean_ms, bullet_t.mean_ms / pgs_t.mean_ms);
+  return 0;
+}
+
 void reportSpheres(const char* engine, const zp::bench::Scene& scene, const std::vector<Vec3>& p,
                    const Timing& t) {
   std::vector<zp::Aabb> boxes;
@@ -188,19 +278,46 @@ void reportSpheres(const char* engine, const zp::bench::Scene& scene, const std:
 
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "pyramid";
-  const int steps = argc > 2 ? std::atoi(argv[2]) : 500;
+  const bool box3d = which == "large_pyramid" || which == "many_pyramids";
+  const int steps = argc > 2 ? std::atoi(argv[2]) : (box3d ? 200 : 500);
   if (which == "sleeping") {
     const zp::bench::Scene scene = zp::bench::pyramidScene();
     for (bool on : {false, true}) {
       Timing t;
       std::size_t asleep = 0;
-      runOurs(scene, steps, t, zp::SolverKind::SoftStep, on, 300, &asleep);
+      OurSettings ours;
+      ours.sleeping = on;
+      ours.settle = 300;
+      runOurs(scene, steps, t, ours, &asleep);
       std::printf(
           "pyramid after 300 settling steps, sleeping %s: %.3f ms/step median, %.3f "
           "mean over %d steps, %zu bodies asleep\n",
           on ? "on " : "off", t.median_ms, t.mean_ms, steps, asleep);
     }
     return 0;
+  }
+  if (which == "large_pyramid") {
+    const int base = argc > 3 ? std::atoi(argv[3]) : 100;
+    if (base < 1 || steps < 1) {
+      std::fprintf(stderr, "large_pyramid: steps and base must be positive\n");
+      return 2;
+    }
+    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps);
+  }
+  if (which == "many_pyramids") {
+    const int rows = argc > 3 ? std::atoi(argv[3]) : 14;
+    if (rows < 1 || steps < 1) {
+      std::fprintf(stderr, "many_pyramids: steps and rows must be positive\n");
+      return 2;
+    }
+    return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps);
+  }
+  if (which != "pyramid" && which != "spheres") {
+    std::fprintf(stderr,
+                 "physics_vs_bullet: unknown scene '%s' (pyramid, large_pyramid, many_pyramids, "
+                 "spheres, sleeping)\n",
+                 which.c_str());
+    return 2;
   }
   const bool pyramid = which == "pyramid";
   const zp::bench::Scene scene = pyramid ? zp::bench::pyramidScene() : zp::bench::spheresScene();
@@ -213,7 +330,11 @@ int main(int argc, char** argv) {
   if (solvers != "soft") kinds.emplace_back("zs-pgs", zp::SolverKind::GaussSeidel);
   for (const auto& [name, kind] : kinds) {
     Timing t;
-    const auto ours = runOurs(scene, steps, t, kind);
+    OurSettings settings;
+    settings.kind = kind;
+    Stages stages;
+    const auto ours = runOurs(scene, steps, t, settings, nullptr, &stages);
+    stages.print(name, steps);
     if (pyramid) {
       reportPyramid(name, scene, ours, t);
     } else {
