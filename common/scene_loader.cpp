@@ -165,7 +165,8 @@ namespace {
 void readRigidBodies(const SceneNode& node, Scene& scene) {
   SceneMap m =
       node.map({"kind", "count", "shape", "radius", "size", "length", "mass", "friction",
-                "restitution", "linear_damping", "angular_damping", "drop_height", "region"});
+                "rolling_resistance", "restitution", "linear_damping", "angular_damping",
+                "drop_height", "region"});
   RigidBodyPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   p.shape = RigidBodyPopulation::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
@@ -177,6 +178,9 @@ void readRigidBodies(const SceneNode& node, Scene& scene) {
   }
   m.read("length", p.length, Limit::above(0));
   m.read("friction", p.friction, Limit::atLeast(0));
+  m.read("rolling_resistance", p.rolling_resistance, Limit::atLeast(0));
+  if (p.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::Projection)
+    m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
   m.read("mass", p.mass, Limit::above(0));
   m.read("restitution", p.restitution, Limit::between(0, 1));
   m.read("linear_damping", p.linear_damping, Limit::atLeast(0));

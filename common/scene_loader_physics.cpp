@@ -61,7 +61,8 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
                    const std::vector<SceneBody>& earlier) {
   SceneMap m = node.map({"name", "motion", "shape", "position", "rotation", "size", "radius",
                          "length", "velocity", "angular_velocity", "mass", "friction",
-                         "restitution", "linear_damping", "angular_damping"});
+                         "rolling_resistance", "restitution", "linear_damping",
+                         "angular_damping"});
   SceneBody b;
   SceneNode name = m.required("name");
   b.name = name.text();
@@ -91,6 +92,9 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
       if (m.optional(key)) m.failAt(key, "a static body does not move");
   m.read("mass", b.mass, Limit::above(0));
   m.read("friction", b.friction, Limit::atLeast(0));
+  m.read("rolling_resistance", b.rolling_resistance, Limit::atLeast(0));
+  if (b.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::Projection)
+    m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
   m.read("restitution", b.restitution, Limit::between(0, 1));
   m.read("linear_damping", b.linear_damping, Limit::atLeast(0));
   m.read("angular_damping", b.angular_damping, Limit::atLeast(0));

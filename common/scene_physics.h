@@ -19,6 +19,7 @@ struct RigidBodyPopulation {
   SceneVec3 size{1, 1, 1};  ///< box: full edge lengths (m)
   double length = 1.0;      ///< capsule: length of the inner segment, along local y (m)
   double friction = 0.5;
+  double rolling_resistance = 0;  ///< c_rr: spheres and capsules slow as they roll
   double radius = 0.5;  ///< sphere and capsule radius (m)
   double mass = 1.0;
   double restitution = 0.5;
@@ -50,6 +51,7 @@ struct SceneBody {
   SceneVec3 angular_velocity;
   double mass = 1.0;
   double friction = 0.5;
+  double rolling_resistance = 0;  ///< c_rr (as RigidBodyPopulation's)
   double restitution = 0.0;
   double linear_damping = 0;   ///< 1/s, dynamic bodies only (as RigidBodyPopulation's)
   double angular_damping = 0;  ///< 1/s, dynamic bodies only

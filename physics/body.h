@@ -23,6 +23,10 @@ struct BodyDesc {
   double density = 1000.0;       ///< kg/m^3.
   double friction = 0.5;         ///< Coulomb coefficient; a pair uses the geometric mean.
   double restitution = 0.0;      ///< A pair uses the larger of the two.
+  /// Rolling resistance coefficient c_rr (dimensionless, like friction): a rolling sphere or
+  /// capsule of radius R pressed with normal force N meets a torque of at most c_rr R N
+  /// against its rolling relative to what it touches. A pair uses the larger coefficient.
+  double rolling_resistance = 0.0;
   double linear_damping = 0.0;   ///< 1/s: v *= 1 / (1 + c dt) each step.
   double angular_damping = 0.0;  ///< 1/s: w *= 1 / (1 + c dt) each step.
   /// A copy of a body that another world simulates (a zone's ghost): it is pushed by this

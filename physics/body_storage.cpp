@@ -30,6 +30,7 @@ BodyIndex BodyStorage::add(const BodyDesc& desc) {
   inv_inertia_world.push_back(Eigen::Matrix3d::Zero());
   friction.push_back(desc.friction);
   restitution.push_back(desc.restitution);
+  rolling_resistance.push_back(desc.rolling_resistance);
   linear_damping.push_back(desc.linear_damping);
   angular_damping.push_back(desc.angular_damping);
   position_prev.push_back(desc.position);

@@ -28,6 +28,7 @@ struct BodyStorage {
   std::vector<Eigen::Matrix3d> inv_inertia_world;  ///< R diag(inv_inertia_local) R^T.
   std::vector<double> friction;
   std::vector<double> restitution;
+  std::vector<double> rolling_resistance;
   std::vector<double> linear_damping;
   std::vector<double> angular_damping;
   std::vector<Vec3> position_prev;    ///< Position Verlet history.

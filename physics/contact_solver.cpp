@@ -23,6 +23,7 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
   friction_.resize(points);
   jn_.resize(points);
   jt_.resize(points);
+  rolling_.clear();
   std::uint32_t next = 0;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const BodyContact& bc = contacts[c];
@@ -78,6 +79,19 @@ void ContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyConta
       np.vn0 = vn;
       np.max_jn = 0.0;
     }
+    if (bc.rolling > 0.0) {
+      RollingRow r;
+      r.constraint = static_cast<std::uint32_t>(c);
+      r.rolling = bc.rolling;
+      for (int t = 0; t < 2; ++t) {
+        r.wa[t] = ia * k.t[t];
+        r.wb[t] = ib * k.t[t];
+        const double inv = k.t[t].dot(r.wa[t]) + k.t[t].dot(r.wb[t]);
+        r.mass[t] = inv > 0.0 ? 1.0 / inv : 0.0;
+      }
+      r.impulse = settings.warm_starting ? bc.rolling_impulse : std::array<double, 2>{};
+      rolling_.push_back(r);
+    }
   }
 }
 
@@ -92,6 +106,40 @@ void ContactSolver::warmStart(BodyStorage& bodies) {
       apply(k, k.n, np.row, jn_[k.first + i]);
       apply(k, k.t[0], fp.row[0], jt_[k.first + i][0]);
       apply(k, k.t[1], fp.row[1], jt_[k.first + i][1]);
+    }
+  }
+  for (const RollingRow& r : rolling_) {
+    const Constraint& k = constraints_[r.constraint];
+    for (int t = 0; t < 2; ++t) {
+      bodies.angular_velocity[k.a] -= r.impulse[t] * r.wa[t];
+      bodies.angular_velocity[k.b] += r.impulse[t] * r.wb[t];
+    }
+  }
+}
+
+void ContactSolver::solveRolling(BodyStorage& bodies) {
+  auto& w = bodies.angular_velocity;
+  for (RollingRow& r : rolling_) {
+    const Constraint& k = constraints_[r.constraint];
+    double load = 0.0;
+    for (int i = 0; i < k.count; ++i) load += jn_[k.first + i];
+    const double limit = r.rolling * load;
+    // Both tangents from the same velocities, then the pair clamped to a disc: the resistance
+    // is the same whichever way the body rolls.
+    const std::array<double, 2> old = r.impulse;
+    for (int t = 0; t < 2; ++t) {
+      r.impulse[t] = old[t] - r.mass[t] * k.t[t].dot(w[k.b] - w[k.a]);
+    }
+    const double size = std::hypot(r.impulse[0], r.impulse[1]);
+    if (size > limit) {
+      const double scale = limit > 0.0 ? limit / size : 0.0;
+      r.impulse[0] *= scale;
+      r.impulse[1] *= scale;
+    }
+    for (int t = 0; t < 2; ++t) {
+      const double delta = r.impulse[t] - old[t];
+      w[k.a] -= delta * r.wa[t];
+      w[k.b] += delta * r.wb[t];
     }
   }
 }
@@ -130,6 +178,7 @@ void ContactSolver::iterate(BodyStorage& bodies, double omega) {
       }
     }
   }
+  solveRolling(bodies);
 }
 
 void ContactSolver::storeImpulses(std::span<BodyContact> contacts) const {
@@ -139,6 +188,7 @@ void ContactSolver::storeImpulses(std::span<BodyContact> contacts) const {
       contacts[c].impulse[i] = {jn_[k.first + i], jt_[k.first + i][0], jt_[k.first + i][1]};
     }
   }
+  for (const RollingRow& r : rolling_) contacts[r.constraint].rolling_impulse = r.impulse;
 }
 
 void ContactSolver::solvePositions(const BodyStorage& bodies) {

@@ -87,6 +87,11 @@ struct BodyContact {
   double restitution = 0.0;
   /// Normal and two tangent impulses per point, from the last solve.
   std::array<std::array<double, 3>, 4> impulse{};
+  /// Rolling resistance: the largest resisting angular impulse per unit normal impulse (c_rr
+  /// of the pair times the rolling radius, m); 0 when neither body rolls.
+  double rolling = 0.0;
+  /// Angular impulses against rolling about the contact's two tangents, from the last solve.
+  std::array<double, 2> rolling_impulse{};
 };
 
 /// Solves one step's contacts in place on the bodies' velocities.
@@ -108,6 +113,9 @@ class ContactSolver {
   /// Projection: one Gauss-Seidel pass removing overlap (and, up to the Coulomb bound, sliding
   /// at the contact) from the displacements dp and small rotations dtheta of this step.
   void projectPositions(std::span<Vec3> dp, std::span<Vec3> dtheta);
+  /// One Gauss-Seidel pass over the rolling resistance rows (every solver but Projection runs
+  /// it after its friction pass).
+  void solveRolling(BodyStorage& bodies);
   /// Writes the accumulated impulses back for next step's warm start.
   void storeImpulses(std::span<BodyContact> contacts) const;
   /// The settings given to the last prepare.
@@ -154,6 +162,15 @@ class ContactSolver {
   struct FrictionPoint {
     Row row[2];  // The impulses live in jt_.
   };
+  // Rolling resistance of one contact: angular rows about its two tangents, limited together
+  // (a disc) by rolling times the contact's total normal impulse.
+  struct RollingRow {
+    std::uint32_t constraint;
+    double rolling;
+    Vec3 wa[2], wb[2];  // I_a^-1 t, I_b^-1 t.
+    double mass[2];     // 1 / (t . (I_a^-1 + I_b^-1) t).
+    std::array<double, 2> impulse;
+  };
   struct Constraint {
     BodyIndex a, b;
     double ma, mb;  // Inverse masses.
@@ -167,6 +184,7 @@ class ContactSolver {
   std::vector<Constraint> constraints_;
   std::vector<NormalPoint> normal_;
   std::vector<FrictionPoint> friction_;
+  std::vector<RollingRow> rolling_;
   // Accumulated normal and friction impulses per point, apart from the rows: the friction pass
   // reads them for every point but the rows only of points that carry load, and a loaded
   // pyramid's side points (most of them) then cost 24 bytes instead of two cache lines.

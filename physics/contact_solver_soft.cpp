@@ -70,6 +70,7 @@ void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
       }
     }
   }
+  solveRolling(bodies);
 }
 
 void ContactSolver::applyRestitution(BodyStorage& bodies) {

@@ -58,6 +58,8 @@ void ContactSolver::iterateJacobi(BodyStorage& bodies) {
       }
     }
   }
+  // Rolling rows are few (spheres and capsules only) and run Gauss-Seidel after the passes.
+  solveRolling(bodies);
 }
 
 void ContactSolver::applyPenalty(BodyStorage& bodies) {
@@ -79,7 +81,9 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
     }
   }
   // Friction: Coulomb rows bounded by mu times each spring's impulse, iterated like PGS
-  // friction (one pass leaves a steady creep: measured 1.7 cm/s on a resting box).
+  // friction (one pass leaves a steady creep: measured 1.7 cm/s on a resting box); rolling
+  // resistance the same way, bounded by the springs' impulses.
+  for (RollingRow& r : rolling_) r.impulse = {0.0, 0.0};
   for (int it = 0; it < settings_.velocity_iterations; ++it) {
     for (const Constraint& k : constraints_) {
       for (int i = 0; i < k.count; ++i) {
@@ -93,6 +97,7 @@ void ContactSolver::applyPenalty(BodyStorage& bodies) {
         }
       }
     }
+    solveRolling(bodies);
   }
 }
 

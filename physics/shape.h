@@ -28,4 +28,10 @@ struct Shape {
   static Shape plane() { return Shape{ShapeType::Plane, Vec3::Zero(), 0.0, 0.0}; }
 };
 
+/// The lever arm of rolling resistance: the radius a sphere or capsule rolls on; 0 for shapes
+/// that do not roll (boxes tip instead, planes never move).
+inline double rollingRadius(const Shape& s) {
+  return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule ? s.radius : 0.0;
+}
+
 }  // namespace zonesim::physics

@@ -17,6 +17,14 @@ World::World(const WorldSettings& settings)
     : settings_(settings), broadphase_(settings.broadphase) {}
 
 BodyIndex World::addBody(const BodyDesc& desc) {
+  if (!(desc.rolling_resistance >= 0.0) || !std::isfinite(desc.rolling_resistance)) {
+    throw std::invalid_argument("rolling_resistance must be finite and >= 0");
+  }
+  // Projection derives velocities from corrected displacements and has no rows to bound.
+  if (desc.rolling_resistance > 0.0 && settings_.solver.kind == SolverKind::Projection) {
+    throw std::invalid_argument(
+        "rolling_resistance needs a velocity solver; SolverKind::Projection has none");
+  }
   const BodyIndex i = bodies_.add(desc);
   islands_.resize(bodies_.size());
   return i;
@@ -222,6 +230,9 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   if (contact.manifold.count == 0) return;
   contact.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
   contact.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+  contact.rolling =
+      std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]) *
+      std::max(rollingRadius(bodies_.shape[a]), rollingRadius(bodies_.shape[b]));
   contacts_.push_back(contact);
 }
 
@@ -245,6 +256,7 @@ void World::warmStartFromPrevious() {
     }
     if (j == previous_.size() || previous_[j].a != c.a || previous_[j].b != c.b) continue;
     const BodyContact& old = previous_[j];
+    c.rolling_impulse = old.rolling_impulse;
     for (int i = 0; i < c.manifold.count; ++i) {
       const ContactPoint& p = c.manifold.points[i];
       // Same feature, or else the nearest old point within kPreserveDistance: clipping

@@ -108,6 +108,7 @@ struct BodyData {
   double friction = 0.5;
   double linear_damping = 0;   ///< 1/s (physics::BodyDesc)
   double angular_damping = 0;  ///< 1/s
+  double rolling_resistance = 0;  ///< c_rr (physics::BodyDesc)
 
   bool operator==(const BodyData&) const = default;
 };

@@ -141,6 +141,7 @@ void forEachInitialEntity(const Scene& scene,
       r.body.half_height = 0.5 * p.length;
       r.body.mass = p.mass;
       r.body.friction = p.friction;
+      r.body.rolling_resistance = p.rolling_resistance;
       r.body.restitution = p.restitution;
       r.body.linear_damping = p.linear_damping;
       r.body.angular_damping = p.angular_damping;
@@ -179,6 +180,7 @@ void forEachInitialEntity(const Scene& scene,
     r.body.half_height = 0.5 * b.length;
     r.body.mass = b.mass;
     r.body.friction = b.friction;
+    r.body.rolling_resistance = b.rolling_resistance;
     r.body.restitution = b.restitution;
     r.body.linear_damping = b.linear_damping;
     r.body.angular_damping = b.angular_damping;

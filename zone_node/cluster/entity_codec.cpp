@@ -140,14 +140,15 @@ flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, Ent
   if (kind != EntityKind::RigidBody) return {};
   fb::Vec3d w = toFb(s.angular_velocity), h = toFb(s.half_extents);
   return fb::CreateBodyState(b, s.radius, s.mass, s.restitution, &w, s.sleeping, s.shape, &h,
-                             s.half_height, s.friction, s.linear_damping, s.angular_damping);
+                             s.half_height, s.friction, s.linear_damping, s.angular_damping,
+                             s.rolling_resistance);
 }
 
 void decodeBody(const fb::BodyState& s, BodyData& d) {
   if (s.shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
   d = {s.radius(),   s.mass(),           s.restitution(),          fromFb(s.angular_velocity()),
        s.sleeping(), s.shape(),          fromFb(s.half_extents()), s.half_height(),
-       s.friction(), s.linear_damping(), s.angular_damping()};
+       s.friction(), s.linear_damping(), s.angular_damping(), s.rolling_resistance()};
 }
 
 flatbuffers::Offset<fb::EmitterState> encodeEmitter(Builder& b, const EmitterData& m,

@@ -16,11 +16,11 @@ struct GhostWire {
   std::uint64_t kind;             // EntityKind, widened so the record has no padding
   double pos[3], vel[3], rot[4];  // rot: w, x, y, z
   double angular_velocity[3], half_extents[3];
-  double radius, half_height, mass, friction, restitution;
+  double radius, half_height, mass, friction, restitution, rolling_resistance;
   std::uint64_t shape_and_sleep;  // shape | sleeping << 8
   // followed by one std::int64_t per registered ghost column (GhostStore::columns)
 };
-static_assert(sizeof(GhostWire) == 8 * 24, "GhostWire must be packed doubles");
+static_assert(sizeof(GhostWire) == 8 * 25, "GhostWire must be packed doubles");
 
 GhostWire pack(const EntityStore& s, std::size_t i) {
   GhostWire w{};
@@ -46,6 +46,7 @@ GhostWire pack(const EntityStore& s, std::size_t i) {
     w.mass = b.mass;
     w.friction = b.friction;
     w.restitution = b.restitution;
+    w.rolling_resistance = b.rolling_resistance;
     w.shape_and_sleep = std::uint64_t(b.shape) | (std::uint64_t(b.sleeping) << 8);
   }
   return w;
@@ -150,6 +151,7 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
         b.mass = w.mass;
         b.friction = w.friction;
         b.restitution = w.restitution;
+        b.rolling_resistance = w.rolling_resistance;
         b.shape = std::uint8_t(w.shape_and_sleep & 0xff);
         b.sleeping = (w.shape_and_sleep >> 8) & 1;
       }

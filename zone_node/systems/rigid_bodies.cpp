@@ -134,6 +134,7 @@ static physics::BodyDesc descOf(const BodyData& b, const Vec3& pos, const Quat& 
   d.angular_velocity = b.angular_velocity;
   d.density = b.mass / volumeOf(b);
   d.friction = b.friction;
+  d.rolling_resistance = b.rolling_resistance;
   d.restitution = b.restitution;
   d.linear_damping = b.linear_damping;
   d.angular_damping = b.angular_damping;

@@ -64,6 +64,7 @@ void SetPieces::addTo(physics::World& world) {
       d.angular_velocity = vec(b.angular_velocity);
     }
     d.friction = b.friction;
+    d.rolling_resistance = b.rolling_resistance;
     d.restitution = b.restitution;
     index_.push_back(world.addBody(d));
   }

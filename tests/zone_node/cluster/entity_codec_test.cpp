@@ -55,7 +55,8 @@ EntityRecordData everyColumnSet() {
             .half_height = 0.9,
             .friction = 0.3,
             .linear_damping = 0.05,
-            .angular_damping = 0.125};
+            .angular_damping = 0.125,
+            .rolling_resistance = 0.0625};
   r.emitter = {.rate = 250,
                .lifetime = 1.5,
                .speed = 7,
@@ -294,6 +295,7 @@ TEST(EntityCodec, BatchAtAMisalignedAddressDecodesTheSame) {
   e.body.angular_velocity = Vec3(0.1, 0.2, 0.3);
   e.body.linear_damping = 0.5;
   e.body.angular_damping = 0.25;
+  e.body.rolling_resistance = 0.04;
   p.entities = {e};
   std::vector<std::uint8_t> bytes = encodeMigration(p);
   std::vector<std::uint8_t> storage(bytes.size() + kBatchAlign);
@@ -308,6 +310,7 @@ TEST(EntityCodec, BatchAtAMisalignedAddressDecodesTheSame) {
   EXPECT_EQ(q.entities[0].body.angular_velocity, e.body.angular_velocity);
   EXPECT_EQ(q.entities[0].body.linear_damping, 0.5);  // a damped body stays damped on arrival
   EXPECT_EQ(q.entities[0].body.angular_damping, 0.25);
+  EXPECT_EQ(q.entities[0].body.rolling_resistance, 0.04);  // and still slows as it rolls
 }
 
 TEST(EntityCodec, EveryKindOfCrowdStateMigratesAsItsOwnType) {
