@@ -154,7 +154,8 @@ SceneJoint readJoint(const SceneNode& node, const Scene& scene) {
 SceneCloth readCloth(const SceneNode& node, const Scene& scene) {
   SceneMap m = node.map({"origin", "columns", "rows", "spacing", "column_axis", "row_axis",
                          "particle_mass", "stiffness", "shear_stiffness", "bend_stiffness",
-                         "damping", "tear_strain", "thickness", "friction", "substeps", "pins"});
+                         "damping", "tear_strain", "thickness", "friction", "integrator",
+                         "substeps", "pins"});
   SceneCloth c;
   c.origin = pointInWorld(m.required("origin"), scene.world);
   m.read("columns", c.columns, Limit::between(1, 256));
@@ -173,6 +174,8 @@ SceneCloth readCloth(const SceneNode& node, const Scene& scene) {
   m.read("tear_strain", c.tear_strain, Limit::atLeast(0));
   m.read("thickness", c.thickness, Limit::atLeast(0));
   m.read("friction", c.friction, Limit::atLeast(0));
+  c.integrator = SceneCloth::Integrator(
+      m.choice("integrator", {"semi_implicit_euler", "implicit_euler"}, int(c.integrator)));
   m.read("substeps", c.substeps, Limit::between(0, 10000));
   for (auto corner :
        {SceneVec3{0, 0, 0}, SceneVec3{double(c.columns - 1), double(c.rows - 1), 0}}) {

@@ -83,7 +83,11 @@ struct SceneCloth {
   double tear_strain = 0;                 ///< springs past this strain are removed; 0: never
   double thickness = 0.02;                ///< m kept between particles and bodies
   double friction = 0.3;                  ///< against bodies
-  int substeps = 0;                       ///< per tick; 0: chosen from the stiffness
+  /// Semi-implicit Euler needs sub-steps as short as the stiffest spring's period allows;
+  /// implicit (backward) Euler is stable at any stiffness and step.
+  enum class Integrator { SemiImplicitEuler, ImplicitEuler };
+  Integrator integrator = Integrator::SemiImplicitEuler;
+  int substeps = 0;                       ///< per tick; 0: chosen (semi-implicit) or 1 (implicit)
   std::vector<std::pair<int, int>> pins;  ///< (column, row) held in place
 };
 

@@ -56,14 +56,22 @@ void Cloth::step(double dt, int substeps, ClothColliders* colliders) {
   const int n = std::max(1, substeps);
   const double h = dt / n;
   for (int k = 0; k < n; ++k) {
-    accumulateForces();
-    for (std::size_t i = 0; i < x_.size(); ++i) {
-      if (inv_mass_[i] == 0.0) continue;
-      v_[i] += h * inv_mass_[i] * f_[i];
-      x_[i] += h * v_[i];
+    if (desc_.integrator == ClothIntegrator::ImplicitEuler) {
+      stepImplicit(h);
+    } else {
+      stepSemiImplicit(h);
     }
     if (colliders) colliders->resolve(x_, v_, inv_mass_, desc_.thickness, desc_.friction);
     if (desc_.tear_strain > 0.0) tear();
+  }
+}
+
+void Cloth::stepSemiImplicit(double h) {
+  accumulateForces();
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (inv_mass_[i] == 0.0) continue;
+    v_[i] += h * inv_mass_[i] * f_[i];
+    x_[i] += h * v_[i];
   }
 }
 

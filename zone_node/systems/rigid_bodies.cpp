@@ -85,6 +85,9 @@ physics::Cloth makeCloth(const SceneCloth& c) {
   d.tear_strain = c.tear_strain;
   d.thickness = c.thickness;
   d.friction = c.friction;
+  d.integrator = c.integrator == SceneCloth::Integrator::ImplicitEuler
+                     ? physics::ClothIntegrator::ImplicitEuler
+                     : physics::ClothIntegrator::SemiImplicitEuler;
   physics::Cloth cloth(d);
   for (auto [col, row] : c.pins) cloth.pin(cloth.index(col, row));
   return cloth;
@@ -93,8 +96,9 @@ physics::Cloth makeCloth(const SceneCloth& c) {
 /// Cloth sub-steps per tick: semi-implicit Euler is stable for h w < 2; a particle's stiffest
 /// mode is bounded by w^2 = 8 (k + k_shear + k_bend) / m (every spring on it in phase), and
 /// h w <= 0.5 keeps the drape's damping and sag close to the converged ones.
-int clothSubsteps(const SceneCloth& c, double dt) {
+int substepsPerTick(const SceneCloth& c, double dt) {
   if (c.substeps > 0) return c.substeps;
+  if (c.integrator == SceneCloth::Integrator::ImplicitEuler) return 1;  // stable at any step
   const double w =
       std::sqrt(8.0 * (c.stiffness + c.shear_stiffness + c.bend_stiffness) / c.particle_mass);
   return std::max(1, int(std::ceil(dt * w / 0.5)));
@@ -118,7 +122,7 @@ RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
       cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
   for (const SceneCloth& c : scene.physics.cloths) {
     cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));
-    cloth_substeps_.push_back(clothSubsteps(c, scene.dt));
+    cloth_substeps_.push_back(substepsPerTick(c, scene.dt));
   }
 }
 

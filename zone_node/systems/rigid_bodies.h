@@ -64,6 +64,8 @@ class RigidBodySystem : public ZoneSystem {
   std::size_t clothCount() const { return cloths_.size(); }
   /// Cloth i as stepped so far.
   const physics::Cloth& cloth(std::size_t i) const { return *cloths_[i]; }
+  /// Sub-steps cloth i takes per tick.
+  int clothSubsteps(std::size_t i) const { return cloth_substeps_[i]; }
   /// Joints in the engine's world (those of the scene whose bodies this zone holds).
   std::size_t joints() const { return joints_added_; }
   /// What the last step did to other zones' bodies (to send to their owners).

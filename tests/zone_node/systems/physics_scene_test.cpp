@@ -128,6 +128,44 @@ TEST_F(PhysicsScene, ClothsStayPinnedAndOutOfTheTable) {
   EXPECT_LT(deepest, 2e-3);
 }
 
+// A cloth 500 times the default stiffness: with implicit_euler the zone steps it once per
+// tick (semi-implicit would need about 700 sub-steps of a 1/60 s tick), and it hangs still.
+TEST(PhysicsSceneCloth, AnImplicitClothTakesOneSubStepPerTickAndHangs) {
+  const Scene scene = parseScene(R"(world: {min: [0, 0, 0], max: [20, 10, 20]}
+tick: {dt: 0.0166666666666666667}
+seed: 1
+zones: {columns: 1, rows: 1}
+physics:
+  cloths:
+    - {origin: [5, 6, 5], columns: 12, rows: 12, spacing: 0.1, stiffness: 100000,
+       shear_stiffness: 25000, bend_stiffness: 5000, damping: 0.5, integrator: implicit_euler,
+       pins: [[0, 0], [11, 0]]}
+)",
+                                 "implicit_cloth.yaml");
+  EntityStore store;
+  RigidBodySystem bodies(scene, 0);
+  ASSERT_EQ(bodies.clothCount(), 1u);
+  EXPECT_EQ(bodies.clothSubsteps(0), 1);
+  const physics::Cloth& cloth = bodies.cloth(0);
+  EXPECT_EQ(cloth.desc().integrator, physics::ClothIntegrator::ImplicitEuler);
+  const Vec3 pin = cloth.positions()[cloth.index(0, 0)];
+  double fastest = 0;
+  for (std::uint64_t t = 0; t < 180; ++t) {
+    LoneZone{scene.dt}.step(bodies, store, t);
+    for (const Vec3& v : cloth.velocities()) fastest = std::max(fastest, v.norm());
+  }
+  double lowest = 1e9;
+  for (const Vec3& p : cloth.positions()) lowest = std::min(lowest, p.y());
+  std::printf("implicit cloth, k 1e5, 1 sub-step per tick: fastest particle %.3f m/s, hangs %.4f "
+              "m below its pins, kinetic energy after 3 s %.2e J\n",
+              fastest, 6.0 - lowest, cloth.kineticEnergy());
+  EXPECT_EQ(cloth.positions()[cloth.index(0, 0)], pin);
+  EXPECT_LT(fastest, 10.0);              // a swing, not a blow-up
+  EXPECT_GT(6.0 - lowest, 1.1 * 0.99);   // its full height below the pins, barely stretched
+  EXPECT_LT(6.0 - lowest, 1.1 * 1.05);
+  EXPECT_TRUE(std::isfinite(cloth.kineticEnergy()));
+}
+
 TEST_F(PhysicsScene, ExplosionsPushTheSpheresOutwardByTheClosedForm) {
   // Radial speed of each sphere away from its explosion; frictionless on flat ground, only the
   // explosion changes horizontal momentum.
