@@ -318,7 +318,9 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
   m.read("sleep", ps.sleep);
   ps.solver = PhysicsSettings::Solver(
-      m.choice("solver", {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection"},
+      m.choice("solver",
+               {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection",
+                "conjugate_gradient"},
                int(ps.solver)));
   m.read("sor_omega", ps.sor_omega, Limit::between(0.1, 1.99));
   m.read("linear_drag", ps.linear_drag, Limit::atLeast(0));

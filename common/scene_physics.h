@@ -115,7 +115,7 @@ struct PhysicsSettings {
   };
   enum class Broadphase { BruteForce, SweepAndPrune, UniformGrid, AabbTree };
   /// Contact response (docs/physics.md compares them); same order as physics::SolverKind.
-  enum class Solver { SoftStep, GaussSeidel, Sor, Jacobi, Penalty, Projection };
+  enum class Solver { SoftStep, GaussSeidel, Sor, Jacobi, Penalty, Projection, ConjugateGradient };
   Integrator integrator = Integrator::SemiImplicitEuler;
   Broadphase broadphase = Broadphase::SweepAndPrune;
   int substeps = 1;

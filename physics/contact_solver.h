@@ -37,6 +37,11 @@ enum class SolverKind {
   /// Projection (position based): overlaps are removed from the step's displacements by
   /// velocity_iterations Gauss-Seidel position passes, and velocities are the displacement / dt.
   Projection,
+  /// Nonsmooth nonlinear conjugate gradients (Silcowitz, Niebe and Erleben): each Gauss-Seidel
+  /// sweep is a step along the gradient of the contact problem, and the impulses then move on
+  /// along the previous search direction by the Fletcher-Reeves ratio, restarting whenever the
+  /// ratio exceeds 1. Same cost per iteration as Gauss-Seidel, faster convergence on stacks.
+  ConjugateGradient,
 };
 
 /// A soft constraint's spring as bias rate and scales for one sub-step (Box2D v3 form).
@@ -107,6 +112,13 @@ class ContactSolver {
   void iterate(BodyStorage& bodies, double omega = 1.0);
   /// One projected Jacobi iteration (all rows from the same velocities, averaged per body).
   void iterateJacobi(BodyStorage& bodies);
+  /// One nonsmooth conjugate-gradient iteration (contact_solver_cg.cpp): a Gauss-Seidel sweep,
+  /// then, unless `last`, the momentum step along the search direction. `first` starts a new
+  /// direction (the first iteration of a step).
+  void iterateConjugateGradient(BodyStorage& bodies, bool first, bool last);
+  /// |lambda after - lambda before| of the last conjugate-gradient sweep, in N s: how far the
+  /// impulses still moved (zero at convergence).
+  double lastSweepChange() const { return cg_change_; }
   /// Penalty response: one explicit spring-damper impulse per point over dt, and Coulomb
   /// friction capped by it.
   void applyPenalty(BodyStorage& bodies);
@@ -192,6 +204,10 @@ class ContactSolver {
   std::vector<std::array<double, 2>> jt_;
   std::vector<Vec3> ps_v_, ps_w_;
   std::vector<Vec3> jac_v_, jac_w_;       // Jacobi: velocities the iteration reads.
+  // Conjugate gradients: impulses before the sweep and the search direction, three per point
+  // (normal, two tangents), and the squared gradient of the previous sweep.
+  std::vector<double> cg_before_, cg_direction_;
+  double cg_previous_ = 0.0, cg_change_ = 0.0;
   std::vector<std::uint16_t> row_count_;  // Jacobi: contact points touching each body.
   SolverSettings settings_;
   double dt_ = 0.0;

@@ -319,9 +319,12 @@ void World::solveIterative(double dt) {
   const double omega = kind == SolverKind::Sor ? settings_.solver.sor_omega : 1.0;
   solver_.warmStart(bodies_);
   warmStartJoints();
-  for (int it = 0; it < settings_.solver.velocity_iterations; ++it) {
+  const int iterations = settings_.solver.velocity_iterations;
+  for (int it = 0; it < iterations; ++it) {
     if (kind == SolverKind::Jacobi) {
       solver_.iterateJacobi(bodies_);
+    } else if (kind == SolverKind::ConjugateGradient) {
+      solver_.iterateConjugateGradient(bodies_, it == 0, it + 1 == iterations);
     } else {
       solver_.iterate(bodies_, omega);
     }

@@ -113,6 +113,7 @@ int main() {
       {"jacobi", zp::SolverKind::Jacobi},
       {"soft_step", zp::SolverKind::SoftStep},
       {"projection", zp::SolverKind::Projection},
+      {"conjugate_gradient", zp::SolverKind::ConjugateGradient},
       {"penalty", zp::SolverKind::Penalty}};
   std::printf("method,stack5,kind,iterations,ms_per_step,drift_m\n");
   for (const auto& [label, kind] : kinds) {

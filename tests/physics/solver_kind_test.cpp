@@ -120,6 +120,7 @@ TEST(SolverKinds, EachKeepsARestingBoxAndASmallStackStanding) {
       {SolverKind::SoftStep, "soft step", 1e-3, 5e-3},
       {SolverKind::Penalty, "penalty", 8e-3, 0.13},
       {SolverKind::Projection, "projection", 1e-3, 0.12},
+      {SolverKind::ConjugateGradient, "conj. grad.", 1e-5, 2e-3},
   };
   for (const KindBound& k : kinds) {
     double h = 0.0, v = 0.0;

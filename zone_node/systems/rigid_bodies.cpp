@@ -110,6 +110,8 @@ int substepsPerTick(const SceneCloth& c, double dt) {
 static_assert(int(physics::Integrator::Rk4) == int(PhysicsSettings::Integrator::Rk4));
 static_assert(int(physics::BroadphaseKind::AabbTree) == int(PhysicsSettings::Broadphase::AabbTree));
 static_assert(int(physics::SolverKind::Projection) == int(PhysicsSettings::Solver::Projection));
+static_assert(int(physics::SolverKind::ConjugateGradient) ==
+              int(PhysicsSettings::Solver::ConjugateGradient));
 static_assert(int(physics::SolverKind::GaussSeidel) == int(PhysicsSettings::Solver::GaussSeidel));
 
 static_assert(int(physics::Falloff::Quadratic) == int(SceneExplosion::Falloff::Quadratic));
