@@ -163,10 +163,9 @@ double boundingRadius(const RigidBodyPopulation& p) {
 namespace {
 
 void readRigidBodies(const SceneNode& node, Scene& scene) {
-  SceneMap m =
-      node.map({"kind", "count", "shape", "radius", "size", "length", "mass", "friction",
-                "rolling_resistance", "restitution", "linear_damping", "angular_damping",
-                "drop_height", "region"});
+  SceneMap m = node.map({"kind", "count", "shape", "radius", "size", "length", "mass", "friction",
+                         "rolling_resistance", "restitution", "linear_damping", "angular_damping",
+                         "drop_height", "region"});
   RigidBodyPopulation p;
   p.count = m.required("count").integer(Limit::atLeast(0));
   p.shape = RigidBodyPopulation::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
@@ -317,11 +316,10 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("velocity_iterations", ps.velocity_iterations, Limit::between(1, 1000));
   m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
   m.read("sleep", ps.sleep);
-  ps.solver = PhysicsSettings::Solver(
-      m.choice("solver",
-               {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection",
-                "conjugate_gradient"},
-               int(ps.solver)));
+  ps.solver = PhysicsSettings::Solver(m.choice(
+      "solver",
+      {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection", "conjugate_gradient"},
+      int(ps.solver)));
   m.read("sor_omega", ps.sor_omega, Limit::between(0.1, 1.99));
   m.read("linear_drag", ps.linear_drag, Limit::atLeast(0));
   m.read("quadratic_drag", ps.quadratic_drag, Limit::atLeast(0));

@@ -61,8 +61,7 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
                    const std::vector<SceneBody>& earlier) {
   SceneMap m = node.map({"name", "motion", "shape", "position", "rotation", "size", "radius",
                          "length", "velocity", "angular_velocity", "mass", "friction",
-                         "rolling_resistance", "restitution", "linear_damping",
-                         "angular_damping"});
+                         "rolling_resistance", "restitution", "linear_damping", "angular_damping"});
   SceneBody b;
   SceneNode name = m.required("name");
   b.name = name.text();
@@ -152,10 +151,10 @@ SceneJoint readJoint(const SceneNode& node, const Scene& scene) {
 }
 
 SceneCloth readCloth(const SceneNode& node, const Scene& scene) {
-  SceneMap m = node.map({"origin", "columns", "rows", "spacing", "column_axis", "row_axis",
-                         "particle_mass", "stiffness", "shear_stiffness", "bend_stiffness",
-                         "damping", "tear_strain", "thickness", "friction", "integrator",
-                         "substeps", "pins"});
+  SceneMap m =
+      node.map({"origin", "columns", "rows", "spacing", "column_axis", "row_axis", "particle_mass",
+                "stiffness", "shear_stiffness", "bend_stiffness", "damping", "tear_strain",
+                "thickness", "friction", "integrator", "substeps", "pins"});
   SceneCloth c;
   c.origin = pointInWorld(m.required("origin"), scene.world);
   m.read("columns", c.columns, Limit::between(1, 256));

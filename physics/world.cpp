@@ -231,9 +231,8 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   if (contact.manifold.count == 0) return;
   contact.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
   contact.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
-  contact.rolling =
-      std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]) *
-      std::max(rollingRadius(bodies_.shape[a]), rollingRadius(bodies_.shape[b]));
+  contact.rolling = std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]) *
+                    std::max(rollingRadius(bodies_.shape[a]), rollingRadius(bodies_.shape[b]));
   contacts_.push_back(contact);
 }
 

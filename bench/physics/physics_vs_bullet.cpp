@@ -90,8 +90,8 @@ struct Stages {
         "%.2f (%.0f%%), solve+integrate positions %.2f (%.0f%%), integrate forces %.2f "
         "(%.0f%%), islands %.2f\n",
         engine, broadphase / steps, pct(broadphase), narrowphase / steps, pct(narrowphase),
-        prepare / steps, pct(prepare), solve / steps, pct(solve), integrate / steps,
-        pct(integrate), islands / steps);
+        prepare / steps, pct(prepare), solve / steps, pct(solve), integrate / steps, pct(integrate),
+        islands / steps);
   }
 };
 

@@ -42,8 +42,7 @@ Scene largePyramidScene(int base) {
   Scene s;
   s.friction = 0.6;  // Box3D's default shape friction.
   s.density = 100.0;
-  s.bodies.push_back(
-      SceneBody{true, true, Vec3(400, 1, 400), 0.0, Vec3(0, -1, 0), Vec3(0, -1, 0)});
+  s.bodies.push_back(SceneBody{true, true, Vec3(400, 1, 400), 0.0, Vec3(0, -1, 0), Vec3(0, -1, 0)});
   constexpr double h = 0.5;
   addBoxPyramid(s, base, h, -h * base, 0.0);
   return s;

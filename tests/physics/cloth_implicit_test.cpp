@@ -50,9 +50,10 @@ TEST(ClothImplicit, SemiImplicitEulerBlowsUpJustPastTheAnalyticStiffnessImplicit
     Cloth implicit = pendulumSpring(k, ClothIntegrator::ImplicitEuler);
     const double semi_swing = largestSwing(semi, 10.0);
     const double implicit_swing = largestSwing(implicit, 10.0);
-    std::printf("k = %.1f N/m (%.2f of 4 m / h^2): largest swing semi-implicit %.3e m, implicit "
-                "%.3e m\n",
-                k, k / k_crit, semi_swing, implicit_swing);
+    std::printf(
+        "k = %.1f N/m (%.2f of 4 m / h^2): largest swing semi-implicit %.3e m, implicit "
+        "%.3e m\n",
+        k, k / k_crit, semi_swing, implicit_swing);
     // The swing about the static place starts at m g / k (the particle starts at rest length).
     const double sag = 0.01 * kG / k;
     if (k < k_crit) {
@@ -104,10 +105,11 @@ TEST(ClothImplicit, APatchHoldsAtEveryStiffnessWhereSemiImplicitEulerBlowsUp) {
     if (!semi && semi_limit == 0.0) semi_limit = k;
     EXPECT_TRUE(patchHolds(k, ClothIntegrator::ImplicitEuler)) << "implicit at k = " << k;
   }
-  std::printf("10 x 10 patch, one sub-step of 1/60 s: semi-implicit Euler blows up from k = %.0f "
-              "N/m; implicit Euler holds up to 1.3e6 N/m\n",
-              semi_limit);
-  EXPECT_GT(semi_limit, 0.0);  // Semi-implicit does blow up within the sweep...
+  std::printf(
+      "10 x 10 patch, one sub-step of 1/60 s: semi-implicit Euler blows up from k = %.0f "
+      "N/m; implicit Euler holds up to 1.3e6 N/m\n",
+      semi_limit);
+  EXPECT_GT(semi_limit, 0.0);    // Semi-implicit does blow up within the sweep...
   EXPECT_LT(semi_limit, 200.0);  // ...below the default stiffness, hence the zone's sub-steps.
 }
 
@@ -129,9 +131,10 @@ TEST(ClothImplicit, OneImplicitSubStepDrapesLikeManySemiImplicitOnes) {
   for (std::size_t i = 0; i < reference.positions().size(); ++i) {
     worst = std::max(worst, (reference.positions()[i] - implicit.positions()[i]).norm());
   }
-  std::printf("drape after 20 s: implicit (1 sub-step) against semi-implicit (32): largest "
-              "distance %.2e m; kinetic energy %.1e and %.1e J\n",
-              worst, implicit.kineticEnergy(), reference.kineticEnergy());
+  std::printf(
+      "drape after 20 s: implicit (1 sub-step) against semi-implicit (32): largest "
+      "distance %.2e m; kinetic energy %.1e and %.1e J\n",
+      worst, implicit.kineticEnergy(), reference.kineticEnergy());
   EXPECT_LT(worst, 1e-4);
 }
 

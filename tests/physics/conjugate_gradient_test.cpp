@@ -29,7 +29,8 @@ double residualSpeed(SolverKind kind, int iterations, int boxes) {
   BoxColumn column(coldStart(kind, iterations), std::vector<double>(boxes, 1000.0));
   column.world().step(1.0 / 60.0);
   double fastest = 0.0;
-  for (const Vec3& v : column.world().bodies().linear_velocity) fastest = std::max(fastest, v.norm());
+  for (const Vec3& v : column.world().bodies().linear_velocity)
+    fastest = std::max(fastest, v.norm());
   return fastest;
 }
 
@@ -37,9 +38,10 @@ TEST(ConjugateGradient, LeavesLessResidualThanGaussSeidelAtEqualIterations) {
   for (int iterations : {10, 20, 40}) {
     const double gs = residualSpeed(SolverKind::GaussSeidel, iterations, 10);
     const double cg = residualSpeed(SolverKind::ConjugateGradient, iterations, 10);
-    std::printf("10-box column, one cold step, %d iterations: residual speed Gauss-Seidel %.3e "
-                "m/s, conjugate gradient %.3e m/s (%.1fx less)\n",
-                iterations, gs, cg, gs / cg);
+    std::printf(
+        "10-box column, one cold step, %d iterations: residual speed Gauss-Seidel %.3e "
+        "m/s, conjugate gradient %.3e m/s (%.1fx less)\n",
+        iterations, gs, cg, gs / cg);
     EXPECT_LT(cg, gs);
   }
 }

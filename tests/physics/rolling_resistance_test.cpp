@@ -64,9 +64,10 @@ TEST_P(RollingResistance, StopsAtTheAnalyticDistanceOnTheFlat) {
   const double expected = 7.0 * v0 * v0 / (10.0 * c * g);  // 12.84 m
   const double t_stop = v0 / (5.0 / 7.0 * c * g);          // 8.56 s
   for (int s = 0; s < static_cast<int>((t_stop + 2.0) / kDt); ++s) flat.world.step(kDt);
-  std::printf("rolling resistance %.2f from %.1f m/s: stopped after %.4f m (analytic %.4f m), "
-              "speed %.2e m/s\n",
-              c, v0, flat.travelled(), expected, flat.speed());
+  std::printf(
+      "rolling resistance %.2f from %.1f m/s: stopped after %.4f m (analytic %.4f m), "
+      "speed %.2e m/s\n",
+      c, v0, flat.travelled(), expected, flat.speed());
   EXPECT_NEAR(flat.travelled() / expected, 1.0, 0.01);
   EXPECT_LT(flat.speed(), 1e-3);
 }

@@ -29,9 +29,10 @@ TEST(StabilityRecords, HundredBoxStackDriftsLessThanOneCentimetreInSixtySeconds)
   BoxColumn column(softStep(1, 100, 2), std::vector<double>(100, 1000.0));
   column.run(60.0);
   const BoxColumn::Drift d = column.drift();
-  std::printf("100-box stack, 60 s, soft step with 50 sub-steps: horizontal %.3e m, vertical "
-              "%.3e m\n",
-              d.horizontal, d.vertical);
+  std::printf(
+      "100-box stack, 60 s, soft step with 50 sub-steps: horizontal %.3e m, vertical "
+      "%.3e m\n",
+      d.horizontal, d.vertical);
   EXPECT_LT(d.total, 0.01);
 }
 
@@ -40,14 +41,15 @@ TEST(StabilityRecords, HundredBoxStackDriftsLessThanOneCentimetreInSixtySeconds)
 // 0.64-1.76 m in 60 s), four world sub-steps stiffen the springs. Measured: the pair 0.38 mm
 // sideways and 1.66 mm down, light-light-heavy 0.58 mm and 3.33 mm.
 TEST(StabilityRecords, ThreeHundredToOneMassRatioStacksHoldSixtySeconds) {
-  for (const std::vector<double>& densities : {std::vector<double>{1000.0, 300000.0},
-                                               std::vector<double>{1000.0, 1000.0, 300000.0}}) {
+  for (const std::vector<double>& densities :
+       {std::vector<double>{1000.0, 300000.0}, std::vector<double>{1000.0, 1000.0, 300000.0}}) {
     BoxColumn column(softStep(4, 10, 4), densities);
     column.run(60.0);
     const BoxColumn::Drift d = column.drift();
-    std::printf("300:1 stack of %zu, 60 s, soft step, 4 sub-steps of 10 + 4 iterations: "
-                "horizontal %.3e m, vertical %.3e m\n",
-                densities.size(), d.horizontal, d.vertical);
+    std::printf(
+        "300:1 stack of %zu, 60 s, soft step, 4 sub-steps of 10 + 4 iterations: "
+        "horizontal %.3e m, vertical %.3e m\n",
+        densities.size(), d.horizontal, d.vertical);
     EXPECT_LT(d.total, 0.01);
   }
 }

@@ -148,7 +148,7 @@ void decodeBody(const fb::BodyState& s, BodyData& d) {
   if (s.shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
   d = {s.radius(),   s.mass(),           s.restitution(),          fromFb(s.angular_velocity()),
        s.sleeping(), s.shape(),          fromFb(s.half_extents()), s.half_height(),
-       s.friction(), s.linear_damping(), s.angular_damping(), s.rolling_resistance()};
+       s.friction(), s.linear_damping(), s.angular_damping(),      s.rolling_resistance()};
 }
 
 flatbuffers::Offset<fb::EmitterState> encodeEmitter(Builder& b, const EmitterData& m,

@@ -156,12 +156,13 @@ physics:
   }
   double lowest = 1e9;
   for (const Vec3& p : cloth.positions()) lowest = std::min(lowest, p.y());
-  std::printf("implicit cloth, k 1e5, 1 sub-step per tick: fastest particle %.3f m/s, hangs %.4f "
-              "m below its pins, kinetic energy after 3 s %.2e J\n",
-              fastest, 6.0 - lowest, cloth.kineticEnergy());
+  std::printf(
+      "implicit cloth, k 1e5, 1 sub-step per tick: fastest particle %.3f m/s, hangs %.4f "
+      "m below its pins, kinetic energy after 3 s %.2e J\n",
+      fastest, 6.0 - lowest, cloth.kineticEnergy());
   EXPECT_EQ(cloth.positions()[cloth.index(0, 0)], pin);
-  EXPECT_LT(fastest, 10.0);              // a swing, not a blow-up
-  EXPECT_GT(6.0 - lowest, 1.1 * 0.99);   // its full height below the pins, barely stretched
+  EXPECT_LT(fastest, 10.0);             // a swing, not a blow-up
+  EXPECT_GT(6.0 - lowest, 1.1 * 0.99);  // its full height below the pins, barely stretched
   EXPECT_LT(6.0 - lowest, 1.1 * 1.05);
   EXPECT_TRUE(std::isfinite(cloth.kineticEnergy()));
 }
