@@ -4,23 +4,10 @@
 #include <cassert>
 #include <cmath>
 
+#include "ai/fixed_cost.h"
 #include "ai/open_order.h"
 
 namespace zonesim::ai {
-
-namespace {
-
-constexpr std::int64_t kStraight = std::int64_t(1) << 40;
-constexpr std::int64_t kDiagonal = 1554944255988;  // sqrt(2) * 2^40, rounded
-
-std::int64_t octileFixed(int dx, int dy) {
-  dx = dx < 0 ? -dx : dx;
-  dy = dy < 0 ? -dy : dy;
-  int lo = dx < dy ? dx : dy, hi = dx < dy ? dy : dx;
-  return std::int64_t(hi - lo) * kStraight + std::int64_t(lo) * kDiagonal;
-}
-
-}  // namespace
 
 GridSearch::GridSearch(const GridMap& map)
     : map_(map), nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0, -1, 0, -1}) {}

@@ -1,10 +1,13 @@
-// scen_check MAP SCEN [--planner astar|hpa]: runs every problem of a Moving AI scenario on MAP
-// (the map path inside the scenario is ignored) and compares each length with the listed
+// scen_check MAP SCEN [--planner astar|jps|jps+|hpa]: runs every problem of a Moving AI scenario on
+// MAP (the map path inside the scenario is ignored) and compares each length with the listed
 // optimum, at the precision the file lists it with (older files give 2 decimals). Ends with
 // `problems N mismatches M us_per_path X mean_overhead A p99_overhead B max_overhead Y` (an
 // overhead is a found path's length over the listed optimum, minus 1: a planner's worst case
 // shows beside its typical one); exits 1 on a mismatch (for HPA*, which is
-// not optimal, a mismatch is a missing or too-short path), 2 on bad input or usage.
+// not optimal, a mismatch is a missing or too-short path), 2 on bad input or usage. A* and
+// jump point search (jps scans its jumps, jps+ reads them from precomputed tables) must match
+// every optimum; jps also checks that each path is a valid
+// sequence of moves (its cells are filled in between jump points).
 
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +20,7 @@
 #include "ai/grid_map.h"
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
+#include "ai/jump_point_search.h"
 #include "ai/parse_error.h"
 #include "ai/scenario.h"
 #include "common/timer.h"
@@ -27,7 +31,7 @@ using zonesim::ai::Cell;
 using zonesim::ai::GridPath;
 
 int usage() {
-  std::fprintf(stderr, "usage: scen_check MAP SCEN [--planner astar|hpa]\n");
+  std::fprintf(stderr, "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa]\n");
   return 2;
 }
 
@@ -52,10 +56,11 @@ int main(int argc, char** argv) {
       return usage();
     }
   }
-  if (map_path.empty() || scenPath.empty() || (planner != "astar" && planner != "hpa")) {
+  if (map_path.empty() || scenPath.empty() ||
+      (planner != "astar" && planner != "jps" && planner != "jps+" && planner != "hpa")) {
     return usage();
   }
-  const bool optimal = planner == "astar";
+  const bool optimal = planner != "hpa";
 
   try {
     GridMap map = loadMovingAiMap(map_path);
@@ -74,10 +79,16 @@ int main(int argc, char** argv) {
 
     std::function<bool(Cell, Cell, GridPath&)> plan;
     std::unique_ptr<GridSearch> astar;
+    std::unique_ptr<JumpPointSearch> jps;
     std::unique_ptr<HpaPlanner> hpa;
-    if (optimal) {
+    if (planner == "astar") {
       astar = std::make_unique<GridSearch>(map);
       plan = [&](Cell s, Cell g, GridPath& out) { return astar->findPath(s, g, out); };
+    } else if (planner == "jps" || planner == "jps+") {
+      jps = std::make_unique<JumpPointSearch>(map, planner == "jps"
+                                                       ? JumpPointSearch::Jumps::Scanned
+                                                       : JumpPointSearch::Jumps::Precomputed);
+      plan = [&](Cell s, Cell g, GridPath& out) { return jps->findPath(s, g, out); };
     } else {
       hpa = std::make_unique<HpaPlanner>(map, HpaConfig{});
       plan = [&](Cell s, Cell g, GridPath& out) { return hpa->findPath(s, g, out); };
@@ -97,6 +108,8 @@ int main(int argc, char** argv) {
         // A path is never shorter than the optimum, save for the file's rounding of it.
         bad = optimal ? !agreesWithListed(path.length, p)
                       : path.length < p.optimal * (1.0 - 1e-3) - 1e-3 - 0.5 * p.optimal_step;
+        bad = bad || !isValidPath(map, path.cells) || !(path.cells.front() == p.start) ||
+              !(path.cells.back() == p.goal);
         overheads.push_back(overhead);
       }
       if (bad) {
