@@ -97,6 +97,7 @@ struct TickCounters {
   std::uint64_t published_cells = 0;
   std::uint64_t published_keyframes = 0;
   std::uint64_t subscribed_cells = 0;
+  std::uint64_t published_states = 0;   ///< entity states computed for subscribed cells
   std::uint64_t ghosts = 0;             ///< neighbours' entities held as ghosts after the refresh
   std::uint64_t ghosts_sent = 0;        ///< entity copies sent to neighbours
   std::uint64_t halo_bytes = 0;         ///< bytes of those copies
@@ -159,6 +160,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"published_cells", &TickCounters::published_cells, false},
     {"published_keyframes", &TickCounters::published_keyframes, false},
     {"subscribed_cells", &TickCounters::subscribed_cells, true},
+    {"published_states", &TickCounters::published_states, false},
     {"ghosts", &TickCounters::ghosts, true},
     {"ghosts_sent", &TickCounters::ghosts_sent, false},
     {"halo_bytes", &TickCounters::halo_bytes, false},

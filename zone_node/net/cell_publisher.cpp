@@ -110,8 +110,6 @@ PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departur
     DeadReckoningState& dr = store.dr[i];
     EntityId id = store.id[i];
     EntityKind kind = store.kind[i];
-    dr::State truth = trueState(store, i, dt);
-    rememberTick(store, i);
     Channel& ch = channels_.find(cell)->second;
     int previous = dr.cell;
     dr.cell = cell;
@@ -119,7 +117,15 @@ PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departur
       Channel& old = channels_.find(previous)->second;
       if (old.subscribed) old.leaves.push_back({id.value, zonesim_dds_LEAVE_MOVED_CELL});
     }
-    if (!ch.subscribed) continue;  // not encoded; a keyframe resynchronises on subscription
+    if (!ch.subscribed) {
+      // Not computed, not encoded; a keyframe resynchronises on subscription. The history the
+      // motion estimate needs is still kept, so that first keyframe's state is right.
+      rememberTick(store, i);
+      continue;
+    }
+    dr::State truth = trueState(store, i, dt);  // from last tick's history, then remember
+    rememberTick(store, i);
+    ++stats.states_computed;
     dr::Model model = modelFor(reckoner_.config(), kind);
     auto sendNow = [&](std::vector<zonesim_dds_EntityUpdate>& out) {
       int largest = -1;

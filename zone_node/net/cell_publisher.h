@@ -36,6 +36,9 @@ struct PublishStats {
   std::uint64_t rest_updates = 0;         ///< updates sent because a moving entity stopped
   std::uint64_t subscribed_cells = 0;
   std::uint64_t write_failures = 0;  ///< writes that timed out (a reader not keeping up)
+  /// Entities whose client-facing state (motion estimate, orientation rate) was computed: only
+  /// those in subscribed cells; a cell nobody reads costs no state and no encoding.
+  std::uint64_t states_computed = 0;
 };
 
 class CellPublisher {

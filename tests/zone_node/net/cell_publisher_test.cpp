@@ -156,6 +156,7 @@ TEST_F(CellPublisherTest, CellsWithNoSubscriberAreNotEncoded) {
   addNpc(190, 190);  // cell (3, 3): nobody reads it
   PublishStats first = publish();
   EXPECT_EQ(first.subscribed_cells, 1u);
+  EXPECT_EQ(first.states_computed, 1u);  // the entity nobody reads costs no state
   EXPECT_EQ(first.keyframes, 1u);
   EXPECT_EQ(first.cells_written, 0u);
   EXPECT_GT(store_.dr[0].time, 0.0);  // quantised and marked sent
@@ -164,6 +165,7 @@ TEST_F(CellPublisherTest, CellsWithNoSubscriberAreNotEncoded) {
   EntityId seen = addNpc(20, 20);
   addNpc(180, 170);
   PublishStats s = publish();
+  EXPECT_EQ(s.states_computed, 2u);
   EXPECT_EQ(s.cells_written, 1u);
   EXPECT_EQ(s.enters, 1u);
   EXPECT_EQ(s.keyframes, 0u);
