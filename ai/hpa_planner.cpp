@@ -8,7 +8,7 @@
 namespace zonesim::ai {
 
 HpaPlanner::HpaPlanner(const GridMap& map, const HpaConfig& config)
-    : map_(map), config_(config), search_(map) {
+    : map_(map), config_(config), search_(map), direct_search_(map) {
   assert(config_.cluster_size >= 2);
   clusters_x_ = (map_.width() + config_.cluster_size - 1) / config_.cluster_size;
   clustersY_ = (map_.height() + config_.cluster_size - 1) / config_.cluster_size;
@@ -181,8 +181,9 @@ void HpaPlanner::cellChanged(Cell c) {
 }
 
 HpaStats HpaPlanner::stats() const {
-  return HpaStats{clusters_x_ * clustersY_, int(node_cell_.size()), int(edges_.size()), expanded_,
-                  grid_expanded_};
+  return HpaStats{clusters_x_ * clustersY_, int(node_cell_.size()),
+                  int(edges_.size()),       expanded_,
+                  grid_expanded_,           last_direct_};
 }
 
 bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
@@ -231,7 +232,14 @@ bool HpaPlanner::findPath(Cell start, Cell goal, GridPath& out) {
   out.clear();
   expanded_ = 0;
   grid_expanded_ = 0;
+  last_direct_ = false;
   if (!map_.passable(start.x, start.y) || !map_.passable(goal.x, goal.y)) return false;
+  if (octileDistance(start, goal) <= config_.direct_distance) {
+    last_direct_ = true;
+    const bool found = direct_search_.findPath(start, goal, out);
+    grid_expanded_ = direct_search_.lastStats().expanded;
+    return found;
+  }
   if (map_.version() != built_version_) rebuild();
   if (start == goal) {
     out.cells.push_back(start);

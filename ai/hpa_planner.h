@@ -13,6 +13,7 @@
 #include "ai/grid_map.h"
 #include "ai/grid_path.h"
 #include "ai/grid_search.h"
+#include "ai/jump_point_search.h"
 
 namespace zonesim::ai {
 
@@ -21,6 +22,11 @@ struct HpaConfig {
   int cluster_size = 16;  ///< cluster side in cells
   int wide_entrance = 6;  ///< entrances at least this wide get a transition at each end
   int smooth_span = 0;    ///< re-optimise windows of this many abstract steps (0: raw HPA*)
+  /// Queries whose ends are at most this far apart (octile cells) go to an optimal jump point
+  /// search instead: short paths are where the abstraction costs more than it saves and
+  /// where its detours are largest relative to the path. Negative: always through the
+  /// abstraction.
+  double direct_distance = 64.0;
 };
 
 /// Size of the abstraction, for reports.
@@ -30,6 +36,7 @@ struct HpaStats {
   int edges = 0;          ///< directed abstract edges
   int expanded = 0;       ///< abstract nodes expanded by the last query
   int grid_expanded = 0;  ///< grid cells expanded by the last query (linking, refining, smoothing)
+  bool direct = false;    ///< the last query was answered by the direct optimal search
 };
 
 /// Hierarchical planner over a map that may change; repairs only the clusters a change touches.
@@ -96,6 +103,8 @@ class HpaPlanner {
 
   // Per-query scratch, reused so that a warmed-up query allocates only for its path.
   GridSearch search_;
+  JumpPointSearch direct_search_;
+  bool last_direct_ = false;
   std::vector<Edge> start_edges_;
   std::vector<double> goal_cost_;
   std::vector<std::uint32_t> goal_stamp_;

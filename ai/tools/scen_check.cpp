@@ -1,4 +1,4 @@
-// scen_check MAP SCEN [--planner astar|jps|jps+|hpa]: runs every problem of a Moving AI scenario on
+// scen_check MAP SCEN [--planner astar|jps|jps+|hpa] [--direct-distance D]: runs every problem of a
 // MAP (the map path inside the scenario is ignored) and compares each length with the listed
 // optimum, at the precision the file lists it with (older files give 2 decimals). Ends with
 // `problems N mismatches M us_per_path X mean_overhead A p99_overhead B max_overhead Y` (an
@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -31,7 +32,11 @@ using zonesim::ai::Cell;
 using zonesim::ai::GridPath;
 
 int usage() {
-  std::fprintf(stderr, "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa]\n");
+  std::fprintf(stderr,
+               "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa] [--direct-distance D]\n"
+               "  --direct-distance: hpa hands queries whose ends are at most D cells apart to\n"
+               "  the optimal jump point search (default %g; negative: never)\n",
+               zonesim::ai::HpaConfig{}.direct_distance);
   return 2;
 }
 
@@ -40,12 +45,17 @@ int usage() {
 int main(int argc, char** argv) {
   using namespace zonesim::ai;
   std::string map_path, scenPath, planner = "astar";
+  double direct_distance = HpaConfig{}.direct_distance;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--planner" && i + 1 < argc) {
       planner = argv[++i];
     } else if (a.rfind("--planner=", 0) == 0) {
       planner = a.substr(10);
+    } else if (a == "--direct-distance" && i + 1 < argc) {
+      char* end = nullptr;
+      direct_distance = std::strtod(argv[++i], &end);
+      if (end == argv[i] || *end != '\0') return usage();
     } else if (!a.empty() && a[0] == '-') {
       return usage();
     } else if (map_path.empty()) {
@@ -90,7 +100,9 @@ int main(int argc, char** argv) {
                                                        : JumpPointSearch::Jumps::Precomputed);
       plan = [&](Cell s, Cell g, GridPath& out) { return jps->findPath(s, g, out); };
     } else {
-      hpa = std::make_unique<HpaPlanner>(map, HpaConfig{});
+      HpaConfig config;
+      config.direct_distance = direct_distance;
+      hpa = std::make_unique<HpaPlanner>(map, config);
       plan = [&](Cell s, Cell g, GridPath& out) { return hpa->findPath(s, g, out); };
     }
 

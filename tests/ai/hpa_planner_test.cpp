@@ -13,11 +13,18 @@
 namespace zonesim::ai {
 namespace {
 
+/// The abstraction alone: no query is handed to the direct search, however short.
+HpaConfig abstractOnly(int cluster_size = 16, int wide_entrance = 6, int smooth_span = 0) {
+  HpaConfig c{cluster_size, wide_entrance, smooth_span};
+  c.direct_distance = -1.0;
+  return c;
+}
+
 TEST(HpaPlanner, ScenariosAreCompleteWithBoundedOverhead) {
   for (const char* name : {"random512-10-0.map", "8room_000.map", "maze512-1-0.map"}) {
     GridMap m = loadMovingAiMap(test::movingAiPath(name));
     auto problems = loadScenario(test::movingAiPath(std::string(name) + ".scen"));
-    HpaPlanner hpa(m, HpaConfig{});
+    HpaPlanner hpa(m, abstractOnly());
     GridPath path;
     double worst = 0.0;
     for (std::size_t i = 0; i < problems.size(); i += 7) {
@@ -37,8 +44,8 @@ TEST(HpaPlanner, ScenariosAreCompleteWithBoundedOverhead) {
 TEST(HpaPlanner, SmoothingNeverLengthensAndCutsTheOverhead) {
   GridMap m = loadMovingAiMap(test::movingAiPath("random512-10-0.map"));
   auto problems = loadScenario(test::movingAiPath("random512-10-0.map.scen"));
-  HpaPlanner raw(m, HpaConfig{16, 6, 0});
-  HpaPlanner smooth(m, HpaConfig{16, 6, 3});
+  HpaPlanner raw(m, abstractOnly(16, 6, 0));
+  HpaPlanner smooth(m, abstractOnly(16, 6, 3));
   GridPath a, b;
   double rawTotal = 0, smoothTotal = 0;
   for (std::size_t i = 0; i < problems.size(); i += 9) {
@@ -59,7 +66,7 @@ TEST(HpaPlanner, SmoothingNeverLengthensAndCutsTheOverhead) {
 TEST(HpaPlanner, FindsAPathExactlyWhenOneExists) {
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     GridMap m = test::randomMap(70, 53, 0.1 + 0.02 * double(seed), seed);
-    HpaPlanner hpa(m, HpaConfig{8, 6});
+    HpaPlanner hpa(m, abstractOnly(8, 6));
     GridPath path;
     Pcg32 rng(seed, 3);
     for (int q = 0; q < 30; ++q) {
@@ -76,7 +83,7 @@ TEST(HpaPlanner, FindsAPathExactlyWhenOneExists) {
 
 TEST(HpaPlanner, OpenMapIsNearOptimal) {
   GridMap m(64, 64);
-  HpaPlanner hpa(m, HpaConfig{});
+  HpaPlanner hpa(m, abstractOnly());
   GridPath path;
   ASSERT_TRUE(hpa.findPath({2, 3}, {60, 50}, path));
   EXPECT_LE(path.length, octileDistance(Cell{2, 3}, Cell{60, 50}) * 1.1);
@@ -93,7 +100,7 @@ TEST(HpaPlanner, DoorClosingIsRepairedLocally) {
   for (int y = 0; y < 40; ++y) m.setPassable(31, y, false);
   const Cell door{31, 20};
   m.setPassable(door.x, door.y, true);
-  HpaPlanner hpa(m, HpaConfig{16, 6});
+  HpaPlanner hpa(m, abstractOnly(16, 6));
   GridPath path;
   ASSERT_TRUE(hpa.findPath({2, 2}, {60, 35}, path));
   EXPECT_NE(std::find(path.cells.begin(), path.cells.end(), door), path.cells.end());
@@ -106,7 +113,7 @@ TEST(HpaPlanner, DoorClosingIsRepairedLocally) {
   hpa.cellChanged(door);
   ASSERT_TRUE(hpa.findPath({2, 2}, {60, 35}, path));
   double repaired = path.length;
-  HpaPlanner fresh(m, HpaConfig{16, 6});
+  HpaPlanner fresh(m, abstractOnly(16, 6));
   GridPath freshPath;
   ASSERT_TRUE(fresh.findPath({2, 2}, {60, 35}, freshPath));
   EXPECT_EQ(path.cells, freshPath.cells);
@@ -117,14 +124,14 @@ TEST(HpaPlanner, DoorClosingIsRepairedLocally) {
 
 TEST(HpaPlanner, RandomEditsRepairLikeARebuild) {
   GridMap m = test::randomMap(80, 64, 0.2, 77);
-  HpaPlanner hpa(m, HpaConfig{8, 6});
+  HpaPlanner hpa(m, abstractOnly(8, 6));
   Pcg32 rng(77, 1);
   GridPath a, b;
   for (int edit = 0; edit < 40; ++edit) {
     Cell c{int(rng.next() % 80u), int(rng.next() % 64u)};
     m.setPassable(c.x, c.y, !m.passable(c.x, c.y));
     hpa.cellChanged(c);
-    HpaPlanner fresh(m, HpaConfig{8, 6});
+    HpaPlanner fresh(m, abstractOnly(8, 6));
     EXPECT_EQ(hpa.stats().nodes, fresh.stats().nodes) << "edit " << edit;
     EXPECT_EQ(hpa.stats().edges, fresh.stats().edges) << "edit " << edit;
     Cell s = test::randomFreeCell(m, rng), g = test::randomFreeCell(m, rng);
@@ -138,11 +145,44 @@ TEST(HpaPlanner, UnreportedChangesTriggerARebuild) {
   GridMap m(32, 32);
   for (int y = 0; y < 32; ++y) m.setPassable(16, y, false);
   m.setPassable(16, 5, true);
-  HpaPlanner hpa(m, HpaConfig{8, 6});
+  HpaPlanner hpa(m, abstractOnly(8, 6));
   GridPath path;
   ASSERT_TRUE(hpa.findPath({1, 1}, {30, 30}, path));
   m.setPassable(16, 5, false);
   EXPECT_FALSE(hpa.findPath({1, 1}, {30, 30}, path));
+}
+
+}  // namespace
+}  // namespace zonesim::ai
+
+namespace zonesim::ai {
+namespace {
+
+// Short queries go to the optimal jump point search (HpaConfig::direct_distance), long ones
+// through the abstraction: short paths come back optimal, and the choice is reported.
+TEST(HpaPlannerDirect, ShortQueriesAreOptimalAndLongOnesUseTheAbstraction) {
+  GridMap m = loadMovingAiMap(test::movingAiPath("random512-10-0.map"));
+  auto problems = loadScenario(test::movingAiPath("random512-10-0.map.scen"));
+  HpaPlanner hpa(m, HpaConfig{});
+  GridPath path;
+  int direct = 0, abstract = 0;
+  for (std::size_t i = 0; i < problems.size(); i += 5) {
+    const auto& p = problems[i];
+    ASSERT_TRUE(hpa.findPath(p.start, p.goal, path)) << "line " << p.line;
+    EXPECT_TRUE(isValidPath(m, path.cells)) << "line " << p.line;
+    const bool short_query = octileDistance(p.start, p.goal) <= HpaConfig{}.direct_distance;
+    EXPECT_EQ(hpa.stats().direct, short_query) << "line " << p.line;
+    if (short_query) {
+      ++direct;
+      EXPECT_TRUE(agreesWithListed(path.length, p)) << "line " << p.line;
+      EXPECT_EQ(hpa.stats().expanded, 0);  // no abstract node touched
+    } else {
+      ++abstract;
+      EXPECT_GT(hpa.stats().expanded, 0);
+    }
+  }
+  EXPECT_GT(direct, 20);
+  EXPECT_GT(abstract, 100);
 }
 
 }  // namespace
