@@ -6,6 +6,7 @@
 
 #include "ai/fixed_cost.h"
 #include "ai/open_order.h"
+#include "ai/search_generation.h"
 
 namespace zonesim::ai {
 
@@ -13,12 +14,7 @@ GridSearch::GridSearch(const GridMap& map)
     : map_(map), nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0, -1, 0, -1}) {}
 
 void GridSearch::beginSearch() {
-  // Two stamps per search (open and closed); on wrap-around every record is reset once.
-  if (generation_ >= 0xFFFFFFF0u) {
-    for (Node& n : nodes_) n.stamp = 0;
-    generation_ = 0;
-  }
-  generation_ += 2;
+  nextGeneration(generation_, nodes_);
   heap_.clear();
   stats_ = SearchStats{};
 }

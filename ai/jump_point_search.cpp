@@ -5,6 +5,7 @@
 
 #include "ai/fixed_cost.h"
 #include "ai/open_order.h"
+#include "ai/search_generation.h"
 
 namespace zonesim::ai {
 
@@ -129,11 +130,7 @@ int JumpPointSearch::jump(int x, int y, int dx, int dy) const {
 }
 
 void JumpPointSearch::beginSearch() {
-  if (generation_ >= 0xFFFFFFF0u) {
-    for (Node& n : nodes_) n.stamp = 0;
-    generation_ = 0;
-  }
-  generation_ += 2;
+  nextGeneration(generation_, nodes_);
   heap_.clear();
   stats_ = SearchStats{};
 }
