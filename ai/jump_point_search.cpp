@@ -18,10 +18,10 @@ int sign(int v) {
 constexpr int kDx[8] = {1, -1, 0, 0, 1, -1, 1, -1};
 constexpr int kDy[8] = {0, 0, 1, -1, 1, 1, -1, -1};
 
+/// Index of (dx, dy) in kDx / kDy, by table: the JPS+ search reads it for every jump.
 int directionIndex(int dx, int dy) {
-  for (int d = 0; d < 8; ++d)
-    if (kDx[d] == dx && kDy[d] == dy) return d;
-  return -1;
+  static constexpr int kIndex[9] = {7, 3, 6, 1, -1, 0, 5, 2, 4};  // by (dy + 1) * 3 + dx + 1
+  return kIndex[(dy + 1) * 3 + dx + 1];
 }
 
 /// Steps from `from` along the direction to reach `to`, when `to` lies exactly on that ray
