@@ -85,9 +85,7 @@ physics::Cloth makeCloth(const SceneCloth& c) {
   d.tear_strain = c.tear_strain;
   d.thickness = c.thickness;
   d.friction = c.friction;
-  d.integrator = c.integrator == SceneCloth::Integrator::ImplicitEuler
-                     ? physics::ClothIntegrator::ImplicitEuler
-                     : physics::ClothIntegrator::SemiImplicitEuler;
+  d.integrator = physics::ClothIntegrator(c.integrator);
   physics::Cloth cloth(d);
   for (auto [col, row] : c.pins) cloth.pin(cloth.index(col, row));
   return cloth;
@@ -115,6 +113,8 @@ static_assert(int(physics::SolverKind::ConjugateGradient) ==
 static_assert(int(physics::SolverKind::GaussSeidel) == int(PhysicsSettings::Solver::GaussSeidel));
 
 static_assert(int(physics::Falloff::Quadratic) == int(SceneExplosion::Falloff::Quadratic));
+static_assert(int(physics::ClothIntegrator::ImplicitEuler) ==
+              int(SceneCloth::Integrator::ImplicitEuler));
 static_assert(int(BodyData::Capsule) == int(SceneBody::Shape::Capsule));
 
 RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
