@@ -1,5 +1,7 @@
 #include "physics/aabb.h"
 
+#include <limits>
+
 namespace zonesim::physics {
 
 Aabb shapeBounds(const Shape& shape, const Vec3& position, const Quat& orientation) {
@@ -19,6 +21,15 @@ Aabb shapeBounds(const Shape& shape, const Vec3& position, const Quat& orientati
     case ShapeType::Plane:
       half = Vec3::Constant(std::numeric_limits<double>::infinity());
       break;
+    case ShapeType::Compound: {
+      Aabb all{Vec3::Constant(std::numeric_limits<double>::infinity()),
+               Vec3::Constant(-std::numeric_limits<double>::infinity())};
+      for (const ShapePart& p : *shape.parts) {
+        all = all.merged(
+            shapeBounds(p.shape, position + orientation * p.position, orientation * p.orientation));
+      }
+      return all;
+    }
   }
   return Aabb{position - half, position + half};
 }

@@ -45,8 +45,8 @@ struct ProxyPair {
   friend bool operator==(const ProxyPair& a, const ProxyPair& b) = default;
 };
 
-/// World bounds of a bounded shape (sphere, box, capsule) at a pose; planes are unbounded and
-/// are handled outside the broadphase.
+/// World bounds of a bounded shape (sphere, box, capsule, compound) at a pose; planes are unbounded
+/// and are handled outside the broadphase.
 Aabb shapeBounds(const Shape& shape, const Vec3& position, const Quat& orientation);
 
 }  // namespace zonesim::physics

@@ -4,16 +4,27 @@
 
 namespace zonesim::physics {
 
+namespace {
+
+/// The inverse of an inertia tensor; a diagonal one inverted element by element, exactly.
+Eigen::Matrix3d inverseInertia(const Eigen::Matrix3d& inertia) {
+  const Eigen::Matrix3d off = inertia - Eigen::Matrix3d(inertia.diagonal().asDiagonal());
+  if (off.isZero(0.0)) return inertia.diagonal().cwiseInverse().asDiagonal();
+  return inertia.inverse();
+}
+
+}  // namespace
+
 BodyIndex BodyStorage::add(const BodyDesc& desc) {
   const auto index = static_cast<BodyIndex>(size());
   const bool moves_by_forces = desc.type == BodyType::Dynamic || desc.type == BodyType::Particle;
   const MassProperties mp = computeMassProperties(desc.shape, desc.density);
   double w = 0.0;
-  Vec3 inv_inertia = Vec3::Zero();
+  Eigen::Matrix3d inv_inertia = Eigen::Matrix3d::Zero();
   if (moves_by_forces && mp.mass > 0.0) {
     w = 1.0 / mp.mass;
     // Particles never rotate: infinite inertia.
-    if (desc.type == BodyType::Dynamic) inv_inertia = mp.inertia.cwiseInverse();
+    if (desc.type == BodyType::Dynamic) inv_inertia = inverseInertia(mp.inertia);
   }
   const bool still = desc.type == BodyType::Static;
   type.push_back(desc.type);
@@ -36,7 +47,7 @@ BodyIndex BodyStorage::add(const BodyDesc& desc) {
   position_prev.push_back(desc.position);
   foreign.push_back(desc.foreign);
   const Eigen::Matrix3d r = orientation.back().toRotationMatrix();
-  inv_inertia_world.back() = r * inv_inertia.asDiagonal() * r.transpose();
+  inv_inertia_world.back() = r * inv_inertia * r.transpose();
   return index;
 }
 
@@ -44,7 +55,7 @@ void BodyStorage::updateWorldInertia() {
   const std::size_t n = size();
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Matrix3d r = orientation[i].toRotationMatrix();
-    inv_inertia_world[i] = r * inv_inertia_local[i].asDiagonal() * r.transpose();
+    inv_inertia_world[i] = r * inv_inertia_local[i] * r.transpose();
   }
 }
 

@@ -24,8 +24,10 @@ struct BodyStorage {
   std::vector<Vec3> force;   ///< Applied this step; cleared after it.
   std::vector<Vec3> torque;  ///< Applied this step; cleared after it.
   std::vector<double> inv_mass;
-  std::vector<Vec3> inv_inertia_local;             ///< Principal axes, body frame.
-  std::vector<Eigen::Matrix3d> inv_inertia_world;  ///< R diag(inv_inertia_local) R^T.
+  /// Inverse inertia tensor in the body frame: diagonal for a sphere, box or capsule, full for
+  /// a compound.
+  std::vector<Eigen::Matrix3d> inv_inertia_local;
+  std::vector<Eigen::Matrix3d> inv_inertia_world;  ///< R inv_inertia_local R^T.
   std::vector<double> friction;
   std::vector<double> restitution;
   std::vector<double> rolling_resistance;

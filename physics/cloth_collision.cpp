@@ -35,6 +35,12 @@ double boundOf(const Shape& s) {
       return s.radius + s.half_height;
     case ShapeType::Plane:
       break;
+    case ShapeType::Compound: {
+      double bound = 0.0;
+      for (const ShapePart& p : *s.parts)
+        bound = std::max(bound, p.position.norm() + boundOf(p.shape));
+      return bound;
+    }
   }
   return std::numeric_limits<double>::infinity();
 }
@@ -68,6 +74,17 @@ double signedDistance(const Shape& shape, const Vec3& position, const Quat& orie
     case ShapeType::Plane:
       normal = orientation * Vec3::UnitY();
       return normal.dot(p - position);
+    case ShapeType::Compound: {
+      // The nearest part: exact outside every part, a bound inside where parts overlap.
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const ShapePart& part : *shape.parts) {
+        Vec3 n;
+        const double d = signedDistance(part.shape, position + orientation * part.position,
+                                        orientation * part.orientation, p, n);
+        if (d < nearest) nearest = d, normal = n;
+      }
+      return nearest;
+    }
   }
   normal = Vec3::UnitY();
   return std::numeric_limits<double>::infinity();

@@ -87,6 +87,10 @@ struct SolverSettings {
 struct BodyContact {
   BodyIndex a = 0;
   BodyIndex b = 0;
+  /// The pieces of a and b that touch: a compound's part index, 0 for any other shape. A pair
+  /// of bodies has one contact per touching pair of pieces.
+  std::uint16_t piece_a = 0;
+  std::uint16_t piece_b = 0;
   Manifold manifold;
   double friction = 0.0;
   double restitution = 0.0;
@@ -97,7 +101,20 @@ struct BodyContact {
   double rolling = 0.0;
   /// Angular impulses against rolling about the contact's two tangents, from the last solve.
   std::array<double, 2> rolling_impulse{};
+
+  /// The order of a step's contacts: by body pair, then piece pair.
+  friend bool operator<(const BodyContact& x, const BodyContact& y) {
+    if (x.a != y.a) return x.a < y.a;
+    if (x.b != y.b) return x.b < y.b;
+    if (x.piece_a != y.piece_a) return x.piece_a < y.piece_a;
+    return x.piece_b < y.piece_b;
+  }
 };
+
+/// True when both contacts are between the same pieces of the same bodies.
+inline bool samePieces(const BodyContact& x, const BodyContact& y) {
+  return x.a == y.a && x.b == y.b && x.piece_a == y.piece_a && x.piece_b == y.piece_b;
+}
 
 /// Solves one step's contacts in place on the bodies' velocities.
 class ContactSolver {

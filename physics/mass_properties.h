@@ -1,15 +1,17 @@
 #pragma once
-// Mass and principal inertia of uniform-density shapes, about the centre of mass.
+// Mass and inertia of uniform-density shapes, about the centre of mass.
 
 #include "common/math.h"
 #include "physics/shape.h"
 
 namespace zonesim::physics {
 
-/// Mass and the diagonal of the inertia tensor in the shape's principal (local) frame.
+/// Mass, centre of mass and the inertia tensor about that centre, in the shape's frame. The
+/// tensor of a sphere, box or capsule is diagonal; a compound's generally is not.
 struct MassProperties {
   double mass = 0.0;
-  Vec3 inertia = Vec3::Zero();
+  Vec3 centre = Vec3::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
 
 /// Mass properties of a shape of uniform density; planes have none (zero mass).

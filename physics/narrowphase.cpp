@@ -19,8 +19,10 @@ int rank(ShapeType t) {
       return 2;
     case ShapeType::Sphere:
       return 3;
+    case ShapeType::Compound:
+      return 4;
   }
-  return 3;
+  return 4;
 }
 
 /// Pairs in rank order: rank(sa.type) <= rank(sb.type).
@@ -37,6 +39,8 @@ bool collideOrdered(const Shape& sa, const Pose& a, const Shape& sb, const Pose&
           return collidePlaneCapsule(a, sb, b, margin, out);
         case ShapeType::Sphere:
           return collidePlaneSphere(a, b.position, sb.radius, margin, out);
+        case ShapeType::Compound:
+          return false;
       }
       return false;
     case ShapeType::Box:
@@ -48,6 +52,7 @@ bool collideOrdered(const Shape& sa, const Pose& a, const Shape& sb, const Pose&
         case ShapeType::Sphere:
           return collideBoxSphere(sa.half_extents, a, b.position, sb.radius, margin, out);
         case ShapeType::Plane:
+        case ShapeType::Compound:
           return false;
       }
       return false;
@@ -58,7 +63,10 @@ bool collideOrdered(const Shape& sa, const Pose& a, const Shape& sb, const Pose&
       }
       return false;
     case ShapeType::Sphere:
+      if (sb.type != ShapeType::Sphere) return false;
       return collideSpheres(a.position, sa.radius, b.position, sb.radius, margin, out);
+    case ShapeType::Compound:
+      return false;
   }
   return false;
 }

@@ -1,10 +1,14 @@
 #include "physics/world.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "common/timer.h"
+#include "physics/compound.h"
+#include "physics/mass_properties.h"
 #include "physics/narrowphase.h"
 
 namespace zonesim::physics {
@@ -12,6 +16,9 @@ namespace zonesim::physics {
 namespace {
 // A contact point within this distance (m) of last step's point inherits its impulses.
 constexpr double kPreserveDistance = 0.02;
+// Newton steps of the gyroscopic midpoint rule: the residual falls quadratically, and from the
+// last step's spin 3 reach round-off at the spins a game sees (|w| dt < 1).
+constexpr int kGyroscopicNewtonSteps = 3;
 }  // namespace
 
 World::World(const WorldSettings& settings)
@@ -25,6 +32,17 @@ BodyIndex World::addBody(const BodyDesc& desc) {
   if (desc.rolling_resistance > 0.0 && settings_.solver.kind == SolverKind::Projection) {
     throw std::invalid_argument(
         "rolling_resistance needs a velocity solver; SolverKind::Projection has none");
+  }
+  if (desc.shape.type == ShapeType::Compound && desc.type == BodyType::Dynamic) {
+    // A body turns about its origin: a compound off its centre of mass would turn wrongly.
+    const MassProperties mp = computeMassProperties(desc.shape, desc.density);
+    const double size = shapeBounds(desc.shape, Vec3::Zero(), Quat::Identity()).area();
+    if (mp.centre.squaredNorm() > 1e-18 * size) {
+      throw std::invalid_argument(
+          "a dynamic compound's origin must be its parts' centre of mass, which lies at (" +
+          std::to_string(mp.centre.x()) + ", " + std::to_string(mp.centre.y()) + ", " +
+          std::to_string(mp.centre.z()) + "); build it with centreCompound()");
+    }
   }
   const BodyIndex i = bodies_.add(desc);
   islands_.resize(bodies_.size());
@@ -146,9 +164,37 @@ void World::integrateForces(double dt) {
     if (type == BodyType::Dynamic) {
       Vec3& w = bodies_.angular_velocity[i];
       w += dt * (bodies_.inv_inertia_world[i] * bodies_.torque[i]);
+      // A foreign body's owner applies its gyroscopic term; here it is only pushed.
+      if (settings_.gyroscopic && !bodies_.foreign[i]) w = gyroscopicStep(i, w, dt);
       w /= 1.0 + dt * bodies_.angular_damping[i];
     }
   }
+}
+
+Vec3 World::gyroscopicStep(BodyIndex i, const Vec3& w, double dt) const {
+  const Eigen::Matrix3d& inv_inertia = bodies_.inv_inertia_local[i];
+  if (inv_inertia.isZero(0.0)) return w;
+  // Euler's equations in the body frame, I dw/dt + w x I w = 0 (I constant there), by the
+  // implicit midpoint rule: I (w1 - w0) + dt m x I m = 0 with m = (w0 + w1) / 2. It keeps
+  // both of the motion's quadratic invariants, |I w| and w.I w, and is stable at any spin.
+  // Newton on f(w1), whose Jacobian is I + dt/2 (skew(m) I - skew(I m)), from w1 = w0.
+  const Quat& q = bodies_.orientation[i];
+  const Eigen::Matrix3d inertia = inv_inertia.inverse();
+  const auto skew = [](const Vec3& v) {
+    Eigen::Matrix3d m;
+    m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return m;
+  };
+  const Vec3 w0 = q.conjugate() * w;
+  Vec3 w1 = w0;
+  for (int it = 0; it < kGyroscopicNewtonSteps; ++it) {
+    const Vec3 m = 0.5 * (w0 + w1);
+    const Vec3 im = inertia * m;
+    const Vec3 f = inertia * (w1 - w0) + dt * m.cross(im);
+    const Eigen::Matrix3d jacobian = inertia + 0.5 * dt * (skew(m) * inertia - skew(im));
+    w1 -= jacobian.partialPivLu().solve(f);
+  }
+  return q * w1;
 }
 
 void World::findContacts(double dt) {
@@ -206,9 +252,7 @@ void World::contactsOfPairs(double dt) {
   // Pair order decides the Gauss-Seidel order: sort for determinism and warm-start lookup.
   // The broadphase's pairs come sorted (and proxies are in body order), so without planes the
   // list is already in order; checking is linear, moving ~250-byte contacts is not.
-  const auto byPair = [](const BodyContact& x, const BodyContact& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  };
+  const auto byPair = [](const BodyContact& x, const BodyContact& y) { return x < y; };
   if (!std::is_sorted(contacts_.begin(), contacts_.end(), byPair)) {
     std::sort(contacts_.begin(), contacts_.end(), byPair);
   }
@@ -220,20 +264,28 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   // A foreign body meets only this world's own movable bodies.
   if (bodies_.foreign[a] && (bodies_.foreign[b] || bodies_.inv_mass[b] == 0.0)) return;
   if (bodies_.foreign[b] && bodies_.inv_mass[a] == 0.0) return;
-  BodyContact contact;
-  contact.a = a;
-  contact.b = b;
   const Pose pa{bodies_.position[a], bodies_.orientation[a]};
   const Pose pb{bodies_.position[b], bodies_.orientation[b]};
-  if (!collideShapes(bodies_.shape[a], pa, bodies_.shape[b], pb, margin, contact.manifold)) {
-    return;
-  }
-  if (contact.manifold.count == 0) return;
-  contact.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
-  contact.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
-  contact.rolling = std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]) *
-                    std::max(rollingRadius(bodies_.shape[a]), rollingRadius(bodies_.shape[b]));
-  contacts_.push_back(contact);
+  const double friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
+  const double restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+  const double rolling = std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]);
+  // One contact per touching pair of pieces (a compound's parts, or the shape itself), in
+  // piece order: the contact list stays sorted by (a, b, piece a, piece b).
+  forEachPiece(bodies_.shape[a], pa, [&](unsigned ka, const Shape& sa, const Pose& qa) {
+    forEachPiece(bodies_.shape[b], pb, [&](unsigned kb, const Shape& sb, const Pose& qb) {
+      BodyContact contact;
+      contact.a = a;
+      contact.b = b;
+      contact.piece_a = static_cast<std::uint16_t>(ka);
+      contact.piece_b = static_cast<std::uint16_t>(kb);
+      if (!collideShapes(sa, qa, sb, qb, margin, contact.manifold)) return;
+      if (contact.manifold.count == 0) return;
+      contact.friction = friction;
+      contact.restitution = restitution;
+      contact.rolling = rolling * std::max(rollingRadius(sa), rollingRadius(sb));
+      contacts_.push_back(contact);
+    });
+  });
 }
 
 void World::wakeTouched() {
@@ -250,11 +302,8 @@ void World::warmStartFromPrevious() {
   // point inherits them when its feature id matches.
   std::size_t j = 0;
   for (BodyContact& c : contacts_) {
-    while (j < previous_.size() &&
-           (previous_[j].a < c.a || (previous_[j].a == c.a && previous_[j].b < c.b))) {
-      ++j;
-    }
-    if (j == previous_.size() || previous_[j].a != c.a || previous_[j].b != c.b) continue;
+    while (j < previous_.size() && previous_[j] < c) ++j;
+    if (j == previous_.size() || !samePieces(previous_[j], c)) continue;
     const BodyContact& old = previous_[j];
     c.rolling_impulse = old.rolling_impulse;
     for (int i = 0; i < c.manifold.count; ++i) {

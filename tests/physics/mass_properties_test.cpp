@@ -11,21 +11,21 @@ TEST(MassProperties, SphereMatchesTextbook) {
   const MassProperties mp = computeMassProperties(Shape::sphere(0.5), 1000.0);
   const double mass = 1000.0 * 4.0 / 3.0 * std::numbers::pi * 0.125;
   EXPECT_NEAR(mp.mass, mass, 1e-9);
-  EXPECT_NEAR(mp.inertia.x(), 0.4 * mass * 0.25, 1e-9);
+  EXPECT_NEAR(mp.inertia(0, 0), 0.4 * mass * 0.25, 1e-9);
 }
 
 TEST(MassProperties, CubeIsSixthOfMassTimesSideSquared) {
   const MassProperties mp = computeMassProperties(Shape::box(Vec3(1, 1, 1)), 1000.0);
   EXPECT_NEAR(mp.mass, 8000.0, 1e-9);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(mp.inertia[k], 8000.0 * 4.0 / 6.0, 1e-9);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(mp.inertia(k, k), 8000.0 * 4.0 / 6.0, 1e-9);
 }
 
 TEST(MassProperties, CuboidAxesFollowTheOtherTwoSides) {
   const MassProperties mp = computeMassProperties(Shape::box(Vec3(0.5, 1.0, 1.5)), 2.0);
   const double m = 2.0 * 1.0 * 2.0 * 3.0;
-  EXPECT_NEAR(mp.inertia.x(), m / 12.0 * (4.0 + 9.0), 1e-12);
-  EXPECT_NEAR(mp.inertia.y(), m / 12.0 * (1.0 + 9.0), 1e-12);
-  EXPECT_NEAR(mp.inertia.z(), m / 12.0 * (1.0 + 4.0), 1e-12);
+  EXPECT_NEAR(mp.inertia(0, 0), m / 12.0 * (4.0 + 9.0), 1e-12);
+  EXPECT_NEAR(mp.inertia(1, 1), m / 12.0 * (1.0 + 9.0), 1e-12);
+  EXPECT_NEAR(mp.inertia(2, 2), m / 12.0 * (1.0 + 4.0), 1e-12);
 }
 
 TEST(MassProperties, CapsuleWithoutSegmentIsASphere) {
@@ -55,8 +55,8 @@ TEST(MassProperties, CapsuleMatchesNumericalIntegration) {
       }
   const MassProperties mp = computeMassProperties(Shape::capsule(r, h), rho);
   EXPECT_NEAR(mp.mass / mass, 1.0, 2e-3);
-  EXPECT_NEAR(mp.inertia.x() / ixx, 1.0, 3e-3);
-  EXPECT_NEAR(mp.inertia.y() / iyy, 1.0, 3e-3);
+  EXPECT_NEAR(mp.inertia(0, 0) / ixx, 1.0, 3e-3);
+  EXPECT_NEAR(mp.inertia(1, 1) / iyy, 1.0, 3e-3);
 }
 
 }  // namespace
