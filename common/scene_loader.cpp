@@ -299,11 +299,10 @@ void readTick(const SceneMap& root, Scene& scene) {
 }
 
 void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
-  SceneMap m =
-      root.section("physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
-                               "position_iterations", "sleep", "solver", "sor_omega",
-                               "linear_drag", "quadratic_drag", "bodies", "joints", "cloths",
-                               "explosions"});
+  SceneMap m = root.section(
+      "physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
+                  "position_iterations", "sleep", "gyroscopic", "solver", "sor_omega",
+                  "linear_drag", "quadratic_drag", "bodies", "joints", "cloths", "explosions"});
   ps.integrator = PhysicsSettings::Integrator(
       m.choice("integrator",
                {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
@@ -316,6 +315,7 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("velocity_iterations", ps.velocity_iterations, Limit::between(1, 1000));
   m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
   m.read("sleep", ps.sleep);
+  m.read("gyroscopic", ps.gyroscopic);
   ps.solver = PhysicsSettings::Solver(m.choice(
       "solver",
       {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection", "conjugate_gradient"},

@@ -57,10 +57,33 @@ SceneQuat readRotation(const SceneNode& node) {
   return {std::cos(half), axis.x * s, axis.y * s, axis.z * s};
 }
 
+/// The size keys of a sphere, box or capsule (a body's or a compound part's).
+template <class Sized>
+void readSize(SceneMap& m, Sized& b) {
+  if (auto size = m.optional("size")) {
+    if (b.shape != SceneBody::Shape::Box) m.failAt("size", "only boxes have a size");
+    b.size = size->vec3();
+    if (b.size.x <= 0 || b.size.y <= 0 || b.size.z <= 0) m.failAt("size", "every edge must be > 0");
+  }
+  m.read("radius", b.radius, Limit::above(0));
+  m.read("length", b.length, Limit::above(0));
+}
+
+SceneBody::Part readPart(const SceneNode& node) {
+  SceneMap m = node.map({"shape", "position", "rotation", "size", "radius", "length"});
+  SceneBody::Part p;
+  m.required("shape");
+  p.shape = SceneBody::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
+  if (auto at = m.optional("position")) p.position = at->vec3();
+  if (auto r = m.optional("rotation")) p.orientation = readRotation(*r);
+  readSize(m, p);
+  return p;
+}
+
 SceneBody readBody(const SceneNode& node, const Scene& scene,
                    const std::vector<SceneBody>& earlier) {
   SceneMap m = node.map({"name", "motion", "shape", "position", "rotation", "size", "radius",
-                         "length", "velocity", "angular_velocity", "mass", "friction",
+                         "length", "parts", "velocity", "angular_velocity", "mass", "friction",
                          "rolling_resistance", "restitution", "linear_damping", "angular_damping"});
   SceneBody b;
   SceneNode name = m.required("name");
@@ -69,16 +92,20 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
   for (const SceneBody& e : earlier)
     if (e.name == b.name) name.fail("another body is already called '" + b.name + "'");
   b.motion = SceneBody::Motion(m.choice("motion", {"dynamic", "static", "kinematic"}, 0));
-  b.shape = SceneBody::Shape(m.choice("shape", {"sphere", "box", "capsule"}, 0));
+  b.shape = SceneBody::Shape(m.choice("shape", {"sphere", "box", "capsule", "compound"}, 0));
   b.position = pointInWorld(m.required("position"), scene.world);
   if (auto r = m.optional("rotation")) b.orientation = readRotation(*r);
-  if (auto size = m.optional("size")) {
-    if (b.shape != SceneBody::Shape::Box) m.failAt("size", "only boxes have a size");
-    b.size = size->vec3();
-    if (b.size.x <= 0 || b.size.y <= 0 || b.size.z <= 0) m.failAt("size", "every edge must be > 0");
+  if (b.shape == SceneBody::Shape::Compound) {
+    for (const char* key : {"size", "radius", "length"})
+      if (m.optional(key)) m.failAt(key, "a compound is sized by its parts");
+    SceneNode parts = m.required("parts");
+    for (const SceneNode& p : parts.items()) b.parts.push_back(readPart(p));
+    if (b.parts.empty()) parts.fail("a compound needs at least one part");
+    if (b.parts.size() > 256) parts.fail("at most 256 parts");
+  } else {
+    if (m.optional("parts")) m.failAt("parts", "only compound bodies have parts");
+    readSize(m, b);
   }
-  m.read("radius", b.radius, Limit::above(0));
-  m.read("length", b.length, Limit::above(0));
   if (auto v = m.optional("velocity")) b.velocity = v->vec3();
   if (auto w = m.optional("angular_velocity")) b.angular_velocity = w->vec3();
   if (b.motion != SceneBody::Motion::Dynamic) {

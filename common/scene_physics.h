@@ -35,7 +35,17 @@ double boundingRadius(const RigidBodyPopulation& p);
 
 /// A named rigid body placed by hand (physics.bodies), for joints and set pieces.
 struct SceneBody {
-  enum class Shape { Sphere, Box, Capsule };
+  enum class Shape { Sphere, Box, Capsule, Compound };
+  /// One shape of a compound, placed in the body's frame (position and rotation relative to
+  /// the body's); a sphere, box or capsule sized as a body of that shape is.
+  struct Part {
+    Shape shape = Shape::Sphere;
+    SceneVec3 position;
+    SceneQuat orientation;
+    SceneVec3 size{1, 1, 1};
+    double radius = 0.5;
+    double length = 1.0;
+  };
   /// Dynamic bodies are entities; static and kinematic ones are scene geometry that every zone
   /// places itself (a kinematic body's pose is a closed form of time).
   enum class Motion { Dynamic, Static, Kinematic };
@@ -47,6 +57,9 @@ struct SceneBody {
   SceneVec3 size{1, 1, 1};  ///< box: full edge lengths (m)
   double radius = 0.5;      ///< sphere and capsule (m)
   double length = 1.0;      ///< capsule: inner segment along local y (m)
+  /// compound: its shapes. A dynamic compound's entity sits at the parts' centre of mass (of
+  /// uniform density): position + rotation * centre, and turns about it.
+  std::vector<Part> parts;
   SceneVec3 velocity;
   SceneVec3 angular_velocity;
   double mass = 1.0;
@@ -122,6 +135,8 @@ struct PhysicsSettings {
   int velocity_iterations = 10;
   int position_iterations = 2;
   bool sleep = true;  ///< resting islands sleep and cost (almost) nothing
+  /// Euler's gyroscopic term (physics::WorldSettings::gyroscopic): off-axis spins precess.
+  bool gyroscopic = false;
   Solver solver = Solver::GaussSeidel;
   double sor_omega = 1.3;                  ///< over-relaxation factor of the sor solver
   double linear_drag = 0;     ///< N s/m: F = -k v on every dynamic body (physics::ForceModel)

@@ -96,7 +96,9 @@ struct AvatarData {
 
 /// A rigid body simulated by physics/.
 struct BodyData {
-  enum Shape : std::uint8_t { Sphere = 0, Box = 1, Capsule = 2 };
+  /// A compound's parts are not carried: it is a named scene body (physics.bodies), and each
+  /// zone builds its shape from the scene by the entity's id.
+  enum Shape : std::uint8_t { Sphere = 0, Box = 1, Capsule = 2, Compound = 3 };
   double radius = 0.5;  ///< sphere and capsule
   double mass = 1.0;
   double restitution = 0.5;

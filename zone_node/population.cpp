@@ -10,6 +10,7 @@
 #include "common/scene.h"
 #include "common/scene_source.h"
 #include "zone_node/formation_start.h"
+#include "zone_node/systems/scene_shapes.h"
 #include "zone_node/world_map.h"
 
 namespace zonesim::zone {
@@ -169,7 +170,7 @@ void forEachInitialEntity(const Scene& scene,
   for (const SceneBody& b : scene.physics.bodies) {
     auto [r, rng] = nextSceneEntity(scene, EntityKind::RigidBody, counter);
     if (b.motion != SceneBody::Motion::Dynamic) continue;
-    r.pos = Vec3(b.position.x, b.position.y, b.position.z);
+    r.pos = entityStart(b);
     r.rot = Quat(b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z);
     r.vel = Vec3(b.velocity.x, b.velocity.y, b.velocity.z);
     r.body.angular_velocity =

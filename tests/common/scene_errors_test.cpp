@@ -92,6 +92,32 @@ const InlineCase kInlineCases[] = {
      "6: physics.linear_drag: must be >= 0, got -0.5"},
     {"negative_quadratic_drag", withBase("physics:\n  quadratic_drag: -2\n"),
      "6: physics.quadratic_drag: must be >= 0, got -2"},
+    {"compound_without_parts",
+     withBase("physics:\n  bodies:\n    - {name: c, shape: compound, position: [5, 1, 5]}\n"),
+     "7: physics.bodies[0].parts: required field is missing"},
+    {"compound_empty_parts",
+     withBase("physics:\n  bodies:\n    - {name: c, shape: compound, position: [5, 1, 5], "
+              "parts: []}\n"),
+     "7: physics.bodies[0].parts: a compound needs at least one part"},
+    {"compound_with_radius",
+     withBase("physics:\n  bodies:\n    - {name: c, shape: compound, position: [5, 1, 5], "
+              "radius: 2, parts: [{shape: sphere}]}\n"),
+     "7: physics.bodies[0].radius: a compound is sized by its parts"},
+    {"parts_on_box",
+     withBase("physics:\n  bodies:\n    - {name: c, shape: box, position: [5, 1, 5], "
+              "parts: [{shape: sphere}]}\n"),
+     "7: physics.bodies[0].parts: only compound bodies have parts"},
+    {"compound_part_plane",
+     withBase("physics:\n  bodies:\n    - name: c\n      shape: compound\n      position: "
+              "[5, 1, 5]\n      parts:\n        - {shape: sphere, radius: 1}\n        - "
+              "{shape: plane}\n"),
+     "12: physics.bodies[0].parts[1].shape: unknown value 'plane' (allowed: sphere, box, capsule)"},
+    {"compound_part_size_on_capsule",
+     withBase("physics:\n  bodies:\n    - name: c\n      shape: compound\n      position: "
+              "[5, 1, 5]\n      parts:\n        - {shape: capsule, size: [1, 1, 1]}\n"),
+     "11: physics.bodies[0].parts[0].size: only boxes have a size"},
+    {"gyroscopic_not_bool", withBase("physics:\n  gyroscopic: sometimes\n"),
+     "6: physics.gyroscopic: expected true or false, got 'sometimes'"},
     {"size_on_sphere",
      withBase("populations:\n  - kind: rigid_body\n    count: 1\n    size: [1, 1, 1]\n"),
      "8: populations[0].size: only boxes have a size"},

@@ -307,6 +307,24 @@ TEST(SceneKinds, ListedInIdOrderWithTheClientsDefaults) {
   EXPECT_DOUBLE_EQ(playerKind(riders.clients, 1)->speed, 9);
 }
 
+TEST(CompoundsScene, PartsAndTheGyroscopicSwitchComeThrough) {
+  Scene s = loadScene(sourcePath("scenes/compounds.yaml"));
+  EXPECT_TRUE(s.physics.gyroscopic);
+  const SceneBody& table = s.physics.bodies[0];
+  EXPECT_EQ(table.shape, SceneBody::Shape::Compound);
+  ASSERT_EQ(table.parts.size(), 5u);
+  EXPECT_EQ(table.parts[0].shape, SceneBody::Shape::Box);
+  EXPECT_DOUBLE_EQ(table.parts[0].size.y, 0.1);
+  EXPECT_DOUBLE_EQ(table.parts[0].position.y, 0.85);
+  EXPECT_DOUBLE_EQ(table.parts[4].position.z, 0.45);
+  const SceneBody& hammer = s.physics.bodies[3];
+  ASSERT_EQ(hammer.parts.size(), 2u);
+  EXPECT_EQ(hammer.parts[0].shape, SceneBody::Shape::Capsule);
+  EXPECT_DOUBLE_EQ(hammer.parts[0].length, 0.8);
+  EXPECT_EQ(s.physics.bodies[4].motion, SceneBody::Motion::Static);
+  EXPECT_TRUE(s.physics.bodies[5].parts.empty());  // the ball: a plain sphere
+}
+
 TEST(PlayerKindNames, EachIdHasOneName) {
   for (std::size_t i = 0; i < kPlayerKindCount; ++i)
     EXPECT_EQ(playerKindNamed(playerKindName(std::uint8_t(i))), PlayerKindId(i));

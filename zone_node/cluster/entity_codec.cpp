@@ -145,7 +145,7 @@ flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, Ent
 }
 
 void decodeBody(const fb::BodyState& s, BodyData& d) {
-  if (s.shape() > BodyData::Capsule) throw CodecError("body record with unknown shape");
+  if (s.shape() > BodyData::Compound) throw CodecError("body record with unknown shape");
   d = {s.radius(),   s.mass(),           s.restitution(),          fromFb(s.angular_velocity()),
        s.sleeping(), s.shape(),          fromFb(s.half_extents()), s.half_height(),
        s.friction(), s.linear_damping(), s.angular_damping(),      s.rolling_resistance()};

@@ -2,13 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "common/scene.h"
 #include "physics/cloth.h"
 #include "physics/cloth_collision.h"
+#include "physics/mass_properties.h"
 #include "physics/world.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/scene_shapes.h"
 #include "zone_node/tick_profile.h"
 
 namespace zonesim::zone {
@@ -20,6 +24,7 @@ physics::WorldSettings settingsFor(const PhysicsSettings& p) {
   w.integrator = physics::Integrator(int(p.integrator));
   w.broadphase = physics::BroadphaseKind(int(p.broadphase));
   w.substeps = p.substeps;
+  w.gyroscopic = p.gyroscopic;
   w.solver.velocity_iterations = p.velocity_iterations;
   w.solver.position_iterations = p.position_iterations;
   w.sleep.enabled = p.sleep;
@@ -61,22 +66,14 @@ physics::BodyDesc wall(const Vec3& point, const Vec3& normal) {
   return d;
 }
 
-Vec3 vec(const SceneVec3& v) {
-  return Vec3(v.x, v.y, v.z);
-}
-
-Quat startOrientation(const SceneBody& b) {
-  return Quat(b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z);
-}
-
 physics::Cloth makeCloth(const SceneCloth& c) {
   physics::ClothDesc d;
   d.columns = c.columns;
   d.rows = c.rows;
   d.spacing = c.spacing;
-  d.origin = vec(c.origin);
-  d.column_axis = vec(c.column_axis);
-  d.row_axis = vec(c.row_axis);
+  d.origin = toVec3(c.origin);
+  d.column_axis = toVec3(c.column_axis);
+  d.row_axis = toVec3(c.row_axis);
   d.particle_mass = c.particle_mass;
   d.stiffness = c.stiffness;
   d.shear_stiffness = c.shear_stiffness;
@@ -116,12 +113,18 @@ static_assert(int(physics::Falloff::Quadratic) == int(SceneExplosion::Falloff::Q
 static_assert(int(physics::ClothIntegrator::ImplicitEuler) ==
               int(SceneCloth::Integrator::ImplicitEuler));
 static_assert(int(BodyData::Capsule) == int(SceneBody::Shape::Capsule));
+static_assert(int(BodyData::Compound) == int(SceneBody::Shape::Compound));
 
 RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
     : scene_(scene),
       rank_(rank),
       set_pieces_(scene.physics),
       cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
+  for (std::size_t k = 0; k < scene.physics.bodies.size(); ++k) {
+    const SceneBody& b = scene.physics.bodies[k];
+    if (b.motion == SceneBody::Motion::Dynamic && b.shape == SceneBody::Shape::Compound)
+      compounds_.emplace(namedBodyId(scene, k), centredSceneCompound(b).shape);
+  }
   for (const SceneCloth& c : scene.physics.cloths) {
     cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));
     cloth_substeps_.push_back(substepsPerTick(c, scene.dt));
@@ -130,15 +133,25 @@ RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
 
 RigidBodySystem::~RigidBodySystem() = default;
 
-static physics::BodyDesc descOf(const BodyData& b, const Vec3& pos, const Quat& rot,
-                                const Vec3& vel) {
+physics::BodyDesc RigidBodySystem::descOf(EntityId id, const BodyData& b, const Vec3& pos,
+                                          const Quat& rot, const Vec3& vel) const {
   physics::BodyDesc d;
-  d.shape = shapeOf(b);
+  if (b.shape == BodyData::Compound) {
+    auto it = compounds_.find(id);
+    if (it == compounds_.end())
+      throw std::runtime_error("rigid body " + toString(id) +
+                               " is a compound but no compound of physics.bodies has its id");
+    d.shape = it->second;
+  } else {
+    d.shape = shapeOf(b);
+  }
   d.position = pos;
   d.orientation = rot;
   d.linear_velocity = vel;
   d.angular_velocity = b.angular_velocity;
-  d.density = b.mass / volumeOf(b);
+  d.density =
+      b.mass / (b.shape == BodyData::Compound ? physics::computeMassProperties(d.shape, 1.0).mass
+                                              : volumeOf(b));
   d.friction = b.friction;
   d.rolling_resistance = b.rolling_resistance;
   d.restitution = b.restitution;
@@ -177,13 +190,14 @@ void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts
     if (store.kind[i] == EntityKind::RigidBody) order.push_back(i);
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return store.id[a] < store.id[b]; });
   for (std::size_t i : order) {
-    world_->addBody(descOf(store.body[i], store.pos[i], store.rot[i], store.vel[i]));
+    world_->addBody(descOf(store.id[i], store.body[i], store.pos[i], store.rot[i], store.vel[i]));
     body_entity_.push_back(store.id[i]);
     members_.add(store.id[i]);
   }
   foreign_entity_.clear();
   for (std::size_t g : foreign) {
-    physics::BodyDesc d = descOf(ghosts->body[g], ghosts->pos[g], ghosts->rot[g], ghosts->vel[g]);
+    physics::BodyDesc d =
+        descOf(ghosts->id[g], ghosts->body[g], ghosts->pos[g], ghosts->rot[g], ghosts->vel[g]);
     d.foreign = true;
     // Its owner damps it; damping here too would be handed back as a push (applyImpulses).
     d.linear_damping = d.angular_damping = 0;
@@ -210,12 +224,12 @@ void RigidBodySystem::addJoints() {
     if (!a || !b) continue;  // a body is gone (quarantined, or never here)
     // Anchors in the bodies' frames at the scene's start poses, so a rebuild later in the run
     // keeps the same joint.
-    const Vec3 pa = vec(named[j.a].position);
-    const Vec3 pb = j.b >= 0 ? vec(named[j.b].position) : Vec3::Zero();
-    const Quat qa = startOrientation(named[j.a]);
-    const Quat qb = j.b >= 0 ? startOrientation(named[j.b]) : Quat::Identity();
-    auto local_a = [&](const SceneVec3& p) -> Vec3 { return qa.conjugate() * (vec(p) - pa); };
-    auto local_b = [&](const SceneVec3& p) -> Vec3 { return qb.conjugate() * (vec(p) - pb); };
+    const Vec3 pa = entityStart(named[j.a]);
+    const Vec3 pb = j.b >= 0 ? entityStart(named[j.b]) : Vec3::Zero();
+    const Quat qa = toQuat(named[j.a].orientation);
+    const Quat qb = j.b >= 0 ? toQuat(named[j.b].orientation) : Quat::Identity();
+    auto local_a = [&](const SceneVec3& p) -> Vec3 { return qa.conjugate() * (toVec3(p) - pa); };
+    auto local_b = [&](const SceneVec3& p) -> Vec3 { return qb.conjugate() * (toVec3(p) - pb); };
     switch (j.type) {
       case SceneJoint::Type::Distance: {
         physics::DistanceJoint d;
@@ -242,8 +256,8 @@ void RigidBodySystem::addJoints() {
         d.b = *b;
         d.local_a = local_a(j.anchor);
         d.local_b = local_b(j.anchor);
-        d.axis_a = qa.conjugate() * vec(j.axis);
-        d.axis_b = qb.conjugate() * vec(j.axis);
+        d.axis_a = qa.conjugate() * toVec3(j.axis);
+        d.axis_b = qb.conjugate() * toVec3(j.axis);
         world_->addHingeJoint(d);
         break;
       }
@@ -268,7 +282,7 @@ bool RigidBodySystem::explode(std::uint64_t k, double dt) {
       if (left <= 1e-12) continue;
       impulse = e.force * std::min(dt, left);
     }
-    const Vec3 centre = vec(e.position);
+    const Vec3 centre = toVec3(e.position);
     for (std::size_t n = 0; n < body_entity_.size(); ++n) {
       auto i = physics::BodyIndex(first_dynamic_ + n);
       if (s.inv_mass[i] == 0.0) continue;  // frozen

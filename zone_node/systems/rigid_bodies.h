@@ -1,6 +1,7 @@
 #pragma once
-// The zone's rigid bodies on the physics engine (physics/): spheres, boxes and capsules
-// on a static ground and inside the world's walls. The engine's world persists across ticks
+// The zone's rigid bodies on the physics engine (physics/): spheres, boxes, capsules and
+// compounds of them (named scene bodies, whose parts every zone builds from the scene) on a
+// static ground and inside the world's walls. The engine's world persists across ticks
 // (warm starting, islands, sleeping) and is rebuilt from the entity store only when the zone's
 // set of bodies changes (a body migrated in or out), which costs that tick its warm start.
 // A zone whose bodies all sleep skips the step entirely.
@@ -22,12 +23,14 @@
 // pieces (set_pieces.h) that every zone places in its world after the ground and walls.
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "common/entity_id.h"
 #include "common/math.h"
+#include "physics/shape.h"
 #include "physics/step_profile.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
@@ -84,6 +87,9 @@ class RigidBodySystem : public ZoneSystem {
                const std::vector<std::size_t>& foreign);
   /// Ghost indices of the bodies whose contacts with ours this zone resolves, in id order.
   std::vector<std::size_t> foreignBodies(const GhostStore* ghosts) const;
+  /// The engine body of an entity's (or ghost's) rigid-body record.
+  physics::BodyDesc descOf(EntityId id, const BodyData& b, const Vec3& pos, const Quat& rot,
+                           const Vec3& vel) const;
   /// Adds the scene's joints whose bodies this world holds.
   void addJoints();
   /// Applies the scene's explosions due in tick k to this zone's bodies; true if any acted.
@@ -97,6 +103,8 @@ class RigidBodySystem : public ZoneSystem {
   std::vector<EntityId> body_entity_;  // dynamic body index - first_dynamic_ -> entity
   std::uint32_t first_dynamic_ = 0;    // the static ground, walls and set pieces come first
   SetPieces set_pieces_;
+  // The dynamic compound bodies' shapes, centred, by entity id (records do not carry parts).
+  std::map<EntityId, physics::Shape> compounds_;
   IdSetDigest members_;
   std::vector<EntityId> foreign_entity_;  // foreign bodies, after the zone's own
   std::vector<GhostImpulse> ghost_impulses_;

@@ -4,36 +4,18 @@
 
 #include "common/scene_physics.h"
 #include "physics/world.h"
+#include "zone_node/systems/scene_shapes.h"
 
 namespace zonesim::zone {
 
 namespace {
 
-Vec3 vec(const SceneVec3& v) {
-  return Vec3(v.x, v.y, v.z);
-}
-
-Quat quat(const SceneQuat& q) {
-  return Quat(q.w, q.x, q.y, q.z);
-}
-
-physics::Shape shapeOf(const SceneBody& b) {
-  switch (b.shape) {
-    case SceneBody::Shape::Box:
-      return physics::Shape::box(vec(b.size) * 0.5);
-    case SceneBody::Shape::Capsule:
-      return physics::Shape::capsule(b.radius, 0.5 * b.length);
-    default:
-      return physics::Shape::sphere(b.radius);
-  }
-}
-
 /// exp(w t) q0: the orientation after turning at the constant world angular velocity w.
 Quat turned(const SceneBody& b, double t) {
-  const Vec3 w = vec(b.angular_velocity);
+  const Vec3 w = toVec3(b.angular_velocity);
   const double rate = w.norm();
-  if (rate == 0.0) return quat(b.orientation);
-  return (Quat(Eigen::AngleAxisd(rate * t, w / rate)) * quat(b.orientation)).normalized();
+  if (rate == 0.0) return toQuat(b.orientation);
+  return (Quat(Eigen::AngleAxisd(rate * t, w / rate)) * toQuat(b.orientation)).normalized();
 }
 
 }  // namespace
@@ -44,7 +26,7 @@ SetPieces::SetPieces(const PhysicsSettings& physics) : physics_(physics) {
     if (bodies[k].motion == SceneBody::Motion::Dynamic) continue;
     scene_body_.push_back(k);
     const bool still =
-        vec(bodies[k].velocity).isZero(0) && vec(bodies[k].angular_velocity).isZero(0);
+        toVec3(bodies[k].velocity).isZero(0) && toVec3(bodies[k].angular_velocity).isZero(0);
     moving_ = moving_ || (bodies[k].motion == SceneBody::Motion::Kinematic && !still);
   }
 }
@@ -56,12 +38,12 @@ void SetPieces::addTo(physics::World& world) {
     physics::BodyDesc d;
     d.type = b.motion == SceneBody::Motion::Static ? physics::BodyType::Static
                                                    : physics::BodyType::Kinematic;
-    d.shape = shapeOf(b);
-    d.position = vec(b.position);
-    d.orientation = quat(b.orientation);
+    d.shape = sceneShape(b);
+    d.position = toVec3(b.position);
+    d.orientation = toQuat(b.orientation);
     if (d.type == physics::BodyType::Kinematic) {
-      d.linear_velocity = vec(b.velocity);
-      d.angular_velocity = vec(b.angular_velocity);
+      d.linear_velocity = toVec3(b.velocity);
+      d.angular_velocity = toVec3(b.angular_velocity);
     }
     d.friction = b.friction;
     d.rolling_resistance = b.rolling_resistance;
@@ -77,12 +59,12 @@ void SetPieces::pose(physics::World& world, std::uint64_t k, double dt) const {
     const SceneBody& b = physics_.bodies[scene_body_[n]];
     if (b.motion != SceneBody::Motion::Kinematic) continue;
     const physics::BodyIndex i = index_[n];
-    s.position[i] = vec(b.position) + t * vec(b.velocity);
+    s.position[i] = toVec3(b.position) + t * toVec3(b.velocity);
     s.position_prev[i] = s.position[i];
     s.orientation[i] = turned(b, t);
-    s.linear_velocity[i] = vec(b.velocity);
-    s.angular_velocity[i] = vec(b.angular_velocity);
-    if (!vec(b.velocity).isZero(0) || !vec(b.angular_velocity).isZero(0)) world.wake(i);
+    s.linear_velocity[i] = toVec3(b.velocity);
+    s.angular_velocity[i] = toVec3(b.angular_velocity);
+    if (!toVec3(b.velocity).isZero(0) || !toVec3(b.angular_velocity).isZero(0)) world.wake(i);
   }
 }
 

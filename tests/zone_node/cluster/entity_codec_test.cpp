@@ -175,7 +175,7 @@ TEST(EntityCodec, OutOfRangeValuesAreRefusedWithTheirReason) {
       {"body record with unknown shape",
        [](EntityRecordData& r) {
          r.kind = EntityKind::RigidBody;
-         r.body.shape = 3;
+         r.body.shape = BodyData::Compound + 1;
        }},
       {"npc record with an odd cell list",
        [](EntityRecordData& r) {
