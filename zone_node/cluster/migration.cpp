@@ -10,7 +10,9 @@ MigrationResult Migrator::exchange(EntityStore& store, const ZoneLayout& layout,
   MigrationResult result;
   std::vector<MigrationPayload> outgoing(size_);
   std::vector<std::size_t> leavers;
-  for (std::size_t i = 0; i < store.size(); ++i) {
+  // A lone zone owns the whole world: nothing can leave it, so its entities are not scanned.
+  const std::size_t scanned = size_ > 1 ? store.size() : 0;
+  for (std::size_t i = 0; i < scanned; ++i) {
     int owner = layout.ownerOf(store.pos[i].x(), store.pos[i].z());
     if (owner == rank_) continue;
     outgoing[owner].entities.push_back(store.record(i));

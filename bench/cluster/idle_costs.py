@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""What each zone system costs per tick when it has nothing to do (issue 19).
+
+One zone_node rank runs, unpaced, small scenes in which a system is absent (the scene has
+none of its kind), empty, asleep or unsubscribed, and this prints each tick stage's mean cost
+(µs per tick, from --metrics' zone_0_summary.json) beside the work counters that say the
+system did nothing. A stage's cost includes its timer (two clock reads, about 40 ns).
+
+Asleep is measured as a difference, so that settling does not count: the same scene run to
+SETTLE and to SETTLE + IDLE ticks, cost = (total_long - total_short) / IDLE, with every body
+asleep by SETTLE (checked).
+
+Usage: bench/cluster/idle_costs.py [TICKS]   (default 4000; ZONESIM_BIN=build/bin)
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(os.environ.get("ZONESIM_BIN", ROOT / "build" / "bin"))
+TICKS = int(sys.argv[1]) if len(sys.argv) > 1 else 4000
+SETTLE = 1500
+
+BASE = """world: {min: [0, 0, 0], max: [200, 50, 200]}
+tick: {dt: 0.05}
+seed: 7
+zones: {columns: 1, rows: 1}
+interest: {cell_size: 25}
+"""
+SCENES = {
+    # Nothing at all: the floor every stage sits on.
+    "empty world": BASE,
+    # Walkers only: physics, particles, AI planners, crowds and agents are absent.
+    "walkers only": BASE + """populations:
+  - {kind: npc, count: 500, speed: [1.0, 2.0], waypoint_radius: 40}
+""",
+    # Bodies that settle and sleep (measured after they all sleep, see above).
+    "bodies asleep": BASE + """physics: {sleep: true}
+populations:
+  - {kind: rigid_body, count: 200, shape: box, size: [1, 1, 1], drop_height: [0.6, 0.6],
+     region: {min: [20, 0, 20], max: [180, 0, 180]}}
+""",
+}
+STAGES = ("input", "ai.doors", "ai.neighbours", "ai.lod", "ai.interactions", "ai.agents",
+          "ai.wander", "ai.flock", "ai.flow", "ai.formations", "ai.roads", "ai.ants", "avatars",
+          "physics", "gpu", "migrate", "halo", "publish", "checks")
+COUNTERS = ("bodies_awake", "particles_alive", "paths_planned", "agents", "ghosts",
+            "published_states", "published_updates")
+
+
+def run(scene_text, ticks, tmp, tag, dds=False):
+    scene = Path(tmp) / f"{tag}.yaml"
+    scene.write_text(scene_text)
+    metrics = Path(tmp) / f"m_{tag}_{ticks}"
+    cmd = [str(BIN / "zone_node"), "--scene", str(scene), "--ticks", str(ticks), "--metrics",
+           str(metrics), "--gpu", "off", "--log-level", "warn"]
+    env = dict(os.environ)
+    if dds:
+        env["CYCLONEDDS_URI"] = "file://" + str(ROOT / "deploy" / "cyclonedds.xml")
+        cmd += ["--dds-domain", "37"]
+    else:
+        cmd.append("--no-dds")
+    subprocess.run(cmd, check=True, env=env, stdout=subprocess.DEVNULL)
+    return json.loads((metrics / "zone_0_summary.json").read_text())
+
+
+def per_tick_us(summary, stage):
+    return 1000.0 * summary.get(f"{stage}_ms_mean", 0.0)
+
+
+def main():
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="zs_idle_") as tmp:
+        for name, text in SCENES.items():
+            if name == "bodies asleep":
+                short = run(text, SETTLE, tmp, "asleep")
+                long = run(text, SETTLE + TICKS, tmp, "asleep")
+                if short["bodies_awake"] != 0:
+                    sys.exit(f"bodies asleep: {short['bodies_awake']} still awake at {SETTLE}")
+                costs = {s: (per_tick_us(long, s) * (SETTLE + TICKS) -
+                             per_tick_us(short, s) * SETTLE) / TICKS for s in STAGES}
+                rows.append((name, costs, long))
+            else:
+                s = run(text, TICKS, tmp, name.replace(" ", "_"))
+                rows.append((name, {st: per_tick_us(s, st) for st in STAGES}, s))
+            print(f"  {name}: done", file=sys.stderr, flush=True)
+        # Cells nobody subscribes to: the walkers published over DDS with no gateway attached.
+        s = run(SCENES["walkers only"], TICKS, tmp, "unsubscribed", dds=True)
+        rows.append(("walkers, DDS, no subscriber", {st: per_tick_us(s, st) for st in STAGES}, s))
+    print(f"µs per tick (mean over {TICKS} ticks, one zone, unpaced); work counters at the end")
+    print("| stage | " + " | ".join(name for name, _, _ in rows) + " |")
+    print("| --- " * (1 + len(rows)) + "|")
+    for st in STAGES:
+        print(f"| {st} | " + " | ".join(f"{costs[st]:.2f}" for _, costs, _ in rows) + " |")
+    for c in COUNTERS:
+        print(f"| *{c}* | " + " | ".join(str(s.get(c, "")) for _, _, s in rows) + " |")
+
+
+if __name__ == "__main__":
+    main()
