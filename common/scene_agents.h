@@ -110,6 +110,10 @@ struct AgentSettings {
   std::vector<AgentType> types;
   std::vector<AgentPopulation> populations;
   AgentPathSettings paths;
+  /// Time-sliced decisions: each agent senses and decides on one tick in this many (which one
+  /// from its id, so the agents spread evenly over the ticks) and acts on what it last
+  /// perceived in between; it moves every tick. 1: every agent decides every tick.
+  int decide_every = 1;
 };
 
 }  // namespace zonesim

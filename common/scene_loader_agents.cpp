@@ -268,13 +268,14 @@ void readAgents(const SceneMap& root, Scene& scene) {
   if (!node) return;
   // Doors are cells of the map (map.doors); the old key is refused rather than ignored, so a
   // scene written for the old layout does not silently lose its doors.
-  SceneMap agents = node->map({"types", "populations", "paths", "doors"});
+  SceneMap agents = node->map({"types", "populations", "paths", "doors", "decide_every"});
   if (agents.optional("doors"))
     agents.failAt("doors", "moved to map.doors (same keys: at_s, cell, open)");
   for (const SceneNode& t : agents.required("types").items()) readType(t, scene);
   if (std::optional<SceneNode> pops = agents.optional("populations"))
     for (const SceneNode& p : pops->items()) readPopulation(p, scene);
   readPaths(agents, scene.agents.paths);
+  agents.read("decide_every", scene.agents.decide_every, Limit::between(1, 64));
 }
 
 }  // namespace zonesim

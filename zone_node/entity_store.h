@@ -160,6 +160,11 @@ struct AgentData {
   std::int32_t replans = 0;           ///< paths requested again after a door cut them
   std::int32_t arrivals = 0;          ///< goals reached
   std::vector<std::int32_t> path;     ///< cells as x, y pairs; empty when not moving
+  // What it perceived when it last decided: with agents.decide_every > 1 it acts on this
+  // between decisions (agent_senses.h).
+  bool enemy_seen = false;
+  double enemy_x = 0, enemy_z = 0;  ///< nearest enemy then, when one was seen
+  double enemy_distance = 1e9;      ///< kNoEnemy when none was
 
   bool operator==(const AgentData&) const = default;
 };

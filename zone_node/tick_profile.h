@@ -105,6 +105,7 @@ struct TickCounters {
   std::uint64_t ghost_impulses_in = 0;  ///< pushes neighbours' contacts gave this zone's bodies
   std::uint64_t agents = 0;             ///< AI agents stepped
   std::uint64_t agent_transitions = 0;  ///< their state machine transitions
+  std::uint64_t agent_decisions = 0;    ///< agents that sensed and decided (agents.decide_every)
   std::uint64_t paths_planned = 0;      ///< path planner calls (at most the per-tick budget)
   std::uint64_t paths_queued = 0;       ///< path requests left waiting for a later tick
   std::uint64_t path_replans = 0;       ///< agents whose path a closing door cut
@@ -168,6 +169,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"ghost_impulses_in", &TickCounters::ghost_impulses_in, false},
     {"agents", &TickCounters::agents, true},
     {"agent_transitions", &TickCounters::agent_transitions, false},
+    {"agent_decisions", &TickCounters::agent_decisions, false},
     {"paths_planned", &TickCounters::paths_planned, false},
     {"paths_queued", &TickCounters::paths_queued, true},
     {"path_replans", &TickCounters::path_replans, false},

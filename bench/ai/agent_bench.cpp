@@ -3,8 +3,11 @@
 // a one-zone scene from text (the agents: keys of docs/scene-format.md), creates the scene's
 // entities, and times AgentSystem::step alone (the wanderers are stepped untimed between ticks).
 // Prints one row per case: behaviour, agents, us per tick, ns per agent update, paths planned.
+// With --decide-every, instead times time-sliced decisions (agents.decide_every) for a few
+// behaviours against every agent deciding every tick, on the same wanderers, and prints what
+// slicing changes in the outcome.
 //
-//   build/bin/agent_bench [--ticks T] [--sizes 1000,10000]
+//   build/bin/agent_bench [--ticks T] [--sizes 1000,10000] [--decide-every 1,2,4,8]
 
 #include <algorithm>
 #include <chrono>
@@ -65,7 +68,8 @@ const Case kCases[] = {
      "behaviour: travel\n      navigate: true\n      goals: [[20, 22], [100, 22]]", true},
 };
 
-std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa) {
+std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa,
+                      int decide_every = 1) {
   std::string s =
       "world: {min: [0, 0, 0], max: [128, 10, 128]}\ntick: {dt: 0.05}\nseed: 3\n"
       "zones: {columns: 1, rows: 1}\nhalo: {width: 10}\n"
@@ -79,6 +83,7 @@ std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa) {
        std::to_string(agents) + ", region: {min: [6, 6], max: [40, 60]}}\n";
   s += "  paths: {planner: " + std::string(hpa ? "hpa" : "astar") +
        ", cluster_size: 8, paths_per_tick: " + std::to_string(paths_per_tick) + "}\n";
+  s += "  decide_every: " + std::to_string(decide_every) + "\n";
   return s;
 }
 
@@ -104,6 +109,88 @@ void run(const Case& c, int agents, int ticks, int paths_per_tick, bool hpa, con
               seconds / double(updates) * 1e9, (unsigned long long)planned);
 }
 
+/// What a sliced run did: its time, and the outcome compared below.
+struct SlicedRun {
+  double us_per_tick = 0;
+  double decisions_per_tick = 0;
+  std::uint64_t transitions = 0, arrivals = 0, attack_ticks = 0, chase_ticks = 0;
+  std::vector<Vec3> end;  // agents' final positions, in id order
+};
+
+SlicedRun runSliced(const Case& c, int agents, int ticks, int every) {
+  Scene scene = parseScene(sceneText(c, agents, 8, false, every), "bench");
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
+  AgentSystem system(scene, map.get());
+  WanderMovement wander(scene);
+  LoneZone lone{scene.dt};
+  SlicedRun out;
+  double seconds = 0;
+  std::uint64_t decisions = 0;
+  for (int t = 0; t < ticks; ++t) {
+    auto t0 = std::chrono::steady_clock::now();
+    const TickCounters& s = lone.step(system, store, std::uint64_t(t));
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    decisions += system.lastStats().decisions;
+    out.transitions += s.agent_transitions;
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      if (store.agent[i].type < 0) continue;
+      out.attack_ticks += store.agent[i].action == int(AgentAction::Attack);
+      out.chase_ticks += store.agent[i].action == int(AgentAction::Chase);
+    }
+    lone.step(wander, store, std::uint64_t(t));
+  }
+  std::vector<std::pair<std::uint64_t, Vec3>> ends;
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    if (store.agent[i].type < 0) continue;
+    out.arrivals += std::uint64_t(store.agent[i].arrivals);
+    ends.emplace_back(store.id[i].value, store.pos[i]);
+  }
+  std::sort(ends.begin(), ends.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  for (auto& e : ends) out.end.push_back(e.second);
+  out.us_per_tick = seconds / ticks * 1e6;
+  out.decisions_per_tick = double(decisions) / ticks;
+  return out;
+}
+
+/// The slicing table: each behaviour at each decide_every, against decide_every 1.
+void slicingTable(const std::vector<int>& sizes, const std::vector<int>& everies, int ticks) {
+  std::printf(
+      "| behaviour | agents | decide_every | us/tick | speed-up | decisions/tick | "
+      "transitions | agent-ticks chasing | attacking | arrivals | end pos error mean m "
+      "| max m |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int n : sizes) {
+    for (const Case& c : kCases) {
+      const std::string label = c.label;
+      if (label != "fsm (guard.yaml)" && label != "decision tree" && label != "fuzzy" &&
+          label != "travel (A* paths)")
+        continue;
+      SlicedRun full;
+      for (int every : everies) {
+        SlicedRun r = runSliced(c, n, ticks, every);
+        if (every == everies.front()) full = r;
+        double sum = 0, worst = 0;
+        for (std::size_t k = 0; k < r.end.size() && k < full.end.size(); ++k) {
+          const double e = (r.end[k] - full.end[k]).norm();
+          sum += e;
+          worst = std::max(worst, e);
+        }
+        std::printf(
+            "| %s | %d | %d | %.0f | %.2f | %.0f | %llu | %llu | %llu | %llu | %.2f | "
+            "%.2f |\n",
+            c.label, n, every, r.us_per_tick, full.us_per_tick / r.us_per_tick,
+            r.decisions_per_tick, (unsigned long long)r.transitions,
+            (unsigned long long)r.chase_ticks, (unsigned long long)r.attack_ticks,
+            (unsigned long long)r.arrivals, r.end.empty() ? 0.0 : sum / double(r.end.size()),
+            worst);
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
 std::vector<int> parseSizes(const char* text) {
   std::vector<int> out;
   for (const char* p = text; *p;) {
@@ -120,9 +207,15 @@ std::vector<int> parseSizes(const char* text) {
 int main(int argc, char** argv) {
   int ticks = 200;
   std::vector<int> sizes{1000, 10000};
+  std::vector<int> everies;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--ticks")) ticks = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--sizes")) sizes = parseSizes(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--decide-every")) everies = parseSizes(argv[i + 1]);
+  }
+  if (!everies.empty()) {
+    slicingTable(sizes, everies, ticks);
+    return 0;
   }
   std::printf("| behaviour | agents | us/tick | ns/agent update | paths planned |\n");
   std::printf("|---|---|---|---|---|\n");

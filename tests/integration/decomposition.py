@@ -12,7 +12,8 @@ live particles (positions and velocities, bit for bit); (crowd_flock with --gpu 
 flock on the OpenCL device (gpu/planar_flock.h: float, but its sums also run in cell-then-id
 order on global cells, so a rank's other agents change nothing); (scenes/agents.yaml) AI agents
 that see wanderers across borders through ghosts and carry their machine states and plans with
-them when they migrate; (scenes/agents_paths.yaml) couriers whose A* paths migrate with them
+them when they migrate; (scenes/agents_sliced.yaml) the same with time-sliced decisions, each
+agent carrying what it last perceived; (scenes/agents_paths.yaml) couriers whose A* paths migrate with them
 and are re-planned when a door closes; (scenes/agents_paths_budget.yaml) the same couriers under
 a path budget that binds, shared by the cluster, with HPA* and its path cache;
 (scenes/courtyard_formation.yaml) a formation whose centre every rank computes alike, whose
@@ -31,14 +32,14 @@ from pathlib import Path
 import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
-          "particles": 300, "crowd_flock_gpu": 300, "agents": 300,
+          "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "courtyard_formation": 700,
           "courtyard_ants": 1200, "flock_lod": 300, "roads": 1200, "skirmish": 300}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
          "flock_lod": ["--gpu", "off"]}
-GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents",
+GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "crowd_flock_gpu", "agents", "agents_sliced",
                 "courtyard_formation", "flock_lod", "skirmish")
 MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition
 MAIL_FIGURES = ("hits", "kills", "pickups", "pickups_contested", "pickups_denied", "mail_posted",

@@ -172,7 +172,8 @@ flatbuffers::Offset<fb::AgentState> encodeAgent(Builder& b, const AgentData& a, 
                               a.health, a.energy, a.speed_factor, a.approach, a.facts, plan,
                               a.plan_length, a.plan_step, a.action_time, a.plan_cost, a.goal, a.nav,
                               a.dwell, a.origin_x, a.origin_z, a.target_x, a.target_z, a.travelled,
-                              a.replans, a.arrivals, path, a.asked_tick);
+                              a.replans, a.arrivals, path, a.asked_tick, a.enemy_seen, a.enemy_x,
+                              a.enemy_z, a.enemy_distance);
 }
 
 template <typename T, typename V>
@@ -211,6 +212,10 @@ void decodeAgent(const fb::AgentState& g, AgentData& a) {
   a.asked_tick = g.asked_tick();
   a.replans = g.replans();
   a.arrivals = g.arrivals();
+  a.enemy_seen = g.enemy_seen();
+  a.enemy_x = g.enemy_x();
+  a.enemy_z = g.enemy_z();
+  a.enemy_distance = g.enemy_distance();
   a.path.clear();
   if (const auto* p = g.path()) a.path.assign(p->begin(), p->end());
   if (a.path.size() % 2 != 0) throw CodecError("agent record with an odd path");

@@ -5,6 +5,8 @@
 // loader checks), so an enemy within sight is always known to the agent's zone, whichever zone
 // owns it; ties go to the lower id. All agents sense the tick's starting state.
 
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "common/math.h"
@@ -26,7 +28,10 @@ struct AgentSenses {
 };
 
 /// Fills `out[i]` for every agent i of the store (others are left default) at time `time`.
+/// Agents with decides[i] set look now; the others (time-sliced, agents.decide_every) get what
+/// they saw when they last decided (AgentData's enemy_* fields), with their needs and progress
+/// as they are now. An empty `decides`: every agent looks.
 void senseAgents(const AgentSettings& settings, const EntityStore& store, const GhostStore* ghosts,
-                 double time, std::vector<AgentSenses>& out);
+                 double time, std::span<const std::uint8_t> decides, std::vector<AgentSenses>& out);
 
 }  // namespace zonesim::zone

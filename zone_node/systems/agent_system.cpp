@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/scene.h"
+#include "common/splitmix.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_decisions.h"
 #include "zone_node/systems/agent_goap.h"
@@ -47,12 +48,27 @@ void AgentSystem::step(StepContext& ctx) {
   const auto tick = std::int64_t(ctx.tick);
   AgentTickStats stats;
   nav_.followDoors(store);
-  senseAgents(scene_.agents, store, ctx.ghosts, time, senses_);
+  // Time-sliced: an agent looks and decides on the ticks its id picks, one in decide_every.
+  const auto every = std::uint64_t(scene_.agents.decide_every);
+  decides_.clear();
+  if (every > 1) {
+    decides_.resize(store.size());
+    for (std::size_t i = 0; i < store.size(); ++i)
+      decides_[i] = (splitmix64(store.id[i].value) + ctx.tick) % every == 0;
+  }
+  senseAgents(scene_.agents, store, ctx.ghosts, time, decides_, senses_);
   // Decide and name targets; paths are asked for here and planned below in one budgeted batch.
   for (std::size_t i = 0; i < store.size(); ++i) {
     AgentData& a = store.agent[i];
     if (a.type < 0) continue;
     ++stats.agents;
+    if (!decides_.empty() && !decides_[i]) continue;  // acts on its last decision
+    ++stats.decisions;
+    const AgentSenses& seen = senses_[i];
+    a.enemy_seen = seen.enemy_seen;
+    a.enemy_x = seen.enemy.x();
+    a.enemy_z = seen.enemy.z();
+    a.enemy_distance = seen.value[int(AgentSense::EnemyDistance)];
     const AgentType& t = scene_.agents.types[std::size_t(a.type)];
     int before = a.transitions;
     decisions_->decide(a, senses_[i]);
@@ -87,6 +103,7 @@ void AgentSystem::step(StepContext& ctx) {
   stats.paths = nav_.takeStats();
   ctx.counters.agents = stats.agents;
   ctx.counters.agent_transitions = stats.transitions;
+  ctx.counters.agent_decisions = stats.decisions;
   ctx.counters.paths_planned = stats.paths.planned;
   ctx.counters.paths_queued = stats.paths.queued;
   ctx.counters.path_replans = stats.paths.replans;

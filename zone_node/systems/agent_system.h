@@ -38,6 +38,7 @@ inline constexpr double kPursuitReplanDistance = 2.0;
 /// Agent figures of one tick.
 struct AgentTickStats {
   std::uint64_t agents = 0;       ///< agents stepped
+  std::uint64_t decisions = 0;    ///< agents that sensed and decided (all, unless time-sliced)
   std::uint64_t transitions = 0;  ///< state machine transitions
   AgentPathStats paths;           ///< path service
 };
@@ -75,6 +76,7 @@ class AgentSystem : public ZoneSystem {
   std::unique_ptr<AgentGoapPlans> goap_;
   AgentNavigation nav_;
   std::vector<AgentSenses> senses_;
+  std::vector<std::uint8_t> decides_;  // per store index this tick; empty: everyone decides
   AgentTickStats last_;
 };
 

@@ -93,6 +93,10 @@ EntityRecordData everyColumnSet() {
   a.replans = 3;
   a.arrivals = 8;
   a.path = {7, 8, 8, 9};
+  a.enemy_seen = true;
+  a.enemy_x = 12.5;
+  a.enemy_z = -6.25;
+  a.enemy_distance = 3.75;
   r.combat = {.health = 37.5,
               .kills = 3,
               .deaths = 2,

@@ -4,17 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "common/scene.h"
-#include "zone_node/zone_fixture.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
+#include "zone_node/zone_fixture.h"
 #include "zone_node/zone_map.h"
 #include "zone_node/zone_node.h"
 
@@ -361,6 +362,45 @@ TEST(Agents, AFleerOnAMapRunsToOpenGroundNotIntoTheCorner) {
   EXPECT_GT(r.final_distance, 11.0);
   EXPECT_EQ(r.ticks_on_blocked_cells, 0);
   EXPECT_EQ(r.steps_into_walls, 0);
+}
+
+TEST(Agents, TimeSlicedAgentsDecideOnceInEveryWindowOfTicksAndActOnlyThen) {
+  // scenes/agents_sliced.yaml (agents.decide_every 4): in any 4 consecutive ticks every agent
+  // senses and decides exactly once, and an agent's action or machine state only ever changes
+  // on its own decision ticks (all congruent modulo 4).
+  Scene scene = loadScene(source("scenes/agents_sliced.yaml"));
+  constexpr int kEvery = 4;
+  ASSERT_EQ(scene.agents.decide_every, kEvery);
+  ZoneNode zone(scene, MPI_COMM_WORLD, testing::localZone(0));
+  std::map<std::uint64_t, std::pair<int, int>> last;  // id -> (action, state)
+  std::map<std::uint64_t, std::set<int>> change_phase;
+  std::vector<std::uint64_t> decisions;
+  std::uint64_t agents = 0, changes = 0;
+  for (int tick = 0; tick < 400; ++tick) {
+    zone.tick();
+    const EntityStore& store = zone.store();
+    decisions.push_back(zone.counters().agent_decisions);
+    agents = zone.counters().agents;
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      const AgentData& a = store.agent[i];
+      if (a.type < 0) continue;
+      auto now = std::make_pair(a.action, a.state);
+      auto [it, first] = last.try_emplace(store.id[i].value, now);
+      if (!first && it->second != now) {
+        change_phase[store.id[i].value].insert(tick % kEvery);
+        ++changes;
+      }
+      it->second = now;
+    }
+  }
+  EXPECT_EQ(agents, 140u);
+  for (std::size_t t = 0; t + kEvery <= decisions.size(); ++t) {
+    std::uint64_t window = 0;
+    for (int k = 0; k < kEvery; ++k) window += decisions[t + std::size_t(k)];
+    ASSERT_EQ(window, agents) << "ticks " << t << " to " << t + kEvery - 1;
+  }
+  for (const auto& [id, phases] : change_phase) EXPECT_EQ(phases.size(), 1u) << "agent " << id;
+  EXPECT_GT(changes, 100u);  // the property was tested on many decisions
 }
 
 }  // namespace
