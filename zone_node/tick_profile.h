@@ -103,6 +103,7 @@ struct TickCounters {
   std::uint64_t halo_bytes = 0;         ///< bytes of those copies
   std::uint64_t halo_rebuilds = 0;      ///< 1 when the ghost send lists were rebuilt
   std::uint64_t ghost_impulses_in = 0;  ///< pushes neighbours' contacts gave this zone's bodies
+  std::uint64_t physics_steps = 0;      ///< engine world steps (0 while every body sleeps)
   std::uint64_t agents = 0;             ///< AI agents stepped
   std::uint64_t agent_transitions = 0;  ///< their state machine transitions
   std::uint64_t agent_decisions = 0;    ///< agents that sensed and decided (agents.decide_every)
@@ -167,6 +168,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"halo_bytes", &TickCounters::halo_bytes, false},
     {"halo_rebuilds", &TickCounters::halo_rebuilds, false},
     {"ghost_impulses_in", &TickCounters::ghost_impulses_in, false},
+    {"physics_steps", &TickCounters::physics_steps, false},
     {"agents", &TickCounters::agents, true},
     {"agent_transitions", &TickCounters::agent_transitions, false},
     {"agent_decisions", &TickCounters::agent_decisions, false},

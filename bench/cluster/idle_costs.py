@@ -6,9 +6,9 @@ none of its kind), empty, asleep or unsubscribed, and this prints each tick stag
 (µs per tick, from --metrics' zone_0_summary.json) beside the work counters that say the
 system did nothing. A stage's cost includes its timer (two clock reads, about 40 ns).
 
-Asleep is measured as a difference, so that settling does not count: the same scene run to
-SETTLE and to SETTLE + IDLE ticks, cost = (total_long - total_short) / IDLE, with every body
-asleep by SETTLE (checked).
+Means are over the per-tick lines (zone_0.jsonl) of the measured ticks: all TICKS for most
+cases; for sleeping bodies the TICKS after SETTLE, by which every body sleeps (checked), so that
+settling does not count. Counters are summed over the same ticks.
 
 Usage: bench/cluster/idle_costs.py [TICKS]   (default 4000; ZONESIM_BIN=build/bin)
 """
@@ -47,11 +47,12 @@ populations:
 STAGES = ("input", "ai.doors", "ai.neighbours", "ai.lod", "ai.interactions", "ai.agents",
           "ai.wander", "ai.flock", "ai.flow", "ai.formations", "ai.roads", "ai.ants", "avatars",
           "physics", "gpu", "migrate", "halo", "publish", "checks")
-COUNTERS = ("bodies_awake", "particles_alive", "paths_planned", "agents", "ghosts",
+COUNTERS = ("physics_steps", "bodies_awake", "particles_alive", "paths_planned", "agents", "ghosts",
             "published_states", "published_updates")
 
 
 def run(scene_text, ticks, tmp, tag, dds=False):
+    """Per-tick metric lines of one zone_node run."""
     scene = Path(tmp) / f"{tag}.yaml"
     scene.write_text(scene_text)
     metrics = Path(tmp) / f"m_{tag}_{ticks}"
@@ -64,39 +65,39 @@ def run(scene_text, ticks, tmp, tag, dds=False):
     else:
         cmd.append("--no-dds")
     subprocess.run(cmd, check=True, env=env, stdout=subprocess.DEVNULL)
-    return json.loads((metrics / "zone_0_summary.json").read_text())
+    return [json.loads(line) for line in (metrics / "zone_0.jsonl").read_text().splitlines()]
 
 
-def per_tick_us(summary, stage):
-    return 1000.0 * summary.get(f"{stage}_ms_mean", 0.0)
+def measured(lines, first_tick):
+    """Mean µs per tick of each stage and summed counters over ticks >= first_tick."""
+    rows = [r for r in lines if r["tick"] >= first_tick]
+    costs = {s: 1000.0 * sum(r.get(f"{s}_ms", 0.0) for r in rows) / len(rows) for s in STAGES}
+    counters = {c: sum(r.get(c, 0) for r in rows) for c in COUNTERS}
+    return costs, counters
 
 
 def main():
     rows = []
     with tempfile.TemporaryDirectory(prefix="zs_idle_") as tmp:
         for name, text in SCENES.items():
-            if name == "bodies asleep":
-                short = run(text, SETTLE, tmp, "asleep")
-                long = run(text, SETTLE + TICKS, tmp, "asleep")
-                if short["bodies_awake"] != 0:
-                    sys.exit(f"bodies asleep: {short['bodies_awake']} still awake at {SETTLE}")
-                costs = {s: (per_tick_us(long, s) * (SETTLE + TICKS) -
-                             per_tick_us(short, s) * SETTLE) / TICKS for s in STAGES}
-                rows.append((name, costs, long))
-            else:
-                s = run(text, TICKS, tmp, name.replace(" ", "_"))
-                rows.append((name, {st: per_tick_us(s, st) for st in STAGES}, s))
+            asleep = name == "bodies asleep"
+            lines = run(text, SETTLE + TICKS if asleep else TICKS, tmp, name.replace(" ", "_"))
+            first = SETTLE + 1 if asleep else 1
+            if asleep and any(r["bodies_awake"] for r in lines if r["tick"] >= first):
+                sys.exit(f"bodies asleep: some still awake after tick {SETTLE}")
+            costs, counters = measured(lines, first)
+            rows.append((name, costs, counters))
             print(f"  {name}: done", file=sys.stderr, flush=True)
         # Cells nobody subscribes to: the walkers published over DDS with no gateway attached.
-        s = run(SCENES["walkers only"], TICKS, tmp, "unsubscribed", dds=True)
-        rows.append(("walkers, DDS, no subscriber", {st: per_tick_us(s, st) for st in STAGES}, s))
-    print(f"µs per tick (mean over {TICKS} ticks, one zone, unpaced); work counters at the end")
+        lines = run(SCENES["walkers only"], TICKS, tmp, "unsubscribed", dds=True)
+        rows.append(("walkers, DDS, no subscriber", *measured(lines, 1)))
+    print(f"µs per tick (mean over {TICKS} ticks, one zone, unpaced); counters summed over them")
     print("| stage | " + " | ".join(name for name, _, _ in rows) + " |")
     print("| --- " * (1 + len(rows)) + "|")
     for st in STAGES:
         print(f"| {st} | " + " | ".join(f"{costs[st]:.2f}" for _, costs, _ in rows) + " |")
     for c in COUNTERS:
-        print(f"| *{c}* | " + " | ".join(str(s.get(c, "")) for _, _, s in rows) + " |")
+        print(f"| *{c}* | " + " | ".join(str(n[c]) for _, _, n in rows) + " |")
 
 
 if __name__ == "__main__":

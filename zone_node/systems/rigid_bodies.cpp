@@ -309,7 +309,9 @@ void RigidBodySystem::stepCloths(double dt) {
 
 void RigidBodySystem::step(StepContext& ctx) {
   profile_ = {};
+  const std::uint64_t steps_before = world_steps_;
   ctx.counters.bodies_awake = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.tick);
+  ctx.counters.physics_steps = world_steps_ - steps_before;
 }
 
 std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghosts, double dt,
@@ -360,6 +362,7 @@ std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghost
   if (awake > 0 || pushed) {
     std::size_t frozen_before = world_->quarantined().size();
     world_->step(dt);
+    ++world_steps_;
     profile_ = world_->profile();
     quarantined_ += world_->quarantined().size() - frozen_before;
   }

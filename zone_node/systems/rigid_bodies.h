@@ -110,6 +110,7 @@ class RigidBodySystem : public ZoneSystem {
   std::vector<GhostImpulse> ghost_impulses_;
   std::uint64_t quarantined_ = 0;
   std::uint64_t rebuilds_ = 0;
+  std::uint64_t world_steps_ = 0;  // times the engine's world stepped
   physics::StepProfile profile_;
   std::size_t joints_added_ = 0;
   std::vector<std::unique_ptr<physics::Cloth>> cloths_;
