@@ -243,7 +243,7 @@ void ZoneNode::ai() {
     near_.build(store_, &halo_.ghosts(), walker_reach_, scene_.world.min.y + walker_reach_);
   }
   // Every rank takes part in the gather (the scene decides, so all agree).
-  if (scene_.lod.enabled && (flocks_->active() || flows_->active())) {
+  if (scene_.lod.enabled && (flocks_->active() || flows_->active() || agents_->active())) {
     ScopedTimer t(profile_[Stage::AiLod]);
     lod_players_ = lodPlayers(comm_, store_, scene_.lod);
   }

@@ -5,7 +5,8 @@
 // Prints one row per case: behaviour, agents, us per tick, ns per agent update, paths planned.
 // With --decide-every, instead times time-sliced decisions (agents.decide_every) for a few
 // behaviours against every agent deciding every tick, on the same wanderers, and prints what
-// slicing changes in the outcome.
+// slicing changes in the outcome; a last row per behaviour ("lod") decides by the scene's lod
+// bands around one player at (23, 33) instead (near 15 m, to 40 m every 2 ticks, beyond 8).
 //
 //   build/bin/agent_bench [--ticks T] [--sizes 1000,10000] [--decide-every 1,2,4,8]
 
@@ -68,8 +69,12 @@ const Case kCases[] = {
      "behaviour: travel\n      navigate: true\n      goals: [[20, 22], [100, 22]]", true},
 };
 
-std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa,
-                      int decide_every = 1) {
+// Agent LOD for the slicing table: bands around one player in the agents' region.
+constexpr const char* kLod = "lod: {near_radius: 15, far_radius: 40, mid_every: 2, far_every: 8}\n";
+const crowd::Vec2 kLodPlayer{23, 33};
+
+std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa, int decide_every = 1,
+                      bool lod = false) {
   std::string s =
       "world: {min: [0, 0, 0], max: [128, 10, 128]}\ntick: {dt: 0.05}\nseed: 3\n"
       "zones: {columns: 1, rows: 1}\nhalo: {width: 10}\n"
@@ -84,6 +89,7 @@ std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa,
   s += "  paths: {planner: " + std::string(hpa ? "hpa" : "astar") +
        ", cluster_size: 8, paths_per_tick: " + std::to_string(paths_per_tick) + "}\n";
   s += "  decide_every: " + std::to_string(decide_every) + "\n";
+  if (lod) s += kLod;
   return s;
 }
 
@@ -117,14 +123,15 @@ struct SlicedRun {
   std::vector<Vec3> end;  // agents' final positions, in id order
 };
 
-SlicedRun runSliced(const Case& c, int agents, int ticks, int every) {
-  Scene scene = parseScene(sceneText(c, agents, 8, false, every), "bench");
+SlicedRun runSliced(const Case& c, int agents, int ticks, int every, bool lod = false) {
+  Scene scene = parseScene(sceneText(c, agents, 8, false, every, lod), "bench");
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
   std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
   AgentSystem system(scene, map.get());
   WanderMovement wander(scene);
   LoneZone lone{scene.dt};
+  if (lod) lone.players = {kLodPlayer};
   SlicedRun out;
   double seconds = 0;
   std::uint64_t decisions = 0;
@@ -168,19 +175,22 @@ void slicingTable(const std::vector<int>& sizes, const std::vector<int>& everies
           label != "travel (A* paths)")
         continue;
       SlicedRun full;
-      for (int every : everies) {
-        SlicedRun r = runSliced(c, n, ticks, every);
-        if (every == everies.front()) full = r;
+      for (int variant = 0; variant <= int(everies.size()); ++variant) {
+        const bool lod = variant == int(everies.size());  // the last row: LOD bands instead
+        const int every = lod ? 1 : everies[std::size_t(variant)];
+        SlicedRun r = runSliced(c, n, ticks, every, lod);
+        if (variant == 0) full = r;
         double sum = 0, worst = 0;
         for (std::size_t k = 0; k < r.end.size() && k < full.end.size(); ++k) {
           const double e = (r.end[k] - full.end[k]).norm();
           sum += e;
           worst = std::max(worst, e);
         }
+        const std::string k = lod ? "lod" : std::to_string(every);
         std::printf(
-            "| %s | %d | %d | %.0f | %.2f | %.0f | %llu | %llu | %llu | %llu | %.2f | "
+            "| %s | %d | %s | %.0f | %.2f | %.0f | %llu | %llu | %llu | %llu | %.2f | "
             "%.2f |\n",
-            c.label, n, every, r.us_per_tick, full.us_per_tick / r.us_per_tick,
+            c.label, n, k.c_str(), r.us_per_tick, full.us_per_tick / r.us_per_tick,
             r.decisions_per_tick, (unsigned long long)r.transitions,
             (unsigned long long)r.chase_ticks, (unsigned long long)r.attack_ticks,
             (unsigned long long)r.arrivals, r.end.empty() ? 0.0 : sum / double(r.end.size()),

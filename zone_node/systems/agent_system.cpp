@@ -48,14 +48,7 @@ void AgentSystem::step(StepContext& ctx) {
   const auto tick = std::int64_t(ctx.tick);
   AgentTickStats stats;
   nav_.followDoors(store);
-  // Time-sliced: an agent looks and decides on the ticks its id picks, one in decide_every.
-  const auto every = std::uint64_t(scene_.agents.decide_every);
-  decides_.clear();
-  if (every > 1) {
-    decides_.resize(store.size());
-    for (std::size_t i = 0; i < store.size(); ++i)
-      decides_[i] = (splitmix64(store.id[i].value) + ctx.tick) % every == 0;
-  }
+  planDecisions(store, ctx.players, ctx.tick);
   senseAgents(scene_.agents, store, ctx.ghosts, time, decides_, senses_);
   // Decide and name targets; paths are asked for here and planned below in one budgeted batch.
   for (std::size_t i = 0; i < store.size(); ++i) {
@@ -108,6 +101,34 @@ void AgentSystem::step(StepContext& ctx) {
   ctx.counters.paths_queued = stats.paths.queued;
   ctx.counters.path_replans = stats.paths.replans;
   last_ = stats;
+}
+
+int AgentSystem::decisionPeriod(const Vec3& pos, std::span<const crowd::Vec2> players) const {
+  const int every = scene_.agents.decide_every;
+  const CrowdLod& lod = scene_.lod;
+  if (!lod.enabled) return every;
+  // The crowds' bands (crowd/lod.h): near a player every tick, then mid_every, then far_every.
+  double d2 = 1e300;
+  for (crowd::Vec2 p : players)
+    d2 = std::min(d2, crowd::lengthSq(crowd::Vec2{pos.x(), pos.z()} - p));
+  const int band = d2 <= lod.near_radius * lod.near_radius ? 1
+                   : d2 <= lod.far_radius * lod.far_radius ? lod.mid_every
+                                                           : lod.far_every;
+  return std::max(every, band);
+}
+
+void AgentSystem::planDecisions(const EntityStore& store, std::span<const crowd::Vec2> players,
+                                std::uint64_t tick) {
+  // An agent looks and decides on one tick in its period, which its id picks, so the agents
+  // of a period spread evenly over its ticks; the same on every rank.
+  decides_.clear();
+  if (scene_.agents.decide_every == 1 && !scene_.lod.enabled) return;
+  decides_.resize(store.size());
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    if (store.agent[i].type < 0) continue;
+    const auto period = std::uint64_t(decisionPeriod(store.pos[i], players));
+    decides_[i] = (splitmix64(store.id[i].value) + tick) % period == 0;
+  }
 }
 
 bool AgentSystem::pursues(const AgentData& a, const AgentType& t, const AgentSenses& s) const {

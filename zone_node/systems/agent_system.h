@@ -10,12 +10,14 @@
 // budget is the cluster's).
 
 #include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
 #include "ai/grid_map.h"
 #include "common/scene_agents.h"
 #include "crowd/map_frame.h"
+#include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/agent_navigation.h"
@@ -64,6 +66,12 @@ class AgentSystem : public ZoneSystem {
   const AgentTickStats& lastStats() const { return last_; }
 
  private:
+  /// Ticks between an agent's decisions: agents.decide_every, or longer in the scene's lod
+  /// bands (far from every player).
+  int decisionPeriod(const Vec3& pos, std::span<const crowd::Vec2> players) const;
+  /// Fills decides_ for this tick (left empty when every agent decides every tick).
+  void planDecisions(const EntityStore& store, std::span<const crowd::Vec2> players,
+                     std::uint64_t tick);
   void move(EntityStore& store, std::size_t i, const AgentSenses& senses, double dt);
   bool pursues(const AgentData& a, const AgentType& t, const AgentSenses& s) const;
   void pursue(EntityStore& store, std::size_t i, const AgentSenses& s, std::int64_t tick);

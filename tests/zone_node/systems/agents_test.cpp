@@ -403,5 +403,44 @@ TEST(Agents, TimeSlicedAgentsDecideOnceInEveryWindowOfTicksAndActOnlyThen) {
   EXPECT_GT(changes, 100u);  // the property was tested on many decisions
 }
 
+TEST(Agents, LevelOfDetailSpacesDecisionsByDistanceToThePlayers) {
+  // Agents that stand still (a tree that always idles) around one player: within near_radius
+  // they decide every tick, to far_radius every mid_every ticks, beyond every far_every; with
+  // decide_every 4 no band decides more often than every 4 ticks. Over any 8 consecutive ticks
+  // that is exactly 8, 4 and 1 decisions per agent (2, 2 and 1 with decide_every 4).
+  for (int every : {1, 4}) {
+    const Scene scene = parseScene(
+        "world: {min: [0, 0, 0], max: [200, 10, 200]}\ntick: {dt: 0.05}\nseed: 3\n"
+        "zones: {columns: 1, rows: 1}\nhalo: {width: 10}\n"
+        "lod: {near_radius: 20, far_radius: 60, mid_every: 2, far_every: 8}\n"
+        "agents:\n  decide_every: " +
+            std::to_string(every) +
+            "\n  types:\n    - {name: post, behaviour: tree, tree: idle, sight: 5}\n"
+            "  populations:\n    - {type: post, count: 300}\n",
+        "lod.yaml");
+    EntityStore store;
+    forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+    AgentSystem system(scene, nullptr);
+    LoneZone lone{scene.dt};
+    lone.players = {crowd::Vec2{100, 100}};
+    std::uint64_t bands[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      const double d = std::hypot(store.pos[i].x() - 100, store.pos[i].z() - 100);
+      ++bands[d <= 20 ? 0 : d <= 60 ? 1 : 2];
+    }
+    ASSERT_GT(bands[0] * bands[1] * bands[2], 0u) << "every band holds agents";
+    std::vector<std::uint64_t> decisions;
+    for (std::uint64_t t = 0; t < 24; ++t)
+      decisions.push_back(lone.step(system, store, t).agent_decisions);
+    const std::uint64_t expected = every == 1 ? 8 * bands[0] + 4 * bands[1] + bands[2]
+                                              : 2 * bands[0] + 2 * bands[1] + bands[2];
+    for (std::size_t t = 0; t + 8 <= decisions.size(); ++t) {
+      std::uint64_t window = 0;
+      for (std::size_t k = 0; k < 8; ++k) window += decisions[t + k];
+      ASSERT_EQ(window, expected) << "decide_every " << every << ", ticks from " << t;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace zonesim::zone
