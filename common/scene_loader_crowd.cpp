@@ -42,7 +42,7 @@ void readMapDoors(const SceneMap& m, ObstacleMap& map) {
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene) {
   std::optional<SceneNode> node = root.optional("map");
   if (!node) return;
-  SceneMap m = node->map({"file", "origin", "cell_size", "doors"});
+  SceneMap m = node->map({"file", "origin", "cell_size", "doors", "fields"});
   SceneNode file_node = m.required("file");
   std::string name = file_node.text();
   if (name.empty()) file_node.fail("must not be empty");
@@ -69,6 +69,15 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
     map.origin_z = at.z;
   }
   m.read("cell_size", map.cell_size, Limit::above(0));
+  if (std::optional<SceneNode> fields = m.optional("fields")) {
+    std::string fields_name = fields->text();
+    if (fields_name.empty()) fields->fail("must not be empty");
+    std::filesystem::path fields_path(fields_name);
+    if (fields_path.is_relative())
+      fields_path = std::filesystem::path(file).parent_path() / fields_path;
+    map.fields = fields_path.lexically_normal().string();
+    map.fields_line = fields->line();
+  }
   readMapDoors(m, map);
 }
 

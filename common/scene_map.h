@@ -24,6 +24,11 @@ struct ObstacleMap {
   double cell_size = 1;        ///< side of one cell, metres
   int line = 0;                ///< line of `map.file` in the scene (for errors found on loading)
   std::vector<MapDoor> doors;  ///< in time order; agents' paths and flow crowds see them
+  /// Flow fields built beforehand for this map (bake_fields), resolved like `file`; empty:
+  /// the zones build them at start. Opened and checked by the zone (it may not exist yet when
+  /// bake_fields reads the scene to write it).
+  std::string fields;
+  int fields_line = 0;  ///< line of `map.fields` in the scene
   /// Whether the scene has a map.
   bool present() const { return !file.empty(); }
 };

@@ -15,6 +15,11 @@ int FlowCrowd::addDestination(ai::Cell goal) {
   return int(fields_.size()) - 1;
 }
 
+int FlowCrowd::addDestination(std::unique_ptr<FlowField> field) {
+  fields_.push_back(std::move(field));
+  return int(fields_.size()) - 1;
+}
+
 int FlowCrowd::refreshFields() {
   int rebuilt = 0;
   for (auto& f : fields_)

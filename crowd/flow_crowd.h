@@ -43,6 +43,8 @@ class FlowCrowd {
 
   /// Builds the field for a goal cell once; returns its destination index.
   int addDestination(ai::Cell goal);
+  /// Adds a field built earlier on this map (crowd/flow_field_file.h); returns its index.
+  int addDestination(std::unique_ptr<FlowField> field);
   /// Rebuilds every field whose map version is stale (a door opened or closed).
   int refreshFields();
   /// Number of destinations.

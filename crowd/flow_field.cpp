@@ -1,6 +1,7 @@
 #include "crowd/flow_field.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include "ai/grid_search.h"
 #include "crowd/grid_step.h"
@@ -41,6 +42,22 @@ FlowField::FlowField(const ai::GridMap& map, ai::Cell goal)
         }
       }
     }
+}
+
+FlowField::FlowField(const ai::GridMap& map, ai::Cell goal, std::vector<float> distance,
+                     std::vector<std::int8_t> dir)
+    : width_(map.width()),
+      height_(map.height()),
+      goal_(goal),
+      map_version_(map.version()),
+      distance_(std::move(distance)),
+      dir_(std::move(dir)) {
+  const std::size_t n = std::size_t(width_) * std::size_t(height_);
+  if (distance_.size() != n || dir_.size() != n)
+    throw std::invalid_argument("FlowField: fields of the wrong size for the map");
+  if (!map.passable(goal.x, goal.y)) throw std::invalid_argument("FlowField: goal is blocked");
+  for (std::int8_t k : dir_)
+    if (k < -1 || k > 7) throw std::invalid_argument("FlowField: a direction out of range");
 }
 
 double FlowField::distance(ai::Cell c) const {

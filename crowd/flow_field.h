@@ -17,6 +17,11 @@ class FlowField {
  public:
   /// Builds both fields for `goal` (a passable cell) on `map` as it is now.
   FlowField(const ai::GridMap& map, ai::Cell goal);
+  /// Fields built earlier for `goal` on this map (crowd/flow_field_file.h reads them), taken
+  /// as they are. Throws std::invalid_argument when the sizes do not fit the map or a direction
+  /// is out of range.
+  FlowField(const ai::GridMap& map, ai::Cell goal, std::vector<float> distance,
+            std::vector<std::int8_t> dir);
 
   /// The destination cell.
   ai::Cell goal() const { return goal_; }
@@ -28,6 +33,10 @@ class FlowField {
   std::uint64_t mapVersion() const { return map_version_; }
   /// Memory held by the fields, in bytes.
   std::size_t bytes() const;
+  /// The integration field, row by row (negative: unreachable).
+  const std::vector<float>& distances() const { return distance_; }
+  /// The direction field, row by row (0..7 into the grid steps, -1 at the goal or unreachable).
+  const std::vector<std::int8_t>& directions() const { return dir_; }
 
  private:
   int width_ = 0, height_ = 0;

@@ -56,6 +56,18 @@ TEST(SceneMap, AbsolutePathsStayAsGiven) {
   EXPECT_EQ(s.map.file, abs);
 }
 
+TEST(SceneMap, FieldsAreTakenFromTheScenesFolderAndOpenedByTheZone) {
+  // Not opened here: bake_fields reads the scene to write the file in the first place.
+  Scene s =
+      parseScene(sceneWith("map: {file: maps/courtyard.map, fields: maps/c.fields}\n"), kSceneName);
+  EXPECT_EQ(s.map.fields, sourcePath("scenes/maps/c.fields"));
+  EXPECT_EQ(s.map.fields_line, 5);
+  EXPECT_EQ(sceneError([] {
+              parseScene(sceneWith("map: {file: maps/courtyard.map, fields: ''}\n"), kSceneName);
+            }),
+            kSceneName + ":5: map.fields: must not be empty");
+}
+
 TEST(SceneMap, ErrorsNameLineAndField) {
   EXPECT_EQ(
       sceneError([] { parseScene(sceneWith("map: {file: maps/nothing.map}\n"), kSceneName); }),
@@ -75,10 +87,10 @@ TEST(SceneMap, ErrorsNameLineAndField) {
                          kSceneName);
             }),
             kSceneName + ":7: map.origin: x, z (0, 200) is outside the world");
-  EXPECT_EQ(sceneError([] {
-              parseScene(sceneWith("map: {file: maps/courtyard.map, size: 3}\n"), kSceneName);
-            }),
-            kSceneName + ":5: map.size: unknown key (allowed: file, origin, cell_size, doors)");
+  EXPECT_EQ(
+      sceneError(
+          [] { parseScene(sceneWith("map: {file: maps/courtyard.map, size: 3}\n"), kSceneName); }),
+      kSceneName + ":5: map.size: unknown key (allowed: file, origin, cell_size, doors, fields)");
 }
 
 TEST(SceneMap, DoorsComeThroughInTimeOrderWithTheirLines) {

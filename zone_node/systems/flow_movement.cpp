@@ -1,12 +1,16 @@
 #include "zone_node/systems/flow_movement.h"
 
 #include <algorithm>
+#include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "common/scene.h"
 #include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "crowd/flow_crowd.h"
+#include "crowd/flow_field_file.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/planar_crowd.h"
@@ -52,6 +56,18 @@ crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
 FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
     : map_(zone_map), lod_(scene.lod.enabled) {
   const WorldMap* map = zone_map ? &zone_map->world() : nullptr;
+  // Fields baked into a file (map.fields) are loaded once and handed to every population
+  // heading to their goals; without it each field is built here.
+  std::vector<std::unique_ptr<crowd::FlowField>> baked;
+  const std::string fields_at =
+      sceneFile(scene) + ":" + std::to_string(scene.map.fields_line) + ": map.fields: ";
+  if (map && !scene.map.fields.empty()) {
+    try {
+      baked = crowd::readFlowFields(scene.map.fields, map->grid);
+    } catch (const std::runtime_error& e) {
+      throw SceneError(fields_at + e.what());
+    }
+  }
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcFlow& f = scene.npcs[p].flow;
     if (!f.enabled) continue;
@@ -65,7 +81,21 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
                          std::to_string(p) + "].flow.destinations[" + std::to_string(k) +
                          "]: lies on a blocked cell of the map");
       }
-      g->crowd.addDestination(map->frame.cellOf({d.x, d.z}));
+      const ai::Cell goal = map->frame.cellOf({d.x, d.z});
+      if (scene.map.fields.empty()) {
+        g->crowd.addDestination(goal);
+        continue;
+      }
+      auto it = std::find_if(baked.begin(), baked.end(), [&](const auto& f) {
+        return f->goal().x == goal.x && f->goal().y == goal.y;
+      });
+      if (it == baked.end()) {
+        throw SceneError(fields_at + scene.map.fields + " has no field for populations[" +
+                         std::to_string(p) + "].flow.destinations[" + std::to_string(k) +
+                         "] (cell " + std::to_string(goal.x) + ", " + std::to_string(goal.y) +
+                         "); build it again with bake_fields");
+      }
+      g->crowd.addDestination(std::make_unique<crowd::FlowField>(**it));
     }
     groups_.push_back(std::move(g));
     reach_ = std::max(reach_, f.separation_radius);

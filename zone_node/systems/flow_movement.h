@@ -1,6 +1,7 @@
 #pragma once
 // Flow-field crowds in a zone: each NPC population with `flow` is one crowd::FlowCrowd on the
-// scene's map, with one field per destination built once at start and shared by all its NPCs.
+// scene's map, with one field per destination built once at start (or read from the scene's
+// map.fields, baked beforehand by bake_fields) and shared by all its NPCs.
 // An NPC's destination is drawn from its id (flowDestination), so it needs no state that
 // migration would carry, and every rank agrees on it, ghosts included. An NPC within the
 // arrival radius of its goal has arrived: it stands still and leaves the crowd (neither moved
