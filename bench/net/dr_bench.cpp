@@ -6,7 +6,7 @@
 // positions are compared at the same server tick, which is what the report tool's join does.
 //
 // Usage: dr_bench [--seconds S] [--csv FILE] [--only SET]...   (SET: sweep, orient3, blend,
-// loss10, loss10r, hb1s, radius, gather)
+// loss10, loss10r, hb1s, radius, gather, quant)
 
 #include <algorithm>
 #include <cmath>
@@ -56,6 +56,10 @@ struct Config {
   /// Ticks whose updates share one datagram per observer (the gateway gathering a send): only
   /// the newest state of each entity goes, and the client gets it at the send's tick.
   int ticks_per_datagram = 1;
+  /// Wire resolution of positions (m per step within the interest cell) and of orientations
+  /// (bits per smallest-three component): the quantisation knob.
+  double position_resolution = 1.0 / 512;
+  int rotation_bits = 10;
 };
 
 struct Result {
@@ -125,6 +129,8 @@ Result run(const Config& c, double seconds) {
   drc.heartbeat_seconds = c.heartbeat;
   drc.orientation_threshold_deg = c.orientation_deg;
   drc.npc.order = drc.avatar.order = c.order;
+  drc.quantisation.position_resolution = c.position_resolution;
+  drc.quantisation.rotation_bits = c.rotation_bits;
   zone::EntityStore store;
   zone::forEachInitialEntity(scene, [&](const zone::EntityRecordData& r) { store.add(r); });
   std::vector<clients::Wander> wanders;
@@ -368,6 +374,17 @@ int main(int argc, char** argv) {
     c.ticks_per_datagram = ticks;
     configs.push_back(c);
   }
+  // Quantisation: coarser positions and orientations cost fewer bits per update, and add their
+  // rounding to the shown error (first order, 0.25 m, as the rows above).
+  for (auto [resolution, bits] :
+       {std::pair{1.0 / 32, 6}, std::pair{1.0 / 64, 7}, std::pair{1.0 / 128, 8},
+        std::pair{1.0 / 256, 9}, std::pair{1.0 / 512, 10}, std::pair{1.0 / 2048, 12}}) {
+    c = base;
+    c.name = "quant";
+    c.position_resolution = resolution;
+    c.rotation_bits = bits;
+    configs.push_back(c);
+  }
   if (!only.empty())
     std::erase_if(configs, [&](const Config& c) {
       return std::find(only.begin(), only.end(), c.name) == only.end();
@@ -377,7 +394,8 @@ int main(int argc, char** argv) {
     std::fprintf(csv,
                  "set,order,threshold_m,blend,loss,radius_m,payload_bps,wire_bps,visible_moving,"
                  "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s,ticks_per_datagram,"
-                 "wire_bps_per_visible,flatbuffers_wire_bps_per_visible\n");
+                 "wire_bps_per_visible,flatbuffers_wire_bps_per_visible,position_resolution_m,"
+                 "rotation_bits\n");
   std::printf(
       "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
       "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
@@ -388,9 +406,11 @@ int main(int argc, char** argv) {
       "Datagram: %zu B), at server tick %llu, plus %.0f B of UDP/IP\n",
       framingBytes(bench_codec, true), framingBytes(bench_codec, false),
       static_cast<unsigned long long>(kUptimeTicks), kUdpIpHeaderBytes);
-  std::printf("%-7s %-6s %6s %5s %5s %6s %3s | %10s %10s %8s %9s %9s %9s | %8s %8s %8s | %7s\n",
-              "set", "order", "thr_m", "blend", "loss", "rad_m", "tpd", "payload/s", "wire b/s",
-              "visible", "b/s/vis", "wire/vis", "fb w/vis", "p50_m", "p99_m", "max_m", "upd/e/s");
+  std::printf(
+      "%-7s %-6s %6s %5s %5s %6s %3s %6s %3s | %10s %10s %8s %9s %9s %9s | %8s %8s %8s | %7s\n",
+      "set", "order", "thr_m", "blend", "loss", "rad_m", "tpd", "pos_mm", "rot", "payload/s",
+      "wire b/s", "visible", "b/s/vis", "wire/vis", "fb w/vis", "p50_m", "p99_m", "max_m",
+      "upd/e/s");
   for (const Config& c : configs) {
     Result r = run(c, seconds);
     double per_visible = r.visible_moving > 0 ? r.bits_per_client_s / r.visible_moving : 0;
@@ -399,19 +419,20 @@ int main(int argc, char** argv) {
     double flat_per_visible =
         r.visible_moving > 0 ? r.flat_wire_bits_per_client_s / r.visible_moving : 0;
     std::printf(
-        "%-7s %-6s %6.2f %5d %5.2f %6.0f %3d | %10.0f %10.0f %8.1f %9.1f %9.1f %9.1f | %8.4f "
-        "%8.4f %8.3f | %7.3f\n",
+        "%-7s %-6s %6.2f %5d %5.2f %6.0f %3d %6.2f %3d | %10.0f %10.0f %8.1f %9.1f %9.1f %9.1f | "
+        "%8.4f %8.4f %8.3f | %7.3f\n",
         c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
-        c.ticks_per_datagram, r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving,
-        per_visible, wire_per_visible, flat_per_visible, r.p50, r.p99, r.max,
-        r.updates_per_entity_s);
+        c.ticks_per_datagram, 1000.0 * c.position_resolution, c.rotation_bits, r.bits_per_client_s,
+        r.wire_bits_per_client_s, r.visible_moving, per_visible, wire_per_visible, flat_per_visible,
+        r.p50, r.p99, r.max, r.updates_per_entity_s);
     std::fflush(stdout);
     if (csv)
-      std::fprintf(csv, "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f,%.2f\n",
+      std::fprintf(csv,
+                   "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f,%.2f,%g,%d\n",
                    c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
                    r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible,
                    r.p50, r.p99, r.max, r.updates_per_entity_s, c.ticks_per_datagram,
-                   wire_per_visible, flat_per_visible);
+                   wire_per_visible, flat_per_visible, c.position_resolution, c.rotation_bits);
   }
   if (csv) std::fclose(csv);
   return 0;
