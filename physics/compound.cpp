@@ -40,6 +40,10 @@ void checkPart(const ShapePart& p, std::size_t k) {
 
 Shape makeCompound(std::vector<ShapePart> parts) {
   if (parts.empty()) throw std::invalid_argument("a compound needs at least one part");
+  // Contacts name their piece in 16 bits (BodyContact::piece_a, piece_b).
+  if (parts.size() > 65536)
+    throw std::invalid_argument("a compound has at most 65536 parts, not " +
+                                std::to_string(parts.size()));
   for (std::size_t k = 0; k < parts.size(); ++k) {
     checkPart(parts[k], k);
     parts[k].orientation.normalize();

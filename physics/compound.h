@@ -11,7 +11,8 @@
 namespace zonesim::physics {
 
 /// A compound of the given parts, as placed. Throws std::invalid_argument naming the part when
-/// there are no parts, a part is a plane or itself a compound, or a size is not positive.
+/// there are no parts or more than 65536, a part is a plane or itself a compound, or a size is
+/// not positive.
 Shape makeCompound(std::vector<ShapePart> parts);
 
 /// A compound with its parts moved so that their centre of mass (uniform density) is the

@@ -131,6 +131,9 @@ TEST(Compound, BadPartsAreRefusedByName) {
             std::string::npos);
   EXPECT_NE(message({part(Shape::sphere(1), Vec3(NAN, 0, 0))}).find("not finite"),
             std::string::npos);
+  EXPECT_NE(message(std::vector<ShapePart>(65537, part(Shape::sphere(1), Vec3::Zero())))
+                .find("at most 65536 parts"),
+            std::string::npos);
 
   // A dynamic body turns about its origin: an uncentred compound is refused, a static one not.
   World world;
