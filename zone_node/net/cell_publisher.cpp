@@ -99,18 +99,24 @@ void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats
 PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departure> leavers,
                                     std::uint64_t tick, double sim_time) {
   PublishStats stats;
-  for (std::size_t i = 0; i < store.size(); ++i)
-    channel(grid_.cellOf(store.pos[i].x(), store.pos[i].z()));
+  // Each entity's cell and channel, looked up once (map nodes never move), before the
+  // subscriptions are refreshed on every channel.
+  entity_cell_.resize(store.size());
+  entity_channel_.resize(store.size());
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    entity_cell_[i] = grid_.cellOf(store.pos[i].x(), store.pos[i].z());
+    entity_channel_[i] = &channel(entity_cell_[i]);
+  }
   refreshSubscriptions(tick, stats);
 
   double dt = last_sim_time_ >= 0 ? sim_time - last_sim_time_ : 0;
   last_sim_time_ = sim_time;
   for (std::size_t i = 0; i < store.size(); ++i) {
-    int cell = grid_.cellOf(store.pos[i].x(), store.pos[i].z());
+    const int cell = entity_cell_[i];
     DeadReckoningState& dr = store.dr[i];
     EntityId id = store.id[i];
     EntityKind kind = store.kind[i];
-    Channel& ch = channels_.find(cell)->second;
+    Channel& ch = *entity_channel_[i];
     int previous = dr.cell;
     dr.cell = cell;
     if (previous != cell && previous >= 0) {

@@ -87,6 +87,8 @@ class CellPublisher {
   std::uint32_t epoch_;
   double last_sim_time_ = -1;        // previous publish: the step of the acceleration estimates
   std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
+  std::vector<int> entity_cell_;     // per store index, this publish: its cell
+  std::vector<Channel*> entity_channel_;  // and that cell's channel
 };
 
 }  // namespace zonesim::zone
