@@ -26,12 +26,19 @@ class NearestGrid {
   const Point* nearest(double x, double z, double radius, Accept accept, double& dist) const {
     const Point* best = nullptr;
     const std::int64_t cx = cell(x), cz = cell(z);
+    // Squared distances skip the points that certainly lose (beyond the radius, or farther
+    // than the best so far) with a margin far above their rounding; the rest are compared by
+    // hypot exactly as before, so the answer is the same to the bit, just found sooner.
+    constexpr double kMargin = 1.0 + 1e-9;
+    const double radius2 = radius * radius * kMargin;
     for (std::int64_t i = cx - 1; i <= cx + 1; ++i) {
       for (std::int64_t k = cz - 1; k <= cz + 1; ++k) {
         auto it = cells_.find(key(i, k));
         if (it == cells_.end()) continue;
         for (const Point& p : it->second) {
-          const double d = std::hypot(p.x - x, p.z - z);
+          const double dx = p.x - x, dz = p.z - z, d2 = dx * dx + dz * dz;
+          if (d2 > radius2 || (best && d2 > dist * dist * kMargin)) continue;
+          const double d = std::hypot(dx, dz);
           if (d > radius || !accept(p)) continue;
           if (!best || d < dist || (d == dist && p.id < best->id)) {
             best = &p;
