@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "common/scene.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
@@ -201,17 +202,6 @@ void slicingTable(const std::vector<int>& sizes, const std::vector<int>& everies
   }
 }
 
-std::vector<int> parseSizes(const char* text) {
-  std::vector<int> out;
-  for (const char* p = text; *p;) {
-    out.push_back(std::atoi(p));
-    p = std::strchr(p, ',');
-    if (!p) break;
-    ++p;
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -220,8 +210,9 @@ int main(int argc, char** argv) {
   std::vector<int> everies;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--ticks")) ticks = std::atoi(argv[i + 1]);
-    if (!std::strcmp(argv[i], "--sizes")) sizes = parseSizes(argv[i + 1]);
-    if (!std::strcmp(argv[i], "--decide-every")) everies = parseSizes(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--sizes")) sizes = bench::parseCounts("--sizes", argv[i + 1]);
+    if (!std::strcmp(argv[i], "--decide-every"))
+      everies = bench::parseCounts("--decide-every", argv[i + 1]);
   }
   if (!everies.empty()) {
     slicingTable(sizes, everies, ticks);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ai/grid_map.h"
+#include "bench/bench_args.h"
 #include "common/rng.h"
 #include "crowd/flock.h"
 #include "crowd/flow_crowd.h"
@@ -341,19 +342,6 @@ void benchLodFlock(const std::vector<int>& counts, double seconds) {
   }
 }
 
-std::vector<int> parseList(const char* s) {
-  std::vector<int> out;
-  std::string str(s);
-  std::size_t at = 0;
-  while (at < str.size()) {
-    std::size_t comma = str.find(',', at);
-    out.push_back(std::stoi(str.substr(at, comma - at)));
-    if (comma == std::string::npos) break;
-    at = comma + 1;
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -365,9 +353,9 @@ int main(int argc, char** argv) {
   std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--agents") && i + 1 < argc)
-      counts = parseList(argv[++i]);
+      counts = bench::parseCounts("--agents", argv[++i]);
     else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc)
-      lanes = parseList(argv[++i]);
+      lanes = bench::parseCounts("--lanes", argv[++i]);
     else if (!std::strcmp(argv[i], "--steps") && i + 1 < argc)
       steps = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.h"
 #include "physics/broadphase.h"
 
 using namespace zonesim;
@@ -57,17 +58,6 @@ std::vector<Aabb> layout(const std::string& kind, int n, double density, std::ui
   return boxes;
 }
 
-std::vector<int> parseList(const char* text) {
-  std::vector<int> out;
-  for (const char* p = text; *p;) {
-    out.push_back(std::atoi(p));
-    p = std::strchr(p, ',');
-    if (!p) break;
-    ++p;
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,7 +65,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{1000, 10000};
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[i + 1]));
-    if (!std::strcmp(argv[i], "--sizes")) sizes = parseList(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--sizes")) sizes = bench::parseCounts("--sizes", argv[i + 1]);
   }
   std::printf(
       "layout,bodies,density,pairs,brute_force_ms,sweep_and_prune_ms,uniform_grid_ms,"
