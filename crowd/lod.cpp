@@ -1,10 +1,28 @@
 #include "crowd/lod.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "common/splitmix.h"
 
 namespace zonesim::crowd {
+
+LodLevel lodLevel(Vec2 pos, std::span<const Vec2> players, const LodSettings& settings) {
+  double d2 = 1e300;
+  for (Vec2 p : players) d2 = std::min(d2, lengthSq(pos - p));
+  if (d2 <= settings.near_radius * settings.near_radius) return LodLevel::Near;
+  return d2 <= settings.far_radius * settings.far_radius ? LodLevel::Mid : LodLevel::Far;
+}
+
+int lodPeriod(LodLevel level, const LodSettings& settings) {
+  return level == LodLevel::Near  ? 1
+         : level == LodLevel::Mid ? settings.mid_every
+                                  : settings.far_every;
+}
+
+bool lodDue(std::uint64_t id, std::int64_t tick, int every) {
+  return (std::uint64_t(tick) + splitmix64(id)) % std::uint64_t(every) == 0;
+}
 
 LevelOfDetail::LevelOfDetail(const LodSettings& settings) : settings_(settings) {
   if (settings.mid_every < 1 || settings.far_every < 1 || settings.near_radius < 0 ||
@@ -23,16 +41,13 @@ StepPlan LevelOfDetail::plan(std::span<const std::uint64_t> ids, std::span<const
   level_.assign(n, 0);
   counts_[0] = counts_[1] = counts_[2] = 0;
   updated_ = 0;
-  const double near2 = settings_.near_radius * settings_.near_radius;
-  const double far2 = settings_.far_radius * settings_.far_radius;
   for (std::size_t i = 0; i < n; ++i) {
-    double d2 = 1e300;
-    for (Vec2 p : players) d2 = std::min(d2, lengthSq(pos[i] - p));
-    int lvl = d2 <= near2 ? 0 : (d2 <= far2 ? 1 : 2);
+    const LodLevel level = lodLevel(pos[i], players, settings_);
+    const int lvl = int(level);
     level_[i] = std::uint8_t(lvl);
     ++counts_[lvl];
-    const int every = lvl == 0 ? 1 : (lvl == 1 ? settings_.mid_every : settings_.far_every);
-    const bool due = (std::uint64_t(tick) + splitmix64(ids[i])) % std::uint64_t(every) == 0;
+    const int every = lodPeriod(level, settings_);
+    const bool due = lodDue(ids[i], tick, every);
     const bool fresh = !last_tick.empty() && last_tick[i] < 0;
     if (!due && !fresh) continue;
     if (last_tick.empty()) {

@@ -28,6 +28,18 @@ struct LodSettings {
 /// Detail level of an agent.
 enum class LodLevel : std::uint8_t { Near = 0, Mid = 1, Far = 2 };
 
+/// The level of an agent at `pos`: its distance to the nearest player against the radii (Far
+/// when there are no players).
+LodLevel lodLevel(Vec2 pos, std::span<const Vec2> players, const LodSettings& settings);
+
+/// Ticks between an agent's updates at `level`.
+int lodPeriod(LodLevel level, const LodSettings& settings);
+
+/// Whether the agent with `id` updates at `tick` when it updates every `every` ticks: one tick
+/// in `every`, picked by a hash of the id, so the agents spread over the ticks and every rank
+/// plans the same.
+bool lodDue(std::uint64_t id, std::int64_t tick, int every);
+
 /// Builds StepPlans for a set of agents each tick.
 class LevelOfDetail {
  public:

@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "common/scene.h"
-#include "common/splitmix.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_decisions.h"
 #include "zone_node/systems/agent_goap.h"
+#include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/tick_profile.h"
 
@@ -32,7 +32,8 @@ AgentSystem::AgentSystem(const Scene& scene, ZoneMap* map)
     : scene_(scene),
       decisions_(std::make_unique<AgentDecisions>(scene)),
       goap_(std::make_unique<AgentGoapPlans>(scene.agents)),
-      nav_(scene, map) {
+      nav_(scene, map),
+      lod_(lodOf(scene.lod)) {
   for (const AgentType& t : scene.agents.types) reach_ = std::max(reach_, t.sight);
 }
 
@@ -105,16 +106,10 @@ void AgentSystem::step(StepContext& ctx) {
 
 int AgentSystem::decisionPeriod(const Vec3& pos, std::span<const crowd::Vec2> players) const {
   const int every = scene_.agents.decide_every;
-  const CrowdLod& lod = scene_.lod;
-  if (!lod.enabled) return every;
+  if (!scene_.lod.enabled) return every;
   // The crowds' bands (crowd/lod.h): near a player every tick, then mid_every, then far_every.
-  double d2 = 1e300;
-  for (crowd::Vec2 p : players)
-    d2 = std::min(d2, crowd::lengthSq(crowd::Vec2{pos.x(), pos.z()} - p));
-  const int band = d2 <= lod.near_radius * lod.near_radius ? 1
-                   : d2 <= lod.far_radius * lod.far_radius ? lod.mid_every
-                                                           : lod.far_every;
-  return std::max(every, band);
+  const crowd::LodLevel level = crowd::lodLevel(crowd::Vec2{pos.x(), pos.z()}, players, lod_);
+  return std::max(every, crowd::lodPeriod(level, lod_));
 }
 
 void AgentSystem::planDecisions(const EntityStore& store, std::span<const crowd::Vec2> players,
@@ -126,8 +121,8 @@ void AgentSystem::planDecisions(const EntityStore& store, std::span<const crowd:
   decides_.resize(store.size());
   for (std::size_t i = 0; i < store.size(); ++i) {
     if (store.agent[i].type < 0) continue;
-    const auto period = std::uint64_t(decisionPeriod(store.pos[i], players));
-    decides_[i] = (splitmix64(store.id[i].value) + tick) % period == 0;
+    decides_[i] =
+        crowd::lodDue(store.id[i].value, std::int64_t(tick), decisionPeriod(store.pos[i], players));
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "ai/grid_map.h"
 #include "common/scene_agents.h"
+#include "crowd/lod.h"
 #include "crowd/map_frame.h"
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
@@ -84,6 +85,7 @@ class AgentSystem : public ZoneSystem {
   std::unique_ptr<AgentGoapPlans> goap_;
   AgentNavigation nav_;
   std::vector<AgentSenses> senses_;
+  crowd::LodSettings lod_;             // the scene's lod bands (used when it has the key)
   std::vector<std::uint8_t> decides_;  // per store index this tick; empty: everyone decides
   AgentTickStats last_;
 };
