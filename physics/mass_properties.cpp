@@ -1,6 +1,7 @@
 #include "physics/mass_properties.h"
 
 #include <numbers>
+#include <vector>
 
 namespace zonesim::physics {
 
@@ -11,15 +12,18 @@ namespace {
 /// m (|d|^2 E - d d^T) for a part whose centre is d from it).
 MassProperties compoundProperties(const std::vector<ShapePart>& parts, double density) {
   MassProperties out;
+  std::vector<MassProperties> each;
+  each.reserve(parts.size());
   for (const ShapePart& p : parts) {
-    const MassProperties m = computeMassProperties(p.shape, density);
-    out.mass += m.mass;
-    out.centre += m.mass * p.position;
+    each.push_back(computeMassProperties(p.shape, density));
+    out.mass += each.back().mass;
+    out.centre += each.back().mass * p.position;
   }
   if (out.mass <= 0.0) return out;
   out.centre /= out.mass;
-  for (const ShapePart& p : parts) {
-    const MassProperties m = computeMassProperties(p.shape, density);
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const ShapePart& p = parts[k];
+    const MassProperties& m = each[k];
     const Eigen::Matrix3d r = p.orientation.normalized().toRotationMatrix();
     const Vec3 d = p.position - out.centre;
     out.inertia += r * m.inertia * r.transpose() +

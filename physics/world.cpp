@@ -270,9 +270,18 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   const double restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
   const double rolling = std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]);
   // One contact per touching pair of pieces (a compound's parts, or the shape itself), in
-  // piece order: the contact list stays sorted by (a, b, piece a, piece b).
+  // piece order: the contact list stays sorted by (a, b, piece a, piece b). The broadphase
+  // paired the whole bodies; a compound's pieces whose bounds lie farther apart than the
+  // margin cannot touch and skip the narrowphase.
+  const bool compound =
+      bodies_.shape[a].type == ShapeType::Compound || bodies_.shape[b].type == ShapeType::Compound;
   forEachPiece(bodies_.shape[a], pa, [&](unsigned ka, const Shape& sa, const Pose& qa) {
     forEachPiece(bodies_.shape[b], pb, [&](unsigned kb, const Shape& sb, const Pose& qb) {
+      if (compound && sa.type != ShapeType::Plane && sb.type != ShapeType::Plane &&
+          !shapeBounds(sa, qa.position, qa.orientation)
+               .expanded(margin)
+               .overlaps(shapeBounds(sb, qb.position, qb.orientation)))
+        return;
       BodyContact contact;
       contact.a = a;
       contact.b = b;
