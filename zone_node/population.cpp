@@ -171,10 +171,9 @@ void forEachInitialEntity(const Scene& scene,
     auto [r, rng] = nextSceneEntity(scene, EntityKind::RigidBody, counter);
     if (b.motion != SceneBody::Motion::Dynamic) continue;
     r.pos = entityStart(b);
-    r.rot = Quat(b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z);
-    r.vel = Vec3(b.velocity.x, b.velocity.y, b.velocity.z);
-    r.body.angular_velocity =
-        Vec3(b.angular_velocity.x, b.angular_velocity.y, b.angular_velocity.z);
+    r.rot = toQuat(b.orientation);
+    r.vel = toVec3(b.velocity);
+    r.body.angular_velocity = toVec3(b.angular_velocity);
     r.body.shape = std::uint8_t(b.shape);
     r.body.radius = b.radius;
     r.body.half_extents = Vec3(b.size.x, b.size.y, b.size.z) * 0.5;

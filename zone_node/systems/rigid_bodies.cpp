@@ -122,8 +122,10 @@ RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
       cloth_colliders_(std::make_unique<physics::ClothColliders>()) {
   for (std::size_t k = 0; k < scene.physics.bodies.size(); ++k) {
     const SceneBody& b = scene.physics.bodies[k];
-    if (b.motion == SceneBody::Motion::Dynamic && b.shape == SceneBody::Shape::Compound)
-      compounds_.emplace(namedBodyId(scene, k), centredSceneCompound(b).shape);
+    if (b.motion != SceneBody::Motion::Dynamic || b.shape != SceneBody::Shape::Compound) continue;
+    physics::Shape shape = centredSceneCompound(b).shape;
+    const double volume = physics::computeMassProperties(shape, 1.0).mass;
+    compounds_.emplace(namedBodyId(scene, k), Compound{std::move(shape), volume});
   }
   for (const SceneCloth& c : scene.physics.cloths) {
     cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));
@@ -136,22 +138,23 @@ RigidBodySystem::~RigidBodySystem() = default;
 physics::BodyDesc RigidBodySystem::descOf(EntityId id, const BodyData& b, const Vec3& pos,
                                           const Quat& rot, const Vec3& vel) const {
   physics::BodyDesc d;
+  double volume = 0;
   if (b.shape == BodyData::Compound) {
     auto it = compounds_.find(id);
     if (it == compounds_.end())
       throw std::runtime_error("rigid body " + toString(id) +
                                " is a compound but no compound of physics.bodies has its id");
-    d.shape = it->second;
+    d.shape = it->second.shape;
+    volume = it->second.volume;
   } else {
     d.shape = shapeOf(b);
+    volume = volumeOf(b);
   }
   d.position = pos;
   d.orientation = rot;
   d.linear_velocity = vel;
   d.angular_velocity = b.angular_velocity;
-  d.density =
-      b.mass / (b.shape == BodyData::Compound ? physics::computeMassProperties(d.shape, 1.0).mass
-                                              : volumeOf(b));
+  d.density = b.mass / volume;
   d.friction = b.friction;
   d.rolling_resistance = b.rolling_resistance;
   d.restitution = b.restitution;

@@ -103,8 +103,13 @@ class RigidBodySystem : public ZoneSystem {
   std::vector<EntityId> body_entity_;  // dynamic body index - first_dynamic_ -> entity
   std::uint32_t first_dynamic_ = 0;    // the static ground, walls and set pieces come first
   SetPieces set_pieces_;
-  // The dynamic compound bodies' shapes, centred, by entity id (records do not carry parts).
-  std::map<EntityId, physics::Shape> compounds_;
+  // The dynamic compound bodies by entity id (records do not carry parts): the shape, centred,
+  // and its volume (mass / volume is the density the engine takes).
+  struct Compound {
+    physics::Shape shape;
+    double volume = 0;
+  };
+  std::map<EntityId, Compound> compounds_;
   IdSetDigest members_;
   std::vector<EntityId> foreign_entity_;  // foreign bodies, after the zone's own
   std::vector<GhostImpulse> ghost_impulses_;
