@@ -299,10 +299,11 @@ void readTick(const SceneMap& root, Scene& scene) {
 }
 
 void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
-  SceneMap m = root.section(
-      "physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
-                  "position_iterations", "sleep", "gyroscopic", "solver", "sor_omega",
-                  "linear_drag", "quadratic_drag", "bodies", "joints", "cloths", "explosions"});
+  SceneMap m =
+      root.section("physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
+                               "position_iterations", "sleep", "gyroscopic", "solver", "sor_omega",
+                               "joint_hertz", "joint_damping_ratio", "linear_drag",
+                               "quadratic_drag", "bodies", "joints", "cloths", "explosions"});
   ps.integrator = PhysicsSettings::Integrator(
       m.choice("integrator",
                {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
@@ -321,6 +322,8 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
       {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection", "conjugate_gradient"},
       int(ps.solver)));
   m.read("sor_omega", ps.sor_omega, Limit::between(0.1, 1.99));
+  m.read("joint_hertz", ps.joint_hertz, Limit::between(0.1, 1e4));
+  m.read("joint_damping_ratio", ps.joint_damping_ratio, Limit::between(0, 100));
   m.read("linear_drag", ps.linear_drag, Limit::atLeast(0));
   m.read("quadratic_drag", ps.quadratic_drag, Limit::atLeast(0));
 }

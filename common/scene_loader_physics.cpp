@@ -135,7 +135,8 @@ int bodyIndex(const SceneNode& node, const std::vector<SceneBody>& bodies) {
 }
 
 SceneJoint readJoint(const SceneNode& node, const Scene& scene) {
-  SceneMap m = node.map({"type", "a", "b", "anchor", "anchor_a", "anchor_b", "axis", "length"});
+  SceneMap m =
+      node.map({"type", "a", "b", "anchor", "anchor_a", "anchor_b", "axis", "length", "collide"});
   const std::vector<SceneBody>& bodies = scene.physics.bodies;
   SceneJoint j;
   m.required("type");
@@ -157,6 +158,8 @@ SceneJoint readJoint(const SceneNode& node, const Scene& scene) {
   only("anchor_b", distance, "distance joints");
   only("length", distance, "distance joints");
   only("axis", j.type == SceneJoint::Type::Hinge, "hinges");
+  m.read("collide", j.collide);
+  if (!j.collide && j.b < 0) m.failAt("collide", "a joint to the world has no second body to skip");
   if (!distance) {
     j.anchor = pointInWorld(m.required("anchor"), scene.world);
     if (auto axis = m.optional("axis")) j.axis = direction(*axis);

@@ -81,6 +81,7 @@ struct SceneJoint {
   SceneVec3 anchor_b;       ///< distance: world point on b, or in the world
   SceneVec3 axis{0, 0, 1};  ///< hinge: world axis at the start (normalised)
   double length = 0;        ///< distance: rod length (default: |anchor_b - anchor_a|)
+  bool collide = true;      ///< false: the two bodies never touch (they overlap at the joint)
 };
 
 /// A mass-spring cloth patch (physics.cloths; one zone only).
@@ -139,6 +140,8 @@ struct PhysicsSettings {
   bool gyroscopic = false;
   Solver solver = Solver::GaussSeidel;
   double sor_omega = 1.3;                  ///< over-relaxation factor of the sor solver
+  double joint_hertz = 60;                 ///< soft_step: joint spring frequency
+  double joint_damping_ratio = 2;          ///< soft_step: joint spring damping ratio
   double linear_drag = 0;     ///< N s/m: F = -k v on every dynamic body (physics::ForceModel)
   double quadratic_drag = 0;  ///< N s^2/m^2: F = -c |v| v on every dynamic body
   std::vector<SceneBody> bodies;           ///< named bodies (entities after the populations)

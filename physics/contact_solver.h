@@ -16,6 +16,7 @@
 
 #include "physics/body_storage.h"
 #include "physics/contact.h"
+#include "physics/softness.h"
 
 namespace zonesim::physics {
 
@@ -44,16 +45,6 @@ enum class SolverKind {
   ConjugateGradient,
 };
 
-/// A soft constraint's spring as bias rate and scales for one sub-step (Box2D v3 form).
-struct Softness {
-  double bias_rate = 0.0;      ///< 1/s applied to the (negative) separation.
-  double mass_scale = 1.0;     ///< Scales the effective mass.
-  double impulse_scale = 0.0;  ///< Fraction of the accumulated impulse relaxed each pass.
-};
-
-/// Softness of a spring of `hertz` and `damping_ratio` integrated implicitly over h.
-Softness makeSoftness(double hertz, double damping_ratio, double h);
-
 /// Iteration counts and tolerances of the contact solver.
 struct SolverSettings {
   SolverKind kind = SolverKind::GaussSeidel;
@@ -79,6 +70,11 @@ struct SolverSettings {
   double static_contact_rate_fraction = 0.25;
   /// Soft step: contact spring damping ratio (heavily overdamped: no bounce from the spring).
   double contact_damping_ratio = 10.0;
+  /// Soft step: joint spring frequency (Box2D's default), capped at a quarter of the sub-step
+  /// rate. Joints stretch under load by about weight / (effective mass (2 pi hertz)^2).
+  double joint_hertz = 60.0;
+  /// Soft step: joint spring damping ratio.
+  double joint_damping_ratio = 2.0;
   /// Soft step: the fastest the spring may push overlapping bodies apart (m/s).
   double max_push_velocity = 3.0;
 };

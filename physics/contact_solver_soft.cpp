@@ -18,15 +18,6 @@ namespace zonesim::physics {
 using solver_row::applyRow;
 using solver_row::relativeVelocity;
 
-Softness makeSoftness(double hertz, double damping_ratio, double h) {
-  if (hertz <= 0.0) return Softness{};
-  const double omega = 2.0 * std::numbers::pi * hertz;
-  const double a1 = 2.0 * damping_ratio + h * omega;
-  const double a2 = h * omega * a1;
-  const double a3 = 1.0 / (1.0 + a2);
-  return Softness{omega / a1, a2 * a3, a3};
-}
-
 void ContactSolver::solveSoft(BodyStorage& bodies, std::span<const Vec3> dp,
                               std::span<const Vec3> dtheta, const Softness& soft,
                               const Softness& soft_static, bool use_bias, double inv_h) {

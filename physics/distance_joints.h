@@ -11,6 +11,8 @@
 #include "common/math.h"
 #include "physics/body_storage.h"
 #include "physics/joint_row.h"
+#include "physics/soft_joint_anchor.h"
+#include "physics/softness.h"
 
 namespace zonesim::physics {
 
@@ -37,12 +39,26 @@ class DistanceJoints {
   void warmStart(BodyStorage& bodies);
   /// One Gauss-Seidel pass over the joints.
   void iterate(BodyStorage& bodies);
+  /// Soft step, at each sub-step: fixes every joint's anchors, direction and effective mass at
+  /// the bodies' motion so far (dp, dtheta) and applies the last sub-step's impulses.
+  void prepareSoft(BodyStorage& bodies, std::span<const Vec3> dp, std::span<const Vec3> dtheta);
+  /// Soft step: one pass over the joints, biased by the joint spring `soft`, or a relax pass
+  /// without bias.
+  void iterateSoft(BodyStorage& bodies, const Softness& soft, bool use_bias);
 
  private:
   using Row = JointRow;
 
   std::vector<DistanceJoint> joints_;
   std::vector<Row> rows_;
+  // A joint as the soft step's sub-step sees it (bodies do not move within its passes).
+  struct SoftRow {
+    SoftAnchor a, b;
+    Vec3 n;        // direction from a's anchor to b's
+    double error;  // length minus the joint's length
+    double mass;   // 1 / inverse mass along n
+  };
+  std::vector<SoftRow> soft_;
 };
 
 }  // namespace zonesim::physics

@@ -15,6 +15,8 @@
 #include "physics/body_storage.h"
 #include "physics/distance_joints.h"
 #include "physics/joint_row.h"
+#include "physics/soft_joint_anchor.h"
+#include "physics/softness.h"
 
 namespace zonesim::physics {
 
@@ -54,6 +56,12 @@ class RigidJoints {
   void warmStart(BodyStorage& bodies);
   /// One Gauss-Seidel pass over every row.
   void iterate(BodyStorage& bodies);
+  /// Soft step, at each sub-step: fixes every joint's anchors, axes and effective masses at
+  /// the bodies' motion so far (dp, dtheta) and applies the last sub-step's impulses.
+  void prepareSoft(BodyStorage& bodies, std::span<const Vec3> dp, std::span<const Vec3> dtheta);
+  /// Soft step: one pass over every joint, biased by the joint spring `soft`, or a relax pass
+  /// without bias.
+  void iterateSoft(BodyStorage& bodies, const Softness& soft, bool use_bias);
 
  private:
   // One bilateral row with the bodies it joins and its impulse (kept for the warm start).
@@ -74,6 +82,21 @@ class RigidJoints {
   std::vector<HingeJoint> hinges_;
   std::vector<Row> rows_;
   std::vector<double> stored_;  // Row impulses of the last step, in row order.
+  // A joint as the soft step's sub-step sees it (balls then hinges), with its impulses of the
+  // last sub-step: the point impulse on B and the hinge's angular impulse on B (world axes),
+  // each the reverse on A. Bodies do not move within a sub-step's passes, so the geometry is
+  // found once per sub-step.
+  struct SoftJoint {
+    SoftAnchor a, b;
+    Eigen::Matrix3d point_mass;  // inverse of the anchors' inverse mass matrix
+    Vec3 axis[2];                // hinge: directions that must not turn (unused for a ball)
+    double axis_error[2], axis_mass[2];
+    Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
+  };
+  void freeze(SoftJoint& joint, const BodyStorage& bodies, std::span<const Vec3> dp,
+              std::span<const Vec3> dtheta, BodyIndex a, BodyIndex b, const Vec3& local_a,
+              const Vec3& local_b) const;
+  std::vector<SoftJoint> soft_;
 };
 
 }  // namespace zonesim::physics

@@ -71,6 +71,9 @@ class World {
   std::uint32_t addBallJoint(const BallJoint& joint) { return rigid_joints_.addBall(joint); }
   /// Adds a hinge joint and returns its index among the hinges.
   std::uint32_t addHingeJoint(const HingeJoint& joint) { return rigid_joints_.addHinge(joint); }
+  /// Bodies a and b never touch: their pair gets no contact. For jointed neighbours whose shapes
+  /// overlap at the joint (chain links, ragdoll limbs), as Box2D's collideConnected = false.
+  void ignoreContactsBetween(BodyIndex a, BodyIndex b);
   /// Wakes body i and the island it sleeps in; call after setting a velocity by hand.
   void wake(BodyIndex i) { islands_.wake(i); }
   /// True when body i sleeps.
@@ -84,6 +87,8 @@ class World {
   const BodyStorage& bodies() const { return bodies_; }
   /// Gravity, drag and springs.
   ForceModel& forces() { return forces_; }
+  /// Gravity, drag and springs.
+  const ForceModel& forces() const { return forces_; }
   /// The settings in use.
   const WorldSettings& settings() const { return settings_; }
   /// The contacts found and solved in the last substep, sorted by body pair.
@@ -103,12 +108,14 @@ class World {
   void findPairs(double dt);
   void contactsOfPairs(double dt);
   void addContact(BodyIndex a, BodyIndex b, double margin);
+  bool contactIgnored(BodyIndex a, BodyIndex b) const;
   void wakeTouched();
   void warmStartFromPrevious();
   void integratePositions(double dt);
   void solveSoftStep(double dt);
   void warmStartJoints();
   void iterateJoints();
+  void iterateJointsSoft(const Softness& soft, bool use_bias);
   void solveIterative(double dt);
   void solveProjection(double dt);
   void quarantineNonFinite();
@@ -131,6 +138,7 @@ class World {
   std::vector<std::uint8_t> proxy_moving_;
   std::vector<BodyIndex> proxy_body_, planes_;
   std::vector<ProxyPair> pairs_;
+  std::vector<std::uint64_t> ignored_pairs_;  // sorted keys (lower index << 32 | higher index)
   std::vector<BodyContact> contacts_, previous_;
   std::vector<BodyIndex> quarantined_;
   StepProfile profile_;

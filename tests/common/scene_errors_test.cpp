@@ -118,6 +118,12 @@ const InlineCase kInlineCases[] = {
      "11: physics.bodies[0].parts[0].size: only boxes have a size"},
     {"gyroscopic_not_bool", withBase("physics:\n  gyroscopic: sometimes\n"),
      "6: physics.gyroscopic: expected true or false, got 'sometimes'"},
+    {"joint_hertz_zero", withBase("physics:\n  joint_hertz: 0\n"),
+     "6: physics.joint_hertz: must be in [0.1, 10000], got 0"},
+    {"collide_with_the_world",
+     withBase("physics:\n  bodies:\n    - {name: bob, position: [5, 1, 5]}\n  joints:\n    - "
+              "{type: ball, a: bob, anchor: [5, 2, 5], collide: false}\n"),
+     "9: physics.joints[0].collide: a joint to the world has no second body to skip"},
     {"size_on_sphere",
      withBase("populations:\n  - kind: rigid_body\n    count: 1\n    size: [1, 1, 1]\n"),
      "8: populations[0].size: only boxes have a size"},

@@ -381,5 +381,23 @@ populations:
   EXPECT_DOUBLE_EQ(s.npcs[0].gather.end_s, 9);
 }
 
+TEST(SceneLoader, ReadsJointSpringsAndCollideFlag) {
+  // Joints need a single zone.
+  Scene s = parseScene(std::string("world: {min: [0, 0, 0], max: [10, 10, 10]}\n"
+                                   "tick: {dt: 0.025}\nseed: 1\nzones: {columns: 1, rows: 1}\n") +
+                           "physics:\n  solver: soft_step\n  joint_hertz: 120\n"
+                           "  joint_damping_ratio: 5\n  bodies:\n"
+                           "    - {name: l1, shape: capsule, position: [5, 5, 5]}\n"
+                           "    - {name: l2, shape: capsule, position: [5, 4, 5]}\n"
+                           "  joints:\n    - {type: ball, a: l1, b: l2, anchor: [5, 4.5, 5], "
+                           "collide: false}\n    - {type: ball, a: l1, anchor: [5, 5.5, 5]}\n",
+                       "x");
+  EXPECT_DOUBLE_EQ(s.physics.joint_hertz, 120);
+  EXPECT_DOUBLE_EQ(s.physics.joint_damping_ratio, 5);
+  ASSERT_EQ(s.physics.joints.size(), 2u);
+  EXPECT_FALSE(s.physics.joints[0].collide);
+  EXPECT_TRUE(s.physics.joints[1].collide);  // the default: jointed bodies still touch
+}
+
 }  // namespace
 }  // namespace zonesim

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <stdexcept>
 
 #include "physics/box_column.h"
 #include "rebound.h"
@@ -319,6 +320,28 @@ TEST(World, AForeignBodyFeelsGravityButNotDrag) {
   EXPECT_LT(s.linear_velocity[a].x(), 4.0);
   EXPECT_NEAR(s.linear_velocity[b].x(), 4.0, 1e-15);
   EXPECT_NEAR(s.linear_velocity[b].y(), -9.81 * dt, 1e-12);
+}
+
+TEST(World, IgnoredPairsNeverTouchAndOtherPairsStill) {
+  // Three overlapping spheres in free space (no gravity): 0-1 ignored, 1-2 not.
+  World world;
+  world.forces().gravity = Vec3::Zero();
+  BodyDesc d;
+  d.shape = Shape::sphere(0.5);
+  for (double x : {0.0, 0.6, 1.2}) {
+    d.position = Vec3(x, 0, 0);
+    world.addBody(d);
+  }
+  world.ignoreContactsBetween(1, 0);  // either order
+  world.ignoreContactsBetween(0, 1);  // twice is once
+  world.step(1.0 / 60.0);
+  ASSERT_EQ(world.contacts().size(), 1u);
+  EXPECT_EQ(world.contacts()[0].a, 1u);
+  EXPECT_EQ(world.contacts()[0].b, 2u);
+  // Sphere 0 overlaps 1 and 2 sits farther: nothing pushed it.
+  EXPECT_EQ(world.bodies().linear_velocity[0], Vec3::Zero());
+  EXPECT_THROW(world.ignoreContactsBetween(0, 0), std::invalid_argument);
+  EXPECT_THROW(world.ignoreContactsBetween(0, 3), std::invalid_argument);
 }
 
 }  // namespace

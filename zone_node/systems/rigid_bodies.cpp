@@ -30,6 +30,8 @@ physics::WorldSettings settingsFor(const PhysicsSettings& p) {
   w.sleep.enabled = p.sleep;
   w.solver.kind = physics::SolverKind(int(p.solver));
   w.solver.sor_omega = p.sor_omega;
+  w.solver.joint_hertz = p.joint_hertz;
+  w.solver.joint_damping_ratio = p.joint_damping_ratio;
   return w;
 }
 
@@ -265,6 +267,7 @@ void RigidBodySystem::addJoints() {
         break;
       }
     }
+    if (!j.collide) world_->ignoreContactsBetween(*a, *b);
     ++joints_added_;
   }
 }
