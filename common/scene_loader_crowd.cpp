@@ -113,14 +113,24 @@ void readCrowdLod(const SceneMap& root, Scene& scene) {
   if (!root.optional("lod")) return;
   CrowdLod& l = scene.lod;
   l.enabled = true;
-  SceneMap m = root.section("lod", {"near_radius", "far_radius", "mid_every", "far_every",
-                                    "mid_steers", "far_steers", "observers"});
+  SceneMap m =
+      root.section("lod", {"near_radius", "far_radius", "mid_every", "far_every", "mid_steers",
+                           "far_steers", "observers", "crowded_count", "crowded_cell"});
   m.read("near_radius", l.near_radius, Limit::atLeast(0));
   m.read("far_radius", l.far_radius, Limit::atLeast(l.near_radius));
   m.read("mid_every", l.mid_every, Limit::between(1, 64));
   m.read("far_every", l.far_every, Limit::between(1, 64));
   m.read("mid_steers", l.mid_steers);
   m.read("far_steers", l.far_steers);
+  m.read("crowded_count", l.crowded_count, Limit::between(0, 1000000));
+  m.read("crowded_cell", l.crowded_cell, Limit::above(0));
+  // A cell's count includes agents across a border, which a zone sees only as ghosts.
+  if (l.crowded_count > 0 && scene.zones.columns * scene.zones.rows > 1 &&
+      l.crowded_cell > scene.halo_width) {
+    m.failAt("crowded_cell", formatNumber(l.crowded_cell) + " m is wider than halo.width (" +
+                                 formatNumber(scene.halo_width) +
+                                 " m): cells across a border would count differently per zone");
+  }
   if (std::optional<SceneNode> list = m.optional("observers")) {
     for (const SceneNode& item : list->items()) l.observers.push_back(groundPoint(item, scene));
   }

@@ -16,6 +16,10 @@ struct CrowdLod {
   int far_every = 8;        ///< ticks between updates beyond far_radius
   bool mid_steers = true;   ///< the middle band keeps its neighbour terms
   bool far_steers = false;  ///< the far band follows its field only
+  /// Agents in a cell (crowded_cell m square) holding at least this many update at full
+  /// detail wherever they are (crowd::LodSettings::crowded_count); 0: off.
+  int crowded_count = 0;
+  double crowded_cell = 4;  ///< m
   /// Fixed ground-plane points (x, z) that count as players (scripted observers: runs
   /// without clients, tests, points of interest that keep full detail).
   std::vector<std::pair<double, double>> observers;

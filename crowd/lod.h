@@ -23,6 +23,12 @@ struct LodSettings {
   int far_every = 8;          ///< update period beyond far_radius (ticks)
   bool mid_steers = true;     ///< middle band keeps full steering
   bool far_steers = false;    ///< far band: path/field following only, no neighbour query
+  /// An agent whose cell (a world-aligned square of crowded_cell m) holds at least this many
+  /// agents, itself included, updates every tick with full steering wherever it is: in a dense
+  /// queue far agents riding their field would pass through each other and arrive early.
+  /// 0: off.
+  int crowded_count = 0;
+  double crowded_cell = 4.0;  ///< m, side of the crowding cells
 };
 
 /// Detail level of an agent.
@@ -40,6 +46,13 @@ int lodPeriod(LodLevel level, const LodSettings& settings);
 /// plans the same.
 bool lodDue(std::uint64_t id, std::int64_t tick, int every);
 
+/// Per agent in `agents`, how many agents lie in its cell of a world-aligned square grid of
+/// side `cell` m: those of `agents` whose `counted` is non-zero (all when `counted` is empty)
+/// and all of `others` (ghosts), written to `out`. An agent not counted still gets its cell's
+/// count.
+void crowdingCounts(std::span<const Vec2> agents, std::span<const std::uint8_t> counted,
+                    std::span<const Vec2> others, double cell, std::vector<std::uint32_t>& out);
+
 /// Builds StepPlans for a set of agents each tick.
 class LevelOfDetail {
  public:
@@ -50,9 +63,12 @@ class LevelOfDetail {
   /// positions. `last_tick`: per agent, the tick of its last update (read and written; the
   /// caller keeps it with the agent, -1 for new agents); when empty, an update advances by
   /// its period times dt, which loses or gains time only when an agent changes level.
+  /// `crowding`: per agent, its cell's count (crowdingCounts); when given and the settings'
+  /// crowded_count is set, agents in crowded cells are planned as near.
   StepPlan plan(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
                 std::span<const Vec2> players, std::int64_t tick, double dt,
-                std::span<std::int64_t> last_tick = {});
+                std::span<std::int64_t> last_tick = {},
+                std::span<const std::uint32_t> crowding = {});
 
   /// Level of agent i in the last plan.
   LodLevel level(std::size_t i) const { return LodLevel(level_[i]); }

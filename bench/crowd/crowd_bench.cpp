@@ -1,8 +1,9 @@
 // crowd_bench [--agents 1000,10000,100000] [--lanes 1,2,4,8] [--steps N]
-//              [--only flock|flow|lod|lod-flock] [--lod-seconds S]
+//              [--only flock|flow|lod|lod-flock] [--lod-seconds S] [--crowded LIST]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
 // fields on one core, flow field build time, and (--only lod: flow crowds; --only lod-flock:
-// flocks) AI time and outcome drift with and without level of detail.
+// flocks) AI time and outcome drift with and without level of detail; --crowded adds flow LOD
+// variants that keep agents at full detail where a 4 m cell holds that many agents or more.
 
 #include <cstdio>
 #include <cstring>
@@ -193,13 +194,22 @@ LodRun runLod(const ai::GridMap& map, int n, int ticks, const LodSettings* lodSe
   r.arrival.assign(a.ids.size(), -1);
   std::optional<LevelOfDetail> lod;
   if (lodSettings) lod.emplace(*lodSettings);
+  const bool crowding_on = lodSettings && lodSettings->crowded_count > 0;
+  std::vector<std::uint32_t> crowding;
+  std::vector<std::uint8_t> walking;
   const double dt = 1.0 / 20;
   double cpu = 0;
   for (int t = 0; t < ticks; ++t) {
     double t0 = Clock::now();
     StepPlan plan;
     if (lod) {
-      plan = lod->plan(a.ids, a.pos, players, t, dt, last);
+      if (crowding_on) {
+        // Agents still walking count toward their cell's crowding; arrived ones have left.
+        walking.resize(arrived.size());
+        for (std::size_t i = 0; i < arrived.size(); ++i) walking[i] = !arrived[i];
+        crowdingCounts(a.pos, walking, {}, lodSettings->crowded_cell, crowding);
+      }
+      plan = lod->plan(a.ids, a.pos, players, t, dt, last, crowding);
       r.updates += lod->updated();
     } else {
       r.updates += a.ids.size();
@@ -214,12 +224,22 @@ LodRun runLod(const ai::GridMap& map, int n, int ticks, const LodSettings* lodSe
   return r;
 }
 
-void benchLod(const std::vector<int>& counts, double seconds) {
+void benchLod(const std::vector<int>& counts, double seconds, const std::vector<int>& crowded) {
   ai::GridMap map = benchMap();
   const int ticks = int(seconds * 20);
   LodSettings cheap;  // defaults: far agents ride the field without the neighbour query
   LodSettings steered = cheap;
   steered.far_steers = true;
+  // far-field, plus full detail wherever a 4 m cell holds `crowded` agents or more.
+  std::vector<LodSettings> variants{cheap, steered};
+  for (int c : crowded) {
+    variants.push_back(cheap);
+    variants.back().crowded_count = c;
+  }
+  const auto name = [](const LodSettings& s) {
+    if (s.crowded_count > 0) return "crowded-" + std::to_string(s.crowded_count);
+    return std::string(s.far_steers ? "far-steer" : "far-field");
+  };
   std::printf(
       "\nLOD: flow crowd on random512-10-0, 4 destinations, 2 players at (150,150) and "
       "(360,300), %d ticks of 1/20 s; near %.0f m every tick, mid to %.0f m every %d "
@@ -236,13 +256,13 @@ void benchLod(const std::vector<int>& counts, double seconds) {
     for (int t : full.arrival) arrivedFull += t >= 0;
     std::printf("| %d | full | %.3f | 1.00 | 1.00 | %d | | | | |\n", n, full.msPerTick,
                 arrivedFull);
-    for (const LodSettings* s : {&cheap, &steered}) {
-      LodRun lod = runLod(map, n, ticks, s);
+    for (const LodSettings& s : variants) {
+      LodRun lod = runLod(map, n, ticks, &s);
       const OutcomeDrift d = outcomeDrift(full, lod, 1.0 / 20.0);  // arrival in 1/20 s ticks
       std::printf("| %d | %s | %.3f | %.2f | %.2f | %d | %.3f | %.2f | %.3f | %.2f |\n", n,
-                  s->far_steers ? "far-steer" : "far-field", lod.msPerTick,
-                  full.msPerTick / lod.msPerTick, double(full.updates) / double(lod.updates),
-                  d.arrived, d.both ? d.sumDt / d.both : 0.0, d.maxDt, d.sumErr / n, d.maxErr);
+                  name(s).c_str(), lod.msPerTick, full.msPerTick / lod.msPerTick,
+                  double(full.updates) / double(lod.updates), d.arrived,
+                  d.both ? d.sumDt / d.both : 0.0, d.maxDt, d.sumErr / n, d.maxErr);
     }
   }
 }
@@ -351,6 +371,7 @@ int main(int argc, char** argv) {
   int steps = 30;
   double lodSeconds = 200;
   std::string only;
+  std::vector<int> crowded;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--agents") && i + 1 < argc)
       counts = bench::parseCounts("--agents", argv[++i]);
@@ -362,16 +383,19 @@ int main(int argc, char** argv) {
       only = argv[++i];
     else if (!std::strcmp(argv[i], "--lod-seconds") && i + 1 < argc)
       lodSeconds = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--crowded") && i + 1 < argc)
+      crowded = bench::parseCounts("--crowded", argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N]\n"
-                   "                   [--only flock|flow|lod|lod-flock] [--lod-seconds S]\n");
+                   "                   [--only flock|flow|lod|lod-flock] [--lod-seconds S]\n"
+                   "                   [--crowded LIST]\n");
       return 2;
     }
   }
   if (only.empty() || only == "flock") benchFlock(counts, lanes, steps);
   if (only.empty() || only == "flow") benchFlow(counts, steps);
-  if (only == "lod") benchLod(counts, lodSeconds);
+  if (only == "lod") benchLod(counts, lodSeconds, crowded);
   if (only == "lod-flock") benchLodFlock(counts, lodSeconds);
   return 0;
 }

@@ -118,6 +118,9 @@ const InlineCase kInlineCases[] = {
      "11: physics.bodies[0].parts[0].size: only boxes have a size"},
     {"gyroscopic_not_bool", withBase("physics:\n  gyroscopic: sometimes\n"),
      "6: physics.gyroscopic: expected true or false, got 'sometimes'"},
+    {"crowded_cell_wider_than_halo", withBase("lod: {crowded_count: 4, crowded_cell: 20}\n"),
+     "5: lod.crowded_cell: 20 m is wider than halo.width (10 m): cells across a border would "
+     "count differently per zone"},
     {"joint_hertz_zero", withBase("physics:\n  joint_hertz: 0\n"),
      "6: physics.joint_hertz: must be in [0.1, 10000], got 0"},
     {"collide_with_the_world",

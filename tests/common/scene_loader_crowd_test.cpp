@@ -206,6 +206,11 @@ TEST(SceneLod, AbsentMeansOffAndValuesComeThrough) {
   EXPECT_EQ(s.lod.far_every, 4);
   EXPECT_TRUE(s.lod.mid_steers);
   EXPECT_TRUE(s.lod.far_steers);
+  EXPECT_EQ(s.lod.crowded_count, 0);  // off unless asked
+  const Scene crowded =
+      parseScene(sceneWith("lod: {crowded_count: 6, crowded_cell: 2}\n"), kSceneName);
+  EXPECT_EQ(crowded.lod.crowded_count, 6);
+  EXPECT_EQ(crowded.lod.crowded_cell, 2);
   EXPECT_EQ(sceneError([] {
               parseScene(sceneWith("lod: {near_radius: 50, far_radius: 30}\n"), kSceneName);
             }),

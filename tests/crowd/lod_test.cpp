@@ -150,5 +150,51 @@ TEST(Lod, FlockFollowsThePlan) {
   EXPECT_NEAR(a.pos[2].x, before.pos[2].x + a.vel[2].x * 0.2, 1e-15);
 }
 
+TEST(Lod, CrowdingCountsEachCellOnceWithGhostsAndTheMask) {
+  // Cells of 2 m: (0,0) holds agents 0, 1 and a ghost; (1,0) agent 2 (not counted) and 3;
+  // (-1,-1) agent 4 alone.
+  const std::vector<Vec2> agents{{0.5, 0.5}, {1.9, 1.0}, {2.0, 0.1}, {3.5, 1.5}, {-0.1, -0.1}};
+  const std::vector<std::uint8_t> counted{1, 1, 0, 1, 1};
+  const std::vector<Vec2> ghosts{{1.0, 1.99}, {9.0, 9.0}};
+  std::vector<std::uint32_t> out;
+  crowdingCounts(agents, counted, ghosts, 2.0, out);
+  EXPECT_EQ(out, (std::vector<std::uint32_t>{3, 3, 1, 1, 1}));
+  crowdingCounts(agents, {}, {}, 2.0, out);  // everyone counted, no ghosts
+  EXPECT_EQ(out, (std::vector<std::uint32_t>{2, 2, 2, 2, 1}));
+  // Points thousands of cells apart take the sparse path: the same answer.
+  const std::vector<Vec2> spread{{0.5, 0.5}, {1e6, 1e6}, {1e6 + 0.5, 1e6}, {-1e6, 3.0}};
+  crowdingCounts(spread, {}, {}, 2.0, out);
+  EXPECT_EQ(out, (std::vector<std::uint32_t>{1, 2, 2, 1}));
+  EXPECT_THROW(crowdingCounts(agents, counted, ghosts, 0.0, out), std::invalid_argument);
+  EXPECT_THROW(crowdingCounts(agents, std::vector<std::uint8_t>{1}, {}, 2.0, out),
+               std::invalid_argument);
+}
+
+TEST(Lod, CrowdedAgentsArePlannedNearWhereverTheyAre) {
+  LodSettings s;  // no player: everyone far, every 8 ticks, without steering
+  s.crowded_count = 3;
+  LevelOfDetail lod(s);
+  const std::vector<std::uint64_t> ids{1, 2, 3, 4};
+  const std::vector<Vec2> pos{{0, 0}, {0.5, 0}, {1, 0}, {50, 50}};
+  const std::vector<std::uint32_t> crowding{3, 3, 3, 1};
+  for (int t = 0; t < 8; ++t) {
+    const StepPlan plan = lod.plan(ids, pos, {}, t, 0.05, {}, crowding);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(lod.level(i), LodLevel::Near);
+      EXPECT_DOUBLE_EQ(plan.dt[i], 0.05);
+      EXPECT_EQ(plan.steer[i], 1);
+    }
+    EXPECT_EQ(lod.level(3), LodLevel::Far);
+  }
+  // Without the counts (or with crowded_count 0) the same agents stay far.
+  lod.plan(ids, pos, {}, 0, 0.05);
+  EXPECT_EQ(lod.level(0), LodLevel::Far);
+  EXPECT_THROW(lod.plan(ids, pos, {}, 0, 0.05, {}, std::vector<std::uint32_t>{1}),
+               std::invalid_argument);
+  LodSettings bad;
+  bad.crowded_cell = 0;
+  EXPECT_THROW(LevelOfDetail{bad}, std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace zonesim::crowd

@@ -10,6 +10,8 @@ crowd::LodSettings lodOf(const CrowdLod& l) {
   s.far_every = l.far_every;
   s.mid_steers = l.mid_steers;
   s.far_steers = l.far_steers;
+  s.crowded_count = l.crowded_count;
+  s.crowded_cell = l.crowded_cell;
   return s;
 }
 

@@ -23,6 +23,7 @@ struct FlockMovement::Group {
   double goalSpeed = 0;               // m/s toward it
   double goalSlowRadius = 1;          // m: speed ramps down to 0 this close
   std::vector<crowd::Vec2> goal_vel;  // per gathered NPC, kept warm
+  std::vector<std::uint32_t> crowding;  // per NPC: its cell's count (empty: not used)
 };
 
 namespace {
@@ -90,7 +91,13 @@ std::size_t FlockMovement::advance(EntityStore& store, const GhostStore* ghosts,
     // Far from every player a flocker steps less often (by the time it skipped), the farthest
     // on its goal velocity only; the plan depends on ids, positions and the tick alone.
     crowd::StepPlan plan;
-    if (lod_) plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt);
+    if (lod_) {
+      if (g.lod.settings().crowded_count > 0) {
+        crowd::crowdingCounts(g.view.pos, {}, g.view.ghost_pos, g.lod.settings().crowded_cell,
+                              g.crowding);
+      }
+      plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt, {}, g.crowding);
+    }
     g.flock.step(g.view.agents(), g.view.ghostSpan(), dt, goal_vel, plan);
     updates_ += lod_ ? g.lod.updated() : g.view.ids.size();
     // The flock moves on the ground plane; the walls of the world stop it like any walker.

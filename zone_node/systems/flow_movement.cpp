@@ -29,6 +29,8 @@ struct FlowMovement::Group {
   crowd::LevelOfDetail lod;
   std::vector<std::uint16_t> dest;
   std::vector<std::uint8_t> arrived;
+  std::vector<std::uint8_t> walking;    // per agent: counts toward crowding
+  std::vector<std::uint32_t> crowding;  // per agent: its cell's count (empty: not used)
 };
 
 int flowDestination(std::uint64_t id, int count) {
@@ -157,7 +159,16 @@ std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, 
     // Far from every player an NPC steps less often (by the time it skipped), the farthest
     // along its field only; the plan depends on ids, positions and the tick alone.
     crowd::StepPlan plan;
-    if (lod_) plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt);
+    if (lod_) {
+      // Crowded cells count walking agents and (walking) ghosts: the same on every rank.
+      if (g.lod.settings().crowded_count > 0) {
+        g.walking.resize(g.arrived.size());
+        for (std::size_t a = 0; a < g.arrived.size(); ++a) g.walking[a] = !g.arrived[a];
+        crowd::crowdingCounts(g.view.pos, g.walking, g.view.ghost_pos,
+                              g.lod.settings().crowded_cell, g.crowding);
+      }
+      plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt, {}, g.crowding);
+    }
     g.crowd.step(g.view.agents(), g.dest, g.arrived, g.view.ghostSpan(), dt, plan);
     for (std::size_t a = 0; a < g.view.ids.size(); ++a)
       updates_ += (plan.empty() || plan.dt[a] > 0) && !g.arrived[a] ? 1 : 0;
