@@ -21,7 +21,8 @@ a path budget that binds, shared by the cluster, with HPA* and its path cache;
 (scenes/courtyard_formation.yaml) a formation whose centre every rank computes alike, whose
 members carry their rejoin paths when they migrate and push apart through ghosts;
 (scenes/courtyard_ants.yaml) ants that carry their routes across borders and lay trail on a grid
-summed over the ranks in integers every tick; (scenes/roads.yaml) NPCs on a waypoint graph whose
+summed over the ranks in integers every tick; (scenes/courtyard_groups_lod.yaml) both under level
+of detail, members and ants far from an observer stepping every 2 or 4 ticks; (scenes/roads.yaml) NPCs on a waypoint graph whose
 next node and goal migrate with them, deciding at each node from the graph and its timed closure
 alone; (scenes/skirmish.yaml) NPCs hitting each other where four zones meet, by messages to the
 target's owner (the entity mail) that are forwarded when the target crosses a border in the
@@ -37,13 +38,13 @@ SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flo
           "courtyard_flow_lod": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "courtyard_formation": 700,
-          "courtyard_ants": 1200, "flock_lod": 300, "roads": 1200, "skirmish": 300}
+          "courtyard_ants": 1200, "courtyard_groups_lod": 1200, "flock_lod": 300, "roads": 1200, "skirmish": 300}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
          "flock_lod": ["--gpu", "off"]}
 GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "courtyard_flow_lod", "crowd_flock_gpu", "agents", "agents_sliced",
-                "courtyard_formation", "flock_lod", "skirmish")
+                "courtyard_formation", "courtyard_groups_lod", "flock_lod", "skirmish")
 MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition
 MAIL_FIGURES = ("hits", "kills", "pickups", "pickups_contested", "pickups_denied", "mail_posted",
                 "mail_applied", "mail_refused")

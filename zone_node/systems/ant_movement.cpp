@@ -1,12 +1,14 @@
 #include "zone_node/systems/ant_movement.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "common/scene.h"
 #include "common/scene_source.h"
 #include "common/splitmix.h"
 #include "crowd/ant_trip_rule.h"
+#include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/steering.h"
 #include "zone_node/world_map.h"
 
@@ -44,7 +46,8 @@ struct AntMovement::Colony {
   ColonyStats stats;
 };
 
-AntMovement::AntMovement(const Scene& scene, const WorldMap* map) : seed_(scene.seed) {
+AntMovement::AntMovement(const Scene& scene, const WorldMap* map)
+    : seed_(scene.seed), lod_(scene.lod.enabled), lod_settings_(lodOf(scene.lod)) {
   for (std::size_t p = 0; p < scene.npcs.size(); ++p) {
     const NpcColony& c = scene.npcs[p].colony;
     if (!c.enabled) continue;
@@ -93,13 +96,15 @@ std::vector<ai::Cell> AntMovement::trailRoute(std::size_t c) const {
 }
 
 void AntMovement::step(StepContext& ctx) {
-  walk(ctx.store, ctx.tick, ctx.dt);
+  walk(ctx.store, ctx.tick, ctx.dt, ctx.players);
   if (ctx.cluster.sum) ctx.cluster.sum(deltas_);
   applyTrails();
 }
 
-void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
+void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt,
+                       std::span<const crowd::Vec2> players) {
   std::fill(deltas_.begin(), deltas_.end(), 0);
+  updates_ = 0;
   const double time = double(tick) * dt;
   for (const std::unique_ptr<Colony>& cp : colonies_) {
     Colony& col = *cp;
@@ -109,19 +114,38 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
       if (store.kind[i] != EntityKind::Npc || store.npc[i].population != col.population) continue;
       AntData& ant = crowdState<AntData>(store.npc[i]);
       const std::uint64_t id = store.id[i].value;
-      col.trips.begin(ant);
       const crowd::Vec2 from{store.pos[i].x(), store.pos[i].z()};
-      const crowd::Vec2 to = frame.centre(col.trips.target(ant)) - from;
-      const double reach = col.cfg.speed * dt, d = crowd::length(to);
+      // Level of detail: an ant of period k walks on one tick in k, standing for the k ticks.
+      int period = 1;
+      if (lod_) {
+        period = crowd::lodPeriod(crowd::lodLevel(from, players, lod_settings_), lod_settings_);
+        if (!crowd::lodDue(id, std::int64_t(tick), period)) continue;
+      }
+      ++updates_;
+      col.trips.begin(ant);
+      // The walk of the `period` ticks this update stands for, as full detail takes it: speed
+      // * dt a tick, stopping at a cell centre on the tick it gets there and deciding on it,
+      // with that tick's draws. Only the trail it reads is older. A period of 1 is exactly the
+      // full-detail walk.
+      const double reach = col.cfg.speed * dt;
+      int ticks_left = period;
       crowd::Vec2 at = from;
-      if (d > reach) {
-        at = from + to * (reach / d);
-      } else {
-        at = from + to;
-        // At a cell centre: the ant decides where to go next (at most once per tick).
+      while (ticks_left > 0) {
+        const crowd::Vec2 to = frame.centre(col.trips.target(ant)) - at;
+        const double d = crowd::length(to);
+        if (d > reach * ticks_left) {
+          at = at + to * (reach * ticks_left / d);
+          break;
+        }
+        at = at + to;
+        // At a cell centre: the ant decides where to go next (at most once per tick), on the
+        // tick it got there.
+        const int ticks = std::clamp(int(std::ceil(d / reach)), 1, ticks_left);
+        const std::uint64_t as_of = tick + 1 - std::uint64_t(ticks_left) + std::uint64_t(ticks - 1);
+        ticks_left -= ticks;
         const crowd::AntArrival arrival =
             col.trips.arrive(ant, col.trail, food_there,
-                             [&](int draw) { return counterUniform(seed_, id, tick, draw); });
+                             [&](int draw) { return counterUniform(seed_, id, as_of, draw); });
         deltas_[col.offset + col.trail.index(arrival.cell)] += arrival.laid;
         if (arrival.trip_length > 0) {
           ++col.stats.trips;
@@ -129,8 +153,9 @@ void AntMovement::walk(EntityStore& store, std::uint64_t tick, double dt) {
           col.stats.last_length = arrival.trip_length;
         }
       }
+      const double moved_dt = dt * period;
       store.pos[i] = Vec3(at.x, store.pos[i].y(), at.y);
-      store.vel[i] = Vec3((at.x - from.x) / dt, 0.0, (at.y - from.y) / dt);
+      store.vel[i] = Vec3((at.x - from.x) / moved_dt, 0.0, (at.y - from.y) / moved_dt);
       store.rot[i] = facing(store.rot[i], store.vel[i]);
     }
   }

@@ -24,6 +24,7 @@
 #include "ai/octile.h"
 #include "crowd/ant_trail.h"
 #include "crowd/ant_trip.h"
+#include "crowd/lod.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/systems/step_context.h"
 
@@ -62,8 +63,14 @@ class AntMovement : public ZoneSystem {
   /// applyTrails(), so every rank's trails stay the same.
   void step(StepContext& ctx) override;
   /// Moves every ant of `store` by one tick (`tick` from 0: time tick * dt) reading the trails
-  /// as they stand, and adds the ants' deposits to deltas() (cleared first).
-  void walk(EntityStore& store, std::uint64_t tick, double dt);
+  /// as they stand, and adds the ants' deposits to deltas() (cleared first). Under the scene's
+  /// `lod`, an ant far from every one of `players` walks only on its tick of every period, as
+  /// far as the period's ticks would have taken it, deciding at most once per tick it stands
+  /// for.
+  void walk(EntityStore& store, std::uint64_t tick, double dt,
+            std::span<const crowd::Vec2> players = {});
+  /// Ant walks done by the last walk() (every ant without LOD).
+  std::size_t updates() const { return updates_; }
   /// This tick's deposits of the ants on this rank, every colony's cells one after another;
   /// to be summed over all ranks before applyTrails().
   std::span<std::int64_t> deltas() { return deltas_; }
@@ -89,6 +96,9 @@ class AntMovement : public ZoneSystem {
   std::vector<std::unique_ptr<Colony>> colonies_;
   std::vector<std::int64_t> deltas_;
   std::uint64_t seed_ = 0;
+  bool lod_ = false;  // the scene's lod key
+  crowd::LodSettings lod_settings_;
+  std::size_t updates_ = 0;
 };
 
 }  // namespace zonesim::zone

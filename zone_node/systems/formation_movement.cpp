@@ -6,8 +6,10 @@
 #include "common/scene.h"
 #include "common/scene_source.h"
 #include "crowd/formation.h"
+#include "crowd/lod.h"
 #include "zone_node/formation_start.h"
 #include "zone_node/ghost_store.h"
+#include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
 
@@ -26,11 +28,12 @@ std::uint64_t firstCounter(const Scene& scene, std::size_t p) {
 
 /// One formation: its centre, the member stepper and the gather buffers.
 struct FormationMovement::Group {
-  Group(std::int32_t p, const WorldMap& map, const NpcFormation& f)
+  Group(std::int32_t p, const WorldMap& map, const NpcFormation& f, const crowd::LodSettings& l)
       : view(p),
         formation(f),
         centre(formationSettings(f), {f.route[0].x, f.route[0].z}, formationHeading(f)),
-        stepper(map.grid, map.frame, formationSettings(f)) {}
+        stepper(map.grid, map.frame, formationSettings(f)),
+        lod(l) {}
   PlanarCrowd view;
   const NpcFormation& formation;
   std::uint64_t first = 0;  // id counter of member 0
@@ -40,6 +43,7 @@ struct FormationMovement::Group {
   crowd::MemberStepper stepper;
   std::vector<crowd::MemberNeighbour> members;  // owned and ghosts, ascending id
   crowd::MemberState state;
+  crowd::LevelOfDetail lod;
 
   int slotIndex(std::uint64_t id) const { return int(EntityId{id}.counter() - first); }
 };
@@ -49,7 +53,7 @@ FormationMovement::FormationMovement(const Scene& scene, const WorldMap* map) : 
     const NpcFormation& f = scene.npcs[p].formation;
     if (!f.enabled) continue;
     if (!map) throw SceneError(sceneFile(scene) + ":0: map: a formation needs a map");
-    auto g = std::make_unique<Group>(std::int32_t(p), *map, f);
+    auto g = std::make_unique<Group>(std::int32_t(p), *map, f, lodOf(scene.lod));
     g->first = firstCounter(scene, p);
     g->count = scene.npcs[p].count;
     std::vector<crowd::Vec2> points;
@@ -108,6 +112,7 @@ void FormationMovement::step(StepContext& ctx) {
   const GhostStore* ghosts = ctx.ghosts;
   const double dt = ctx.dt;
   const std::uint64_t tick = ctx.tick;
+  updates_ = 0;
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
     // Every rank takes the same centre steps from the scene's start: the same centre.
@@ -125,7 +130,15 @@ void FormationMovement::step(StepContext& ctx) {
               [](const crowd::MemberNeighbour& x, const crowd::MemberNeighbour& y) {
                 return x.id < y.id;
               });
+    // Far from every player a member steps less often (by the time it skipped), the farthest
+    // toward its slot without pushing apart; the plan depends on ids, positions and the tick.
+    crowd::StepPlan plan;
+    if (scene_.lod.enabled) plan = g.lod.plan(g.view.ids, g.view.pos, ctx.players, tick, dt);
     for (std::size_t a = 0; a < g.view.ids.size(); ++a) {
+      const double step_dt = plan.empty() ? dt : plan.dt[a];
+      if (step_dt == 0.0) continue;
+      const bool steer = plan.empty() || plan.steer[a];
+      ++updates_;
       FormationMemberData& member = crowdState<FormationMemberData>(store.npc[g.view.index[a]]);
       crowd::MemberState& m = g.state;
       m.mode = crowd::MemberMode(member.mode);
@@ -134,7 +147,9 @@ void FormationMovement::step(StepContext& ctx) {
       m.path.swap(member.path);
       const std::uint64_t id = g.view.ids[a];
       g.stepper.step(id, m, formationSlot(g.formation, g.count, g.slotIndex(id)), g.centre,
-                     g.members, g.view.pos[a], g.view.vel[a], dt);
+                     steer ? std::span<const crowd::MemberNeighbour>(g.members)
+                           : std::span<const crowd::MemberNeighbour>(),
+                     g.view.pos[a], g.view.vel[a], step_dt);
       member.mode = std::int32_t(m.mode);
       member.path_at = m.at;
       member.planned_x = m.planned_for.x;

@@ -63,6 +63,8 @@ class FormationMovement : public ZoneSystem {
   crowd::Vec2 slotPosition(const EntityStore& store, std::size_t i) const;
   /// Rejoin paths planned on this rank so far.
   int rejoinPlans() const;
+  /// Member steps done by the last step() (every member without LOD).
+  std::size_t updates() const { return updates_; }
 
  private:
   struct Group;
@@ -70,6 +72,7 @@ class FormationMovement : public ZoneSystem {
   const Scene& scene_;
   std::vector<std::unique_ptr<Group>> groups_;
   double reach_ = 0;
+  std::size_t updates_ = 0;
 };
 
 }  // namespace zonesim::zone

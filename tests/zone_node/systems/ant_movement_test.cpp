@@ -31,13 +31,19 @@ struct Colony {
   }
   void run(int ticks) {
     LoneZone lone{scene.dt};  // one rank: its deltas are the sum
-    for (int k = 0; k < ticks; ++k, ++tick) lone.step(ants, store, tick);
+    lone.players = players;
+    for (int k = 0; k < ticks; ++k, ++tick) {
+      lone.step(ants, store, tick);
+      updates += ants.updates();
+    }
   }
   const Scene& scene;
   std::shared_ptr<const WorldMap> map;
   AntMovement ants;
   EntityStore store;
   std::uint64_t tick = 0;
+  std::vector<crowd::Vec2> players;  // for level of detail
+  std::size_t updates = 0;           // ant walks taken
 };
 
 double optimum(const Scene& scene, const WorldMap& map) {
@@ -143,6 +149,56 @@ TEST(AntMovement, AnAntsWalkDoesNotDependOnTheOtherAntsItIsSteppedWith) {
   EXPECT_EQ(compared, 40);
   EXPECT_EQ(a.ants.totalTrail(0), whole.ants.totalTrail(0));
   EXPECT_GT(whole.ants.stats(0).trips, 0u);
+}
+
+TEST(AntMovement, UnderLodFarAntsWalkLessOftenAndTheColonyStillFindsTheShortRoute) {
+  // An observer at the nest: ants walk every tick within 8 m, every 2 ticks to 20 m, beyond
+  // every 4, each walk as far as its ticks would have taken it.
+  Scene scene = loadScene(source("scenes/courtyard_ants.yaml"));
+  scene.lod.enabled = true;
+  scene.lod.near_radius = 8;
+  scene.lod.far_radius = 20;
+  scene.lod.mid_every = 2;
+  scene.lod.far_every = 4;
+  Colony c(scene);
+  c.players = {{45.5, 44.5}};
+  const double best = optimum(scene, *c.map);
+  c.run(int(180 / scene.dt));
+  const ColonyStats before = c.ants.stats(0);
+  c.run(int(60 / scene.dt));
+  const ColonyStats& s = c.ants.stats(0);
+  const double recent = (s.length_sum - before.length_sum) / double(s.trips - before.trips);
+  std::vector<ai::Cell> route = c.ants.trailRoute(0);
+  ASSERT_FALSE(route.empty());
+  const double trail = ai::pathLength(route);
+  const double ratio = double(c.updates) / double(c.tick * 40);
+  std::printf(
+      "with LOD: %llu trips (%llu in the fourth minute, mean route %.1f m); trail route %.1f "
+      "m; A* %.1f m (%.3fx, %.3fx); ant walks %.2f of every tick's\n",
+      (unsigned long long)s.trips, (unsigned long long)(s.trips - before.trips), recent, trail,
+      best, recent / best, trail / best, ratio);
+  EXPECT_GT(s.trips - before.trips, 40u);
+  EXPECT_LT(recent, 1.3 * best);  // the full-detail test's factors
+  EXPECT_LT(trail, 1.25 * best);
+  EXPECT_LT(ratio, 0.7);
+  int on_walls = 0;
+  for (std::size_t i = 0; i < c.store.size(); ++i)
+    on_walls += c.map->walkable(c.store.pos[i].x(), c.store.pos[i].z()) ? 0 : 1;
+  EXPECT_EQ(on_walls, 0);
+}
+
+TEST(AntMovement, UnderLodWithEveryAntNearTheWalkIsTheFullDetailWalk) {
+  Scene full = loadScene(source("scenes/courtyard_ants.yaml"));
+  Scene near = full;
+  near.lod.enabled = true;
+  near.lod.near_radius = near.lod.far_radius = 1000;
+  Colony a(full), b(near);
+  b.players = {{45.5, 44.5}};
+  a.run(600);
+  b.run(600);
+  EXPECT_EQ(a.updates, b.updates);
+  for (std::size_t i = 0; i < a.store.size(); ++i) EXPECT_EQ(a.store.pos[i], b.store.pos[i]) << i;
+  EXPECT_EQ(a.ants.totalTrail(0), b.ants.totalTrail(0));
 }
 
 TEST(AntMovement, ANestOnAWallIsASceneError) {

@@ -29,15 +29,20 @@ struct FormationRun {
   double worst_moving = 0;  // worst slot error of a member in formation while the centre moves
   int on_walls = 0;         // member-ticks on a blocked cell
   int ticks = 0;
+  std::size_t updates = 0;  // member steps taken
 };
 
 // Steps the formation until its centre has arrived and every member stands within `settle` of
 // its slot in formation, or `max_ticks`.
 FormationRun runFormation(const Scene& scene, const WorldMap& map, EntityStore& store,
-                          FormationMovement& f, int max_ticks, double settle) {
+                          FormationMovement& f, int max_ticks, double settle,
+                          std::vector<crowd::Vec2> players = {}) {
   FormationRun r;
+  LoneZone lone{scene.dt};
+  lone.players = std::move(players);
   for (; r.ticks < max_ticks; ++r.ticks) {
-    LoneZone{scene.dt}.step(f, store, std::uint64_t(r.ticks));
+    lone.step(f, store, std::uint64_t(r.ticks));
+    r.updates += f.updates();
     bool settled = f.centre(0).arrived();
     for (std::size_t i = 0; i < store.size(); ++i) {
       crowd::Vec2 p{store.pos[i].x(), store.pos[i].z()};
@@ -125,6 +130,52 @@ TEST(FormationMovement, TheCourtyardGroupFollowsItsRouteAndEndsInFormation) {
   EXPECT_LT(r.ticks, 6000);
   EXPECT_EQ(r.on_walls, 0);
   EXPECT_LT(crowd::length(move.centre(0).position() - crowd::Vec2{end.x, end.z}), 1e-9);
+}
+
+TEST(FormationMovement, UnderLodFarMembersStepLessOftenAndTheGroupStillEndsInFormation) {
+  // An observer at the start of the route: the group leaves full detail (6 m) through the
+  // middle band (every 2 ticks, to 15 m) into the far band (every 4 ticks, no separation).
+  Scene scene = loadScene(source("scenes/courtyard_formation.yaml"));
+  scene.lod.enabled = true;
+  scene.lod.near_radius = 6;
+  scene.lod.far_radius = 15;
+  scene.lod.mid_every = 2;
+  scene.lod.far_every = 4;
+  const std::vector<crowd::Vec2> observer{{16.5, 24.5}};
+  auto map = loadWorldMap(scene);
+  auto runWith = [&](const Scene& s, EntityStore& store, FormationRun& r) {
+    forEachInitialEntity(s, [&](const EntityRecordData& e) { store.add(e); });
+    FormationMovement move(s, map.get());
+    r = runFormation(s, *map, store, move, 6000, 0.25, observer);
+    return move.centre(0).arrived();
+  };
+  Scene full = scene;
+  full.lod.enabled = false;
+  EntityStore full_store, lod_store;
+  FormationRun full_run, lod_run;
+  ASSERT_TRUE(runWith(full, full_store, full_run));
+  ASSERT_TRUE(runWith(scene, lod_store, lod_run));
+  const double ratio = double(lod_run.updates) / double(12 * lod_run.ticks);
+  std::printf(
+      "full detail settled after %.1f s, with LOD after %.1f s; member steps %.2f of every "
+      "tick's\n",
+      full_run.ticks * scene.dt, lod_run.ticks * scene.dt, ratio);
+  EXPECT_LT(lod_run.ticks, 6000);  // every member ends within 0.25 m of its slot
+  EXPECT_EQ(lod_run.on_walls, 0);
+  EXPECT_LT(ratio, 0.5);
+  EXPECT_NEAR(lod_run.ticks * scene.dt, full_run.ticks * scene.dt, 5.0);
+
+  // Everyone within the near band: exactly the full-detail run.
+  Scene all_near = scene;
+  all_near.lod.near_radius = 1000;
+  all_near.lod.far_radius = 1000;
+  EntityStore near_store;
+  FormationRun near_run;
+  ASSERT_TRUE(runWith(all_near, near_store, near_run));
+  ASSERT_EQ(near_run.ticks, full_run.ticks);
+  for (std::size_t i = 0; i < full_store.size(); ++i) {
+    EXPECT_EQ(near_store.pos[i], full_store.pos[i]) << i;
+  }
 }
 
 TEST(FormationMovement, ARoutePointOnAWallIsASceneError) {
