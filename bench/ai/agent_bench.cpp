@@ -9,6 +9,7 @@
 // bands around one player at (23, 33) instead (near 15 m, to 40 m every 2 ticks, beyond 8).
 //
 //   build/bin/agent_bench [--ticks T] [--sizes 1000,10000] [--decide-every 1,2,4,8]
+//   build/bin/agent_bench --lod-sweep [--ticks T] [--sizes N]   (CSV over LOD bands)
 
 #include <algorithm>
 #include <chrono>
@@ -70,8 +71,9 @@ const Case kCases[] = {
      "behaviour: travel\n      navigate: true\n      goals: [[20, 22], [100, 22]]", true},
 };
 
-// Agent LOD for the slicing table: bands around one player in the agents' region.
-constexpr const char* kLod = "lod: {near_radius: 15, far_radius: 40, mid_every: 2, far_every: 8}\n";
+// Agent LOD for the slicing table: bands around one player in the agents' region (the LOD
+// sweep replaces it).
+std::string g_lod = "lod: {near_radius: 15, far_radius: 40, mid_every: 2, far_every: 8}\n";
 const crowd::Vec2 kLodPlayer{23, 33};
 
 std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa, int decide_every = 1,
@@ -90,7 +92,7 @@ std::string sceneText(const Case& c, int agents, int paths_per_tick, bool hpa, i
   s += "  paths: {planner: " + std::string(hpa ? "hpa" : "astar") +
        ", cluster_size: 8, paths_per_tick: " + std::to_string(paths_per_tick) + "}\n";
   s += "  decide_every: " + std::to_string(decide_every) + "\n";
-  if (lod) s += kLod;
+  if (lod) s += g_lod;
   return s;
 }
 
@@ -202,17 +204,56 @@ void slicingTable(const std::vector<int>& sizes, const std::vector<int>& everies
   }
 }
 
+/// Work-precision sweep of the agents' LOD bands (issue 19): for the guard machine and the
+/// decision tree, each near radius (far radius 2.5x it, middle band every 2 ticks) and far
+/// period against every agent deciding every tick: CSV rows for bench/plot_lod_sweep.py, the
+/// error being the agents' mean end position difference.
+void lodSweep(int agents, int ticks) {
+  for (const Case& c : kCases) {
+    const std::string label = c.label;
+    if (label != "fsm (guard.yaml)" && label != "decision tree") continue;
+    const SlicedRun full = runSliced(c, agents, ticks, 1, false);
+    for (double near : {8.0, 15.0, 30.0}) {
+      for (int k : {2, 4, 8, 16}) {
+        g_lod = "lod: {near_radius: " + std::to_string(near) +
+                ", far_radius: " + std::to_string(2.5 * near) +
+                ", mid_every: 2, far_every: " + std::to_string(k) + "}\n";
+        const SlicedRun r = runSliced(c, agents, ticks, 1, true);
+        double sum = 0;
+        for (std::size_t i = 0; i < r.end.size(); ++i) sum += (r.end[i] - full.end[i]).norm();
+        std::printf("agents %s,%d,%g,%g,%d,%.4f,%.3f,%.3f,end_pos_error_m,%.4f\n",
+                    label == "decision tree" ? "(tree)" : "(fsm)", agents, near, 2.5 * near, k,
+                    r.us_per_tick * 1e-3, full.us_per_tick / r.us_per_tick,
+                    full.decisions_per_tick / r.decisions_per_tick,
+                    r.end.empty() ? 0.0 : sum / double(r.end.size()));
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int ticks = 200;
   std::vector<int> sizes{1000, 10000};
   std::vector<int> everies;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool sweep = false;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--lod-sweep")) {
+      sweep = true;
+      continue;
+    }
+    if (i + 1 >= argc) break;
     if (!std::strcmp(argv[i], "--ticks")) ticks = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--sizes")) sizes = bench::parseCounts("--sizes", argv[i + 1]);
     if (!std::strcmp(argv[i], "--decide-every"))
       everies = bench::parseCounts("--decide-every", argv[i + 1]);
+    ++i;
+  }
+  if (sweep) {
+    lodSweep(sizes.front(), ticks);
+    return 0;
   }
   if (!everies.empty()) {
     slicingTable(sizes, everies, ticks);

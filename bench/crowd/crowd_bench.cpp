@@ -1,9 +1,11 @@
 // crowd_bench [--agents 1000,10000,100000] [--lanes 1,2,4,8] [--steps N]
-//              [--only flock|flow|lod|lod-flock] [--lod-seconds S] [--crowded LIST]
+//              [--only flock|flow|lod|lod-flock|lod-sweep] [--lod-seconds S]
+//              [--crowded LIST]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
 // fields on one core, flow field build time, and (--only lod: flow crowds; --only lod-flock:
 // flocks) AI time and outcome drift with and without level of detail; --crowded adds flow LOD
-// variants that keep agents at full detail where a 4 m cell holds that many agents or more.
+// variants that keep agents at full detail where a 4 m cell holds that many agents or more;
+// --only lod-sweep prints CSV of time against outcome drift over a grid of LOD bands.
 
 #include <cstdio>
 #include <cstring>
@@ -362,6 +364,51 @@ void benchLodFlock(const std::vector<int>& counts, double seconds) {
   }
 }
 
+/// The LOD bands' work-precision sweep (issue 19): for flow crowds and flocks, each pair of a
+/// near radius (the far radius 3x it, the middle band every 2 ticks) and a far period, the
+/// time saved against the outcome's drift from full detail (mean arrival time difference).
+/// CSV rows for bench/plot_lod_sweep.py.
+void benchLodSweep(const std::vector<int>& counts, double seconds) {
+  ai::GridMap map = benchMap();
+  std::printf(
+      "kind,agents,near_radius,far_radius,far_every,ms_per_tick,speedup,updates_ratio,"
+      "error_name,error\n");
+  const int far_everies[] = {2, 4, 8, 16};
+  for (int n : counts) {
+    const int flow_ticks = int(seconds * 20);
+    LodRun full = runLod(map, n, flow_ticks, nullptr);
+    for (double near : {20.0, 40.0, 80.0}) {
+      for (int k : far_everies) {
+        LodSettings s;
+        s.near_radius = near;
+        s.far_radius = 3 * near;
+        s.far_every = k;
+        LodRun lod = runLod(map, n, flow_ticks, &s);
+        const OutcomeDrift d = outcomeDrift(full, lod, 1.0 / 20.0);
+        std::printf("flow,%d,%g,%g,%d,%.4f,%.3f,%.3f,arrival_drift_s,%.4f\n", n, near, 3 * near, k,
+                    lod.msPerTick, full.msPerTick / lod.msPerTick,
+                    double(full.updates) / double(lod.updates), d.both ? d.sumDt / d.both : 0.0);
+      }
+    }
+    const int flock_ticks = int(seconds * 30 / 4);  // the flock's 40 m take about 20 s
+    FlockLodRun flock_full = runFlockLod(n, flock_ticks, 40, nullptr);
+    for (double near : {10.0, 20.0, 40.0}) {
+      for (int k : far_everies) {
+        LodSettings s;
+        s.near_radius = near;
+        s.far_radius = 3 * near;
+        s.far_every = k;
+        FlockLodRun lod = runFlockLod(n, flock_ticks, 40, &s);
+        const OutcomeDrift d = outcomeDrift(flock_full, lod, 1.0);
+        std::printf("flock,%d,%g,%g,%d,%.4f,%.3f,%.3f,arrival_drift_s,%.4f\n", n, near, 3 * near, k,
+                    lod.msPerTick, flock_full.msPerTick / lod.msPerTick,
+                    double(flock_full.updates) / double(lod.updates),
+                    d.both ? d.sumDt / d.both : 0.0);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -388,7 +435,8 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N]\n"
-                   "                   [--only flock|flow|lod|lod-flock] [--lod-seconds S]\n"
+                   "                   [--only flock|flow|lod|lod-flock|lod-sweep] "
+                   "[--lod-seconds S]\n"
                    "                   [--crowded LIST]\n");
       return 2;
     }
@@ -397,5 +445,6 @@ int main(int argc, char** argv) {
   if (only.empty() || only == "flow") benchFlow(counts, steps);
   if (only == "lod") benchLod(counts, lodSeconds, crowded);
   if (only == "lod-flock") benchLodFlock(counts, lodSeconds);
+  if (only == "lod-sweep") benchLodSweep(counts, lodSeconds);
   return 0;
 }

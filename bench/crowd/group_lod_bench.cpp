@@ -6,9 +6,13 @@
 // around an observer at the nest; full detail against the scene's bands (near 8 m, every 2
 // ticks to 20 m, every 4 beyond) and against a far band of every 8 ticks.
 //
-//   build/bin/group_lod_bench [--formations 1,20] [--ants 40,2000] [--seconds S]
+//   build/bin/group_lod_bench [--formations 1,20] [--ants 40,2000] [--seconds S] [--sweep]
+//
+// --sweep: CSV of time against outcome over a grid of bands (near radius, far period) for the
+// first formation and ant counts (bench/plot_lod_sweep.py).
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -35,6 +39,7 @@ struct Variant {
   const char* name;
   bool lod;
   int far_every;
+  double near_radius = 8;  // the far radius is 2.5x it
 };
 constexpr Variant kVariants[] = {{"full", false, 4}, {"lod 2/4", true, 4}, {"lod 2/8", true, 8}};
 
@@ -57,8 +62,9 @@ std::string sceneText(int formations, int ants, const Variant& v) {
          "initial_pheromone: 0.01, speed: 3.0, max_steps: 300}\n";
   }
   if (v.lod) {
-    s += "lod: {near_radius: 8, far_radius: 20, mid_every: 2, far_every: " +
-         std::to_string(v.far_every) + "}\n";
+    s += "lod: {near_radius: " + std::to_string(v.near_radius) +
+         ", far_radius: " + std::to_string(2.5 * v.near_radius) +
+         ", mid_every: 2, far_every: " + std::to_string(v.far_every) + "}\n";
   }
   return s;
 }
@@ -111,6 +117,57 @@ void endError(const Run& full, const Run& r, double& mean, double& worst) {
   }
 }
 
+Run formationRun(int formations, const Variant& v, int ticks) {
+  Scene scene = parseScene(sceneText(formations, 0, v), "bench");
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& e) { store.add(e); });
+  FormationMovement move(scene, map.get());
+  return run(scene, move, store, 0, ticks, &move);
+}
+
+Run antRun(int ants, const Variant& v, int ticks) {
+  Scene scene = parseScene(sceneText(0, ants, v), "bench");
+  auto map = loadWorldMap(scene);
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& e) { store.add(e); });
+  AntMovement colony(scene, map.get());
+  const int first = ticks * 3 / 4;
+  Run r = run(scene, colony, store, 0, first, nullptr);
+  const ColonyStats before = colony.stats(0);
+  const Run rest = run(scene, colony, store, first, ticks - first, nullptr);
+  r.us_per_tick = (r.us_per_tick * first + rest.us_per_tick * (ticks - first)) / ticks;
+  r.updates_per_tick =
+      (r.updates_per_tick * first + rest.updates_per_tick * (ticks - first)) / ticks;
+  const ColonyStats& s = colony.stats(0);
+  r.trips = s.trips;
+  r.recent_route = (s.length_sum - before.length_sum) / double(s.trips - before.trips);
+  r.trail_route = ai::pathLength(colony.trailRoute(0));
+  return r;
+}
+
+/// Work-precision sweep of the LOD bands (issue 19): CSV rows for bench/plot_lod_sweep.py.
+void sweep(int formations, int ants, int ticks) {
+  const Variant full{"full", false, 4};
+  const Run f_full = formationRun(formations, full, ticks);
+  const Run a_full = antRun(ants, full, ticks);
+  for (double near : {4.0, 8.0, 16.0}) {
+    for (int k : {2, 4, 8, 16}) {
+      const Variant v{"sweep", true, k, near};
+      const Run f = formationRun(formations, v, ticks);
+      std::printf("formation,%d,%g,%g,%d,%.4f,%.3f,%.3f,slot_error_m,%.4f\n", 12 * formations, near,
+                  2.5 * near, k, f.us_per_tick * 1e-3, f_full.us_per_tick / f.us_per_tick,
+                  f_full.updates_per_tick / f.updates_per_tick, f.mean_slot_error);
+      const Run a = antRun(ants, v, ticks);
+      std::printf("ants,%d,%g,%g,%d,%.4f,%.3f,%.3f,route_change,%.4f\n", ants, near, 2.5 * near, k,
+                  a.us_per_tick * 1e-3, a_full.us_per_tick / a.us_per_tick,
+                  a_full.updates_per_tick / a.updates_per_tick,
+                  std::abs(a.recent_route - a_full.recent_route) / a_full.recent_route);
+      std::fflush(stdout);
+    }
+  }
+}
+
 void formationTable(const std::vector<int>& counts, int ticks) {
   std::printf(
       "\n| formations | members | variant | us/tick | speed-up | updates ratio | mean slot "
@@ -118,12 +175,7 @@ void formationTable(const std::vector<int>& counts, int ticks) {
   for (int f : counts) {
     Run full;
     for (const Variant& v : kVariants) {
-      Scene scene = parseScene(sceneText(f, 0, v), "bench");
-      auto map = loadWorldMap(scene);
-      EntityStore store;
-      forEachInitialEntity(scene, [&](const EntityRecordData& e) { store.add(e); });
-      FormationMovement move(scene, map.get());
-      Run r = run(scene, move, store, 0, ticks, &move);
+      Run r = formationRun(f, v, ticks);
       if (!v.lod) full = r;
       double mean = 0, worst = 0;
       endError(full, r, mean, worst);
@@ -142,23 +194,10 @@ void antTable(const std::vector<int>& counts, int ticks) {
   for (int a : counts) {
     Run full;
     for (const Variant& v : kVariants) {
+      Run r = antRun(a, v, ticks);
+      if (!v.lod) full = r;
       Scene scene = parseScene(sceneText(0, a, v), "bench");
       auto map = loadWorldMap(scene);
-      EntityStore store;
-      forEachInitialEntity(scene, [&](const EntityRecordData& e) { store.add(e); });
-      AntMovement ants(scene, map.get());
-      const int first = ticks * 3 / 4;
-      Run r = run(scene, ants, store, 0, first, nullptr);
-      const ColonyStats before = ants.stats(0);
-      const Run rest = run(scene, ants, store, first, ticks - first, nullptr);
-      r.us_per_tick = (r.us_per_tick * first + rest.us_per_tick * (ticks - first)) / ticks;
-      r.updates_per_tick =
-          (r.updates_per_tick * first + rest.updates_per_tick * (ticks - first)) / ticks;
-      const ColonyStats& s = ants.stats(0);
-      r.trips = s.trips;
-      r.recent_route = (s.length_sum - before.length_sum) / double(s.trips - before.trips);
-      r.trail_route = ai::pathLength(ants.trailRoute(0));
-      if (!v.lod) full = r;
       ai::GridSearch search(map->grid);
       ai::GridPath best;
       search.findPath(map->frame.cellOf({45.5, 44.5}), map->frame.cellOf({44.5, 20.5}), best);
@@ -176,19 +215,27 @@ void antTable(const std::vector<int>& counts, int ticks) {
 int main(int argc, char** argv) {
   std::vector<int> formations{1, 20}, ants{40, 2000};
   double seconds = 240;
+  bool sweeping = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--formations") && i + 1 < argc) {
       formations = bench::parseCounts("--formations", argv[++i]);
     } else if (!std::strcmp(argv[i], "--ants") && i + 1 < argc) {
       ants = bench::parseCounts("--ants", argv[++i]);
+    } else if (!std::strcmp(argv[i], "--sweep")) {
+      sweeping = true;
     } else if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) {
       seconds = bench::parseCounts("--seconds", argv[++i]).front();
     } else {
-      std::fprintf(stderr, "usage: %s [--formations LIST] [--ants LIST] [--seconds S]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--formations LIST] [--ants LIST] [--seconds S] [--sweep]\n",
+                   argv[0]);
       return 2;
     }
   }
   const int ticks = int(seconds / 0.05);
+  if (sweeping) {  // the first of each list
+    sweep(formations.front(), ants.front(), ticks);
+    return 0;
+  }
   std::printf("group_lod_bench: %d ticks of 1/20 s, observer at the nest (45.5, 44.5)\n", ticks);
   formationTable(formations, ticks);
   antTable(ants, ticks);
