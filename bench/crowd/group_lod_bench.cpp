@@ -141,7 +141,10 @@ Run antRun(int ants, const Variant& v, int ticks) {
       (r.updates_per_tick * first + rest.updates_per_tick * (ticks - first)) / ticks;
   const ColonyStats& s = colony.stats(0);
   r.trips = s.trips;
-  r.recent_route = (s.length_sum - before.length_sum) / double(s.trips - before.trips);
+  // No trip in the last quarter (a short run): no route to report.
+  r.recent_route = s.trips > before.trips
+                       ? (s.length_sum - before.length_sum) / double(s.trips - before.trips)
+                       : 0.0;
   r.trail_route = ai::pathLength(colony.trailRoute(0));
   return r;
 }
