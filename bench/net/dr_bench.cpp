@@ -6,12 +6,13 @@
 // positions are compared at the same server tick, which is what the report tool's join does.
 //
 // Usage: dr_bench [--seconds S] [--csv FILE] [--only SET]...   (SET: sweep, orient3, blend,
-// loss10, loss10r, hb1s, radius, gather, quant)
+// loss10, loss10r, hb1s, radius, gather, quant, pertype)
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ constexpr std::uint64_t kToken = 0x1234567890abcdefULL;
 struct Config {
   std::string name;
   DeadReckoningModel::Order order = DeadReckoningModel::Order::First;
+  /// The avatars' own order (the scene's dead_reckoning.models.avatar); `order` when unset.
+  std::optional<DeadReckoningModel::Order> avatar_order;
   double threshold = 0.25;
   double heartbeat = 5;
   double orientation_deg = 3;
@@ -68,6 +71,8 @@ struct Result {
   double visible_moving = 0;
   double p50 = 0, p99 = 0, max = 0;
   double updates_per_entity_s = 0;
+  /// The same by entity type: p99 shown error and updates per entity per second.
+  double p99_npc = 0, p99_avatar = 0, updates_npc_s = 0, updates_avatar_s = 0;
 };
 
 Scene benchScene() {
@@ -129,6 +134,7 @@ Result run(const Config& c, double seconds) {
   drc.heartbeat_seconds = c.heartbeat;
   drc.orientation_threshold_deg = c.orientation_deg;
   drc.npc.order = drc.avatar.order = c.order;
+  if (c.avatar_order) drc.avatar.order = *c.avatar_order;
   drc.quantisation.position_resolution = c.position_resolution;
   drc.quantisation.rotation_bits = c.rotation_bits;
   zone::EntityStore store;
@@ -151,8 +157,9 @@ Result run(const Config& c, double seconds) {
   Pcg32 loss(5, 6);
   const int ticks = int(seconds / scene.dt);
   const int warmup = int(5 / scene.dt);  // let the first full sends pass
-  std::vector<double> errors;
+  std::vector<double> errors, errors_npc, errors_avatar;
   errors.reserve(std::size_t(ticks) * store.size() / 2);
+  double updates_npc = 0, updates_avatar = 0;
   double bits = 0, wire_bits = 0, flat_wire_bits = 0, visible_moving = 0, updates = 0;
   std::vector<int> observers;
   for (std::size_t i = 0; i < store.size(); ++i)
@@ -231,6 +238,8 @@ Result run(const Config& c, double seconds) {
       }
     if (tick < warmup) continue;
     updates += double(sent.size());
+    for (const dr::WireEntity& w : sent)
+      (w.kind == std::uint8_t(zone::EntityKind::Avatar) ? updates_avatar : updates_npc) += 1;
     std::sort(sent.begin(), sent.end(), [](auto& a, auto& b) { return a.id < b.id; });
     // Each observer's batch: the updates of entities within its interest radius.
     double r2 = c.radius * c.radius;
@@ -281,7 +290,9 @@ Result run(const Config& c, double seconds) {
       if (!shown) continue;
       double dx = shown->x - store.pos[i].x(), dy = shown->y - store.pos[i].y(),
              dz = shown->z - store.pos[i].z();
-      errors.push_back(std::sqrt(dx * dx + dy * dy + dz * dz));
+      const double e = std::sqrt(dx * dx + dy * dy + dz * dz);
+      errors.push_back(e);
+      (store.kind[i] == zone::EntityKind::Avatar ? errors_avatar : errors_npc).push_back(e);
     }
   }
   double measured_s = (ticks - warmup) * scene.dt;
@@ -295,6 +306,10 @@ Result run(const Config& c, double seconds) {
   r.max = errors.empty() ? 0 : *std::max_element(errors.begin(), errors.end());
   r.p50 = percentile(errors, 0.5);
   r.p99 = percentile(errors, 0.99);
+  r.p99_npc = percentile(errors_npc, 0.99);
+  r.p99_avatar = percentile(errors_avatar, 0.99);
+  r.updates_npc_s = updates_npc / double(kNpcs) / measured_s;
+  r.updates_avatar_s = updates_avatar / double(kAvatars) / measured_s;
   return r;
 }
 
@@ -385,6 +400,19 @@ int main(int argc, char** argv) {
     c.rotation_bits = bits;
     configs.push_back(c);
   }
+  // Per entity type: NPCs (waypoint walkers, 1-2 m/s, smooth) and avatars (players' wander,
+  // 5 m/s, turning at will) each with its own order, at three thresholds; the error and the
+  // update rate are reported per type.
+  for (double th : {0.1, 0.25, 0.5})
+    for (O npc : {O::Static, O::First, O::Second})
+      for (O avatar : {O::First, O::Second}) {
+        c = base;
+        c.name = "pertype";
+        c.threshold = th;
+        c.order = npc;
+        c.avatar_order = avatar;
+        configs.push_back(c);
+      }
   if (!only.empty())
     std::erase_if(configs, [&](const Config& c) {
       return std::find(only.begin(), only.end(), c.name) == only.end();
@@ -395,7 +423,8 @@ int main(int argc, char** argv) {
                  "set,order,threshold_m,blend,loss,radius_m,payload_bps,wire_bps,visible_moving,"
                  "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s,ticks_per_datagram,"
                  "wire_bps_per_visible,flatbuffers_wire_bps_per_visible,position_resolution_m,"
-                 "rotation_bits\n");
+                 "rotation_bits,avatar_order,p99_npc_m,p99_avatar_m,updates_per_npc_s,"
+                 "updates_per_avatar_s\n");
   std::printf(
       "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
       "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
@@ -425,14 +454,24 @@ int main(int argc, char** argv) {
         c.ticks_per_datagram, 1000.0 * c.position_resolution, c.rotation_bits, r.bits_per_client_s,
         r.wire_bits_per_client_s, r.visible_moving, per_visible, wire_per_visible, flat_per_visible,
         r.p50, r.p99, r.max, r.updates_per_entity_s);
+    if (c.avatar_order) {
+      std::printf(
+          "        by type: npc %-6s p99 %.4f m, %.3f updates/s; avatar %-6s p99 %.4f m, %.3f "
+          "updates/s\n",
+          orderName(c.order), r.p99_npc, r.updates_npc_s, orderName(*c.avatar_order), r.p99_avatar,
+          r.updates_avatar_s);
+    }
     std::fflush(stdout);
     if (csv)
       std::fprintf(csv,
-                   "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f,%.2f,%g,%d\n",
+                   "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f,%.2f,%g,%d,"
+                   "%s,%.5f,%.5f,%.4f,%.4f\n",
                    c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
                    r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible,
                    r.p50, r.p99, r.max, r.updates_per_entity_s, c.ticks_per_datagram,
-                   wire_per_visible, flat_per_visible, c.position_resolution, c.rotation_bits);
+                   wire_per_visible, flat_per_visible, c.position_resolution, c.rotation_bits,
+                   orderName(c.avatar_order.value_or(c.order)), r.p99_npc, r.p99_avatar,
+                   r.updates_npc_s, r.updates_avatar_s);
   }
   if (csv) std::fclose(csv);
   return 0;
