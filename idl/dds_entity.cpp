@@ -34,12 +34,14 @@ dds_qos_t* partitionQos(const std::string& partition) {
 }  // namespace
 
 PartitionWriter makePartitionWriter(dds_entity_t participant, dds_entity_t topic,
-                                    const std::string& partition, const dds_qos_t* qos) {
+                                    const std::string& partition, const dds_qos_t* qos,
+                                    const dds_listener_t* listener) {
   dds_qos_t* pqos = partitionQos(partition);
   Entity publisher(dds_create_publisher(participant, pqos, nullptr));
   dds_delete_qos(pqos);
   check(publisher.get(), "dds_create_publisher");
-  Entity writer(check(dds_create_writer(publisher.get(), topic, qos, nullptr), "dds_create_writer"));
+  Entity writer(
+      check(dds_create_writer(publisher.get(), topic, qos, listener), "dds_create_writer"));
   return {std::move(publisher), std::move(writer)};
 }
 

@@ -60,8 +60,10 @@ struct PartitionWriter {
   Entity publisher;
   Entity writer;
 };
+/// `listener`, when given, is set on the writer as it is created (no event is missed).
 PartitionWriter makePartitionWriter(dds_entity_t participant, dds_entity_t topic,
-                                    const std::string& partition, const dds_qos_t* qos);
+                                    const std::string& partition, const dds_qos_t* qos,
+                                    const dds_listener_t* listener = nullptr);
 
 /// A subscriber restricted to one partition, and a reader in it. Partitions cannot change at
 /// run time in Cyclone (DDS_RETCODE_UNSUPPORTED), so interest changes create and delete these.

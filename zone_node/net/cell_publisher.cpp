@@ -37,16 +37,16 @@ void view(Seq& seq, std::vector<T>& v) {
   seq._release = false;  // the vector owns the memory
 }
 
-/// Readers matched now, and readers ever matched (a reader replacing another between two
-/// checks leaves the first unchanged but not the second).
-struct Matched {
-  std::uint32_t now = 0, ever = 0;
-};
-
-Matched matchedReaders(dds_entity_t writer) {
-  dds_publication_matched_status_t st{};
-  dds::check(dds_get_publication_matched_status(writer, &st), "dds_get_publication_matched_status");
-  return {st.current_count, st.total_count};
+/// A listener that keeps a writer's matched readers, now and ever (a reader replacing another
+/// between two ticks leaves the first unchanged but not the second), in `counts`.
+template <typename Counts>
+void onPublicationMatched(dds_entity_t, const dds_publication_matched_status_t status, void* arg) {
+  auto* counts = static_cast<Counts*>(arg);
+  const std::uint32_t before =
+      counts->now.exchange(status.current_count, std::memory_order_relaxed);
+  counts->ever.store(status.total_count, std::memory_order_relaxed);
+  counts->all_now->fetch_add(std::int64_t(status.current_count) - std::int64_t(before),
+                             std::memory_order_relaxed);
 }
 
 }  // namespace
@@ -68,9 +68,19 @@ CellPublisher::Channel& CellPublisher::channel(int cell) {
   if (it != channels_.end()) return it->second;
   std::string partition = dds::cellPartition(grid_.columnOfCell(cell), grid_.rowOfCell(cell));
   Channel ch;
+  ch.updates_matched = std::make_unique<MatchCounts>();
+  ch.keyframes_matched = std::make_unique<MatchCounts>();
+  ch.updates_matched->all_now = ch.keyframes_matched->all_now = &readers_now_;
+  // The listener is copied into the writer: ours is deleted once the writer exists.
+  auto writerCounting = [&](dds_entity_t topic, const dds::Qos& qos, MatchCounts* counts) {
+    std::unique_ptr<dds_listener_t, void (*)(dds_listener_t*)> listener(dds_create_listener(counts),
+                                                                        dds_delete_listener);
+    dds_lset_publication_matched(listener.get(), onPublicationMatched<MatchCounts>);
+    return dds::makePartitionWriter(participant_, topic, partition, qos.get(), listener.get());
+  };
   dds::Qos uq = dds::cellUpdateQos(), kq = dds::cellKeyframeQos();
-  ch.updates = dds::makePartitionWriter(participant_, update_topic_, partition, uq.get());
-  ch.keyframes = dds::makePartitionWriter(participant_, keyframe_topic_, partition, kq.get());
+  ch.updates = writerCounting(update_topic_, uq, ch.updates_matched.get());
+  ch.keyframes = writerCounting(keyframe_topic_, kq, ch.keyframes_matched.get());
   return channels_.emplace(cell, std::move(ch)).first->second;
 }
 
@@ -81,11 +91,17 @@ void CellPublisher::cover(double min_x, double min_z, double max_x, double max_z
 }
 
 void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats) {
+  // No reader anywhere, and every cell already marked so: nothing to refresh. (A reader that
+  // matches meanwhile is seen at the next tick, as any discovery is.)
+  if (!any_subscribed_ && readers_now_.load(std::memory_order_relaxed) == 0) return;
   bool periodic = keyframe_every_ > 0 && tick % std::uint64_t(keyframe_every_) == 0;
   for (auto& [cell, ch] : channels_) {
-    Matched u = matchedReaders(ch.updates.writer.get()),
-            k = matchedReaders(ch.keyframes.writer.get());
-    std::uint32_t matched = u.now + k.now, ever = u.ever + k.ever;
+    const MatchCounts& u = *ch.updates_matched;
+    const MatchCounts& k = *ch.keyframes_matched;
+    std::uint32_t matched =
+                      u.now.load(std::memory_order_relaxed) + k.now.load(std::memory_order_relaxed),
+                  ever = u.ever.load(std::memory_order_relaxed) +
+                         k.ever.load(std::memory_order_relaxed);
     // A new reader gets a fresh keyframe, so it starts from the current state.
     ch.keyframe_due = matched > 0 && (ever > ch.matched_ever || periodic);
     ch.all_readers_new = matched > 0 && ch.matched == 0;
@@ -94,23 +110,41 @@ void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats
     ch.matched_ever = ever;
     stats.subscribed_cells += ch.subscribed;
   }
+  any_subscribed_ = stats.subscribed_cells > 0;
 }
 
 PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departure> leavers,
                                     std::uint64_t tick, double sim_time) {
   PublishStats stats;
-  // Each entity's cell and channel, looked up once (map nodes never move), before the
-  // subscriptions are refreshed on every channel.
+  refreshSubscriptions(tick, stats);
+  double dt = last_sim_time_ >= 0 ? sim_time - last_sim_time_ : 0;
+  last_sim_time_ = sim_time;
+  if (stats.subscribed_cells == 0) {
+    // Nobody reads any cell: no state, no leave and no motion history is needed (the zone's
+    // cells have writers already, from cover()). The first reader gets a keyframe.
+    idle_ = true;
+    return stats;
+  }
+  if (idle_) {
+    // Publishing again after ticks that tracked nothing: every entity starts afresh, as if new
+    // (its first state is estimated from its velocity; no leave for a cell it left meanwhile).
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      DeadReckoningState& d = store.dr[i];
+      d.cell = -1;
+      d.has_last = false;
+      d.vel_count = 0;
+      d.vel_next = 0;
+    }
+    idle_ = false;
+  }
+  // Each entity's cell and channel, looked up once (map nodes never move). A channel made here
+  // for a fresh cell has no reader yet, as the refresh would have found.
   entity_cell_.resize(store.size());
   entity_channel_.resize(store.size());
   for (std::size_t i = 0; i < store.size(); ++i) {
     entity_cell_[i] = grid_.cellOf(store.pos[i].x(), store.pos[i].z());
     entity_channel_[i] = &channel(entity_cell_[i]);
   }
-  refreshSubscriptions(tick, stats);
-
-  double dt = last_sim_time_ >= 0 ? sim_time - last_sim_time_ : 0;
-  last_sim_time_ = sim_time;
   for (std::size_t i = 0; i < store.size(); ++i) {
     const int cell = entity_cell_[i];
     DeadReckoningState& dr = store.dr[i];

@@ -3,8 +3,10 @@
 // enters, dead-reckoning updates and leaves, and a CellKeyframe every K ticks or when a new
 // subscriber appears. A cell nobody subscribes to is not encoded at all.
 
+#include <atomic>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -61,7 +63,16 @@ class CellPublisher {
   void setDilation(double factor) { dilation_ = factor; }
 
  private:
+  // Readers matched on a writer, kept by DDS's publication-matched listener (it runs on a DDS
+  // thread), so a tick reads two counters per cell instead of asking DDS for each writer's
+  // status (about 140 ns a writer: 18 us a tick for 64 cells).
+  struct MatchCounts {
+    std::atomic<std::uint32_t> now{0}, ever{0};
+    std::atomic<std::int64_t>* all_now = nullptr;  // the publisher's sum of `now` over writers
+  };
   struct Channel {
+    // Declared before the writers, so the writers (and their listeners) go first.
+    std::unique_ptr<MatchCounts> updates_matched, keyframes_matched;
     dds::PartitionWriter updates;
     dds::PartitionWriter keyframes;
     std::uint32_t matched = 0;       // readers matched on either writer at the last check
@@ -86,6 +97,14 @@ class CellPublisher {
   double dilation_ = 1;
   std::uint32_t epoch_;
   double last_sim_time_ = -1;        // previous publish: the step of the acceleration estimates
+  // No cell had a reader at the last publish, so no entity was tracked: the next publish with
+  // a reader starts every entity's cell and motion history afresh.
+  bool idle_ = false;
+  bool any_subscribed_ = false;  // a cell had a reader at the last refresh
+  // Readers matched now on all writers, kept by the listeners (declared before the channels,
+  // whose writers' listeners update it, so it outlives them): while it is 0 and no cell had a
+  // reader at the last refresh, the cells need no refresh.
+  std::atomic<std::int64_t> readers_now_{0};
   std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
   std::vector<int> entity_cell_;     // per store index, this publish: its cell
   std::vector<Channel*> entity_channel_;  // and that cell's channel

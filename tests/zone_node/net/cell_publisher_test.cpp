@@ -245,5 +245,39 @@ TEST_F(CellPublisherTest, ASubscribedCellGetsAKeyframeEveryKTicks) {
   EXPECT_EQ(keyframe_ticks, (std::vector<std::uint64_t>{1, 4, 8, 12}));
 }
 
+// With no reader on any cell the zone tracks nothing (the publish phase costs two counter reads
+// per cell); the first reader still gets a keyframe of its cell, and an entity that changed
+// cells meanwhile sends no leave for a cell nobody saw it in.
+TEST_F(CellPublisherTest, WithNoReaderAnywhereNothingIsTrackedAndAFirstReaderGetsItsKeyframe) {
+  EntityId walker = addNpc(60, 10);  // cell (1, 0)
+  addNpc(190, 190);                  // cell (3, 3)
+  for (int t = 0; t < 5; ++t) {
+    PublishStats s = publish();
+    EXPECT_EQ(s.subscribed_cells, 0u);
+    EXPECT_EQ(s.states_computed, 0u);
+    EXPECT_EQ(s.keyframes + s.cells_written, 0u);
+  }
+  EXPECT_EQ(store_.dr[0].cell, -1);  // never tracked
+  EXPECT_FALSE(store_.dr[0].has_last);
+  store_.pos[0] = Vec3(10, 0, 10);  // moved into cell (0, 0) while nobody read
+  store_.vel[0] = Vec3(-1, 0, 0);
+  CellReader fresh = keyframes(0, 0), left = updates(1, 0);
+  ASSERT_TRUE(fresh.matched());
+  ASSERT_TRUE(left.matched());
+  PublishStats s = publish();
+  EXPECT_EQ(s.subscribed_cells, 2u);
+  EXPECT_EQ(s.keyframes, 2u);  // each new reader's cell
+  EXPECT_EQ(s.leaves, 0u);     // nobody saw the walker in cell (1, 0)
+  EXPECT_EQ(s.states_computed, 1u);
+  auto k = fresh.takeKeyframe();
+  ASSERT_TRUE(k);
+  EXPECT_EQ(k->second, std::vector<std::uint64_t>{walker.value});
+  EXPECT_EQ(store_.dr[0].cell, grid_.cellOf(10, 10));
+  // From the next tick on the walker is tracked again: its motion history restarts.
+  publish();
+  EXPECT_TRUE(store_.dr[0].has_last);
+  EXPECT_EQ(store_.dr[0].vel_count, 2);
+}
+
 }  // namespace
 }  // namespace zonesim::zone
