@@ -6,14 +6,9 @@
 #include <vector>
 
 #include "ai/grid_path.h"
+#include "ai/vec2.h"
 
 namespace zonesim::ai {
-
-/// A point or direction on the ground plane.
-struct Vec2 {
-  double x = 0.0;  ///< first coordinate
-  double y = 0.0;  ///< second coordinate
-};
 
 /// Catmull-Rom spline through control points, sampled by arc length.
 class SplinePath {
