@@ -8,8 +8,16 @@
 // jump point search (jps scans its jumps, jps+ reads them from precomputed tables) must match
 // every optimum; jps also checks that each path is a valid
 // sequence of moves (its cells are filled in between jump points).
+//
+// --planner navmesh (radius 0, so the mesh covers every passable cell, as the optima assume)
+// compares any-angle lengths with the 8-connected optima instead: it ends with
+// `problems N mismatches M us_per_path X build_ms B mean_ratio A p99_ratio P min_ratio L
+// max_ratio H shorter S mean_saving V max_saving W longer G`, a ratio being the path's length
+// over the optimum, a saving 1 - ratio over the shorter paths; a mismatch is a missing path, a
+// segment that crosses a blocked cell, or one shorter than the straight line.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -22,8 +30,11 @@
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
 #include "ai/jump_point_search.h"
+#include "ai/navmesh.h"
+#include "ai/navmesh_search.h"
 #include "ai/parse_error.h"
 #include "ai/scenario.h"
+#include "ai/segment_cells.h"
 #include "common/timer.h"
 
 namespace {
@@ -33,11 +44,73 @@ using zonesim::ai::GridPath;
 
 int usage() {
   std::fprintf(stderr,
-               "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa] [--direct-distance D]\n"
+               "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa|navmesh] "
+               "[--direct-distance D]\n"
                "  --direct-distance: hpa hands queries whose ends are at most D cells apart to\n"
                "  the optimal jump point search (default %g; negative: never)\n",
                zonesim::ai::HpaConfig{}.direct_distance);
   return 2;
+}
+
+double rankOf(const std::vector<double>& sorted, double q) {
+  return sorted.empty() ? 0.0 : sorted[std::size_t(q * double(sorted.size() - 1) + 0.5)];
+}
+
+// The navmesh report (see the top of the file); returns the exit status.
+int checkNavMesh(const zonesim::ai::GridMap& map,
+                 const std::vector<zonesim::ai::ScenarioProblem>& problems,
+                 const std::string& scen_path) {
+  using namespace zonesim::ai;
+  zonesim::Stopwatch build;
+  NavMesh mesh(map, NavMeshConfig{});
+  const double build_ms = build.elapsedSeconds() * 1e3;
+  NavMeshSearch search(mesh);
+  std::vector<NavPath> paths(problems.size());
+  std::vector<char> found(problems.size(), 0);
+  zonesim::Stopwatch clock;
+  for (std::size_t i = 0; i < problems.size(); ++i)
+    found[i] = search.findPath(problems[i].start, problems[i].goal, paths[i]) ? 1 : 0;
+  const double seconds = clock.elapsedSeconds();
+  int mismatches = 0, longer = 0;
+  std::vector<double> ratios, savings;
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    const ScenarioProblem& p = problems[i];
+    const NavPath& path = paths[i];
+    int crossings = 0;
+    for (std::size_t k = 1; k < path.points.size(); ++k)
+      forEachCellCrossed(path.points[k - 1], path.points[k], [&](Cell c) {
+        if (!map.passable(c.x, c.y)) ++crossings;
+      });
+    const double straight = std::hypot(p.goal.x - p.start.x, p.goal.y - p.start.y);
+    const bool bad = !found[i] || crossings > 0 || path.length < straight - 1e-9;
+    if (bad && ++mismatches <= 10)
+      std::fprintf(stderr, "%s:%d: (%d,%d)->(%d,%d) %s\n", scen_path.c_str(), p.line, p.start.x,
+                   p.start.y, p.goal.x, p.goal.y,
+                   !found[i]       ? "no path"
+                   : crossings > 0 ? "crosses a blocked cell"
+                                   : "shorter than the straight line");
+    if (!found[i] || p.optimal <= 0) continue;
+    const double ratio = path.length / p.optimal;
+    ratios.push_back(ratio);
+    // Beyond the file's rounding of the optimum.
+    if (path.length < p.optimal - 0.5 * p.optimal_step) savings.push_back(1.0 - ratio);
+    if (path.length > p.optimal + 0.5 * p.optimal_step) ++longer;
+  }
+  std::sort(ratios.begin(), ratios.end());
+  std::sort(savings.begin(), savings.end());
+  double mean = 0, mean_saving = 0;
+  for (double r : ratios) mean += r;
+  for (double s : savings) mean_saving += s;
+  mean = ratios.empty() ? 0 : mean / double(ratios.size());
+  mean_saving = savings.empty() ? 0 : mean_saving / double(savings.size());
+  std::printf(
+      "problems %zu mismatches %d us_per_path %.2f build_ms %.2f mean_ratio %.6f p99_ratio %.6f "
+      "min_ratio %.6f max_ratio %.6f shorter %zu mean_saving %.6f max_saving %.6f longer %d\n",
+      problems.size(), mismatches, problems.empty() ? 0.0 : seconds * 1e6 / double(problems.size()),
+      build_ms, mean, rankOf(ratios, 0.99), ratios.empty() ? 0.0 : ratios.front(),
+      ratios.empty() ? 0.0 : ratios.back(), savings.size(), mean_saving,
+      savings.empty() ? 0.0 : savings.back(), longer);
+  return mismatches > 0 ? 1 : 0;
 }
 
 }  // namespace
@@ -67,7 +140,8 @@ int main(int argc, char** argv) {
     }
   }
   if (map_path.empty() || scenPath.empty() ||
-      (planner != "astar" && planner != "jps" && planner != "jps+" && planner != "hpa")) {
+      (planner != "astar" && planner != "jps" && planner != "jps+" && planner != "hpa" &&
+       planner != "navmesh")) {
     return usage();
   }
   const bool optimal = planner != "hpa";
@@ -86,6 +160,8 @@ int main(int argc, char** argv) {
         throw ParseError(scenPath, p.line, "start or goal is blocked on " + map_path);
       }
     }
+
+    if (planner == "navmesh") return checkNavMesh(map, problems, scenPath);
 
     std::function<bool(Cell, Cell, GridPath&)> plan;
     std::unique_ptr<GridSearch> astar;

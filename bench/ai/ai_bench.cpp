@@ -3,8 +3,13 @@
 // and prints one table row per (map, planner): µs per path, mean and max length overhead
 // against the listed optimum, speed-up over A*, the abstraction's size and build time, and the
 // time to repair it after one cell changes (a door). Rows `hpaNsK` smooth windows of K
-// abstract steps.
+// abstract steps. The `navmesh` row (radius 0) times A* over portals plus the funnel on the
+// same problems: its overheads are against the 8-connected optimum, so negative where the
+// any-angle path is shorter; nodes are polygons, expanded are portals, repair is a full
+// rebuild (the mesh has no local repair), and mem_kb is the mesh's bytes against the grid's
+// (one byte a cell) on the astar row.
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -13,6 +18,8 @@
 
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
+#include "ai/navmesh.h"
+#include "ai/navmesh_search.h"
 #include "ai/scenario.h"
 #include "common/timer.h"
 
@@ -47,6 +54,37 @@ Row timePlanner(const std::vector<ScenarioProblem>& problems, Plan&& plan) {
   return row;
 }
 
+// The navmesh row: build, paths over the same problems, and a rebuild as its repair.
+void benchNavMesh(const char* name, const GridMap& map,
+                  const std::vector<ScenarioProblem>& problems, double astarUs) {
+  zonesim::Stopwatch build;
+  NavMesh mesh(map, NavMeshConfig{});
+  const double buildMs = build.elapsedSeconds() * 1e3;
+  NavMeshSearch search(mesh);
+  NavPath path;
+  long expanded = 0;
+  zonesim::Stopwatch clock;
+  for (const auto& p : problems) {
+    search.findPath(p.start, p.goal, path);
+    expanded += search.lastExpanded();
+  }
+  const double us = clock.elapsedSeconds() * 1e6 / double(problems.size());
+  double mean = 0, worst = -1;
+  for (const auto& p : problems) {
+    search.findPath(p.start, p.goal, path);
+    const double o = p.optimal > 0 ? path.length / p.optimal - 1.0 : 0.0;
+    mean += o;
+    worst = std::max(worst, o);
+  }
+  zonesim::Stopwatch rebuild;
+  for (int i = 0; i < 5; ++i) NavMesh again(map, NavMeshConfig{});
+  const double repairUs = rebuild.elapsedSeconds() * 1e6 / 5.0;
+  std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8zu %9.1f %9.1f %8.1f\n", name,
+              "navmesh", problems.size(), us, expanded / long(problems.size()),
+              mean / double(problems.size()), worst, astarUs / us, mesh.polygons().size(), buildMs,
+              repairUs, double(mesh.memoryBytes()) / 1024);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,9 +105,9 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::printf("%-16s %-8s %9s %10s %9s %9s %8s %7s %8s %9s %9s\n", "map", "planner", "problems",
+  std::printf("%-16s %-8s %9s %10s %9s %9s %8s %7s %8s %9s %9s %8s\n", "map", "planner", "problems",
               "us_per_path", "expanded", "mean_ovh", "max_ovh", "speedup", "nodes", "build_ms",
-              "repair_us");
+              "repair_us", "mem_kb");
   for (const char* name : {"random512-10-0", "8room_000", "maze512-1-0"}) {
     try {
       GridMap map = loadMovingAiMap(dir + "/" + name + ".map");
@@ -82,9 +120,10 @@ int main(int argc, char** argv) {
         astar.findPath(s, g, out);
         return astar.lastStats().expanded;
       });
-      std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8s %9s %9s\n", name, "astar",
-                  problems.size(), a.usPerPath, a.expandedPerPath, a.meanOverhead, a.maxOverhead,
-                  1.0, "-", "-", "-");
+      std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8s %9s %9s %8.1f\n", name,
+                  "astar", problems.size(), a.usPerPath, a.expandedPerPath, a.meanOverhead,
+                  a.maxOverhead, 1.0, "-", "-", "-", double(map.width() * map.height()) / 1024);
+      benchNavMesh(name, map, problems, a.usPerPath);
 
       for (int c : clusterSizes) {
         for (int span : {0, 3}) {
@@ -109,10 +148,10 @@ int main(int argc, char** argv) {
           double repairUs = repair.elapsedSeconds() * 1e6 / 20.0;
           std::string label =
               "hpa" + std::to_string(c) + (span > 0 ? "s" + std::to_string(span) : "");
-          std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8d %9.1f %9.1f\n", name,
+          std::printf("%-16s %-8s %9zu %10.1f %9ld %9.4f %8.4f %7.2f %8d %9.1f %9.1f %8s\n", name,
                       label.c_str(), problems.size(), h.usPerPath, h.expandedPerPath,
                       h.meanOverhead, h.maxOverhead, a.usPerPath / h.usPerPath, hpa.stats().nodes,
-                      buildMs, repairUs);
+                      buildMs, repairUs, "-");
         }
       }
     } catch (const std::exception& e) {
