@@ -6,11 +6,12 @@ namespace zonesim::ai {
 
 namespace {
 
-// The open parameter interval (lo, hi) where a + t*d lies strictly inside (c0, c0 + 1) on one
-// axis; false when it never does.
-bool openSpan(double a, double d, int c0, double& lo, double& hi) {
+// The parameter span where a + t*d lies inside [c0, c0 + 1] on one axis (open or closed as
+// the caller takes it); false when it never does.
+bool span(double a, double d, int c0, bool closed, double& lo, double& hi) {
   if (d == 0) {
-    if (!(a > c0 && a < c0 + 1)) return false;
+    const bool in = closed ? a >= c0 && a <= c0 + 1 : a > c0 && a < c0 + 1;
+    if (!in) return false;
     lo = -1e300;
     hi = 1e300;
     return true;
@@ -23,13 +24,15 @@ bool openSpan(double a, double d, int c0, double& lo, double& hi) {
 
 }  // namespace
 
-bool segmentCrossesCell(Vec2 a, Vec2 b, Cell c) {
+bool segmentMeetsCell(Vec2 a, Vec2 b, Cell c, CellContact contact) {
+  const bool closed = contact == CellContact::Closed;
   double lx, hx, ly, hy;
-  if (!openSpan(a.x, b.x - a.x, c.x, lx, hx)) return false;
-  if (!openSpan(a.y, b.y - a.y, c.y, ly, hy)) return false;
-  if (a == b) return true;  // a point strictly inside
-  // The open spans meet the closed [0, 1] in more than a point.
-  return std::max({0.0, lx, ly}) < std::min({1.0, hx, hy});
+  if (!span(a.x, b.x - a.x, c.x, closed, lx, hx)) return false;
+  if (!span(a.y, b.y - a.y, c.y, closed, ly, hy)) return false;
+  if (a == b) return true;  // a point inside on both axes
+  const double lo = std::max({0.0, lx, ly}), hi = std::min({1.0, hx, hy});
+  // Closed spans meet [0, 1] when lo <= hi; open ones only in more than a point.
+  return closed ? lo <= hi : lo < hi;
 }
 
 }  // namespace zonesim::ai

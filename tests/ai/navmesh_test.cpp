@@ -111,6 +111,27 @@ TEST(NavMeshTest, ErosionKeepsTheRadiusFromEveryWallAndTheEdge) {
   }
 }
 
+TEST(NavMeshTest, SegmentsCrossInteriorsAndTouchEdgesAndCorners) {
+  // Along the edge y = 5 between cells (20, 4) and (20, 5): crosses neither, touches both.
+  const Vec2 a{20, 5}, b{21, 5};
+  EXPECT_FALSE(segmentCrossesCell(a, b, Cell{20, 4}));
+  EXPECT_FALSE(segmentCrossesCell(a, b, Cell{20, 5}));
+  EXPECT_TRUE(segmentMeetsCell(a, b, Cell{20, 4}, CellContact::Closed));
+  EXPECT_TRUE(segmentMeetsCell(a, b, Cell{20, 5}, CellContact::Closed));
+  // Through the corner (1, 1) diagonally: crosses (0, 0) and (1, 1), only touches (1, 0).
+  const Vec2 c{0.5, 0.5}, d{1.5, 1.5};
+  EXPECT_TRUE(segmentCrossesCell(c, d, Cell{0, 0}));
+  EXPECT_TRUE(segmentCrossesCell(c, d, Cell{1, 1}));
+  EXPECT_FALSE(segmentCrossesCell(c, d, Cell{1, 0}));
+  EXPECT_TRUE(segmentMeetsCell(c, d, Cell{1, 0}, CellContact::Closed));
+  int touched = 0;
+  forEachCellMet(c, d, CellContact::Closed, [&](Cell) { ++touched; });
+  EXPECT_EQ(touched, 4);
+  int crossed = 0;
+  forEachCellCrossed(Vec2{0.5, 0.5}, Vec2{7.5, 2.5}, [&](Cell) { ++crossed; });
+  EXPECT_EQ(crossed, 10);  // 7 column and 2 row changes after the first, no lattice point
+}
+
 TEST(NavMeshTest, FunnelTurnsAtTheInnerCornerOnly) {
   // An L: along y = 0.5 to the east, then up through a portal at x in [4, 5], y = 1.
   const std::vector<FunnelPortal> portals{{Vec2{4, 1}, Vec2{5, 1}}};
