@@ -1,9 +1,11 @@
 #pragma once
-// A path on a grid: the cells from start to goal inclusive and its octile length.
+// A path on a grid: the cells from start to goal inclusive and its length; a navigation-mesh
+// path also keeps its any-angle corner points.
 
 #include <vector>
 
 #include "ai/octile.h"
+#include "ai/vec2.h"
 
 namespace zonesim::ai {
 
@@ -11,11 +13,16 @@ class GridMap;
 
 /// Cells from start to goal inclusive; empty when there is no path.
 struct GridPath {
-  std::vector<Cell> cells;  ///< start first, goal last
-  double length = 0.0;      ///< sum of step costs (1 or sqrt(2))
+  /// Start first, goal last; for a navmesh path, every cell its segments touch (walls they
+  /// graze included), in order along it, so that a closed cell finds the paths it may cut.
+  std::vector<Cell> cells;
+  double length = 0.0;  ///< sum of step costs (1 or sqrt(2)), or of the navmesh segments
+  /// Navmesh paths only: the corner points, start first, goal last, in map units.
+  std::vector<Vec2> points;
   /// Empties the path but keeps its capacity (no allocation on reuse).
   void clear() {
     cells.clear();
+    points.clear();
     length = 0.0;
   }
 };

@@ -1,6 +1,9 @@
 #include "ai/path_service.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "ai/segment_cells.h"
 
 namespace zonesim::ai {
 
@@ -8,9 +11,59 @@ PathService::PathService(GridMap& map, const PathServiceConfig& config)
     : map_(map), config_(config), cache_(config.cache_capacity) {
   if (config_.planner == PlannerKind::AStar) {
     astar_ = std::make_unique<GridSearch>(map_);
-  } else {
+  } else if (config_.planner == PlannerKind::Hpa) {
     hpa_ = std::make_unique<HpaPlanner>(map_, config_.hpa);
+  } else {
+    rebuildMesh();
   }
+}
+
+void PathService::rebuildMesh() {
+  mesh_search_.reset();
+  mesh_ = std::make_unique<NavMesh>(map_, config_.navmesh);
+  mesh_search_ = std::make_unique<NavMeshSearch>(*mesh_);
+}
+
+bool PathService::planOnMesh(Vec2 from, Vec2 to, GridPath& out, int& expanded) {
+  out.clear();
+  expanded = 0;
+  if (mesh_->polygonAt(from) < 0 || mesh_->polygonAt(to) < 0) return false;
+  const bool found = mesh_search_->findPath(from, to, mesh_path_);
+  expanded = mesh_search_->lastExpanded();
+  if (!found) return false;
+  out.points = mesh_path_.points;
+  out.length = mesh_path_.length;
+  auto add = [&](Cell c) {
+    if (out.cells.empty() || !(out.cells.back() == c)) out.cells.push_back(c);
+  };
+  add(Cell{int(std::floor(from.x)), int(std::floor(from.y))});
+  for (std::size_t k = 1; k < out.points.size(); ++k) {
+    // Every cell the segment touches (closing any of them may cut it), in column order, then
+    // sorted along the segment so the cells run from start to goal.
+    segment_cells_.clear();
+    forEachCellMet(out.points[k - 1], out.points[k], CellContact::Closed,
+                   [&](Cell c) { segment_cells_.push_back(c); });
+    const Vec2 a = out.points[k - 1], b = out.points[k];
+    auto along = [&](Cell c) {
+      return (c.x + 0.5 - a.x) * (b.x - a.x) + (c.y + 0.5 - a.y) * (b.y - a.y);
+    };
+    std::stable_sort(segment_cells_.begin(), segment_cells_.end(),
+                     [&](Cell l, Cell r) { return along(l) < along(r); });
+    for (Cell c : segment_cells_) add(c);
+  }
+  add(Cell{int(std::floor(to.x)), int(std::floor(to.y))});
+  return true;
+}
+
+bool PathService::solveBetween(Vec2 from, Vec2 to, GridPath& out, int& expanded) {
+  if (!mesh_) {
+    return solve(Cell{int(std::floor(from.x)), int(std::floor(from.y))},
+                 Cell{int(std::floor(to.x)), int(std::floor(to.y))}, out, expanded);
+  }
+  ++stats_.planned;
+  const bool found = planOnMesh(from, to, out, expanded);
+  stats_.expanded += std::uint64_t(expanded);
+  return found;
 }
 
 PathRequestId PathService::request(Cell start, Cell goal) {
@@ -53,6 +106,9 @@ bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
   if (astar_) {
     found = astar_->findPath(start, goal, out);
     expanded = astar_->lastStats().expanded;
+  } else if (mesh_) {
+    found = planOnMesh(Vec2{start.x + 0.5, start.y + 0.5}, Vec2{goal.x + 0.5, goal.y + 0.5}, out,
+                       expanded);
   } else {
     found = hpa_->findPath(start, goal, out);
     expanded = hpa_->stats().expanded + hpa_->stats().grid_expanded;
@@ -129,6 +185,7 @@ void PathService::setCell(Cell c, bool open) {
 
 void PathService::cellChanged(Cell c, bool open) {
   if (hpa_) hpa_->cellChanged(c);
+  if (mesh_) rebuildMesh();
   if (open) {
     // Existing paths stay walkable; only cached answers might now be beaten, and requests
     // that had no path may now have one.

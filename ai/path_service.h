@@ -4,7 +4,8 @@
 // expanded (cache hits are free; at least one plan per tick so the queue always moves), so a
 // burst of requests is spread over several ticks instead of blowing one. Map changes go through
 // setCell(), which repairs the planner, invalidates cached paths and re-queues every request whose
-// path it cut.
+// path it cut. The navmesh planner plans between cell centres (or exact points, solveBetween)
+// and fills the path's cells with those its segments cross; a map change rebuilds its mesh.
 
 #include <cstdint>
 #include <deque>
@@ -14,17 +15,20 @@
 #include "ai/grid_map.h"
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
+#include "ai/navmesh.h"
+#include "ai/navmesh_search.h"
 #include "ai/path_cache.h"
 
 namespace zonesim::ai {
 
 /// Which planner serves requests.
-enum class PlannerKind { AStar, Hpa };
+enum class PlannerKind { AStar, Hpa, NavMesh };
 
 /// Settings of a PathService.
 struct PathServiceConfig {
   PlannerKind planner = PlannerKind::Hpa;  ///< A* (optimal) or HPA* (faster on large maps)
   HpaConfig hpa;                           ///< abstraction settings when planner is Hpa
+  NavMeshConfig navmesh;                   ///< mesh settings when planner is NavMesh
   int paths_per_tick = 8;                  ///< planner calls allowed per tick
   int expansions_per_tick = 0;             ///< node expansions allowed per tick (0: no limit)
   std::size_t cache_capacity = 1024;       ///< cached paths (0: no cache)
@@ -70,6 +74,10 @@ class PathService {
   /// clear_cache_on_close a hit gives the caller's budget and the agent exactly what planning
   /// would.
   bool solve(Cell start, Cell goal, GridPath& out, int& expanded);
+  /// As solve() between exact points in map units: the navmesh plans from `from` to `to`
+  /// (never cached: points do not repeat), the grid planners between the cells holding them.
+  /// False, as for a blocked cell, when an end is off the mesh.
+  bool solveBetween(Vec2 from, Vec2 to, GridPath& out, int& expanded);
   /// State of a request (Unknown for a released or stale handle).
   PathStatus status(PathRequestId id) const;
   /// The path of a Ready request (empty otherwise).
@@ -94,11 +102,17 @@ class PathService {
 
   const Request* find(PathRequestId id) const;
   bool plan(Cell start, Cell goal, GridPath& out, int& expanded);
+  bool planOnMesh(Vec2 from, Vec2 to, GridPath& out, int& expanded);
+  void rebuildMesh();
 
   GridMap& map_;
   PathServiceConfig config_;
   std::unique_ptr<GridSearch> astar_;
   std::unique_ptr<HpaPlanner> hpa_;
+  std::unique_ptr<NavMesh> mesh_;  // rebuilt whole on a map change
+  std::unique_ptr<NavMeshSearch> mesh_search_;
+  NavPath mesh_path_;
+  std::vector<Cell> segment_cells_;
   PathCache cache_;
   std::vector<Request> requests_;
   std::vector<std::uint32_t> free_slots_;

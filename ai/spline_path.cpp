@@ -31,8 +31,11 @@ Vec2 centripetal(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3, double u) {
 
 }  // namespace
 
-SplinePath::SplinePath(std::vector<Vec2> points, int samplesPerSegment)
-    : points_(std::move(points)), samples_(std::max(samplesPerSegment, 1)) {
+SplinePath::SplinePath(std::vector<Vec2> points, int samplesPerSegment, Curve curve)
+    : points_(std::move(points)),
+      // A polyline's arc length is exact with one sample a segment.
+      samples_(curve == Curve::Polyline ? 1 : std::max(samplesPerSegment, 1)),
+      curve_(curve) {
   assert(!points_.empty());
   cumulative_.push_back(0.0);
   Vec2 prev = points_.front();
@@ -64,6 +67,7 @@ Vec2 SplinePath::at(double t) const {
   Vec2 p3 = seg + 2 <= n ? points_[std::size_t(seg) + 2] : Vec2{2 * p2.x - p1.x, 2 * p2.y - p1.y};
   if (u <= 0) return p1;
   if (u >= 1) return p2;
+  if (curve_ == Curve::Polyline) return lerp(p1, p2, 0.0, 1.0, u);
   return centripetal(p0, p1, p2, p3, u);
 }
 

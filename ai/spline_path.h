@@ -10,12 +10,16 @@
 
 namespace zonesim::ai {
 
-/// Catmull-Rom spline through control points, sampled by arc length.
+/// Catmull-Rom spline (or a polyline) through control points, sampled by arc length.
 class SplinePath {
  public:
+  /// How the points are joined: a smooth curve for grid paths (cell centres), straight segments
+  /// for navmesh corners, where a curve would bulge past the corner into the wall.
+  enum class Curve { CatmullRom, Polyline };
   /// Builds the spline through `points` (at least one); `samplesPerSegment` sets the accuracy
   /// of the arc-length table.
-  explicit SplinePath(std::vector<Vec2> points, int samplesPerSegment = 16);
+  explicit SplinePath(std::vector<Vec2> points, int samplesPerSegment = 16,
+                      Curve curve = Curve::CatmullRom);
   /// Cell centres of a grid path (cell (x, y) has centre (x + 0.5, y + 0.5)).
   static std::vector<Vec2> cellCentres(const GridPath& path);
 
@@ -31,6 +35,7 @@ class SplinePath {
  private:
   std::vector<Vec2> points_;
   int samples_;
+  Curve curve_;
   std::vector<double> cumulative_;  // arc length at each table sample
 };
 

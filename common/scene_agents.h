@@ -96,9 +96,14 @@ struct AgentPopulation {
   double min_x = 0, min_z = 0, max_x = 0, max_z = 0;  ///< start region on the ground
 };
 
+/// Which planner serves a zone's navigating agents.
+enum class AgentPlanner { AStar, Hpa, NavMesh };
+
 /// The path service shared by a zone's navigating agents.
 struct AgentPathSettings {
-  bool hpa = false;             ///< HPA* instead of A*
+  /// `map.navigation` (grid, hpa, navmesh), or its older spelling `agents.paths.planner`
+  /// (astar, hpa).
+  AgentPlanner planner = AgentPlanner::AStar;
   int cluster_size = 16;        ///< HPA* cluster side, cells
   int paths_per_tick = 8;       ///< planner calls per tick and zone
   int expansions_per_tick = 0;  ///< node expansions per tick and zone (0: no limit)

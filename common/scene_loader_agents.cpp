@@ -251,10 +251,23 @@ void readPopulation(const SceneNode& node, Scene& scene) {
   scene.agents.populations.push_back(p);
 }
 
-void readPaths(const SceneMap& agents, AgentPathSettings& p) {
+// `map.navigation` names the planner; `agents.paths.planner` is its older spelling, kept so
+// existing scenes load unchanged. Both may be given only when they agree.
+void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings& p) {
   SceneMap m = agents.section(
       "paths", {"planner", "cluster_size", "paths_per_tick", "expansions_per_tick", "cache"});
-  p.hpa = m.choice("planner", {"astar", "hpa"}, p.hpa ? 1 : 0) == 1;
+  const int planner = m.choice("planner", {"astar", "hpa"}, -1);
+  const AgentPlanner by_map[] = {AgentPlanner::AStar, AgentPlanner::Hpa, AgentPlanner::NavMesh};
+  if (map.navigation >= 0 && planner >= 0 && planner != map.navigation) {
+    const char* names[] = {"grid", "hpa", "navmesh"};
+    m.failAt("planner", std::string("contradicts map.navigation: ") + names[map.navigation] +
+                            " (line " + std::to_string(map.navigation_line) +
+                            "); give one of them");
+  }
+  if (map.navigation >= 0)
+    p.planner = by_map[map.navigation];
+  else if (planner >= 0)
+    p.planner = by_map[planner];
   m.read("cluster_size", p.cluster_size, Limit::between(2, 256));
   m.read("paths_per_tick", p.paths_per_tick, Limit::between(1, 1000000));
   m.read("expansions_per_tick", p.expansions_per_tick, Limit::atLeast(0));
@@ -274,7 +287,7 @@ void readAgents(const SceneMap& root, Scene& scene) {
   for (const SceneNode& t : agents.required("types").items()) readType(t, scene);
   if (std::optional<SceneNode> pops = agents.optional("populations"))
     for (const SceneNode& p : pops->items()) readPopulation(p, scene);
-  readPaths(agents, scene.agents.paths);
+  readPaths(agents, scene.map, scene.agents.paths);
   agents.read("decide_every", scene.agents.decide_every, Limit::between(1, 64));
 }
 

@@ -42,7 +42,7 @@ void readMapDoors(const SceneMap& m, ObstacleMap& map) {
 void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene) {
   std::optional<SceneNode> node = root.optional("map");
   if (!node) return;
-  SceneMap m = node->map({"file", "origin", "cell_size", "doors", "fields"});
+  SceneMap m = node->map({"file", "origin", "cell_size", "doors", "fields", "navigation"});
   SceneNode file_node = m.required("file");
   std::string name = file_node.text();
   if (name.empty()) file_node.fail("must not be empty");
@@ -78,6 +78,8 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
     map.fields = fields_path.lexically_normal().string();
     map.fields_line = fields->line();
   }
+  map.navigation = m.choice("navigation", {"grid", "hpa", "navmesh"}, -1);
+  if (std::optional<SceneNode> nav = m.optional("navigation")) map.navigation_line = nav->line();
   readMapDoors(m, map);
 }
 

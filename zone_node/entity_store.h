@@ -159,7 +159,9 @@ struct AgentData {
   std::uint64_t asked_tick = 0;       ///< tick the waiting path request was made (its age)
   std::int32_t replans = 0;           ///< paths requested again after a door cut them
   std::int32_t arrivals = 0;          ///< goals reached
-  std::vector<std::int32_t> path;     ///< cells as x, y pairs; empty when not moving
+  /// x, y pairs, empty when not moving: the path's cells, or with `map.navigation: navmesh`
+  /// its end cells with the mesh corners (lattice points of the map) between them.
+  std::vector<std::int32_t> path;
   // What it perceived when it last decided: with agents.decide_every > 1 it acts on this
   // between decisions (agent_senses.h).
   bool enemy_seen = false;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "ai/segment_cells.h"
 #include "tests/ai/reference_dijkstra.h"
 
 namespace zonesim::ai {
@@ -45,6 +46,19 @@ GridMap twoDoors() {
   return m;
 }
 
+// A grid path of legal moves, or a navmesh path none of whose segments crosses a blocked cell
+// and whose cells (those it touches) include its ends.
+bool validPath(const GridMap& m, const GridPath& p) {
+  if (p.points.empty()) return isValidPath(m, p.cells);
+  for (std::size_t k = 1; k < p.points.size(); ++k) {
+    bool blocked = false;
+    forEachCellCrossed(p.points[k - 1], p.points[k],
+                       [&](Cell c) { blocked = blocked || !m.passable(c.x, c.y); });
+    if (blocked) return false;
+  }
+  return !p.cells.empty();
+}
+
 class PathServiceTest : public ::testing::TestWithParam<PlannerKind> {};
 
 TEST_P(PathServiceTest, BudgetSpreadsRequestsOverTicks) {
@@ -69,7 +83,7 @@ TEST_P(PathServiceTest, BudgetSpreadsRequestsOverTicks) {
   for (PathRequestId id : ids) {
     EXPECT_NE(service.status(id), PathStatus::Queued);
     if (service.status(id) == PathStatus::Ready) {
-      EXPECT_TRUE(isValidPath(m, service.path(id).cells));
+      EXPECT_TRUE(validPath(m, service.path(id)));
     }
   }
 }
@@ -149,7 +163,7 @@ TEST_P(PathServiceTest, ClosingADoorReplansOnlyThePathsThroughIt) {
   service.tick();
   ASSERT_EQ(service.status(cross), PathStatus::Ready);
   const auto& after = service.path(cross).cells;
-  EXPECT_TRUE(isValidPath(m, after));
+  EXPECT_TRUE(validPath(m, service.path(cross)));
   EXPECT_NE(std::find(after.begin(), after.end(), Cell{20, 35}), after.end());
   EXPECT_EQ(service.path(local).cells, localBefore.cells);
 
@@ -161,7 +175,7 @@ TEST_P(PathServiceTest, ClosingADoorReplansOnlyThePathsThroughIt) {
   service.setCell({20, 5}, true);
   service.tick();
   ASSERT_EQ(service.status(cross), PathStatus::Ready);
-  EXPECT_TRUE(isValidPath(m, service.path(cross).cells));
+  EXPECT_TRUE(validPath(m, service.path(cross)));
 }
 
 TEST_P(PathServiceTest, WithClearCacheOnCloseAHitIsWhatAFreshPlanGives) {
@@ -212,10 +226,12 @@ TEST_P(PathServiceTest, ReleasedHandlesGoStale) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Planners, PathServiceTest,
-                         ::testing::Values(PlannerKind::AStar, PlannerKind::Hpa),
+                         ::testing::Values(PlannerKind::AStar, PlannerKind::Hpa,
+                                           PlannerKind::NavMesh),
                          [](const auto& info) {
                            return info.param == PlannerKind::AStar ? std::string("AStar")
-                                                                   : std::string("Hpa");
+                                  : info.param == PlannerKind::Hpa ? std::string("Hpa")
+                                                                   : std::string("NavMesh");
                          });
 
 }  // namespace

@@ -87,10 +87,29 @@ TEST(SceneMap, ErrorsNameLineAndField) {
                          kSceneName);
             }),
             kSceneName + ":7: map.origin: x, z (0, 200) is outside the world");
-  EXPECT_EQ(
-      sceneError(
-          [] { parseScene(sceneWith("map: {file: maps/courtyard.map, size: 3}\n"), kSceneName); }),
-      kSceneName + ":5: map.size: unknown key (allowed: file, origin, cell_size, doors, fields)");
+  EXPECT_EQ(sceneError([] {
+              parseScene(sceneWith("map: {file: maps/courtyard.map, size: 3}\n"), kSceneName);
+            }),
+            kSceneName +
+                ":5: map.size: unknown key (allowed: file, origin, cell_size, doors, fields, "
+                "navigation)");
+}
+
+TEST(SceneMap, NavigationChoosesThePlannerAndTheOlderKeyStillWorks) {
+  const std::string agents =
+      "agents:\n  types:\n    - {name: c, behaviour: travel, navigate: true, goals: [[20, 22]]}\n";
+  auto planner = [&](const std::string& map_keys, const std::string& paths) {
+    return parseScene(
+               sceneWith("map: {file: maps/courtyard.map" + map_keys + "}\n" + agents + paths),
+               kSceneName)
+        .agents.paths.planner;
+  };
+  EXPECT_EQ(planner("", ""), AgentPlanner::AStar);
+  EXPECT_EQ(planner(", navigation: navmesh", ""), AgentPlanner::NavMesh);
+  EXPECT_EQ(planner(", navigation: hpa", ""), AgentPlanner::Hpa);
+  EXPECT_EQ(planner(", navigation: grid", ""), AgentPlanner::AStar);
+  EXPECT_EQ(planner("", "  paths: {planner: hpa}\n"), AgentPlanner::Hpa);
+  EXPECT_EQ(planner(", navigation: hpa", "  paths: {planner: hpa}\n"), AgentPlanner::Hpa);
 }
 
 TEST(SceneMap, DoorsComeThroughInTimeOrderWithTheirLines) {

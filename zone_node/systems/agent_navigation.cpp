@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "ai/segment_cells.h"
 #include "common/scene.h"
 
 namespace zonesim::zone {
@@ -16,11 +17,23 @@ std::int32_t navOf(AgentNav n) {
   return std::int32_t(n);
 }
 
-// Cell index pairs of an agent's path, from position `from` on.
+// Cell index pairs of an agent's grid path.
 bool pathCrosses(const AgentData& a, int x, int y) {
   for (std::size_t k = 0; k + 1 < a.path.size(); k += 2)
     if (a.path[k] == x && a.path[k + 1] == y) return true;
   return false;
+}
+
+ai::PlannerKind plannerOf(AgentPlanner p) {
+  switch (p) {
+    case AgentPlanner::Hpa:
+      return ai::PlannerKind::Hpa;
+    case AgentPlanner::NavMesh:
+      return ai::PlannerKind::NavMesh;
+    case AgentPlanner::AStar:
+      break;
+  }
+  return ai::PlannerKind::AStar;
 }
 
 }  // namespace
@@ -30,7 +43,8 @@ AgentNavigation::AgentNavigation(const Scene& scene, ZoneMap* map)
   if (!map) return;
   ai::PathServiceConfig c;
   const AgentPathSettings& p = scene.agents.paths;
-  c.planner = p.hpa ? ai::PlannerKind::Hpa : ai::PlannerKind::AStar;
+  c.planner = plannerOf(p.planner);
+  navmesh_ = p.planner == AgentPlanner::NavMesh;
   c.hpa.cluster_size = p.cluster_size;
   c.paths_per_tick = p.paths_per_tick;
   c.expansions_per_tick = p.expansions_per_tick;
@@ -53,7 +67,8 @@ void AgentNavigation::followDoors(EntityStore& store) {
     for (std::size_t i = 0; i < store.size(); ++i) {
       AgentData& a = store.agent[i];
       if (a.type < 0) continue;
-      bool cut = !d.open && a.nav == navOf(AgentNav::Moving) && pathCrosses(a, d.x, d.y);
+      bool cut = !d.open && a.nav == navOf(AgentNav::Moving) &&
+                 (navmesh_ ? meshPathTouches(a, ai::Cell{d.x, d.y}) : pathCrosses(a, d.x, d.y));
       bool retry = d.open && a.nav == navOf(AgentNav::NoPath);
       if (!cut && !retry) continue;
       a.nav = navOf(AgentNav::None);
@@ -148,7 +163,16 @@ void AgentNavigation::plan(EntityStore& store, const ClusterGather& gather) {
     if (expansion_budget > 0 && mine_expanded >= expansion_budget) continue;
     const AgentData& a = store.agent[w.index];
     ai::Cell to = frame_.cellOf({a.target_x, a.target_z});
-    w.found = service_->solve(startCell(a.origin_x, a.origin_z), to, w.path, w.expanded);
+    ai::Cell from = startCell(a.origin_x, a.origin_z);
+    if (navmesh_) {
+      // From the exact origin, or from the centre of the open cell next to it when a door
+      // shut on the agent; to the exact target.
+      ai::Vec2 start = toMap(a.origin_x, a.origin_z);
+      if (!(frame_.cellOf({a.origin_x, a.origin_z}) == from)) start = {from.x + 0.5, from.y + 0.5};
+      w.found = service_->solveBetween(start, toMap(a.target_x, a.target_z), w.path, w.expanded);
+    } else {
+      w.found = service_->solve(from, to, w.path, w.expanded);
+    }
     mine_expanded += w.expanded;
   }
   // How many requests of the window are served: all of them, or with an expansion budget those
@@ -182,7 +206,17 @@ void AgentNavigation::plan(EntityStore& store, const ClusterGather& gather) {
     AgentData& a = store.agent[w.index];
     a.travelled = 0;
     a.path.clear();
-    if (w.found) {
+    if (w.found && navmesh_) {
+      // The end cells, and between them the mesh's corners: lattice points, so exact ints.
+      const ai::Cell first = w.path.cells.front(), last = w.path.cells.back();
+      a.path.insert(a.path.end(), {first.x, first.y});
+      for (std::size_t p = 1; p + 1 < w.path.points.size(); ++p) {
+        a.path.push_back(std::int32_t(std::lround(w.path.points[p].x)));
+        a.path.push_back(std::int32_t(std::lround(w.path.points[p].y)));
+      }
+      a.path.insert(a.path.end(), {last.x, last.y});
+      a.nav = navOf(AgentNav::Moving);
+    } else if (w.found) {
       for (const ai::Cell& c : w.path.cells) {
         a.path.push_back(c.x);
         a.path.push_back(c.y);
@@ -208,14 +242,18 @@ const ai::SplinePath& AgentNavigation::splineOf(const EntityStore& store, std::s
   s.oz = a.origin_z;
   s.tx = a.target_x;
   s.tz = a.target_z;
-  // From the exact start through the inner cell centres to the exact target.
+  // From the exact start through the inner cell centres (or mesh corners) to the exact target;
+  // straight between mesh corners, which a curve would bulge past into the wall they bound.
   std::vector<ai::Vec2> points{{a.origin_x, a.origin_z}};
   for (std::size_t k = 2; k + 2 < a.path.size(); k += 2) {
-    crowd::Vec2 c = frame_.centre(ai::Cell{a.path[k], a.path[k + 1]});
+    crowd::Vec2 c = navmesh_ ? cornerOf(a.path[k], a.path[k + 1])
+                             : frame_.centre(ai::Cell{a.path[k], a.path[k + 1]});
     points.push_back({c.x, c.y});
   }
   points.push_back({a.target_x, a.target_z});
-  s.spline = std::make_unique<ai::SplinePath>(std::move(points));
+  s.spline = std::make_unique<ai::SplinePath>(
+      std::move(points), 16,
+      navmesh_ ? ai::SplinePath::Curve::Polyline : ai::SplinePath::Curve::CatmullRom);
   return *s.spline;
 }
 
@@ -274,6 +312,30 @@ crowd::Vec2 AgentNavigation::fleeTarget(double x, double z, double ex, double ez
     }
   }
   return best;
+}
+
+ai::Vec2 AgentNavigation::toMap(double x, double z) const {
+  return ai::Vec2{(x - frame_.origin.x) / frame_.cell_size,
+                  (z - frame_.origin.y) / frame_.cell_size};
+}
+
+crowd::Vec2 AgentNavigation::cornerOf(std::int32_t x, std::int32_t y) const {
+  return crowd::Vec2{frame_.origin.x + x * frame_.cell_size,
+                     frame_.origin.y + y * frame_.cell_size};
+}
+
+bool AgentNavigation::meshPathTouches(const AgentData& a, ai::Cell cell) const {
+  // The walked polyline: exact origin, the corners, exact target.
+  ai::Vec2 prev = toMap(a.origin_x, a.origin_z);
+  for (std::size_t k = 2; k + 2 <= a.path.size(); k += 2) {
+    const bool last = k + 2 == a.path.size();
+    const ai::Vec2 next =
+        last ? toMap(a.target_x, a.target_z) : ai::Vec2{double(a.path[k]), double(a.path[k + 1])};
+    // Touching is enough: a segment along the edge of the door and a wall passes between them.
+    if (ai::segmentMeetsCell(prev, next, cell, ai::CellContact::Closed)) return true;
+    prev = next;
+  }
+  return false;
 }
 
 AgentPathStats AgentNavigation::takeStats() {

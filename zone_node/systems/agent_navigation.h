@@ -1,11 +1,12 @@
 #pragma once
 // How AI agents get somewhere: on a scene with an obstacle map, navigating types ask the zone's
 // PathService for an A* or HPA* path and walk it along a centripetal Catmull-Rom spline from their
-// exact position to their exact target; doors that close at a scene time cut paths, and the
-// agents whose remaining path crossed the door ask again from where they stand. Without a map, or
-// for types that do not navigate, they steer straight at the target. The path itself is
-// AgentData (it migrates with the agent); the spline is a local cache rebuilt from it, so it is
-// the same on every rank.
+// exact position to their exact target (with `map.navigation: navmesh`, a navigation-mesh path
+// between those exact points, walked straight from corner to corner); doors that close at a scene
+// time cut paths, and the agents whose remaining path crossed the door ask again from where they
+// stand. Without a map, or for types that do not navigate, they steer straight at the target. The
+// path itself is AgentData (it migrates with the agent); the spline is a local cache rebuilt from
+// it, so it is the same on every rank.
 //
 // The per-tick budget is the cluster's, not the zone's: a waiting request is keyed by (tick it was
 // asked, agent id), both in AgentData, so it migrates with its agent. Each tick every zone sends
@@ -86,12 +87,16 @@ class AgentNavigation {
 
  private:
   ai::Cell startCell(double x, double z) const;
+  ai::Vec2 toMap(double x, double z) const;                       // world -> map units
+  crowd::Vec2 cornerOf(std::int32_t x, std::int32_t y) const;     // lattice point -> world
+  bool meshPathTouches(const AgentData& a, ai::Cell cell) const;  // a navmesh path's segments
   const ai::SplinePath& splineOf(const EntityStore& store, std::size_t i);
 
   const Scene& scene_;
   ZoneMap* map_ = nullptr;
   crowd::MapFrame frame_;
   std::unique_ptr<ai::PathService> service_;
+  bool navmesh_ = false;  // AgentData::path holds mesh corners between its end cells
   std::uint64_t map_changes_ = 0;
   struct Waiting {
     std::uint64_t asked, id;  // the request's key

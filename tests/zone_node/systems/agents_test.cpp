@@ -217,9 +217,12 @@ struct CourierRun {
   std::vector<double> end_state;  // id, position and path progress of every agent at the end
 };
 
-// Runs scenes/agents_paths.yaml (courtyard map, north door closing at 4 s) with a budget.
-CourierRun runCouriers(int paths_per_tick, int expansions_per_tick, int ticks, int cache = 0) {
-  Scene s = loadScene(source("scenes/agents_paths.yaml"));
+// Runs scenes/agents_paths.yaml (courtyard map, north door closing at 4 s) with a budget, or
+// another courier scene.
+CourierRun runCouriers(int paths_per_tick, int expansions_per_tick, int ticks, int cache = 0,
+                       const char* scene = "scenes/agents_paths.yaml") {
+  Scene s = loadScene(source(scene));
+  const bool mesh = s.agents.paths.planner == AgentPlanner::NavMesh;
   s.agents.paths.paths_per_tick = paths_per_tick;
   s.agents.paths.expansions_per_tick = expansions_per_tick;
   s.agents.paths.cache = cache;
@@ -237,12 +240,19 @@ CourierRun runCouriers(int paths_per_tick, int expansions_per_tick, int ticks, i
     std::set<std::uint64_t> in_door_now;
     for (std::size_t i = 0; i < node.store().size(); ++i) {
       ai::Cell cell = map.frame.cellOf({node.store().pos[i].x(), node.store().pos[i].z()});
-      bool door = cell.x == 22 && cell.y >= 10 && cell.y <= 12;
+      // Navmesh paths (agent radius 0) run along wall edges: there only strictly inside a
+      // cell counts as in it.
+      const double fx =
+          (node.store().pos[i].x() - map.frame.origin.x) / map.frame.cell_size - cell.x;
+      const double fz =
+          (node.store().pos[i].z() - map.frame.origin.y) / map.frame.cell_size - cell.y;
+      const bool inside = !mesh || (fx > 1e-9 && fz > 1e-9);
+      bool door = cell.x == 22 && cell.y >= 10 && cell.y <= 12 && inside;
       if (door) in_door_now.insert(node.store().id[i].value);
       // Entering the doorway once it is shut (one caught in it when it shut may walk out).
       if (door && time > 4.0 + s.dt && !in_door.count(node.store().id[i].value))
         ++r.door_crossings_after_close;
-      if (!door && !map.grid.passable(cell.x, cell.y)) ++r.ticks_on_blocked_cells;
+      if (!door && inside && !map.grid.passable(cell.x, cell.y)) ++r.ticks_on_blocked_cells;
     }
     in_door = std::move(in_door_now);
   }
@@ -263,6 +273,15 @@ TEST(Agents, CouriersReachTheirGoalsAndReplanAroundAClosedDoor) {
   EXPECT_GT(r.replans, 5);       // the door cut paths, which were planned again
   EXPECT_EQ(r.door_crossings_after_close, 0);
   EXPECT_EQ(r.ticks_on_blocked_cells, 0);  // splines through the cells never enter a wall
+}
+
+TEST(Agents, NavMeshCouriersReachTheirGoalsAndReplanAroundAClosedDoor) {
+  // scenes/agents_navmesh.yaml: the same couriers walking navigation-mesh paths.
+  CourierRun r = runCouriers(1000, 0, 1400, 0, "scenes/agents_navmesh.yaml");
+  EXPECT_GE(r.min_arrivals, 2);
+  EXPECT_GT(r.replans, 5);
+  EXPECT_EQ(r.door_crossings_after_close, 0);
+  EXPECT_EQ(r.ticks_on_blocked_cells, 0);  // straight segments between corners stay off walls
 }
 
 TEST(Agents, ABindingPathBudgetIsNeverExceededAndServesEveryone) {
