@@ -368,44 +368,39 @@ void benchLodFlock(const std::vector<int>& counts, double seconds) {
 /// near radius (the far radius 3x it, the middle band every 2 ticks) and a far period, the
 /// time saved against the outcome's drift from full detail (mean arrival time difference).
 /// CSV rows for bench/plot_lod_sweep.py.
+/// One kind's rows of the sweep: `run(settings or null)` gives a run with msPerTick, updates
+/// and arrival; `unit` converts its arrivals to seconds.
+template <class Run>
+void sweepRows(const char* kind, int n, std::initializer_list<double> nears, double unit,
+               const Run& run) {
+  const auto full = run(nullptr);
+  for (double near : nears) {
+    for (int k : {2, 4, 8, 16}) {
+      LodSettings s;
+      s.near_radius = near;
+      s.far_radius = 3 * near;
+      s.far_every = k;
+      const auto lod = run(&s);
+      const OutcomeDrift d = outcomeDrift(full, lod, unit);
+      std::printf("%s,%d,%g,%g,%d,%.4f,%.3f,%.3f,arrival_drift_s,%.4f\n", kind, n, near, 3 * near,
+                  k, lod.msPerTick, full.msPerTick / lod.msPerTick,
+                  double(full.updates) / double(lod.updates), d.both ? d.sumDt / d.both : 0.0);
+    }
+  }
+}
+
 void benchLodSweep(const std::vector<int>& counts, double seconds) {
   ai::GridMap map = benchMap();
   std::printf(
       "kind,agents,near_radius,far_radius,far_every,ms_per_tick,speedup,updates_ratio,"
       "error_name,error\n");
-  const int far_everies[] = {2, 4, 8, 16};
   for (int n : counts) {
     const int flow_ticks = int(seconds * 20);
-    LodRun full = runLod(map, n, flow_ticks, nullptr);
-    for (double near : {20.0, 40.0, 80.0}) {
-      for (int k : far_everies) {
-        LodSettings s;
-        s.near_radius = near;
-        s.far_radius = 3 * near;
-        s.far_every = k;
-        LodRun lod = runLod(map, n, flow_ticks, &s);
-        const OutcomeDrift d = outcomeDrift(full, lod, 1.0 / 20.0);
-        std::printf("flow,%d,%g,%g,%d,%.4f,%.3f,%.3f,arrival_drift_s,%.4f\n", n, near, 3 * near, k,
-                    lod.msPerTick, full.msPerTick / lod.msPerTick,
-                    double(full.updates) / double(lod.updates), d.both ? d.sumDt / d.both : 0.0);
-      }
-    }
+    sweepRows("flow", n, {20.0, 40.0, 80.0}, 1.0 / 20.0,
+              [&](const LodSettings* s) { return runLod(map, n, flow_ticks, s); });
     const int flock_ticks = int(seconds * 30 / 4);  // the flock's 40 m take about 20 s
-    FlockLodRun flock_full = runFlockLod(n, flock_ticks, 40, nullptr);
-    for (double near : {10.0, 20.0, 40.0}) {
-      for (int k : far_everies) {
-        LodSettings s;
-        s.near_radius = near;
-        s.far_radius = 3 * near;
-        s.far_every = k;
-        FlockLodRun lod = runFlockLod(n, flock_ticks, 40, &s);
-        const OutcomeDrift d = outcomeDrift(flock_full, lod, 1.0);
-        std::printf("flock,%d,%g,%g,%d,%.4f,%.3f,%.3f,arrival_drift_s,%.4f\n", n, near, 3 * near, k,
-                    lod.msPerTick, flock_full.msPerTick / lod.msPerTick,
-                    double(flock_full.updates) / double(lod.updates),
-                    d.both ? d.sumDt / d.both : 0.0);
-      }
-    }
+    sweepRows("flock", n, {10.0, 20.0, 40.0}, 1.0,
+              [&](const LodSettings* s) { return runFlockLod(n, flock_ticks, 40, s); });
   }
 }
 
