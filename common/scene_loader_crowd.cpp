@@ -115,9 +115,9 @@ void readCrowdLod(const SceneMap& root, Scene& scene) {
   if (!root.optional("lod")) return;
   CrowdLod& l = scene.lod;
   l.enabled = true;
-  SceneMap m =
-      root.section("lod", {"near_radius", "far_radius", "mid_every", "far_every", "mid_steers",
-                           "far_steers", "observers", "crowded_count", "crowded_cell"});
+  SceneMap m = root.section(
+      "lod", {"near_radius", "far_radius", "mid_every", "far_every", "mid_steers", "far_steers",
+              "observers", "crowded_count", "crowded_cell", "physics_every", "physics_max_step"});
   m.read("near_radius", l.near_radius, Limit::atLeast(0));
   m.read("far_radius", l.far_radius, Limit::atLeast(l.near_radius));
   m.read("mid_every", l.mid_every, Limit::between(1, 64));
@@ -126,6 +126,8 @@ void readCrowdLod(const SceneMap& root, Scene& scene) {
   m.read("far_steers", l.far_steers);
   m.read("crowded_count", l.crowded_count, Limit::between(0, 1000000));
   m.read("crowded_cell", l.crowded_cell, Limit::above(0));
+  m.read("physics_every", l.physics_every, Limit::between(1, 64));
+  m.read("physics_max_step", l.physics_max_step, Limit::atLeast(0));
   // A cell's count includes agents across a border, which a zone sees only as ghosts.
   if (l.crowded_count > 0 && scene.zones.columns * scene.zones.rows > 1 &&
       l.crowded_cell > scene.halo_width) {

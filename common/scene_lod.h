@@ -7,7 +7,8 @@
 namespace zonesim {
 
 /// Level of detail for crowds (crowd/lod.h): NPCs far from every player are updated
-/// less often, the farthest without steering (`lod:` key; absent: every NPC every tick).
+/// less often, the farthest without steering, and far rigid bodies too (`lod:` key; absent:
+/// every NPC and body every tick).
 struct CrowdLod {
   bool enabled = false;     ///< the scene has a `lod` key
   double near_radius = 40;  ///< m from the nearest player: every tick, full steering
@@ -20,6 +21,11 @@ struct CrowdLod {
   /// detail wherever they are (crowd::LodSettings::crowded_count); 0: off.
   int crowded_count = 0;
   double crowded_cell = 4;  ///< m
+  /// Rigid-body islands with no body within near_radius of a player or observer step every
+  /// this many ticks, by the time they skipped (physics/step_lod.h); 1: every tick.
+  int physics_every = 1;
+  /// s: the longest step a far island takes (physics::WorldSettings::lod_longest_step); 0: any.
+  double physics_max_step = 1.0 / 15.0;
   /// Fixed ground-plane points (x, z) that count as players (scripted observers: runs
   /// without clients, tests, points of interest that keep full detail).
   std::vector<std::pair<double, double>> observers;

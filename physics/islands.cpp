@@ -1,7 +1,6 @@
 #include "physics/islands.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace zonesim::physics {
 
@@ -12,7 +11,6 @@ constexpr std::uint32_t kNoIsland = 0xffffffffu;
 void Islands::resize(std::size_t n) {
   asleep_.resize(n, 0);
   rest_time_.resize(n, 0.0);
-  parent_.resize(n);
   island_.resize(n, kNoIsland);
   island_rest_.resize(n);
 }
@@ -34,25 +32,15 @@ void Islands::wake(std::size_t i) {
   }
 }
 
-std::uint32_t Islands::find(std::uint32_t i) {
-  while (parent_[i] != i) {
-    parent_[i] = parent_[parent_[i]];  // Path halving.
-    i = parent_[i];
-  }
-  return i;
-}
-
 void Islands::update(BodyStorage& bodies, std::span<const BodyContact> contacts,
                      const SleepSettings& settings, double dt) {
   const std::size_t n = bodies.size();
   resize(n);
-  std::iota(parent_.begin(), parent_.end(), 0u);
+  sets_.reset(n);
   for (const BodyContact& c : contacts) {
     // Statics and kinematics do not join islands: a floor would merge everything on it.
     if (bodies.inv_mass[c.a] == 0.0 || bodies.inv_mass[c.b] == 0.0) continue;
-    const std::uint32_t ra = find(c.a), rb = find(c.b);
-    // The smaller index becomes the root: deterministic island ids.
-    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+    sets_.unite(c.a, c.b);  // the smaller index becomes the root: deterministic island ids
   }
   const double v2 = settings.linear_speed * settings.linear_speed;
   const double w2 = settings.angular_speed * settings.angular_speed;
@@ -62,12 +50,12 @@ void Islands::update(BodyStorage& bodies, std::span<const BodyContact> contacts,
     const bool resting = bodies.linear_velocity[i].squaredNorm() < v2 &&
                          bodies.angular_velocity[i].squaredNorm() < w2;
     rest_time_[i] = resting ? rest_time_[i] + dt : 0.0;
-    const std::uint32_t root = find(static_cast<std::uint32_t>(i));
+    const std::uint32_t root = sets_.find(static_cast<std::uint32_t>(i));
     island_rest_[root] = std::min(island_rest_[root], rest_time_[i]);
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (asleep_[i] || bodies.inv_mass[i] == 0.0) continue;
-    const std::uint32_t root = find(static_cast<std::uint32_t>(i));
+    const std::uint32_t root = sets_.find(static_cast<std::uint32_t>(i));
     if (island_rest_[root] < settings.time_to_sleep) continue;
     asleep_[i] = 1;
     island_[i] = root;

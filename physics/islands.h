@@ -9,6 +9,7 @@
 
 #include "physics/body_storage.h"
 #include "physics/contact_solver.h"
+#include "physics/union_find.h"
 
 namespace zonesim::physics {
 
@@ -35,13 +36,13 @@ class Islands {
               const SleepSettings& settings, double dt);
   /// Number of bodies asleep.
   std::size_t sleepingCount() const;
+  /// Per body, 1 when asleep.
+  std::span<const std::uint8_t> asleepMask() const { return asleep_; }
 
  private:
-  std::uint32_t find(std::uint32_t i);
-
   std::vector<std::uint8_t> asleep_;
   std::vector<double> rest_time_;
-  std::vector<std::uint32_t> parent_;  // Union-find over this step's contacts.
+  UnionFind sets_;                     // this step's contacts
   std::vector<std::uint32_t> island_;  // Root id an asleep body slept with.
   std::vector<double> island_rest_;
 };

@@ -50,6 +50,12 @@ class RigidJoints {
   bool empty() const { return balls_.empty() && hinges_.empty(); }
   /// Bodies held by a joint get a 1 in touched (sized to the body count).
   void markBodies(std::span<std::uint8_t> touched) const;
+  /// Calls f(a, b) for every joint's bodies (b may be kNoBody).
+  template <typename F>
+  void forEachPair(F f) const {
+    for (const BallJoint& j : balls_) f(j.a, j.b);
+    for (const HingeJoint& j : hinges_) f(j.a, j.b);
+  }
   /// Builds the rows at the current positions; beta is the Baumgarte fraction per step.
   void prepare(const BodyStorage& bodies, double dt, double beta);
   /// Applies last step's impulses.

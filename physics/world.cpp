@@ -3,8 +3,10 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "common/timer.h"
 #include "physics/compound.h"
@@ -53,11 +55,116 @@ BodyIndex World::addBody(const BodyDesc& desc) {
   }
   const BodyIndex i = bodies_.add(desc);
   islands_.resize(bodies_.size());
+  lod_.resize(bodies_.size());
   return i;
 }
 
 void World::step(double dt) {
   profile_ = {};
+  if (lod_.idle()) {
+    stepAll(dt);
+  } else {
+    stepLevels(dt);
+  }
+  ++steps_;
+}
+
+void World::stepLevels(double dt) {
+  const std::size_t n = bodies_.size();
+  const double longest = settings_.lod_longest_step;
+  const int longest_period =
+      longest > 0.0 ? std::max(1, static_cast<int>(std::floor(longest / dt * (1.0 + 1e-9)))) : 64;
+  lod_.plan(bodies_, contacts_, joints_, rigid_joints_, islands_.asleepMask(), steps_,
+            longest_period);
+  stepped_.assign(n, 0);
+  held_.assign(n, 0);
+  // A lasting blast acts in every pass and is counted down once, by the tick's dt.
+  const std::vector<Blast> blasts = forces_.blasts;
+  const std::span<const int> ticks = lod_.passTicks();
+  for (std::size_t p = 0; p < ticks.size(); ++p) {
+    forces_.blasts = blasts;
+    holdAllBut(static_cast<int>(p), ticks[p]);
+    // A debt longer than the longest step (a period just cut, or an island just brought near)
+    // is paid in equal steps that fit.
+    const double length = dt * ticks[p];
+    const int pieces =
+        longest > 0.0 ? std::max(1, static_cast<int>(std::ceil(length / longest - 1e-9))) : 1;
+    for (int piece = 0; piece < pieces; ++piece) stepAll(length / pieces);
+    // Bodies woken by a touch in this pass stepped in it too.
+    for (std::size_t i = 0; i < n; ++i)
+      stepped_[i] |= bodies_.type[i] != BodyType::Static && !held_[i] && !islands_.asleep(i);
+    releaseHeld();
+  }
+  forces_.blasts = blasts;
+  for (Blast& blast : forces_.blasts) blast.remaining -= dt;
+  std::erase_if(forces_.blasts, [](const Blast& b) { return b.remaining <= 1e-12; });
+  lod_.finish(bodies_, stepped_, islands_.asleepMask());
+}
+
+void World::holdAllBut(int pass, int ticks) {
+  const std::size_t n = bodies_.size();
+  held_list_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto b = static_cast<BodyIndex>(i);
+    if (bodies_.type[i] == BodyType::Static || islands_.asleep(i)) continue;
+    if (lod_.passOf(b) == pass) {
+      // Forces gathered over the ticks it was held act over the whole longer step: their
+      // impulse is the sum of each tick's.
+      if (ticks > 1) {
+        bodies_.force[i] /= ticks;
+        bodies_.torque[i] /= ticks;
+      }
+      continue;
+    }
+    held_[i] = 1;
+    held_list_.push_back(b);
+  }
+  // Held bodies keep their state aside and stand as immovable, unmoving obstacles.
+  const std::size_t h = held_list_.size();
+  held_inv_mass_.resize(h);
+  held_inv_inertia_local_.resize(h);
+  held_inv_inertia_world_.resize(h);
+  held_linear_velocity_.resize(h);
+  held_angular_velocity_.resize(h);
+  for (std::size_t k = 0; k < h; ++k) {
+    const BodyIndex i = held_list_[k];
+    held_inv_mass_[k] = std::exchange(bodies_.inv_mass[i], 0.0);
+    held_inv_inertia_local_[k] = bodies_.inv_inertia_local[i];
+    held_inv_inertia_world_[k] = bodies_.inv_inertia_world[i];
+    bodies_.inv_inertia_local[i].setZero();
+    bodies_.inv_inertia_world[i].setZero();
+    held_linear_velocity_[k] = std::exchange(bodies_.linear_velocity[i], Vec3::Zero());
+    held_angular_velocity_[k] = std::exchange(bodies_.angular_velocity[i], Vec3::Zero());
+  }
+  // The pass finds again every contact of a body it steps; the others keep their last ones
+  // (warm starts for their own pass, and the islands of the next plan).
+  held_contacts_.clear();
+  for (const BodyContact& c : contacts_) {
+    const bool a_steps = bodies_.type[c.a] != BodyType::Static && !still(c.a);
+    const bool b_steps = bodies_.type[c.b] != BodyType::Static && !still(c.b);
+    if (!a_steps && !b_steps) held_contacts_.push_back(c);
+  }
+}
+
+void World::releaseHeld() {
+  for (std::size_t k = 0; k < held_list_.size(); ++k) {
+    const BodyIndex i = held_list_[k];
+    held_[i] = 0;
+    bodies_.inv_mass[i] = held_inv_mass_[k];
+    bodies_.inv_inertia_local[i] = held_inv_inertia_local_[k];
+    bodies_.inv_inertia_world[i] = held_inv_inertia_world_[k];
+    bodies_.linear_velocity[i] = held_linear_velocity_[k];
+    bodies_.angular_velocity[i] = held_angular_velocity_[k];
+  }
+  held_list_.clear();
+  merged_contacts_.clear();
+  std::merge(contacts_.begin(), contacts_.end(), held_contacts_.begin(), held_contacts_.end(),
+             std::back_inserter(merged_contacts_),
+             [](const BodyContact& x, const BodyContact& y) { return x < y; });
+  contacts_.swap(merged_contacts_);
+}
+
+void World::stepAll(double dt) {
   const int n = std::max(1, settings_.substeps);
   // A lasting blast wakes what it reaches (sleeping bodies are not integrated).
   for (const Blast& blast : forces_.blasts) {
@@ -138,6 +245,8 @@ void World::substep(double dt) {
     if (settings_.sleep.enabled) islands_.update(bodies_, contacts_, settings_.sleep, dt);
   }
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    // A held body keeps what was applied to it for the step it will take.
+    if (!held_.empty() && held_[i]) continue;
     bodies_.force[i].setZero();
     bodies_.torque[i].setZero();
   }
@@ -157,7 +266,7 @@ void World::integrateForces(double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
     if (type == BodyType::Static) continue;
-    if (islands_.asleep(i)) {
+    if (still(static_cast<BodyIndex>(i))) {
       // Sleeping bodies hold still: gravity is balanced by contacts that are not solved.
       v_force_[i].setZero();
       x_force_[i] = x_start_[i];
@@ -249,8 +358,8 @@ void World::findPairs(double dt) {
     double grow = 0.5 * settings_.contact_margin;
     if (settings_.speculative) grow += bodies_.linear_velocity[i].norm() * dt;
     proxy_boxes_.push_back(box.expanded(grow));
-    // Asleep counts as not moving: pairs of sleeping and static bodies are never found.
-    proxy_moving_.push_back(bodies_.type[i] != BodyType::Static && !islands_.asleep(i));
+    // Asleep or held counts as not moving: pairs of still and static bodies are never found.
+    proxy_moving_.push_back(bodies_.type[i] != BodyType::Static && !still(BodyIndex(i)));
     proxy_body_.push_back(static_cast<BodyIndex>(i));
   }
   broadphase_.findPairs(proxy_boxes_, proxy_moving_, pairs_);
@@ -270,7 +379,7 @@ void World::contactsOfPairs(double dt) {
   for (BodyIndex plane : planes_) {
     for (std::size_t i = 0; i < n; ++i) {
       const auto b = static_cast<BodyIndex>(i);
-      if (b == plane || bodies_.type[b] == BodyType::Static || islands_.asleep(b)) continue;
+      if (b == plane || bodies_.type[b] == BodyType::Static || still(b)) continue;
       if (contactIgnored(plane, b)) continue;
       const double speed = bodies_.linear_velocity[b].norm();
       addContact(std::min(plane, b), std::max(plane, b),
@@ -289,9 +398,13 @@ void World::contactsOfPairs(double dt) {
 void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   // Two immovable bodies exchange no impulses.
   if (bodies_.inv_mass[a] == 0.0 && bodies_.inv_mass[b] == 0.0) return;
-  // A foreign body meets only this world's own movable bodies.
-  if (bodies_.foreign[a] && (bodies_.foreign[b] || bodies_.inv_mass[b] == 0.0)) return;
-  if (bodies_.foreign[b] && bodies_.inv_mass[a] == 0.0) return;
+  // A foreign body meets only this world's own movable bodies (held ones too: it must not pass
+  // through a far pile held still this step).
+  const auto fixed = [&](BodyIndex i) {
+    return bodies_.inv_mass[i] == 0.0 && (held_.empty() || !held_[i]);
+  };
+  if (bodies_.foreign[a] && (bodies_.foreign[b] || fixed(b))) return;
+  if (bodies_.foreign[b] && fixed(a)) return;
   const Pose pa{bodies_.position[a], bodies_.orientation[a]};
   const Pose pb{bodies_.position[b], bodies_.orientation[b]};
   const double friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
@@ -368,7 +481,7 @@ void World::integratePositions(double dt) {
   const std::size_t n = bodies_.size();
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
-    if (type == BodyType::Static || islands_.asleep(i)) continue;
+    if (type == BodyType::Static || still(BodyIndex(i))) continue;
     // The integrator's displacement, corrected by what the contact solve changed in velocity,
     // plus the split-impulse pseudo-velocity (which then vanishes).
     const Vec3 correction = bodies_.linear_velocity[i] - v_force_[i];
@@ -448,7 +561,7 @@ void World::solveProjection(double dt) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
-    if (type == BodyType::Static || islands_.asleep(i)) continue;
+    if (type == BodyType::Static || still(BodyIndex(i))) continue;
     bodies_.linear_velocity[i] += (soft_dp_[i] - soft_dv_[i]) / dt;
     bodies_.position[i] = x_start_[i] + soft_dp_[i];
     if (type == BodyType::Particle) continue;
@@ -517,7 +630,7 @@ void World::solveSoftStep(double dt) {
   rigid_joints_.markBodies(soft_touched_);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
-    if (type == BodyType::Static || islands_.asleep(i)) continue;
+    if (type == BodyType::Static || still(BodyIndex(i))) continue;
     bodies_.position[i] = soft_touched_[i] ? Vec3(x_start_[i] + soft_dp_[i]) : x_force_[i];
     if (type == BodyType::Particle) continue;
     // Turned by exactly the rotation the joints saw (soft_joint_anchor.h): the first-order

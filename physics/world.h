@@ -15,6 +15,7 @@
 #include "physics/integrator.h"
 #include "physics/islands.h"
 #include "physics/rigid_joints.h"
+#include "physics/step_lod.h"
 #include "physics/step_profile.h"
 
 namespace zonesim::physics {
@@ -38,6 +39,11 @@ struct WorldSettings {
   /// velocity. Taken implicitly (one Newton step, stable at any spin). Off by default: the
   /// shipped scenes were measured without it.
   bool gyroscopic = false;
+  /// Level of detail: the longest step (s) a held island may take when its turn comes; its
+  /// period is cut to fit, and a longer debt is paid in several steps. Stacks fall apart in
+  /// long steps (a 10-level pyramid drifts 6 cm at 1/15 s per step and flies apart at 2/15 s;
+  /// docs/benchmarks.md). 0: no limit.
+  double lod_longest_step = 0.0;
 };
 
 /// A set of bodies stepped together.
@@ -48,8 +54,15 @@ class World {
 
   /// Adds a body and returns its index.
   BodyIndex addBody(const BodyDesc& desc);
-  /// Advances by dt, split into settings().substeps equal substeps.
+  /// Advances by dt, split into settings().substeps equal substeps. Islands whose bodies all
+  /// have a step period k > 1 (setStepPeriod) step only on every k-th call, by the time they
+  /// skipped, and are held still, as immovable obstacles, in between.
   void step(double dt);
+  /// Level of detail in time: body i may step every `period` calls of step() (1-64; 1, the
+  /// default, every call). Its island steps as often as its most often stepped body.
+  void setStepPeriod(BodyIndex i, int period) { lod_.setPeriod(i, period); }
+  /// Step periods, what each body still owes, and the body steps taken and held so far.
+  const StepLod& stepLod() const { return lod_; }
 
   /// Adds a force through the centre of mass for the next step (wakes the body).
   void applyForce(BodyIndex i, const Vec3& force) {
@@ -99,6 +112,17 @@ class World {
   const StepProfile& profile() const { return profile_; }
 
  private:
+  /// Every awake body advances by dt.
+  void stepAll(double dt);
+  /// The step with periods: one stepAll per step length of the due islands, the rest held.
+  void stepLevels(double dt);
+  /// Holds every awake movable body outside pass p still (no mass, no velocity) and sets aside
+  /// the contacts that pass will not see again; releaseHeld() undoes both.
+  void holdAllBut(int pass, int ticks);
+  void releaseHeld();
+  /// Asleep, or held by the level of detail: not integrated and not paired with other still
+  /// bodies.
+  bool still(BodyIndex i) const { return islands_.asleep(i) || (!held_.empty() && held_[i]); }
   void substep(double dt);
   void integrateForces(double dt);
   /// The angular velocity of dynamic body i after dt of its gyroscopic torque (implicit).
@@ -142,6 +166,16 @@ class World {
   std::vector<BodyContact> contacts_, previous_;
   std::vector<BodyIndex> quarantined_;
   StepProfile profile_;
+
+  // Level of detail in time (step_lod.h) and what holding a body still set aside.
+  StepLod lod_;
+  std::uint64_t steps_ = 0;
+  std::vector<std::uint8_t> held_, stepped_;
+  std::vector<BodyIndex> held_list_;
+  std::vector<double> held_inv_mass_;
+  std::vector<Eigen::Matrix3d> held_inv_inertia_local_, held_inv_inertia_world_;
+  std::vector<Vec3> held_linear_velocity_, held_angular_velocity_;
+  std::vector<BodyContact> held_contacts_, merged_contacts_;
 };
 
 }  // namespace zonesim::physics

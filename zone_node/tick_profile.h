@@ -90,6 +90,7 @@ struct TickCounters {
   std::uint64_t imbalance_permille = 0;  ///< max/mean cost at the last balance check, x1000
   std::uint64_t migration_bytes = 0;
   std::uint64_t bodies_awake = 0;
+  std::uint64_t bodies_held = 0;  ///< awake bodies far from players waiting for their step (lod)
   std::uint64_t particles_alive = 0;
   std::uint64_t published_updates = 0;
   std::uint64_t published_enters = 0;
@@ -155,6 +156,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"imbalance_permille", &TickCounters::imbalance_permille, true},
     {"migration_bytes", &TickCounters::migration_bytes, false},
     {"bodies_awake", &TickCounters::bodies_awake, true},
+    {"bodies_held", &TickCounters::bodies_held, true},
     {"particles_alive", &TickCounters::particles_alive, true},
     {"published_updates", &TickCounters::published_updates, false},
     {"published_enters", &TickCounters::published_enters, false},

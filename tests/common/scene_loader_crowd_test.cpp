@@ -236,6 +236,10 @@ TEST(SceneLod, AbsentMeansOffAndValuesComeThrough) {
             kSceneName + ":5: lod.far_radius: must be >= 50, got 30");
   EXPECT_EQ(sceneError([] { parseScene(sceneWith("lod: {mid_every: 0}\n"), kSceneName); }),
             kSceneName + ":5: lod.mid_every: must be in [1, 64], got 0");
+  EXPECT_EQ(s.lod.physics_every, 1);  // bodies every tick unless asked
+  EXPECT_EQ(parseScene(sceneWith("lod: {physics_every: 4}\n"), kSceneName).lod.physics_every, 4);
+  EXPECT_EQ(sceneError([] { parseScene(sceneWith("lod: {physics_every: 65}\n"), kSceneName); }),
+            kSceneName + ":5: lod.physics_every: must be in [1, 64], got 65");
 }
 
 TEST(SceneLod, ObserversComeThroughAndMustLieInTheWorld) {

@@ -6,12 +6,14 @@
 #include <string>
 
 #include "common/scene.h"
+#include "crowd/lod.h"
 #include "physics/cloth.h"
 #include "physics/cloth_collision.h"
 #include "physics/mass_properties.h"
 #include "physics/world.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/population.h"
+#include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/scene_shapes.h"
 #include "zone_node/tick_profile.h"
 
@@ -19,8 +21,9 @@ namespace zonesim::zone {
 
 namespace {
 
-physics::WorldSettings settingsFor(const PhysicsSettings& p) {
+physics::WorldSettings settingsFor(const PhysicsSettings& p, const CrowdLod& lod) {
   physics::WorldSettings w;
+  w.lod_longest_step = lod.physics_max_step;
   w.integrator = physics::Integrator(int(p.integrator));
   w.broadphase = physics::BroadphaseKind(int(p.broadphase));
   w.substeps = p.substeps;
@@ -176,7 +179,7 @@ std::vector<std::size_t> RigidBodySystem::foreignBodies(const GhostStore* ghosts
 
 void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts,
                               const std::vector<std::size_t>& foreign) {
-  world_ = std::make_unique<physics::World>(settingsFor(scene_.physics));
+  world_ = std::make_unique<physics::World>(settingsFor(scene_.physics, scene_.lod));
   world_->forces().linear_drag = scene_.physics.linear_drag;
   world_->forces().quadratic_drag = scene_.physics.quadratic_drag;
   const SceneBox& w = scene_.world;
@@ -316,13 +319,27 @@ void RigidBodySystem::stepCloths(double dt) {
 void RigidBodySystem::step(StepContext& ctx) {
   profile_ = {};
   const std::uint64_t steps_before = world_steps_;
-  ctx.counters.bodies_awake = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.tick);
+  ctx.counters.bodies_awake = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.tick, ctx.players);
   ctx.counters.physics_steps = world_steps_ - steps_before;
+  ctx.counters.bodies_held = bodies_held_;
+}
+
+void RigidBodySystem::setStepPeriods(std::span<const crowd::Vec2> players) {
+  const crowd::LodSettings lod = lodOf(scene_.lod);
+  const physics::BodyStorage& s = world_->bodies();
+  for (std::size_t n = 0; n < body_entity_.size(); ++n) {
+    const auto bi = physics::BodyIndex(first_dynamic_ + n);
+    const crowd::Vec2 at{s.position[bi].x(), s.position[bi].z()};
+    const bool near = crowd::lodLevel(at, players, lod) == crowd::LodLevel::Near;
+    world_->setStepPeriod(bi, near ? 1 : scene_.lod.physics_every);
+  }
 }
 
 std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghosts, double dt,
-                                     std::uint64_t tick_index) {
+                                     std::uint64_t tick_index,
+                                     std::span<const crowd::Vec2> players) {
   ghost_impulses_.clear();
+  bodies_held_ = 0;
   IdSetDigest now;
   for (std::size_t i = 0; i < store.size(); ++i)
     if (store.kind[i] == EntityKind::RigidBody) now.add(store.id[i]);
@@ -367,6 +384,7 @@ std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghost
   if (awake == 0 && !pushed && cloths_.empty()) return 0;
   if (awake > 0 || pushed) {
     std::size_t frozen_before = world_->quarantined().size();
+    if (scene_.lod.enabled && scene_.lod.physics_every > 1) setStepPeriods(players);
     world_->step(dt);
     ++world_steps_;
     profile_ = world_->profile();
@@ -383,6 +401,7 @@ std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghost
     store.body[i].angular_velocity = s.angular_velocity[bi];
     store.body[i].sleeping = world_->asleep(bi);
     awake += !store.body[i].sleeping;
+    bodies_held_ += world_->stepLod().lag(bi) > 0;
   }
   // What our bodies did to the foreign ones: their velocity change less gravity's (they have
   // no damping or drag here: their owner applies those). Round-off of that subtraction is far below 1e-9 m/s.

@@ -26,10 +26,12 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "common/entity_id.h"
 #include "common/math.h"
+#include "crowd/vec2.h"
 #include "physics/shape.h"
 #include "physics/step_profile.h"
 #include "zone_node/entity_store.h"
@@ -82,7 +84,11 @@ class RigidBodySystem : public ZoneSystem {
 
  private:
   /// Returns how many bodies are awake.
-  std::size_t advance(EntityStore& store, const GhostStore* ghosts, double dt, std::uint64_t tick);
+  std::size_t advance(EntityStore& store, const GhostStore* ghosts, double dt, std::uint64_t tick,
+                      std::span<const crowd::Vec2> players);
+  /// Level of detail: this zone's bodies beyond lod.near_radius of every player step every
+  /// lod.physics_every ticks (their islands do, unless a near body is in them).
+  void setStepPeriods(std::span<const crowd::Vec2> players);
   void rebuild(const EntityStore& store, const GhostStore* ghosts,
                const std::vector<std::size_t>& foreign);
   /// Ghost indices of the bodies whose contacts with ours this zone resolves, in id order.
@@ -116,6 +122,7 @@ class RigidBodySystem : public ZoneSystem {
   std::uint64_t quarantined_ = 0;
   std::uint64_t rebuilds_ = 0;
   std::uint64_t world_steps_ = 0;  // times the engine's world stepped
+  std::uint64_t bodies_held_ = 0;  // of this zone's bodies, held still in the last step (lod)
   physics::StepProfile profile_;
   std::size_t joints_added_ = 0;
   std::vector<std::unique_ptr<physics::Cloth>> cloths_;
