@@ -15,15 +15,6 @@ int sign(int v) {
   return (v > 0) - (v < 0);
 }
 
-constexpr int kDx[8] = {1, -1, 0, 0, 1, -1, 1, -1};
-constexpr int kDy[8] = {0, 0, 1, -1, 1, 1, -1, -1};
-
-/// Index of (dx, dy) in kDx / kDy, by table: the JPS+ search reads it for every jump.
-int directionIndex(int dx, int dy) {
-  static constexpr int kIndex[9] = {7, 3, 6, 1, -1, 0, 5, 2, 4};  // by (dy + 1) * 3 + dx + 1
-  return kIndex[(dy + 1) * 3 + dx + 1];
-}
-
 /// Steps from `from` along the direction to reach `to`, when `to` lies exactly on that ray
 /// (straight: same row or column; diagonal: on the diagonal), else -1.
 int stepsOnRay(int x, int y, int dx, int dy, int tx, int ty) {
@@ -34,156 +25,166 @@ int stepsOnRay(int x, int y, int dx, int dy, int tx, int ty) {
   return dx != 0 ? std::abs(ex) : std::abs(ey);
 }
 
+/// Bits needed for coordinates below `width`.
+int bitsFor(int width) {
+  int shift = 0;
+  while ((1 << shift) < width) ++shift;
+  return shift;
+}
+
 }  // namespace
 
 JumpPointSearch::JumpPointSearch(const GridMap& map, Jumps jumps)
     : map_(map),
       jumps_(jumps),
-      nodes_(std::size_t(map.width()) * std::size_t(map.height()), Node{0, -1, 0}) {}
+      shift_(bitsFor(map.width())),
+      nodes_(std::size_t(map.height()) << shift_, Node{0, -1, 0}) {}
 
 void JumpPointSearch::syncCells() {
-  if (synced_version_ == map_.version() && !open_.empty()) return;
-  padded_width_ = map_.width() + 2;
-  open_.assign(std::size_t(padded_width_) * std::size_t(map_.height() + 2), 0);
-  for (int y = 0; y < map_.height(); ++y) {
-    for (int x = 0; x < map_.width(); ++x) {
-      open_[std::size_t(y + 1) * std::size_t(padded_width_) + std::size_t(x + 1)] =
-          map_.passableAt(map_.index(x, y)) ? 1 : 0;
-    }
-  }
+  if (synced_version_ == map_.version()) return;
+  rows_ = BitGrid(map_, false);
+  columns_ = BitGrid(map_, true);
   synced_version_ = map_.version();
-  if (jumps_ == Jumps::Precomputed) precompute();
+  if (jumps_ == Jumps::Precomputed) tables_.build(rows_);
 }
 
-void JumpPointSearch::precompute() {
-  const int w = map_.width(), h = map_.height();
-  for (auto& table : distance_) table.assign(open_.size(), 0);
-  // Does entering (x, y) moving straight along (dx, dy) make it a jump point (a forced
-  // neighbour, as in jumpStraight)?
-  auto forced = [&](int x, int y, int dx, int dy) {
-    if (dx != 0) {
-      return (walkable(x, y - 1) && !walkable(x - dx, y - 1)) ||
-             (walkable(x, y + 1) && !walkable(x - dx, y + 1));
-    }
-    return (walkable(x - 1, y) && !walkable(x - 1, y - dy)) ||
-           (walkable(x + 1, y) && !walkable(x + 1, y - dy));
-  };
-  // One step further than the next cell's value: towards its jump point or its wall.
-  auto further = [](std::int32_t next) { return next > 0 ? next + 1 : next - 1; };
-  // Straight directions, each scanned so that the next cell along it is done first.
-  for (int d = 0; d < 4; ++d) {
-    const int dx = kDx[d], dy = kDy[d];
-    std::vector<std::int32_t>& t = distance_[d];
-    for (int i = 0; i < w * h; ++i) {
-      // Walk rows (or columns) against the direction.
-      const int y = dy > 0 ? h - 1 - i / w : (dy < 0 ? i / w : i / w);
-      const int x = dx > 0 ? w - 1 - i % w : (dx < 0 ? i % w : i % w);
-      if (!walkable(x, y)) continue;
-      const int nx = x + dx, ny = y + dy;
-      if (!walkable(nx, ny)) {
-        t[padded(x, y)] = 0;
-      } else {
-        t[padded(x, y)] = forced(nx, ny, dx, dy) ? 1 : further(t[padded(nx, ny)]);
-      }
+int JumpPointSearch::jumpStraight(int x, int y, int dx, int dy) const {
+  if (jumps_ == Jumps::Precomputed) {
+    const std::int32_t t = tables_.distance(JpsPlusTables::direction(dx, dy), x, y);
+    // The goal is a jump point of every search: stop there if it lies within reach.
+    const int to_goal = stepsOnRay(x, y, dx, dy, goal_x_, goal_y_);
+    if (to_goal > 0 && to_goal <= (t > 0 ? t : -t)) return goal_idx_;
+    return t > 0 ? node(x + t * dx, y + t * dy) : -1;
+  }
+  // Along the line's positions: a row (x varies) or a column (y varies).
+  const bool horizontal = dy == 0;
+  const int line = horizontal ? y : x, pos = horizontal ? x : y, dir = horizontal ? dx : dy;
+  const BitGrid& bits = horizontal ? rows_ : columns_;
+  const BitGrid::Stop stop = dir > 0 ? bits.scanUp(line, pos) : bits.scanDown(line, pos);
+  // The goal is reached when it lies on the line between here and the last cell scanned.
+  if ((horizontal ? goal_y_ : goal_x_) == line) {
+    const int goal_pos = horizontal ? goal_x_ : goal_y_;
+    const int last = stop.jump ? stop.at : stop.at - dir;
+    if ((goal_pos - pos) * dir > 0 && (last - goal_pos) * dir >= 0) return goal_idx_;
+  }
+  if (!stop.jump) return -1;
+  return horizontal ? node(stop.at, y) : node(x, stop.at);
+}
+
+bool JumpPointSearch::stepDiagonal(int& x, int& y, int dx, int dy) const {
+  if (jumps_ == Jumps::Scanned) {
+    // No corner cutting: both cardinal cells beside the diagonal step must be open.
+    if (!walkable(x + dx, y) || !walkable(x, y + dy) || !walkable(x + dx, y + dy)) return false;
+    x += dx;
+    y += dy;
+    return true;
+  }
+  const std::int32_t t = tables_.distance(JpsPlusTables::direction(dx, dy), x, y);
+  const int reach = t > 0 ? t : -t;
+  if (sign(goal_x_ - x) == dx && sign(goal_y_ - y) == dy) {
+    // Goal in this quadrant: stop where the diagonal meets its row or column, if in reach
+    // (straight jumps from there find the goal).
+    const int steps = std::min(std::abs(goal_x_ - x), std::abs(goal_y_ - y));
+    if (steps <= reach) {
+      x += steps * dx;
+      y += steps * dy;
+      return true;
     }
   }
-  // Diagonals: the next cell is one row further along dy, so rows go against dy.
-  for (int d = 4; d < 8; ++d) {
-    const int dx = kDx[d], dy = kDy[d];
-    const int along_x = directionIndex(dx, 0), along_y = directionIndex(0, dy);
-    std::vector<std::int32_t>& t = distance_[d];
-    for (int r = 0; r < h; ++r) {
-      const int y = dy > 0 ? h - 1 - r : r;
-      for (int x = 0; x < w; ++x) {
-        if (!walkable(x, y)) continue;
-        const int nx = x + dx, ny = y + dy;
-        if (!walkable(x + dx, y) || !walkable(x, y + dy) || !walkable(nx, ny)) {
-          t[padded(x, y)] = 0;
-        } else if (distance_[along_x][padded(nx, ny)] > 0 ||
-                   distance_[along_y][padded(nx, ny)] > 0) {
-          t[padded(x, y)] = 1;
-        } else {
-          t[padded(x, y)] = further(t[padded(nx, ny)]);
+  if (t <= 0) return false;
+  x += t * dx;
+  y += t * dy;
+  return true;
+}
+
+void JumpPointSearch::relax(int from, int x, int y, int to) {
+  Node& n = nodes_[to];
+  const std::uint32_t open = generation_, closed = generation_ + 1;
+  if (n.stamp == closed) return;
+  const int tx = to & ((1 << shift_) - 1), ty = to >> shift_;
+  const std::int64_t g = nodes_[from].g + octileFixed(tx - x, ty - y);
+  if (n.stamp == open && n.g <= g) return;
+  n = Node{g, from, open};
+  heap_.push_back(HeapEntry{g + octileFixed(tx - goal_x_, ty - goal_y_), g, to});
+  std::push_heap(heap_.begin(), heap_.end(), PopsLater{});
+  ++stats_.generated;
+}
+
+void JumpPointSearch::expand(int idx, int x, int y) {
+  struct Direction {
+    int dx, dy;
+  };
+  Direction dirs[8];
+  int count = 0;
+  const int parent = nodes_[idx].parent;
+  if (parent < 0) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (dx != 0 || dy != 0) dirs[count++] = {dx, dy};
+  } else {
+    // The direction of the last move in: the canonical path from the parent runs diagonally
+    // first, so it ends straight along the longer axis (diagonal when both are equal).
+    const int ex = x - (parent & ((1 << shift_) - 1)), ey = y - (parent >> shift_);
+    const int ax = std::abs(ex), ay = std::abs(ey);
+    const int dx = ax >= ay ? sign(ex) : 0, dy = ay >= ax ? sign(ey) : 0;
+    // Then the directions worth a jump: the one it came in on, a diagonal's two components,
+    // and the forced neighbours of a straight move.
+    dirs[count++] = {dx, dy};
+    if (dx != 0 && dy != 0) {
+      dirs[count++] = {dx, 0};
+      dirs[count++] = {0, dy};
+    } else if (dx != 0) {
+      for (int side : {-1, 1}) {
+        if (walkable(x, y + side) && !walkable(x - dx, y + side)) {
+          dirs[count++] = {0, side};
+          dirs[count++] = {dx, side};
+        }
+      }
+    } else {
+      for (int side : {-1, 1}) {
+        if (walkable(x + side, y) && !walkable(x + side, y - dy)) {
+          dirs[count++] = {side, 0};
+          dirs[count++] = {side, dy};
         }
       }
     }
   }
-}
-
-int JumpPointSearch::jump(int x, int y, int dx, int dy) const {
-  const bool diagonal = dx != 0 && dy != 0;
-  if (jumps_ == Jumps::Scanned) {
-    return diagonal ? jumpDiagonal(x, y, dx, dy) : jumpStraight(x, y, dx, dy);
-  }
-  const std::int32_t t = distance_[directionIndex(dx, dy)][padded(x, y)];
-  const int reach = t > 0 ? t : -t;
-  if (!diagonal) {
-    // The goal is a jump point of every search: stop there if it lies within reach.
-    const int to_goal = stepsOnRay(x, y, dx, dy, goal_x_, goal_y_);
-    if (to_goal > 0 && to_goal <= reach) return map_.index(goal_x_, goal_y_);
-  } else if (sign(goal_x_ - x) == dx && sign(goal_y_ - y) == dy) {
-    // Goal in this quadrant: stop where the diagonal meets its row or column, if in reach.
-    const int steps = std::min(std::abs(goal_x_ - x), std::abs(goal_y_ - y));
-    if (steps <= reach) return map_.index(x + steps * dx, y + steps * dy);
-  }
-  return t > 0 ? map_.index(x + t * dx, y + t * dy) : -1;
-}
-
-void JumpPointSearch::beginSearch() {
-  nextGeneration(generation_, nodes_);
-  heap_.clear();
-  stats_ = SearchStats{};
-}
-
-int JumpPointSearch::jumpStraight(int x, int y, int dx, int dy) const {
-  for (;;) {
-    x += dx;
-    y += dy;
-    if (!walkable(x, y)) return -1;
-    if (x == goal_x_ && y == goal_y_) return map_.index(x, y);
-    // A side cell whose cell behind is blocked is reachable optimally only through here.
-    if (dx != 0) {
-      if ((walkable(x, y - 1) && !walkable(x - dx, y - 1)) ||
-          (walkable(x, y + 1) && !walkable(x - dx, y + 1))) {
-        return map_.index(x, y);
-      }
-    } else if ((walkable(x - 1, y) && !walkable(x - 1, y - dy)) ||
-               (walkable(x + 1, y) && !walkable(x + 1, y - dy))) {
-      return map_.index(x, y);
+  for (int k = 0; k < count; ++k) {
+    const auto [dx, dy] = dirs[k];
+    if (dx == 0 || dy == 0) {
+      const int jp = jumpStraight(x, y, dx, dy);
+      if (jp >= 0) relax(idx, x, y, jp);
+      continue;
     }
-  }
-}
-
-int JumpPointSearch::jumpDiagonal(int x, int y, int dx, int dy) const {
-  for (;;) {
-    // No corner cutting: both cardinal cells beside the diagonal step must be open.
-    if (!walkable(x + dx, y) || !walkable(x, y + dy) || !walkable(x + dx, y + dy)) return -1;
-    x += dx;
-    y += dy;
-    if (x == goal_x_ && y == goal_y_) return map_.index(x, y);
-    if (jumpStraight(x, y, dx, 0) >= 0 || jumpStraight(x, y, 0, dy) >= 0) {
-      return map_.index(x, y);
+    // Along the diagonal, whatever the straight jumps from its cells reach is a successor.
+    int cx = x, cy = y;
+    while (stepDiagonal(cx, cy, dx, dy)) {
+      if (cx == goal_x_ && cy == goal_y_) {
+        relax(idx, x, y, goal_idx_);
+        break;
+      }
+      const int along_x = jumpStraight(cx, cy, dx, 0), along_y = jumpStraight(cx, cy, 0, dy);
+      if (along_x >= 0) relax(idx, x, y, along_x);
+      if (along_y >= 0) relax(idx, x, y, along_y);
     }
   }
 }
 
 bool JumpPointSearch::findPath(Cell start, Cell goal, GridPath& out) {
   out.clear();
-  beginSearch();
+  nextGeneration(generation_, nodes_);
+  heap_.clear();
+  stats_ = SearchStats{};
   if (!map_.passable(start.x, start.y) || !map_.passable(goal.x, goal.y)) return false;
   syncCells();
   goal_x_ = goal.x;
   goal_y_ = goal.y;
-  const std::uint32_t open = generation_, closed = generation_ + 1;
-  const int w = map_.width();
-  const int start_idx = map_.index(start.x, start.y), goal_idx = map_.index(goal.x, goal.y);
-  nodes_[start_idx] = Node{0, -1, open};
+  goal_idx_ = node(goal.x, goal.y);
+  const std::uint32_t closed = generation_ + 1;
+  const int start_idx = node(start.x, start.y);
+  nodes_[start_idx] = Node{0, -1, generation_};
   heap_.push_back(HeapEntry{octileFixed(start.x - goal.x, start.y - goal.y), 0, start_idx});
   ++stats_.generated;
-  struct Direction {
-    int dx, dy;
-  };
-  Direction dirs[8];
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), PopsLater{});
     const HeapEntry top = heap_.back();
@@ -192,75 +193,31 @@ bool JumpPointSearch::findPath(Cell start, Cell goal, GridPath& out) {
     if (cur.stamp == closed || top.g != cur.g) continue;  // a stale entry (lazy decrease-key)
     cur.stamp = closed;
     ++stats_.expanded;
-    if (top.idx == goal_idx) {
-      tracePath(goal_idx, out);
+    if (top.idx == goal_idx_) {
+      tracePath(goal_idx_, out);
       return true;
     }
-    const int x = top.idx % w, y = top.idx / w;
-    // The directions worth a jump: all eight from the start; otherwise the one it came in on,
-    // a diagonal's two components, and the forced neighbours of a straight move.
-    int count = 0;
-    if (cur.parent < 0) {
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (dx != 0 || dy != 0) dirs[count++] = {dx, dy};
-    } else {
-      const int dx = sign(x - cur.parent % w), dy = sign(y - cur.parent / w);
-      dirs[count++] = {dx, dy};
-      if (dx != 0 && dy != 0) {
-        dirs[count++] = {dx, 0};
-        dirs[count++] = {0, dy};
-      } else if (dx != 0) {
-        for (int side : {-1, 1}) {
-          if (walkable(x, y + side) && !walkable(x - dx, y + side)) {
-            dirs[count++] = {0, side};
-            dirs[count++] = {dx, side};
-          }
-        }
-      } else {
-        for (int side : {-1, 1}) {
-          if (walkable(x + side, y) && !walkable(x + side, y - dy)) {
-            dirs[count++] = {side, 0};
-            dirs[count++] = {side, dy};
-          }
-        }
-      }
-    }
-    for (int k = 0; k < count; ++k) {
-      const auto [dx, dy] = dirs[k];
-      const int jp = jump(x, y, dx, dy);
-      if (jp < 0) continue;
-      Node& n = nodes_[jp];
-      if (n.stamp == closed) continue;
-      const int jx = jp % w, jy = jp / w;
-      const std::int64_t g = cur.g + octileFixed(jx - x, jy - y);
-      if (n.stamp == open && n.g <= g) continue;
-      n = Node{g, top.idx, open};
-      heap_.push_back(HeapEntry{g + octileFixed(jx - goal.x, jy - goal.y), g, jp});
-      std::push_heap(heap_.begin(), heap_.end(), PopsLater{});
-      ++stats_.generated;
-    }
+    expand(top.idx, top.idx & ((1 << shift_) - 1), top.idx >> shift_);
   }
   return false;
 }
 
-void JumpPointSearch::tracePath(int goal, GridPath& out) const {
-  // Jump points from the goal back, each segment straight or diagonal: fill in its cells.
-  const int w = map_.width();
+void JumpPointSearch::tracePath(int goal, GridPath& out) {
+  corners_.clear();
+  for (int i = goal; i >= 0; i = nodes_[i].parent) corners_.push_back(i);
+  const int mask = (1 << shift_) - 1;
   out.cells.clear();
-  out.cells.push_back(map_.cellAt(goal));
-  for (int i = goal; nodes_[i].parent >= 0; i = nodes_[i].parent) {
-    const int p = nodes_[i].parent;
-    const int dx = sign(p % w - i % w), dy = sign(p / w - i / w);
-    Cell c = map_.cellAt(i);
-    const Cell to = map_.cellAt(p);
+  Cell c{corners_.back() & mask, corners_.back() >> shift_};
+  out.cells.push_back(c);
+  // Each hop is the canonical path: diagonal while both axes differ, then straight.
+  for (std::size_t k = corners_.size() - 1; k-- > 0;) {
+    const Cell to{corners_[k] & mask, corners_[k] >> shift_};
     while (!(c == to)) {
-      c.x += dx;
-      c.y += dy;
+      c.x += sign(to.x - c.x);
+      c.y += sign(to.y - c.y);
       out.cells.push_back(c);
     }
   }
-  std::reverse(out.cells.begin(), out.cells.end());
   out.length = pathLength(out.cells);
 }
 

@@ -7,25 +7,32 @@
 // only through this cell. Without corner cutting a diagonal move has no forced neighbours; a
 // diagonal jump stops where a straight jump from it along either of its components would stop.
 //
-// JPS+ (Rabin, Game AI Pro 2) precomputes, for every cell and each of the 8 directions, how far
-// the jump goes: the distance to the next jump point (positive) or the number of open cells
-// before a wall (zero or negative). A jump is then one table read; the goal, which is a jump
-// point of every search, is caught by checking whether it lies within a jump's reach. The
-// tables are rebuilt when the map changes (a door), in O(8 cells).
+// Straight jumps scan 64 cells at a time over bit-packed rows (and columns, for vertical
+// jumps): see BitGrid. Diagonal jumps do not stop at those intermediate cells (Harabor and
+// Grastien 2014): the straight jumps' targets become successors of the node jumped from
+// directly, reached by the diagonal then the straight run, which keeps the open list short.
+// JPS+ (JpsPlusTables) reads the jumps from precomputed tables instead of scanning them; the
+// tables and bits are rebuilt when the map changes (a door), in O(cells).
+//
+// Node records (g, parent, stamp) are indexed by y << shift | x, so coordinates come back with
+// a shift and a mask instead of a division, and carry a generation stamp so that nothing is
+// cleared per query; the open list is a binary heap with lazy deletion.
 
 #include <cstdint>
 #include <vector>
 
+#include "ai/bit_grid.h"
 #include "ai/grid_map.h"
 #include "ai/grid_path.h"
 #include "ai/grid_search.h"
+#include "ai/jps_plus_tables.h"
 
 namespace zonesim::ai {
 
 /// Reusable optimal grid searcher bound to one map (which may change between searches).
 class JumpPointSearch {
  public:
-  /// Scanning jumps cell by cell, or reading them from JPS+ tables.
+  /// Scanning jumps over bit-packed cells, or reading them from JPS+ tables.
   enum class Jumps { Scanned, Precomputed };
   /// Sizes the node records for `map`; the map must outlive the searcher.
   explicit JumpPointSearch(const GridMap& map, Jumps jumps = Jumps::Scanned);
@@ -48,40 +55,36 @@ class JumpPointSearch {
     std::int32_t idx;
   };
 
-  /// Walkable with the map's border counted as wall: cells are read from a copy padded by one
-  /// blocked cell on every side, so the jump loops need no bounds checks.
-  bool walkable(int x, int y) const {
-    return open_[padded(x, y)] != 0;
-  }
-  /// Refreshes the padded copy (and the JPS+ tables) when the map changed.
+  /// Walkable, the map's border counted as wall.
+  bool walkable(int x, int y) const { return rows_.walkable(y, x); }
+  /// Node index of a cell.
+  int node(int x, int y) const { return (y << shift_) | x; }
+  /// Refreshes the bits (and the JPS+ tables) when the map changed.
   void syncCells();
-  /// JPS+: fills distance_ from the padded cells.
-  void precompute();
-  /// The next node along (dx, dy) from (x, y), by scanning or by table, or -1.
-  int jump(int x, int y, int dx, int dy) const;
-  /// Padded index of a cell.
-  std::size_t padded(int x, int y) const {
-    return std::size_t(y + 1) * std::size_t(padded_width_) + std::size_t(x + 1);
-  }
-  /// The first jump point moving from (x, y) along a cardinal (dx, dy), or -1.
+  /// The jump point reached moving straight (one of dx, dy zero) from (x, y), or -1.
   int jumpStraight(int x, int y, int dx, int dy) const;
-  /// The first jump point moving from (x, y) along a diagonal (dx, dy), or -1.
-  int jumpDiagonal(int x, int y, int dx, int dy) const;
-  void beginSearch();
-  void tracePath(int goal, GridPath& out) const;
+  /// The next cell along diagonal (dx, dy) from (x, y) from which straight jumps must be
+  /// tried (every open step when scanning; a JPS+ jump point, or the goal's row or column),
+  /// written to (x, y); false when the diagonal is blocked first.
+  bool stepDiagonal(int& x, int& y, int dx, int dy) const;
+  /// Expands the node at (x, y): jumps along its pruned directions and relaxes what they reach.
+  void expand(int idx, int x, int y);
+  /// Opens or improves node `to`, reached from `from` at (x, y) along the canonical path
+  /// (diagonal first, then straight).
+  void relax(int from, int x, int y, int to);
+  void tracePath(int goal, GridPath& out);
 
   const GridMap& map_;
-  std::vector<std::uint8_t> open_;  // (width + 2) x (height + 2), border blocked
-  int padded_width_ = 0;
   Jumps jumps_;
-  // JPS+: per direction (0 E, 1 W, 2 S, 3 N, 4 SE, 5 SW, 6 NE, 7 NW) and padded cell, the
-  // distance to the next jump point (> 0) or minus the open cells before a wall (<= 0).
-  std::vector<std::int32_t> distance_[8];
+  BitGrid rows_, columns_;
+  JpsPlusTables tables_;
   std::uint64_t synced_version_ = ~std::uint64_t(0);
+  int shift_ = 0;  // node index = y << shift_ | x
   std::vector<Node> nodes_;
   std::vector<HeapEntry> heap_;
+  std::vector<int> corners_;  // tracePath's jump points, kept to avoid allocating per query
   std::uint32_t generation_ = 0;
-  int goal_x_ = 0, goal_y_ = 0;
+  int goal_x_ = 0, goal_y_ = 0, goal_idx_ = 0;
   SearchStats stats_;
 };
 
