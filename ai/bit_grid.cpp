@@ -20,38 +20,4 @@ BitGrid::BitGrid(const GridMap& map, bool transposed)
   }
 }
 
-BitGrid::Stop BitGrid::scanUp(int line, int pos) const {
-  // Bit i of each window is position pos + i. A side cell is forced when it is walkable and
-  // the one behind it (bit i - 1) is blocked; bit 0, the cell scanned from, is never a stop,
-  // so each window advances by 63.
-  for (;;) {
-    const std::uint64_t here = window(line, pos);
-    const std::uint64_t left = window(line - 1, pos), right = window(line + 1, pos);
-    const std::uint64_t forced = (left & ~(left << 1)) | (right & ~(right << 1));
-    const std::uint64_t stop = (~here | forced) & ~std::uint64_t(1);
-    if (stop != 0) {
-      const int i = __builtin_ctzll(stop);
-      return Stop{pos + i, ((here >> i) & 1) != 0};
-    }
-    pos += 63;
-  }
-}
-
-BitGrid::Stop BitGrid::scanDown(int line, int pos) const {
-  // Mirror of scanUp: bit 63 is the cell scanned from, bit i is position pos - 63 + i, and the
-  // cell behind a side cell is bit i + 1.
-  for (;;) {
-    const int base = pos - 63;
-    const std::uint64_t here = window(line, base);
-    const std::uint64_t left = window(line - 1, base), right = window(line + 1, base);
-    const std::uint64_t forced = (left & ~(left >> 1)) | (right & ~(right >> 1));
-    const std::uint64_t stop = (~here | forced) & ~(std::uint64_t(1) << 63);
-    if (stop != 0) {
-      const int i = 63 - __builtin_clzll(stop);
-      return Stop{base + i, ((here >> i) & 1) != 0};
-    }
-    pos -= 63;
-  }
-}
-
 }  // namespace zonesim::ai

@@ -5,7 +5,10 @@
 // count. A transposed copy (lines = columns) serves vertical jumps with the same code.
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
+
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "BitGrid reads its words as bytes");
 
 namespace zonesim::ai {
 
@@ -46,17 +49,70 @@ class BitGrid {
   // Positions are stored kPad bits in, so that a 64-bit window around any position in
   // [-1, length] stays inside the line and reads blocked padding beyond the map.
   static constexpr int kPad = 64;
+  // A scan reads 8 unaligned bytes per line and step; shifted into place, 57 of their bits are
+  // always valid: the cell scanned from and kWindow more.
+  static constexpr int kWindow = 56;
+  static constexpr std::uint64_t kUpValid = ((std::uint64_t(1) << kWindow) - 1) << 1;  // 1..56
+  static constexpr std::uint64_t kDownValid = kUpValid << (62 - kWindow);              // 7..62
   std::size_t row(int line) const { return std::size_t(line + 1) * stride_; }
-  /// 64 bits of `line` from position `pos` up (bit 0 = pos).
-  std::uint64_t window(int line, int pos) const {
-    const std::size_t bit = std::size_t(pos + kPad), w = row(line) + bit / 64;
-    const unsigned s = bit % 64;
-    return s == 0 ? words_[w] : (words_[w] >> s) | (words_[w + 1] << (64 - s));
+  const unsigned char* lineBytes(int line) const {
+    return reinterpret_cast<const unsigned char*>(words_.data() + row(line));
+  }
+  /// 8 bytes from `p`, the first the lowest (the bit order of the words on a little-endian
+  /// machine).
+  static std::uint64_t load(const unsigned char* p) {
+    std::uint64_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
   }
 
   int lines_ = 0, length_ = 0;
   std::size_t stride_ = 0;            // words per line, padding included
   std::vector<std::uint64_t> words_;  // lines -1 .. lines_, each stride_ words
 };
+
+// Inline: a jump point search calls these at every diagonal step.
+inline BitGrid::Stop BitGrid::scanUp(int line, int pos) const {
+  // Each window is 8 bytes read from the byte holding `pos`, shifted so that bit i is position
+  // pos + i; bits 0..56 are always valid. A side cell is forced when it is walkable and the one
+  // behind it (bit i - 1) is blocked; bit 0, the cell scanned from, is never a stop.
+  const unsigned char* here_line = lineBytes(line);
+  const std::size_t stride = stride_ * 8;
+  for (;;) {
+    const std::size_t bit = std::size_t(pos + kPad), byte = bit / 8;
+    const unsigned s = bit % 8;
+    const std::uint64_t here = load(here_line + byte) >> s;
+    const std::uint64_t left = load(here_line - stride + byte) >> s;
+    const std::uint64_t right = load(here_line + stride + byte) >> s;
+    const std::uint64_t forced = (left & ~(left << 1)) | (right & ~(right << 1));
+    const std::uint64_t stop = (~here | forced) & kUpValid;
+    if (stop != 0) {
+      const int i = __builtin_ctzll(stop);
+      return Stop{pos + i, ((here >> i) & 1) != 0};
+    }
+    pos += kWindow;
+  }
+}
+
+inline BitGrid::Stop BitGrid::scanDown(int line, int pos) const {
+  // Mirror of scanUp: the window is shifted up so that `pos` is bit 63 and bit i is position
+  // pos - 63 + i (bits 7..63 valid); the cell behind a side cell is bit i + 1.
+  const unsigned char* here_line = lineBytes(line);
+  const std::size_t stride = stride_ * 8;
+  for (;;) {
+    const std::size_t bit = std::size_t(pos + kPad), byte = (bit - 56) / 8;
+    const unsigned s = unsigned(63 - (bit - byte * 8));
+    const std::uint64_t here = load(here_line + byte) << s;
+    const std::uint64_t left = load(here_line - stride + byte) << s;
+    const std::uint64_t right = load(here_line + stride + byte) << s;
+    const std::uint64_t forced = (left & ~(left >> 1)) | (right & ~(right >> 1));
+    const std::uint64_t stop = (~here | forced) & kDownValid;
+    if (stop != 0) {
+      const int i = 63 - __builtin_clzll(stop);
+      return Stop{pos - 63 + i, ((here >> i) & 1) != 0};
+    }
+    pos -= kWindow;
+  }
+}
 
 }  // namespace zonesim::ai
