@@ -5,7 +5,6 @@
 
 #include "ai/fixed_cost.h"
 #include "ai/open_order.h"
-#include "ai/search_generation.h"
 
 namespace zonesim::ai {
 
@@ -38,7 +37,18 @@ JumpPointSearch::JumpPointSearch(const GridMap& map, Jumps jumps)
     : map_(map),
       jumps_(jumps),
       shift_(bitsFor(map.width())),
-      nodes_(std::size_t(map.height()) << shift_, Node{0, -1, 0}) {}
+      nodes_(std::size_t(map.height()) << shift_, Node{0, -1}),
+      stamps_(nodes_.size(), 0) {}
+
+void JumpPointSearch::beginSearch() {
+  if (generation_ > 0xFFFF - 2 * kStamps) {
+    std::fill(stamps_.begin(), stamps_.end(), 0);
+    generation_ = 0;
+  }
+  generation_ += kStamps;
+  heap_.clear();
+  stats_ = SearchStats{};
+}
 
 void JumpPointSearch::syncCells() {
   if (synced_version_ == map_.version()) return;
@@ -48,7 +58,8 @@ void JumpPointSearch::syncCells() {
   if (jumps_ == Jumps::Precomputed) tables_.build(rows_);
 }
 
-int JumpPointSearch::jumpStraight(int x, int y, int dx, int dy) const {
+[[gnu::always_inline]] inline int JumpPointSearch::jumpStraight(int x, int y, int dx,
+                                                                int dy) const {
   if (jumps_ == Jumps::Precomputed) {
     const std::int32_t t = tables_.distance(JpsPlusTables::direction(dx, dy), x, y);
     // The goal is a jump point of every search: stop there if it lies within reach.
@@ -71,7 +82,8 @@ int JumpPointSearch::jumpStraight(int x, int y, int dx, int dy) const {
   return horizontal ? node(stop.at, y) : node(x, stop.at);
 }
 
-bool JumpPointSearch::stepDiagonal(int& x, int& y, int dx, int dy) const {
+[[gnu::always_inline]] inline bool JumpPointSearch::stepDiagonal(int& x, int& y, int dx,
+                                                                 int dy) const {
   if (jumps_ == Jumps::Scanned) {
     // No corner cutting: both cardinal cells beside the diagonal step must be open.
     if (!walkable(x + dx, y) || !walkable(x, y + dy) || !walkable(x + dx, y + dy)) return false;
@@ -97,14 +109,52 @@ bool JumpPointSearch::stepDiagonal(int& x, int& y, int dx, int dy) const {
   return true;
 }
 
-void JumpPointSearch::relax(int from, int x, int y, int to) {
-  Node& n = nodes_[to];
-  const std::uint32_t open = generation_, closed = generation_ + 1;
-  if (n.stamp == closed) return;
+[[gnu::always_inline]] inline bool JumpPointSearch::isBend(int x, int y, int dx, int dy,
+                                                           int& turn_x, int& turn_y) const {
+  // Coming in along x, the way on is along y (and the other way round); straight ahead must be
+  // blocked, exactly one side open, and the corner between the way in and the way on blocked.
+  if (dx != 0) {
+    if (walkable(x + dx, y) || walkable(x, y - 1) == walkable(x, y + 1)) return false;
+    turn_x = 0;
+    turn_y = walkable(x, y + 1) ? 1 : -1;
+    return !walkable(x - dx, y + turn_y);
+  }
+  if (walkable(x, y + dy) || walkable(x - 1, y) == walkable(x + 1, y)) return false;
+  turn_x = walkable(x + 1, y) ? 1 : -1;
+  turn_y = 0;
+  return !walkable(x + turn_x, y - dy);
+}
+
+void JumpPointSearch::relaxJump(int from, int x, int y, std::int64_t g, int dx, int dy, int jp) {
+  for (;;) {
+    const int jx = jp & ((1 << shift_) - 1), jy = jp >> shift_;
+    g += octileFixed(jx - x, jy - y);
+    int turn_x = 0, turn_y = 0;
+    if (jp == goal_idx_ || !isBend(jx, jy, dx, dy, turn_x, turn_y)) {
+      relax(from, jp, g);
+      return;
+    }
+    // Passed (or reached: the start) as cheaply already, this bend leads nowhere new.
+    if (std::uint16_t(stamps_[jp] - generation_) < kStamps && nodes_[jp].g <= g) return;
+    stamps_[jp] = std::uint16_t(generation_ + kBend);
+    nodes_[jp] = Node{g, from};
+    from = jp;
+    x = jx;
+    y = jy;
+    dx = turn_x;
+    dy = turn_y;
+    jp = jumpStraight(x, y, dx, dy);
+    if (jp < 0) return;
+  }
+}
+
+[[gnu::always_inline]] inline void JumpPointSearch::relax(int from, int to, std::int64_t g) {
+  const std::uint16_t stamp = stamps_[to];
+  if (stamp == std::uint16_t(generation_ + kClosed)) return;
+  if (stamp == std::uint16_t(generation_ + kOpen) && nodes_[to].g <= g) return;
+  stamps_[to] = std::uint16_t(generation_ + kOpen);
+  nodes_[to] = Node{g, from};
   const int tx = to & ((1 << shift_) - 1), ty = to >> shift_;
-  const std::int64_t g = nodes_[from].g + octileFixed(tx - x, ty - y);
-  if (n.stamp == open && n.g <= g) return;
-  n = Node{g, from, open};
   heap_.push_back(HeapEntry{g + octileFixed(tx - goal_x_, ty - goal_y_), g, to});
   std::push_heap(heap_.begin(), heap_.end(), PopsLater{});
   ++stats_.generated;
@@ -149,49 +199,51 @@ void JumpPointSearch::expand(int idx, int x, int y) {
       }
     }
   }
+  const std::int64_t g = nodes_[idx].g;
   for (int k = 0; k < count; ++k) {
     const auto [dx, dy] = dirs[k];
     if (dx == 0 || dy == 0) {
       const int jp = jumpStraight(x, y, dx, dy);
-      if (jp >= 0) relax(idx, x, y, jp);
+      if (jp >= 0) relaxJump(idx, x, y, g, dx, dy, jp);
       continue;
     }
     // Along the diagonal, whatever the straight jumps from its cells reach is a successor.
+    // Most straight jumps from a diagonal's cells end at a wall: those stay inline here.
     int cx = x, cy = y;
     while (stepDiagonal(cx, cy, dx, dy)) {
+      const std::int64_t at = g + octileFixed(cx - x, cy - y);
       if (cx == goal_x_ && cy == goal_y_) {
-        relax(idx, x, y, goal_idx_);
+        relax(idx, goal_idx_, at);
         break;
       }
-      const int along_x = jumpStraight(cx, cy, dx, 0), along_y = jumpStraight(cx, cy, 0, dy);
-      if (along_x >= 0) relax(idx, x, y, along_x);
-      if (along_y >= 0) relax(idx, x, y, along_y);
+      const int along_x = jumpStraight(cx, cy, dx, 0);
+      if (along_x >= 0) relaxJump(idx, cx, cy, at, dx, 0, along_x);
+      const int along_y = jumpStraight(cx, cy, 0, dy);
+      if (along_y >= 0) relaxJump(idx, cx, cy, at, 0, dy, along_y);
     }
   }
 }
 
 bool JumpPointSearch::findPath(Cell start, Cell goal, GridPath& out) {
   out.clear();
-  nextGeneration(generation_, nodes_);
-  heap_.clear();
-  stats_ = SearchStats{};
+  beginSearch();
   if (!map_.passable(start.x, start.y) || !map_.passable(goal.x, goal.y)) return false;
   syncCells();
   goal_x_ = goal.x;
   goal_y_ = goal.y;
   goal_idx_ = node(goal.x, goal.y);
-  const std::uint32_t closed = generation_ + 1;
+  const std::uint16_t closed = std::uint16_t(generation_ + kClosed);
   const int start_idx = node(start.x, start.y);
-  nodes_[start_idx] = Node{0, -1, generation_};
+  stamps_[start_idx] = std::uint16_t(generation_ + kOpen);
+  nodes_[start_idx] = Node{0, -1};
   heap_.push_back(HeapEntry{octileFixed(start.x - goal.x, start.y - goal.y), 0, start_idx});
   ++stats_.generated;
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), PopsLater{});
     const HeapEntry top = heap_.back();
     heap_.pop_back();
-    Node& cur = nodes_[top.idx];
-    if (cur.stamp == closed || top.g != cur.g) continue;  // a stale entry (lazy decrease-key)
-    cur.stamp = closed;
+    if (stamps_[top.idx] == closed || top.g != nodes_[top.idx].g) continue;  // a stale entry
+    stamps_[top.idx] = closed;
     ++stats_.expanded;
     if (top.idx == goal_idx_) {
       tracePath(goal_idx_, out);

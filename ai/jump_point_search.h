@@ -14,6 +14,11 @@
 // JPS+ (JpsPlusTables) reads the jumps from precomputed tables instead of scanning them; the
 // tables and bits are rebuilt when the map changes (a door), in O(cells).
 //
+// In a corridor (a 1-wide maze) every bend is a jump point, yet a path through a bend can only
+// go on round it: a straight jump that stops at one turns and goes on within the same
+// expansion, the bend recorded with its cost and parent for the path but never put on the open
+// list; a bend already passed as cheaply ends the jump (it would only repeat or go back).
+//
 // Node records (g, parent, stamp) are indexed by y << shift | x, so coordinates come back with
 // a shift and a mask instead of a division, and carry a generation stamp so that nothing is
 // cleared per query; the open list is a binary heap with lazy deletion.
@@ -44,11 +49,15 @@ class JumpPointSearch {
   const SearchStats& lastStats() const { return stats_; }
 
  private:
+  // A cell's search state is its stamp, kept apart from the rest of its record: a jump's
+  // target is first only tested (open? closed? untouched?), and 2 bytes a cell (512 KB on a
+  // 512 x 512 map) stay in the L2 cache where 16-byte records missed it.
   struct Node {
-    std::int64_t g;  // fixed point (ai/fixed_cost.h)
+    std::int64_t g;  // fixed point (ai/fixed_cost.h); valid when the stamp is this search's
     std::int32_t parent;
-    std::uint32_t stamp;  // == generation_: open, generation_ + 1: closed, else untouched
   };
+  // Stamps relative to generation_: open, closed, a bend passed; anything else is untouched.
+  enum : std::uint16_t { kOpen = 0, kClosed = 1, kBend = 2, kStamps = 3 };
   struct HeapEntry {
     std::int64_t f;
     std::int64_t g;
@@ -57,6 +66,8 @@ class JumpPointSearch {
 
   /// Walkable, the map's border counted as wall.
   bool walkable(int x, int y) const { return rows_.walkable(y, x); }
+  /// Starts a search: new stamps (every stamp reset when they wrap), an empty open list.
+  void beginSearch();
   /// Node index of a cell.
   int node(int x, int y) const { return (y << shift_) | x; }
   /// Refreshes the bits (and the JPS+ tables) when the map changed.
@@ -67,11 +78,18 @@ class JumpPointSearch {
   /// tried (every open step when scanning; a JPS+ jump point, or the goal's row or column),
   /// written to (x, y); false when the diagonal is blocked first.
   bool stepDiagonal(int& x, int& y, int dx, int dy) const;
+  /// True when (x, y) is a bend: one open neighbour across each axis, the cell between them
+  /// blocked, so paths through it only turn there. `dx, dy`: the way in; the way on is
+  /// written to `turn_x, turn_y`.
+  bool isBend(int x, int y, int dx, int dy, int& turn_x, int& turn_y) const;
   /// Expands the node at (x, y): jumps along its pruned directions and relaxes what they reach.
   void expand(int idx, int x, int y);
-  /// Opens or improves node `to`, reached from `from` at (x, y) along the canonical path
-  /// (diagonal first, then straight).
-  void relax(int from, int x, int y, int to);
+  /// Follows a straight jump along (dx, dy) from (x, y), reached at cost g with `from` its last
+  /// recorded cell, that found `jp`: round any bends, then relaxes the jump point it ends at.
+  void relaxJump(int from, int x, int y, std::int64_t g, int dx, int dy, int jp);
+  /// Opens or improves node `to` at cost g, its parent `from` (its path from there is the
+  /// canonical one: diagonal first, then straight).
+  void relax(int from, int to, std::int64_t g);
   void tracePath(int goal, GridPath& out);
 
   const GridMap& map_;
@@ -81,9 +99,10 @@ class JumpPointSearch {
   std::uint64_t synced_version_ = ~std::uint64_t(0);
   int shift_ = 0;  // node index = y << shift_ | x
   std::vector<Node> nodes_;
+  std::vector<std::uint16_t> stamps_;  // per node: generation_ + kOpen / kClosed / kBend
   std::vector<HeapEntry> heap_;
   std::vector<int> corners_;  // tracePath's jump points, kept to avoid allocating per query
-  std::uint32_t generation_ = 0;
+  std::uint16_t generation_ = 0;
   int goal_x_ = 0, goal_y_ = 0, goal_idx_ = 0;
   SearchStats stats_;
 };

@@ -7,6 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <utility>
+#include <vector>
+
 #include "ai/scenario.h"
 #include "tests/ai/reference_dijkstra.h"
 #include "tests/ai/test_data.h"
@@ -45,6 +49,87 @@ TEST_P(JumpPointSearchTest, EqualsDijkstraOnRandomMaps) {
   }
   EXPECT_GT(found_paths, 1000);
   EXPECT_GT(no_paths, 10);  // the dense maps cut some cells off
+}
+
+/// A 1-wide maze of (2 * n + 1)^2 cells carved by a depth-first walk, then `loops` walls
+/// knocked out between corridors so that some bends lie on rings.
+GridMap corridorMaze(int n, int loops, std::uint64_t seed) {
+  const int size = 2 * n + 1;
+  GridMap m(size, size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) m.setPassable(x, y, x % 2 == 1 && y % 2 == 1);
+  Pcg32 rng(seed, 5);
+  std::vector<char> seen(std::size_t(n * n), 0);
+  std::vector<std::pair<int, int>> stack{{0, 0}};
+  seen[0] = 1;
+  while (!stack.empty()) {
+    const auto [cx, cy] = stack.back();
+    std::pair<int, int> next[4];
+    int count = 0;
+    for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      const int nx = cx + dx, ny = cy + dy;
+      if (nx >= 0 && ny >= 0 && nx < n && ny < n && !seen[std::size_t(ny * n + nx)])
+        next[count++] = {nx, ny};
+    }
+    if (count == 0) {
+      stack.pop_back();
+      continue;
+    }
+    const auto [nx, ny] = next[rng.next() % std::uint32_t(count)];
+    seen[std::size_t(ny * n + nx)] = 1;
+    m.setPassable(cx + nx + 1, cy + ny + 1, true);  // the wall between the two rooms
+    stack.push_back({nx, ny});
+  }
+  for (int k = 0; k < loops; ++k) {
+    // A wall cell between two corridor cells, in a row or in a column.
+    const int a = 1 + 2 * int(rng.next() % std::uint32_t(n)),
+              b = 2 + 2 * int(rng.next() % std::uint32_t(n - 1));
+    if (rng.next() % 2 == 0) {
+      m.setPassable(b, a, true);
+    } else {
+      m.setPassable(a, b, true);
+    }
+  }
+  return m;
+}
+
+TEST_P(JumpPointSearchTest, EqualsDijkstraInCorridorMazes) {
+  // Every corridor bend is turned within a jump (never an open-list node): paths round them,
+  // along rings (the loops) and into dead ends must stay optimal and legal.
+  int checked = 0;
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    GridMap m = corridorMaze(14, int(seed % 4) * 20, seed);
+    JumpPointSearch search(m, GetParam());
+    GridPath path;
+    Pcg32 rng(seed, 13);
+    for (int q = 0; q < 30; ++q, ++checked) {
+      const Cell s = test::randomFreeCell(m, rng), g = test::randomFreeCell(m, rng);
+      ASSERT_TRUE(search.findPath(s, g, path)) << "seed " << seed << " query " << q;
+      EXPECT_NEAR(path.length, test::referenceDistance(m, s, g), 1e-9)
+          << "seed " << seed << " query " << q;
+      EXPECT_TRUE(isValidPath(m, path.cells)) << "seed " << seed << " query " << q;
+      EXPECT_EQ(path.cells.front(), s);
+      EXPECT_EQ(path.cells.back(), g);
+    }
+  }
+  EXPECT_EQ(checked, 900);
+}
+
+TEST_P(JumpPointSearchTest, StaysOptimalWhenItsStampsWrapAround) {
+  // Node states are 16-bit generation stamps, reset when they wrap (every 21,845 searches):
+  // searches on either side of the wrap must not see each other's records.
+  GridMap m = test::randomMap(12, 10, 0.2, 3);
+  JumpPointSearch search(m, GetParam());
+  GridPath path;
+  Pcg32 rng(3, 17);
+  int wrong = 0;
+  for (int q = 0; q < 23000; ++q) {
+    const Cell s = test::randomFreeCell(m, rng), g = test::randomFreeCell(m, rng);
+    const double expected = test::referenceDistance(m, s, g);
+    const bool found = search.findPath(s, g, path);
+    if (found != (expected >= 0) || (found && std::abs(path.length - expected) > 1e-9)) ++wrong;
+  }
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST_P(JumpPointSearchTest, GoesAroundACornerInsteadOfCuttingIt) {
