@@ -21,6 +21,9 @@ class BitGrid {
   struct Stop {
     int at;     ///< position of the jump point, or of the first blocked cell
     bool jump;  ///< true: `at` is a jump point (walkable, with a forced neighbour)
+    /// For a jump point that is a bend (blocked ahead, exactly one side line open there, so
+    /// its corner behind is blocked): that side, -1 (line - 1) or +1; else 0.
+    int turn;
   };
 
   /// An empty grid (no lines).
@@ -36,7 +39,7 @@ class BitGrid {
   }
   /// Scans from `pos` (walkable) towards higher positions along `line`: the first cell with a
   /// forced neighbour (a walkable cell on a side line whose cell behind is blocked), or the
-  /// first blocked cell.
+  /// first blocked cell; says whether a jump point found is a bend.
   Stop scanUp(int line, int pos) const;
   /// As scanUp, towards lower positions.
   Stop scanDown(int line, int pos) const;
@@ -50,10 +53,19 @@ class BitGrid {
   // [-1, length] stays inside the line and reads blocked padding beyond the map.
   static constexpr int kPad = 64;
   // A scan reads 8 unaligned bytes per line and step; shifted into place, 57 of their bits are
-  // always valid: the cell scanned from and kWindow more.
-  static constexpr int kWindow = 56;
-  static constexpr std::uint64_t kUpValid = ((std::uint64_t(1) << kWindow) - 1) << 1;  // 1..56
-  static constexpr std::uint64_t kDownValid = kUpValid << (62 - kWindow);              // 7..62
+  // always valid: the cell scanned from, kWindow more, and the cell ahead of the last (a
+  // stop's, read for bends).
+  static constexpr int kWindow = 55;
+  static constexpr std::uint64_t kUpValid = ((std::uint64_t(1) << kWindow) - 1) << 1;  // 1..55
+  static constexpr std::uint64_t kDownValid = kUpValid << 7;                           // 8..62
+  /// Stop at bit i of the windows (the cell ahead at bit i + ahead).
+  static Stop stopAt(int at, int i, int ahead, std::uint64_t here, std::uint64_t left,
+                     std::uint64_t right) {
+    if (((here >> i) & 1) == 0) return Stop{at, false, 0};
+    const bool l = (left >> i) & 1, r = (right >> i) & 1;
+    const bool bend = ((here >> (i + ahead)) & 1) == 0 && l != r;
+    return Stop{at, true, bend ? (l ? -1 : 1) : 0};
+  }
   std::size_t row(int line) const { return std::size_t(line + 1) * stride_; }
   const unsigned char* lineBytes(int line) const {
     return reinterpret_cast<const unsigned char*>(words_.data() + row(line));
@@ -88,7 +100,7 @@ inline BitGrid::Stop BitGrid::scanUp(int line, int pos) const {
     const std::uint64_t stop = (~here | forced) & kUpValid;
     if (stop != 0) {
       const int i = __builtin_ctzll(stop);
-      return Stop{pos + i, ((here >> i) & 1) != 0};
+      return stopAt(pos + i, i, 1, here, left, right);
     }
     pos += kWindow;
   }
@@ -109,7 +121,7 @@ inline BitGrid::Stop BitGrid::scanDown(int line, int pos) const {
     const std::uint64_t stop = (~here | forced) & kDownValid;
     if (stop != 0) {
       const int i = 63 - __builtin_clzll(stop);
-      return Stop{pos - 63 + i, ((here >> i) & 1) != 0};
+      return stopAt(pos - 63 + i, i, -1, here, left, right);
     }
     pos -= kWindow;
   }

@@ -58,14 +58,34 @@ void JumpPointSearch::syncCells() {
   if (jumps_ == Jumps::Precomputed) tables_.build(rows_);
 }
 
-[[gnu::always_inline]] inline int JumpPointSearch::jumpStraight(int x, int y, int dx,
-                                                                int dy) const {
+[[gnu::always_inline]] inline bool JumpPointSearch::isBend(int x, int y, int dx, int dy,
+                                                           int& turn_x, int& turn_y) const {
+  // Coming in along x, the way on is along y (and the other way round); straight ahead must be
+  // blocked, exactly one side open, and the corner between the way in and the way on blocked.
+  if (dx != 0) {
+    if (walkable(x + dx, y) || walkable(x, y - 1) == walkable(x, y + 1)) return false;
+    turn_x = 0;
+    turn_y = walkable(x, y + 1) ? 1 : -1;
+    return !walkable(x - dx, y + turn_y);
+  }
+  if (walkable(x, y + dy) || walkable(x - 1, y) == walkable(x + 1, y)) return false;
+  turn_x = walkable(x + 1, y) ? 1 : -1;
+  turn_y = 0;
+  return !walkable(x + turn_x, y - dy);
+}
+
+[[gnu::always_inline]] inline JumpPointSearch::Jump JumpPointSearch::jumpStraight(int x, int y,
+                                                                                  int dx,
+                                                                                  int dy) const {
   if (jumps_ == Jumps::Precomputed) {
     const std::int32_t t = tables_.distance(JpsPlusTables::direction(dx, dy), x, y);
     // The goal is a jump point of every search: stop there if it lies within reach.
     const int to_goal = stepsOnRay(x, y, dx, dy, goal_x_, goal_y_);
-    if (to_goal > 0 && to_goal <= (t > 0 ? t : -t)) return goal_idx_;
-    return t > 0 ? node(x + t * dx, y + t * dy) : -1;
+    if (to_goal > 0 && to_goal <= (t > 0 ? t : -t)) return Jump{goal_idx_, 0, 0};
+    if (t <= 0) return Jump{-1, 0, 0};
+    Jump j{node(x + t * dx, y + t * dy), 0, 0};
+    if (!isBend(x + t * dx, y + t * dy, dx, dy, j.turn_x, j.turn_y)) j.turn_x = j.turn_y = 0;
+    return j;
   }
   // Along the line's positions: a row (x varies) or a column (y varies).
   const bool horizontal = dy == 0;
@@ -76,10 +96,11 @@ void JumpPointSearch::syncCells() {
   if ((horizontal ? goal_y_ : goal_x_) == line) {
     const int goal_pos = horizontal ? goal_x_ : goal_y_;
     const int last = stop.jump ? stop.at : stop.at - dir;
-    if ((goal_pos - pos) * dir > 0 && (last - goal_pos) * dir >= 0) return goal_idx_;
+    if ((goal_pos - pos) * dir > 0 && (last - goal_pos) * dir >= 0) return Jump{goal_idx_, 0, 0};
   }
-  if (!stop.jump) return -1;
-  return horizontal ? node(stop.at, y) : node(x, stop.at);
+  if (!stop.jump) return Jump{-1, 0, 0};
+  // A bend turns onto the side line: across the rows for a row, across the columns for one.
+  return horizontal ? Jump{node(stop.at, y), 0, stop.turn} : Jump{node(x, stop.at), stop.turn, 0};
 }
 
 [[gnu::always_inline]] inline bool JumpPointSearch::stepDiagonal(int& x, int& y, int dx,
@@ -109,42 +130,24 @@ void JumpPointSearch::syncCells() {
   return true;
 }
 
-[[gnu::always_inline]] inline bool JumpPointSearch::isBend(int x, int y, int dx, int dy,
-                                                           int& turn_x, int& turn_y) const {
-  // Coming in along x, the way on is along y (and the other way round); straight ahead must be
-  // blocked, exactly one side open, and the corner between the way in and the way on blocked.
-  if (dx != 0) {
-    if (walkable(x + dx, y) || walkable(x, y - 1) == walkable(x, y + 1)) return false;
-    turn_x = 0;
-    turn_y = walkable(x, y + 1) ? 1 : -1;
-    return !walkable(x - dx, y + turn_y);
-  }
-  if (walkable(x, y + dy) || walkable(x - 1, y) == walkable(x + 1, y)) return false;
-  turn_x = walkable(x + 1, y) ? 1 : -1;
-  turn_y = 0;
-  return !walkable(x + turn_x, y - dy);
-}
-
-void JumpPointSearch::relaxJump(int from, int x, int y, std::int64_t g, int dx, int dy, int jp) {
+void JumpPointSearch::relaxJump(int from, int x, int y, std::int64_t g, Jump jump) {
   for (;;) {
-    const int jx = jp & ((1 << shift_) - 1), jy = jp >> shift_;
-    g += octileFixed(jx - x, jy - y);
-    int turn_x = 0, turn_y = 0;
-    if (jp == goal_idx_ || !isBend(jx, jy, dx, dy, turn_x, turn_y)) {
-      relax(from, jp, g);
+    const int jx = jump.to & ((1 << shift_) - 1), jy = jump.to >> shift_;
+    g += kStraight * (std::abs(jx - x) + std::abs(jy - y));
+    if (jump.turn_x == 0 && jump.turn_y == 0) {
+      relax(from, jump.to, g);
       return;
     }
     // Passed (or reached: the start) as cheaply already, this bend leads nowhere new.
-    if (std::uint16_t(stamps_[jp] - generation_) < kStamps && nodes_[jp].g <= g) return;
-    stamps_[jp] = std::uint16_t(generation_ + kBend);
-    nodes_[jp] = Node{g, from};
-    from = jp;
+    const int bend = jump.to;
+    if (std::uint16_t(stamps_[bend] - generation_) < kStamps && nodes_[bend].g <= g) return;
+    stamps_[bend] = std::uint16_t(generation_ + kBend);
+    nodes_[bend] = Node{g, from};
+    from = bend;
     x = jx;
     y = jy;
-    dx = turn_x;
-    dy = turn_y;
-    jp = jumpStraight(x, y, dx, dy);
-    if (jp < 0) return;
+    jump = jumpStraight(x, y, jump.turn_x, jump.turn_y);
+    if (jump.to < 0) return;
   }
 }
 
@@ -203,8 +206,8 @@ void JumpPointSearch::expand(int idx, int x, int y) {
   for (int k = 0; k < count; ++k) {
     const auto [dx, dy] = dirs[k];
     if (dx == 0 || dy == 0) {
-      const int jp = jumpStraight(x, y, dx, dy);
-      if (jp >= 0) relaxJump(idx, x, y, g, dx, dy, jp);
+      const Jump jump = jumpStraight(x, y, dx, dy);
+      if (jump.to >= 0) relaxJump(idx, x, y, g, jump);
       continue;
     }
     // Along the diagonal, whatever the straight jumps from its cells reach is a successor.
@@ -216,10 +219,10 @@ void JumpPointSearch::expand(int idx, int x, int y) {
         relax(idx, goal_idx_, at);
         break;
       }
-      const int along_x = jumpStraight(cx, cy, dx, 0);
-      if (along_x >= 0) relaxJump(idx, cx, cy, at, dx, 0, along_x);
-      const int along_y = jumpStraight(cx, cy, 0, dy);
-      if (along_y >= 0) relaxJump(idx, cx, cy, at, 0, dy, along_y);
+      const Jump along_x = jumpStraight(cx, cy, dx, 0);
+      if (along_x.to >= 0) relaxJump(idx, cx, cy, at, along_x);
+      const Jump along_y = jumpStraight(cx, cy, 0, dy);
+      if (along_y.to >= 0) relaxJump(idx, cx, cy, at, along_y);
     }
   }
 }

@@ -72,8 +72,13 @@ class JumpPointSearch {
   int node(int x, int y) const { return (y << shift_) | x; }
   /// Refreshes the bits (and the JPS+ tables) when the map changed.
   void syncCells();
-  /// The jump point reached moving straight (one of dx, dy zero) from (x, y), or -1.
-  int jumpStraight(int x, int y, int dx, int dy) const;
+  /// A straight jump's end: the node reached (-1: none) and, for a bend, the way on.
+  struct Jump {
+    int to;
+    int turn_x, turn_y;  // both 0 unless `to` is a bend
+  };
+  /// The jump point reached moving straight (one of dx, dy zero) from (x, y).
+  Jump jumpStraight(int x, int y, int dx, int dy) const;
   /// The next cell along diagonal (dx, dy) from (x, y) from which straight jumps must be
   /// tried (every open step when scanning; a JPS+ jump point, or the goal's row or column),
   /// written to (x, y); false when the diagonal is blocked first.
@@ -84,9 +89,9 @@ class JumpPointSearch {
   bool isBend(int x, int y, int dx, int dy, int& turn_x, int& turn_y) const;
   /// Expands the node at (x, y): jumps along its pruned directions and relaxes what they reach.
   void expand(int idx, int x, int y);
-  /// Follows a straight jump along (dx, dy) from (x, y), reached at cost g with `from` its last
-  /// recorded cell, that found `jp`: round any bends, then relaxes the jump point it ends at.
-  void relaxJump(int from, int x, int y, std::int64_t g, int dx, int dy, int jp);
+  /// Follows a straight jump from (x, y), reached at cost g with `from` its last recorded
+  /// cell, that found `jump`: round any bends, then relaxes the jump point it ends at.
+  void relaxJump(int from, int x, int y, std::int64_t g, Jump jump);
   /// Opens or improves node `to` at cost g, its parent `from` (its path from there is the
   /// canonical one: diagonal first, then straight).
   void relax(int from, int to, std::int64_t g);
