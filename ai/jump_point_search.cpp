@@ -4,7 +4,6 @@
 #include <cstdlib>
 
 #include "ai/fixed_cost.h"
-#include "ai/open_order.h"
 
 namespace zonesim::ai {
 
@@ -46,7 +45,7 @@ void JumpPointSearch::beginSearch() {
     generation_ = 0;
   }
   generation_ += kStamps;
-  heap_.clear();
+  open_.clear();
   stats_ = SearchStats{};
 }
 
@@ -158,8 +157,7 @@ void JumpPointSearch::relaxJump(int from, int x, int y, std::int64_t g, Jump jum
   stamps_[to] = std::uint16_t(generation_ + kOpen);
   nodes_[to] = Node{g, from};
   const int tx = to & ((1 << shift_) - 1), ty = to >> shift_;
-  heap_.push_back(HeapEntry{g + octileFixed(tx - goal_x_, ty - goal_y_), g, to});
-  std::push_heap(heap_.begin(), heap_.end(), PopsLater{});
+  open_.push(to, g, octileFixed(tx - goal_x_, ty - goal_y_));
   ++stats_.generated;
 }
 
@@ -239,20 +237,18 @@ bool JumpPointSearch::findPath(Cell start, Cell goal, GridPath& out) {
   const int start_idx = node(start.x, start.y);
   stamps_[start_idx] = std::uint16_t(generation_ + kOpen);
   nodes_[start_idx] = Node{0, -1};
-  heap_.push_back(HeapEntry{octileFixed(start.x - goal.x, start.y - goal.y), 0, start_idx});
+  open_.push(start_idx, 0, octileFixed(start.x - goal.x, start.y - goal.y));
   ++stats_.generated;
-  while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), PopsLater{});
-    const HeapEntry top = heap_.back();
-    heap_.pop_back();
-    if (stamps_[top.idx] == closed || top.g != nodes_[top.idx].g) continue;  // a stale entry
-    stamps_[top.idx] = closed;
+  while (!open_.empty()) {
+    const int idx = open_.pop().node;
+    if (stamps_[idx] == closed) continue;  // an entry superseded by a cheaper one
+    stamps_[idx] = closed;
     ++stats_.expanded;
-    if (top.idx == goal_idx_) {
+    if (idx == goal_idx_) {
       tracePath(goal_idx_, out);
       return true;
     }
-    expand(top.idx, top.idx & ((1 << shift_) - 1), top.idx >> shift_);
+    expand(idx, idx & ((1 << shift_) - 1), idx >> shift_);
   }
   return false;
 }

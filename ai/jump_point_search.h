@@ -21,7 +21,7 @@
 //
 // Node records (g, parent, stamp) are indexed by y << shift | x, so coordinates come back with
 // a shift and a mask instead of a division, and carry a generation stamp so that nothing is
-// cleared per query; the open list is a binary heap with lazy deletion.
+// cleared per query; the open list is JpsOpenList.
 
 #include <cstdint>
 #include <vector>
@@ -30,6 +30,7 @@
 #include "ai/grid_map.h"
 #include "ai/grid_path.h"
 #include "ai/grid_search.h"
+#include "ai/jps_open_list.h"
 #include "ai/jps_plus_tables.h"
 
 namespace zonesim::ai {
@@ -58,11 +59,6 @@ class JumpPointSearch {
   };
   // Stamps relative to generation_: open, closed, a bend passed; anything else is untouched.
   enum : std::uint16_t { kOpen = 0, kClosed = 1, kBend = 2, kStamps = 3 };
-  struct HeapEntry {
-    std::int64_t f;
-    std::int64_t g;
-    std::int32_t idx;
-  };
 
   /// Walkable, the map's border counted as wall.
   bool walkable(int x, int y) const { return rows_.walkable(y, x); }
@@ -105,7 +101,7 @@ class JumpPointSearch {
   int shift_ = 0;  // node index = y << shift_ | x
   std::vector<Node> nodes_;
   std::vector<std::uint16_t> stamps_;  // per node: generation_ + kOpen / kClosed / kBend
-  std::vector<HeapEntry> heap_;
+  JpsOpenList open_;
   std::vector<int> corners_;  // tracePath's jump points, kept to avoid allocating per query
   std::uint16_t generation_ = 0;
   int goal_x_ = 0, goal_y_ = 0, goal_idx_ = 0;
