@@ -1,6 +1,6 @@
 #pragma once
 // The walkable flags of a map packed 64 cells to a word, for jump point search's straight jumps
-// (Harabor and Grastien's block-based scan): one jump reads 64 cells of its line and of the two
+// (Harabor and Grastien's block-based scan): one step reads 55 cells of its line and of the two
 // lines beside it at once and finds the first blocked cell or forced neighbour with one bit
 // count. A transposed copy (lines = columns) serves vertical jumps with the same code.
 

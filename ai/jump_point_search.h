@@ -7,7 +7,7 @@
 // only through this cell. Without corner cutting a diagonal move has no forced neighbours; a
 // diagonal jump stops where a straight jump from it along either of its components would stop.
 //
-// Straight jumps scan 64 cells at a time over bit-packed rows (and columns, for vertical
+// Straight jumps scan 55 cells at a time over bit-packed rows (and columns, for vertical
 // jumps): see BitGrid. Diagonal jumps do not stop at those intermediate cells (Harabor and
 // Grastien 2014): the straight jumps' targets become successors of the node jumped from
 // directly, reached by the diagonal then the straight run, which keeps the open list short.
@@ -19,9 +19,9 @@
 // expansion, the bend recorded with its cost and parent for the path but never put on the open
 // list; a bend already passed as cheaply ends the jump (it would only repeat or go back).
 //
-// Node records (g, parent, stamp) are indexed by y << shift | x, so coordinates come back with
-// a shift and a mask instead of a division, and carry a generation stamp so that nothing is
-// cleared per query; the open list is JpsOpenList.
+// Node records (g, parent) and their 2-byte generation stamps (so that nothing is cleared per
+// query) are indexed by y << shift | x: coordinates come back with a shift and a mask instead
+// of a division. The open list is JpsOpenList.
 
 #include <cstdint>
 #include <vector>

@@ -1,7 +1,8 @@
 #pragma once
 // Node records that outlive a search carry the generation of the search that last touched
 // them (stamp == generation: open, generation + 1: closed), so a new search starts by bumping
-// one counter instead of clearing the map's records. Shared by the grid searches.
+// one counter instead of clearing the map's records. Used by A* (GridSearch); jump point search
+// keeps 2-byte stamps of its own, apart from its records.
 
 #include <cstdint>
 #include <vector>
