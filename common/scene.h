@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/scene_adaptation.h"
 #include "common/scene_agents.h"
 #include "common/scene_clients.h"
 #include "common/scene_dead_reckoning.h"
@@ -50,6 +51,7 @@ struct Scene {
   CrowdLod lod;            ///< level of detail of the crowd systems
   TimeDilationSettings time_dilation;  ///< slowing the clock under overload
   InteractionSettings interactions;    ///< hits and gifts between entities, by message
+  AdaptationSettings adaptation;       ///< duels against NPCs that adapt to the player
 };
 
 /// A scene file problem; what() is "file:line: field: what is wrong".

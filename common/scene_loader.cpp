@@ -15,10 +15,11 @@
 #include <utility>
 
 #include "common/scene.h"
+#include "common/scene_loader_adaptation.h"
 #include "common/scene_loader_crowd.h"
 #include "common/scene_loader_document.h"
-#include "common/scene_loader_node.h"
 #include "common/scene_loader_interactions.h"
+#include "common/scene_loader_node.h"
 #include "common/scene_loader_physics.h"
 #include "common/scene_loader_time_dilation.h"
 
@@ -382,10 +383,9 @@ void readClients(const SceneMap& root, Scene& scene) {
 }
 
 Scene readScene(const SceneNode& document, const std::string& file) {
-  SceneMap root =
-      document.map({"name", "world", "tick", "seed", "zones", "interest", "halo", "dead_reckoning",
-                    "physics", "populations", "clients", "map", "agents", "lod",
-                    "time_dilation", "interactions"});
+  SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
+                                "dead_reckoning", "physics", "populations", "clients", "map",
+                                "agents", "lod", "time_dilation", "interactions", "adaptation"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -408,6 +408,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readCrowdLod(root, scene);
   readTimeDilation(root, scene.time_dilation);
   readInteractions(root, scene.world, scene.halo_width, scene.interactions);
+  readAdaptation(root, file, scene.world, scene.adaptation);
   return scene;
 }
 

@@ -1,0 +1,16 @@
+#pragma once
+// The scene's `adaptation` key (docs/scene-format.md); internal to the scene loader.
+
+#include <string>
+
+#include "common/scene_adaptation.h"
+#include "common/scene_loader_node.h"
+
+namespace zonesim {
+
+/// Reads the optional top-level `adaptation` key (absent: off, nothing runs). `file`: the
+/// scene's, against whose folder the model path resolves; arenas lie inside `world`.
+void readAdaptation(const SceneMap& root, const std::string& file, const SceneBox& world,
+                    AdaptationSettings& a);
+
+}  // namespace zonesim
