@@ -9,12 +9,14 @@
 #include "zone_node/cluster/player_positions.h"
 #include "zone_node/cluster/trail_exchange.h"
 #include "zone_node/cluster/value_gather.h"
+#include "zone_node/leaderboard_service.h"
 #include "zone_node/net/cell_publisher.h"
 #include "zone_node/net/gateway_link.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/agent_system.h"
 #include "zone_node/systems/ant_movement.h"
 #include "zone_node/systems/avatar_movement.h"
+#include "zone_node/systems/duels.h"
 #include "zone_node/systems/emitters.h"
 #include "zone_node/systems/flock_movement.h"
 #include "zone_node/systems/flow_movement.h"
@@ -25,7 +27,6 @@
 #include "zone_node/systems/rigid_bodies.h"
 #include "zone_node/systems/road_movement.h"
 #include "zone_node/systems/step_context.h"
-#include "zone_node/leaderboard_service.h"
 #include "zone_node/transactions.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_map.h"
@@ -93,6 +94,9 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
   agents_ = std::make_unique<AgentSystem>(scene, map_.get());
   wanderers_ = std::make_unique<WanderMovement>(scene);
   interactions_ = std::make_unique<InteractionSystem>(scene.interactions, scene.dt, mail_, rank_);
+  duels_ = std::make_unique<DuelSystem>(scene.adaptation, scene.seed, [this](double x, double z) {
+    return layout_.ownerOf(x, z) == rank_;
+  });
   // The path budget is the cluster's: zones share their oldest requests' keys every tick. The
   // ants' trail deposits are summed in integers, the same on every rank.
   if (size_ > 1)
@@ -109,7 +113,8 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
                  {Stage::AiFlow, flows_.get()},
                  {Stage::AiFormations, formations_.get()},
                  {Stage::AiRoads, roads_.get()},
-                 {Stage::AiAnts, ants_.get()}};
+                 {Stage::AiAnts, ants_.get()},
+                 {Stage::AiAdaptation, duels_.get()}};
   // Flocks and flow crowds read their neighbours across borders as ghosts too, and agents see
   // enemies there.
   halo_needed_ = walker_reach_ > 0 || bodies_in_scene_ || flocks_->active() || flows_->active() ||
@@ -180,6 +185,10 @@ const WorldMap* ZoneNode::worldMap() const {
 
 std::string ZoneNode::flockBackend() const {
   return flocks_->backendName();
+}
+
+std::vector<DuelFigures> ZoneNode::duelFigures() const {
+  return duels_->figures();
 }
 
 void ZoneNode::tick() {

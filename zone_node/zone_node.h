@@ -48,6 +48,8 @@ struct WorldMap;
 class ZoneMap;
 class AgentSystem;
 class InteractionSystem;
+class DuelSystem;
+struct DuelFigures;
 class ZoneSystem;
 struct StepContext;
 
@@ -134,6 +136,8 @@ class ZoneNode {
   const WorldMap* worldMap() const;
   /// Which backend the flocking populations use ("cpu", "opencl" or "none").
   std::string flockBackend() const;
+  /// The duels against adaptive NPCs this zone runs (scene key `adaptation`), in scene order.
+  std::vector<DuelFigures> duelFigures() const;
 
  private:
   /// Runs one phase, timing it into the profile.
@@ -195,6 +199,7 @@ class ZoneNode {
   std::unique_ptr<AgentSystem> agents_;            // AI agents (scene key `agents`)
   std::unique_ptr<WanderMovement> wanderers_;      // NPCs between random waypoints
   std::unique_ptr<InteractionSystem> interactions_;  // hits and gifts (scene key `interactions`)
+  std::unique_ptr<DuelSystem> duels_;  // duels against adaptive NPCs (scene key `adaptation`)
   /// The AI phase's systems in the order they step, each with its stage of the profile.
   std::vector<std::pair<Stage, ZoneSystem*>> ai_systems_;
   Collectives collectives_;               // what the systems may ask of the whole cluster

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "common/stats.h"
+#include "zone_node/systems/duels.h"
 #include "zone_node/transactions.h"
 
 namespace zonesim::zone {
@@ -16,6 +17,23 @@ std::string hostName() {
 }
 
 // {"1":12,"3":4}: a JSON object keyed by rank.
+// The zone's duels (scene key `adaptation`): win rates by skill, and where each NPC ended.
+std::string duelsJson(const std::vector<DuelFigures>& duels) {
+  std::string out;
+  for (const DuelFigures& d : duels) {
+    JsonLine j;
+    j.add("duel", std::uint64_t(d.index)).add("skill", d.skill);
+    j.add("rounds", d.rounds).add("player_wins", d.player_wins);
+    j.add("win_rate", d.rounds ? double(d.player_wins) / double(d.rounds) : 0.0);
+    j.add("npc_accuracy", d.npc.accuracy).add("npc_aggression", d.npc.aggression);
+    j.add("npc_reaction_steps", d.npc.reaction_steps);
+    j.add("guard_fallbacks", d.guard.fallbacks).add("guard_clamped", d.guard.clamped);
+    j.add("guard_rate_limited", d.guard.rate_limited);
+    out += (out.empty() ? "" : ",") + j.str();
+  }
+  return "[" + out + "]";
+}
+
 std::string byRank(const std::map<int, std::uint64_t>& counts) {
   std::string out;
   for (const auto& [rank, n] : counts)
@@ -100,6 +118,8 @@ std::string ZoneReport::summaryJson(const ZoneNode& zone, double wall_seconds) c
   s.add("late_ticks", late_ticks_);
   s.add("particle_backend", zone.particleBackend());
   s.add("flock_backend", zone.flockBackend());
+  const std::vector<DuelFigures> duels = zone.duelFigures();
+  if (!duels.empty()) s.addRaw("duels", duelsJson(duels));
   s.addRaw("migrated_out_to", byRank(migrated_to_));
   s.addRaw("avatars_out_to", byRank(avatars_to_));
   const TransactionCounters& t = zone.transactions().counters();

@@ -29,7 +29,10 @@ next node and goal migrate with them, deciding at each node from the graph and i
 alone; (scenes/skirmish.yaml) NPCs hitting each other where four zones meet, by messages to the
 target's owner (the entity mail) that are forwarded when the target crosses a border in the
 same tick: health, kills and knockback end bitwise equal only if every hit lands once, in the
-same order, and unique items claimed by several in one tick go to the same claimant."""
+same order, and unique items claimed by several in one tick go to the same claimant;
+(scenes/duel_adaptive.yaml) duels against NPCs that adapt to the player, run by the zone that
+holds each arena, whose rounds, wins and final NPCs (the zone summaries' `duels`) are the same
+on every decomposition."""
 import json
 import tempfile
 from pathlib import Path
@@ -41,7 +44,8 @@ SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flo
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "agents_navmesh": 600,
           "courtyard_formation": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
-          "flock_lod": 300, "roads": 1200, "skirmish": 300}
+          "flock_lod": 300, "roads": 1200, "skirmish": 300,
+          "duel_adaptive": 1200}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
@@ -61,6 +65,7 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
         ghosts_sent = {}
         migrated = {}
         mail = {}
+        duels = {}  # ranks -> every zone's duels, by index
         for ranks in (1, 2, 4):
             dump = out / f"{scene}_{ranks}.jsonl"
             metrics = out / f"{scene}_{ranks}_metrics"
@@ -74,6 +79,8 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
             if scene == "crowd_flock_gpu":
                 backends = {z["flock_backend"] for z in summaries}
                 h.check(backends == {"opencl"}, f"{scene}: flocks on OpenCL ({sorted(backends)})")
+            duels[ranks] = sorted((d for z in summaries for d in z.get("duels", [])),
+                                  key=lambda d: d["duel"])
             ghosts_sent[ranks] = sum(s.get("ghosts_sent", 0) for s in summaries)
             migrated[ranks] = sum(s.get("migrated_out", 0) for s in summaries)
             mail[ranks] = {k: sum(s.get(k, 0) for s in summaries)
@@ -125,6 +132,11 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
                     f" {mail[4]['mail_forwarded']} followed a target that crossed in that tick")
             h.check(all(m["mail_failures"] == 0 for m in mail.values()),
                     f"{scene}: every audit of the mail balanced")
+        if scene == "duel_adaptive":
+            h.check(len(duels[1]) == 10 and all(d["rounds"] > 50 for d in duels[1]),
+                    f"{scene}: 10 duels played {[d['rounds'] for d in duels[1]]} rounds")
+            h.check(duels[1] == duels[2] == duels[4],
+                    f"{scene}: every duel's rounds, wins and final NPC the same on 1, 2 and 4 ranks")
         if scene in MIGRATION_SCENES:
             h.check(migrated[4] > 0, f"{scene}: {migrated[4]} NPCs crossed borders on 4 ranks")
 print("decomposition invariance passed")
