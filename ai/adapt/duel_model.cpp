@@ -6,8 +6,8 @@
 namespace zonesim::ai::adapt {
 
 namespace {
-// Bisection halves [0, 1] this often: 2^-30 is far below any step the guards let through.
-constexpr int kBisections = 30;
+// Bisection halves [0, 1] this often: 2^-20 is far below any step the guards let through.
+constexpr int kBisections = 20;
 }  // namespace
 
 Basis basisAt(double h, double d) {
@@ -26,17 +26,30 @@ double DuelModel::winProbability(double h, double d) const {
 
 double DuelModel::difficultyFor(double h, double target) const {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  // Harder NPCs lose the player rounds: the prediction falls with d, and the root is bracketed.
+  // For a given h the logit is a cubic in v = 2d - 1: its coefficients once, then each
+  // bisection step is three multiply-adds against the target's logit (no exp).
+  const double u = 2 * h - 1;
+  const Basis& w = weights;
+  const double c0 = w[0] + u * (w[1] + u * (w[3] + u * w[6]));
+  const double c1 = w[2] + u * (w[4] + u * w[7]);
+  const double c2 = w[5] + u * w[8];
+  const double c3 = w[9];
+  auto logit = [&](double d) {
+    const double v = 2 * d - 1;
+    return c0 + v * (c1 + v * (c2 + v * c3));
+  };
+  const double goal = std::log(target / (1 - target));
+  // Harder NPCs lose the player rounds: the logit falls with d, and the root is bracketed.
   double lo = 0, hi = 1;
-  const double p_lo = winProbability(h, lo), p_hi = winProbability(h, hi);
-  if (!std::isfinite(p_lo) || !std::isfinite(p_hi)) return kNaN;
-  if (p_lo <= target) return lo;
-  if (p_hi >= target) return hi;
+  const double z_lo = logit(lo), z_hi = logit(hi);
+  if (!std::isfinite(z_lo) || !std::isfinite(z_hi) || !std::isfinite(goal)) return kNaN;
+  if (z_lo <= goal) return lo;
+  if (z_hi >= goal) return hi;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
-    const double p = winProbability(h, mid);
-    if (!std::isfinite(p)) return kNaN;
-    (p > target ? lo : hi) = mid;
+    const double z = logit(mid);
+    if (!std::isfinite(z)) return kNaN;
+    (z > goal ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
 }

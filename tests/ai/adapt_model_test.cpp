@@ -61,6 +61,26 @@ TEST(AdaptModelFile, MalformedFilesNameTheLine) {
   expectError(head + "smoothing 0.1\n", 3, "weights: missing");
 }
 
+// The inversion agrees with the model: at the difficulty it returns, the prediction is the
+// target, or the target lies beyond [0, 1] on that side.
+TEST(AdaptModel, DifficultyForInvertsWinProbability) {
+  TrainOptions o;
+  o.players = 16;
+  o.rounds_per_player = 200;
+  const DuelModel model = train(o);
+  for (double h : {0.15, 0.3, 0.5, 0.7, 0.85})
+    for (double target : {0.3, 0.5, 0.7}) {
+      const double d = model.difficultyFor(h, target);
+      ASSERT_TRUE(d >= 0 && d <= 1) << h;
+      if (d == 0)
+        EXPECT_LE(model.winProbability(h, 0), target);
+      else if (d == 1)
+        EXPECT_GE(model.winProbability(h, 1), target);
+      else
+        EXPECT_NEAR(model.winProbability(h, d), target, 1e-4) << "h " << h;
+    }
+}
+
 TEST(AdaptModelFile, MissingFileIsNamed) {
   EXPECT_THROW(loadModel("/nonexistent/model.txt"), ParseError);
 }
