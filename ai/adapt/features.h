@@ -1,6 +1,6 @@
 #pragma once
-// The player's measured performance: its hit rate over recent rounds, older ones fading. It is what
-// the model reads instead of the hidden skill, and it does not depend on the NPC it met, so
+// The player's measured performance: its hit rate over recent rounds, older ones fading. It is
+// what the model reads instead of the hidden skill, and it does not depend on the NPC met, so
 // the model can ask "how would this player fare against that NPC" for any NPC.
 
 #include <cstdint>
@@ -11,10 +11,6 @@ namespace zonesim::ai::adapt {
 
 /// More attacks than a round can hold: not a real round.
 constexpr double kMaxAttacks = kMaxExchanges;
-
-}  // namespace zonesim::ai::adapt
-
-namespace zonesim::ai::adapt {
 
 /// A running measure of one player's performance.
 class PlayerFeatures {
