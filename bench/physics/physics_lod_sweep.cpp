@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
       if (o.max_step <= 0.0 || k * kDt <= o.max_step * (1.0 + 1e-9)) continue;
       std::fprintf(stderr, "%s: period %d, steps of at most %.4f s...\n", name, k, o.max_step);
       char label[64];
-      std::snprintf(label, sizeof label, "%d, max %.3g s", k, o.max_step);
+      std::snprintf(label, sizeof label, "%d (max %.3g s)", k, o.max_step);
       rows.emplace_back(label, run(scene, o, k, o.max_step));
     }
     if (struck) {

@@ -29,8 +29,14 @@ def main(src, out):
                    and ("max" in r["period"]) == capped]
             if not sel:
                 continue
+            # Full detail has no error against itself: a vertical line at its time instead.
+            for r in sel:
+                if float(r[column]) == 0.0:
+                    ax.axvline(float(r["ms_per_step"]), color="black", linestyle=":",
+                               label="full detail (k = 1)")
+            sel = [r for r in sel if float(r[column]) > 0.0]
             ms = [float(r["ms_per_step"]) for r in sel]
-            err = [max(float(r[column]), 1e-6) for r in sel]
+            err = [float(r[column]) for r in sel]
             ax.plot(ms, err, marker=marker, linestyle="-" if not capped else "none",
                     label="longest step capped" if capped else "period k, no cap")
             for r, x, y in zip(sel, ms, err):
