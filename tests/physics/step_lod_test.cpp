@@ -13,8 +13,8 @@ namespace {
 
 constexpr double kDt = 1.0 / 60.0;
 
-World groundWorld() {
-  World world;
+World groundWorld(const WorldSettings& settings = {}) {
+  World world(settings);
   BodyDesc ground;
   ground.type = BodyType::Static;
   ground.shape = Shape::plane();
@@ -76,11 +76,7 @@ TEST(StepLod, TheLongestStepCutsThePeriod) {
   // Steps of at most 2.5 ticks: period 8 is cut to 2, so the ball steps dt, then 2 dt each time.
   WorldSettings settings;
   settings.lod_longest_step = 2.5 * kDt;
-  World lod(settings), reference = groundWorld();
-  BodyDesc ground;
-  ground.type = BodyType::Static;
-  ground.shape = Shape::plane();
-  lod.addBody(ground);
+  World lod = groundWorld(settings), reference = groundWorld();
   const BodyIndex a = addBall(lod, Vec3(0, 3, 0), Vec3(2, 4, 0));
   const BodyIndex b = addBall(reference, Vec3(0, 3, 0), Vec3(2, 4, 0));
   lod.setStepPeriod(a, 8);
