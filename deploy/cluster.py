@@ -30,6 +30,8 @@ import process_group  # noqa: E402  (deploy/process_group.py)
 # Zones outlive the players by this much at most: they are stopped once the fleets are done.
 ZONE_SAFETY_S = 300
 DEBIAN_PYTHON = "/usr/bin/python3"  # where python3-matplotlib is (report_html.py's plots)
+# The line a zonesim program writes before it exits on an error ("zone_node: what went wrong").
+OWN_ERROR = re.compile(r"^(zone_node|gateway|client_stub|lobby): ")
 
 
 # A command run over ssh without a terminal is not signalled when its connection goes: a SIGTERM
@@ -146,11 +148,13 @@ class Launch:
         return p
 
     def fail(self, what, msg, log_path=None):
-        tail = ""
+        shown = []
         if log_path and Path(log_path).exists():
-            lines = Path(log_path).read_text(errors="replace").splitlines()[-12:]
-            tail = "".join("\n    " + l for l in lines)
-        raise ClusterError(f"{what}: {msg}{tail}")
+            lines = Path(log_path).read_text(errors="replace").splitlines()
+            # A rank's own error ("zone_node: ...") comes first, before mpirun's follow-on
+            # warnings about the peers it took down, which alone fill the tail.
+            shown = [l for l in lines[:-12] if OWN_ERROR.match(l)][:6] + lines[-12:]
+        raise ClusterError(f"{what}: {msg}" + "".join("\n    " + l for l in shown))
 
     def probe_hosts(self):
         """Every host answers (nproc), or the start stops naming it."""

@@ -3,10 +3,12 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "ledger/batch_plan.h"
 #include "ledger/schema.h"
@@ -111,25 +113,16 @@ struct SqliteStore::Impl {
                        "sqlite '" + options.path + "': the ledger file is read-only");
     }
     sqlite3_busy_timeout(db, options.busy_timeout_ms);
-    // journal_mode answers with the mode it got: anything but wal (a file system without
-    // shared memory, say) would silently lose the readers-never-block-writers property.
-    {
-      Statement mode;
-      prepare(mode, "PRAGMA journal_mode=WAL");
-      if (!step(mode.get(), "set journal_mode=WAL")) fail("set journal_mode=WAL", SQLITE_ERROR);
-      const char* got = reinterpret_cast<const char*>(sqlite3_column_text(mode.get(), 0));
-      if (!got || std::strcmp(got, "wal") != 0) {
-        throw StoreError(StoreFailure::Error, "sqlite '" + options.path +
-                                                  "': WAL mode refused (journal_mode is " +
-                                                  (got ? got : "unknown") + ")");
-      }
-    }
+    // Ranks of one cluster open a shared file at the same instant. Switching a new file to WAL
+    // can then answer "database is locked" at once, without waiting in the busy handler
+    // (SQLite refuses to wait where waiting could deadlock), so the open itself retries.
+    whileBusy([&] { setWalMode(); });
     exec(options.synchronous_full ? "PRAGMA synchronous=FULL" : "PRAGMA synchronous=NORMAL",
          "set synchronous");
     if (options.max_page_count > 0) {
       exec("PRAGMA max_page_count=" + std::to_string(options.max_page_count), "set max_page_count");
     }
-    migrate();
+    whileBusy([&] { migrate(); });
     prepare(insert, std::string("INSERT INTO ledger_tx (") + schema::kColumns +
                         ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)"
                         " ON CONFLICT (player, seq) DO NOTHING");
@@ -138,6 +131,40 @@ struct SqliteStore::Impl {
     prepare(highest, "SELECT COALESCE(MAX(seq), 0) FROM ledger_tx WHERE player = ?1");
     prepare(leaderboard, std::string(schema::kLeaderboardBody) + "?1");
     prepare(counts, schema::kCounts);
+  }
+
+  // journal_mode answers with the mode it got: anything but wal (a file system without shared
+  // memory, say) would silently lose the readers-never-block-writers property.
+  void setWalMode() {
+    Statement mode;
+    prepare(mode, "PRAGMA journal_mode=WAL");
+    if (!step(mode.get(), "set journal_mode=WAL")) fail("set journal_mode=WAL", SQLITE_ERROR);
+    const char* got = reinterpret_cast<const char*>(sqlite3_column_text(mode.get(), 0));
+    if (!got || std::strcmp(got, "wal") != 0) {
+      throw StoreError(StoreFailure::Error, "sqlite '" + options.path +
+                                                "': WAL mode refused (journal_mode is " +
+                                                (got ? got : "unknown") + ")");
+    }
+  }
+
+  // Runs a step of opening again while it fails as Unavailable (locked by another connection),
+  // until the busy timeout has passed; then the last failure stands.
+  template <typename Step>
+  void whileBusy(Step step) {
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::milliseconds(options.busy_timeout_ms);
+    for (;;) {
+      try {
+        step();
+        return;
+      } catch (const StoreError& e) {
+        if (e.failure() != StoreFailure::Unavailable ||
+            std::chrono::steady_clock::now() >= deadline) {
+          throw;
+        }
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
   }
 
   void migrate() {
