@@ -20,6 +20,7 @@
 #include "common/scene_loader_document.h"
 #include "common/scene_loader_interactions.h"
 #include "common/scene_loader_node.h"
+#include "common/scene_loader_overlay.h"
 #include "common/scene_loader_physics.h"
 #include "common/scene_loader_time_dilation.h"
 
@@ -401,14 +402,14 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readDeadReckoning(root, scene.dead_reckoning);
   readPhysics(root, scene.physics);
   readPhysicsObjects(root, scene);  // common/scene_loader_physics.cpp
-  readObstacleMap(root, file, scene);
+  readObstacleMap(root, scene);
   readPopulations(root, scene);
   readClients(root, scene);
   readAgents(root, scene);
   readCrowdLod(root, scene);
   readTimeDilation(root, scene.time_dilation);
   readInteractions(root, scene.world, scene.halo_width, scene.interactions);
-  readAdaptation(root, file, scene.world, scene.adaptation);
+  readAdaptation(root, scene.world, scene.adaptation);
   return scene;
 }
 
@@ -426,7 +427,10 @@ std::optional<std::string> readFile(const std::string& path) {
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& name) {
-  return readScene(SceneNode::root(parseSceneDocument(text, name), name), name);
+  SceneOrigins origins;
+  YAML::Node document = parseSceneWithOverlays(text, name, origins);
+  // An overlay is its base scene with changes: the base names it and anchors its paths.
+  return readScene(SceneNode::root(document, origins), origins.root_file);
 }
 
 Scene loadScene(const std::string& path) {

@@ -23,8 +23,9 @@ void readDuels(const SceneMap& m, const SceneBox& world, AdaptationSettings& a) 
   if (a.duels.empty()) list.fail("needs at least one duel");
 }
 
-// Only whether it opens: the zone parses it (ai/adapt/model_file.h names the file's own line).
-void readModelPath(const SceneMap& m, const std::string& file, AdaptationSettings& a) {
+// Only whether it opens (relative to the file that names it, an overlay's if it changed it):
+// the zone parses it (ai/adapt/model_file.h names the file's own line).
+void readModelPath(const SceneMap& m, AdaptationSettings& a) {
   std::optional<SceneNode> node = m.optional("model");
   if (!node) {
     if (a.mode == AdaptationSettings::Mode::Model)
@@ -33,7 +34,7 @@ void readModelPath(const SceneMap& m, const std::string& file, AdaptationSetting
   }
   std::filesystem::path path(node->text());
   if (path.empty()) node->fail("must not be empty");
-  if (path.is_relative()) path = std::filesystem::path(file).parent_path() / path;
+  if (path.is_relative()) path = std::filesystem::path(node->file()).parent_path() / path;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec) || !std::ifstream(path))
     node->fail("cannot open model file '" + path.string() + "'");
@@ -42,15 +43,14 @@ void readModelPath(const SceneMap& m, const std::string& file, AdaptationSetting
 
 }  // namespace
 
-void readAdaptation(const SceneMap& root, const std::string& file, const SceneBox& world,
-                    AdaptationSettings& a) {
+void readAdaptation(const SceneMap& root, const SceneBox& world, AdaptationSettings& a) {
   if (!root.optional("adaptation")) return;
   a.enabled = true;  // a section that is there means on, unless it says enabled: false
   SceneMap m = root.section("adaptation", {"enabled", "mode", "model", "target_win_rate",
                                            "max_step", "rubber_band", "duels"});
   m.read("enabled", a.enabled);
   a.mode = AdaptationSettings::Mode(m.choice("mode", {"off", "rubber_band", "model"}, int(a.mode)));
-  readModelPath(m, file, a);
+  readModelPath(m, a);
   // Beyond these a duel cannot be balanced: the gentlest and deadliest NPCs bound the outcome.
   m.read("target_win_rate", a.target_win_rate, Limit::between(0.05, 0.95));
   m.read("max_step", a.max_step, Limit{0, 1, true});

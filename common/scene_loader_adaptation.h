@@ -8,9 +8,8 @@
 
 namespace zonesim {
 
-/// Reads the optional top-level `adaptation` key (absent: off, nothing runs). `file`: the
-/// scene's, against whose folder the model path resolves; arenas lie inside `world`.
-void readAdaptation(const SceneMap& root, const std::string& file, const SceneBox& world,
-                    AdaptationSettings& a);
+/// Reads the optional top-level `adaptation` key (absent: off, nothing runs). The model path
+/// resolves against the folder of the file that names it; arenas lie inside `world`.
+void readAdaptation(const SceneMap& root, const SceneBox& world, AdaptationSettings& a);
 
 }  // namespace zonesim

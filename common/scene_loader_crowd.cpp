@@ -39,7 +39,7 @@ void readMapDoors(const SceneMap& m, ObstacleMap& map) {
 
 }  // namespace
 
-void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene) {
+void readObstacleMap(const SceneMap& root, Scene& scene) {
   std::optional<SceneNode> node = root.optional("map");
   if (!node) return;
   SceneMap m = node->map({"file", "origin", "cell_size", "doors", "fields", "navigation"});
@@ -47,7 +47,8 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
   std::string name = file_node.text();
   if (name.empty()) file_node.fail("must not be empty");
   std::filesystem::path path(name);
-  if (path.is_relative()) path = std::filesystem::path(file).parent_path() / path;
+  // Relative to the file that names it (an overlay's own, if it changed the map).
+  if (path.is_relative()) path = std::filesystem::path(file_node.file()).parent_path() / path;
   // Only whether it opens here: its cells are parsed by zone_node/world_map.h, which reports
   // the map's own file:line, and checks that the grid fits in the world.
   std::error_code ec;
@@ -74,7 +75,7 @@ void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene
     if (fields_name.empty()) fields->fail("must not be empty");
     std::filesystem::path fields_path(fields_name);
     if (fields_path.is_relative())
-      fields_path = std::filesystem::path(file).parent_path() / fields_path;
+      fields_path = std::filesystem::path(fields->file()).parent_path() / fields_path;
     map.fields = fields_path.lexically_normal().string();
     map.fields_line = fields->line();
   }

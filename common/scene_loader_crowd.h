@@ -11,9 +11,9 @@ namespace zonesim {
 
 struct Scene;
 
-/// Reads the optional top-level `map` key, doors included; `file` is the scene's path (relative map
-/// paths are resolved against its folder).
-void readObstacleMap(const SceneMap& root, const std::string& file, Scene& scene);
+/// Reads the optional top-level `map` key, doors included; relative map and field paths resolve
+/// against the folder of the file that names them.
+void readObstacleMap(const SceneMap& root, Scene& scene);
 
 /// Reads the optional `goal` of a population's `flock` mapping (after its max_speed).
 void readFlockGoal(const SceneMap& flock, const Scene& scene, NpcFlock& f);

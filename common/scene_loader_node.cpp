@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "common/scene.h"
+#include "common/scene_loader_overlay.h"
 
 namespace zonesim {
 namespace {
@@ -58,12 +59,26 @@ std::string Limit::describe() const {
   return (lo_open ? "in (" : "in [") + low + ", " + high + "]";
 }
 
-SceneNode::SceneNode(YAML::Node node, std::string path, const std::string& file, int line)
-    : node_(std::move(node)), path_(std::move(path)), file_(&file), line_(line) {}
+SceneNode::SceneNode(YAML::Node node, std::string path, const std::string& file, int line,
+                     const SceneOrigins* origins)
+    : node_(std::move(node)),
+      path_(std::move(path)),
+      file_(&file),
+      line_(line),
+      origins_(origins) {}
 
 SceneNode SceneNode::root(YAML::Node node, const std::string& file) {
   int line = std::max(node.Mark().line + 1, 1);
   return SceneNode(std::move(node), "", file, line);
+}
+
+std::optional<OverlaidAt> SceneNode::overlaid(const YAML::Node& value) const {
+  return origins_ ? origins_->find(value) : std::nullopt;
+}
+
+SceneNode SceneNode::root(YAML::Node node, const SceneOrigins& origins) {
+  int line = std::max(node.Mark().line + 1, 1);
+  return SceneNode(std::move(node), "", origins.root_file, line, &origins);
 }
 
 void SceneNode::fail(const std::string& what) const {
@@ -80,16 +95,19 @@ std::string SceneNode::childPath(std::string_view key) const {
 }
 
 SceneNode SceneNode::emptyChild(std::string_view key) const {
-  return SceneNode(YAML::Node(YAML::NodeType::Map), childPath(key), *file_, line_);
+  return SceneNode(YAML::Node(YAML::NodeType::Map), childPath(key), *file_, line_, origins_);
 }
 
 SceneNode SceneNode::child(const YAML::Node& key, const YAML::Node& value) const {
   // yaml-cpp marks an empty value at the next token and an alias at its anchor; the key's
   // line is where the user looks in both cases.
-  int key_line = key.Mark().line + 1;
+  // A value an overlay put in sits under a key node of another file: the overlay's key line.
+  std::optional<OverlaidAt> overlay = overlaid(value);
+  int key_line = overlay ? overlay->key_line : key.Mark().line + 1;
   int value_line = value.Mark().line + 1;
   int line = (value.IsNull() || value_line < key_line) ? key_line : value_line;
-  return SceneNode(value, childPath(key.Scalar()), *file_, line);
+  return SceneNode(value, childPath(key.Scalar()), overlay ? *overlay->file : *file_, line,
+                   origins_);
 }
 
 std::string SceneNode::describeValue() const {
@@ -124,8 +142,11 @@ SceneMap SceneNode::map(std::initializer_list<std::string_view> allowed) const {
     }
     bool known = false;
     for (std::string_view name : allowed) known = known || name == key;
-    if (!known)
-      throwSceneError(*file_, key_line, path, "unknown key (allowed: " + joined(allowed) + ")");
+    if (!known) {
+      std::optional<OverlaidAt> overlay = overlaid(it->second);
+      throwSceneError(overlay ? *overlay->file : *file_, overlay ? overlay->key_line : key_line,
+                      path, "unknown key (allowed: " + joined(allowed) + ")");
+    }
     seen.emplace_back(key, key_line);
   }
   return SceneMap(*this);
@@ -137,7 +158,7 @@ std::vector<SceneNode> SceneNode::items() const {
   for (std::size_t i = 0; i < node_.size(); ++i) {
     YAML::Node item = node_[i];
     int line = item.IsNull() ? line_ : std::max(item.Mark().line + 1, line_);
-    out.emplace_back(item, path_ + "[" + std::to_string(i) + "]", *file_, line);
+    out.emplace_back(item, path_ + "[" + std::to_string(i) + "]", *file_, line, origins_);
   }
   return out;
 }

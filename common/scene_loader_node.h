@@ -19,6 +19,9 @@
 
 namespace zonesim {
 
+struct SceneOrigins;
+struct OverlaidAt;
+
 /// Throws SceneError formatted as "file:line: field: what".
 [[noreturn]] void throwSceneError(const std::string& file, int line, const std::string& field,
                                   const std::string& what);
@@ -52,11 +55,14 @@ class SceneMap;
 /// A YAML node plus where it is: file, line and dotted path.
 class SceneNode {
  public:
-  /// `file` must outlive the node; `line` is 1-based.
-  SceneNode(YAML::Node node, std::string path, const std::string& file, int line);
+  /// `file` and `origins` (if any) must outlive the node; `line` is 1-based.
+  SceneNode(YAML::Node node, std::string path, const std::string& file, int line,
+            const SceneOrigins* origins = nullptr);
 
   /// The document root of `file`; the line is that of its first node.
   static SceneNode root(YAML::Node node, const std::string& file);
+  /// The root of a document merged from overlays: values keep the files they came from.
+  static SceneNode root(YAML::Node node, const SceneOrigins& origins);
 
   /// 1-based line of this node in its file.
   int line() const { return line_; }
@@ -74,7 +80,7 @@ class SceneNode {
   std::optional<SceneNode> peek(std::string_view key) const;
   /// The key-value pairs of a mapping with free keys (plain names, each once), in file order.
   std::vector<std::pair<std::string, SceneNode>> entries() const;
-  /// The file this node was read from (as named to the parser).
+  /// The file this node was read from (as named to the parser; an overlay's for its values).
   const std::string& file() const { return *file_; }
   /// Whether the value is a scalar (a name or number, not a list or mapping).
   bool isScalar() const { return node_.IsScalar(); }
@@ -101,11 +107,13 @@ class SceneNode {
   std::string describeValue() const;
   std::string childPath(std::string_view key) const;
   SceneNode child(const YAML::Node& key, const YAML::Node& value) const;
+  std::optional<OverlaidAt> overlaid(const YAML::Node& value) const;
 
   YAML::Node node_;
   std::string path_;         ///< dotted, empty for the document root
-  const std::string* file_;  ///< parseScene's argument, which outlives every node
+  const std::string* file_;  ///< parseScene's argument or an overlay's, which outlive every node
   int line_;                 ///< 1-based
+  const SceneOrigins* origins_;  ///< which values overlays put in; null for a plain file
 };
 
 /// A mapping already checked by SceneNode::map(); hands out its values.

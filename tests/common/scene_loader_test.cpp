@@ -335,7 +335,7 @@ TEST(PlayerKindNames, EachIdHasOneName) {
 TEST(SceneFormatDoc, CompleteExampleLoads) {
   std::ifstream in(sourcePath("docs/scene-format.md"));
   std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::size_t start = doc.find("```yaml\n");
+  std::size_t start = doc.find("```yaml\n", doc.find("## A complete example"));
   ASSERT_NE(start, std::string::npos);
   start += 8;
   std::string example = doc.substr(start, doc.find("```", start) - start);
