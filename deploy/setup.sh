@@ -14,6 +14,7 @@ PACKAGES=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   python3 python3-matplotlib
+  python3-yaml  # bench/tune.py reads scenes and writes overlays
   python3-flatbuffers python3-numpy  # recordings read from Python (inspector/, tests)
   chromium python3-websockets  # the inspector_browser test: headless Chromium over its DevTools protocol
   libbullet-dev

@@ -1,0 +1,1 @@
+"""The tuner's parts (bench/tune.py): budgets, knobs, one measured run, the frontier plot."""

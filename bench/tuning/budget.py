@@ -1,0 +1,68 @@
+"""A budget: error and cost limits in user terms, each checked against one run's figures.
+
+Written on the command line as NAME<=VALUE pairs, comma-separated, e.g.
+    shown_error_p99<=0.25,kbps_per_client<=120
+"""
+from dataclasses import dataclass
+
+# What a run measures (tuning/measure.py), with its unit and what it means.
+METRICS = {
+    "shown_error_p99": ("m", "p99 distance between where clients showed sampled entities and where "
+                             "the zones had them (deploy/truth_error.py)"),
+    "kbps_per_client": ("kbit/s", "mean download per player"),
+    "tick_ms_p99": ("ms", "slowest zone's p99 tick time"),
+}
+
+
+class BudgetError(ValueError):
+    pass
+
+
+@dataclass(frozen=True)
+class Limit:
+    metric: str
+    most: float
+
+    def met(self, figures):
+        return figures[self.metric] <= self.most
+
+    def slack(self, figures):
+        """How much of the limit is left (1: all of it, 0: right at it, below 0: broken)."""
+        return 1.0 - figures[self.metric] / self.most if self.most > 0 else -figures[self.metric]
+
+    def describe(self):
+        return f"{self.metric} <= {self.most:g} {METRICS[self.metric][0]}"
+
+
+def parse(text):
+    """The limits of 'a<=1,b<=2'; '=' is taken as '<='. Raises BudgetError naming the bad part."""
+    limits = []
+    for part in filter(None, (p.strip() for p in text.split(","))):
+        name, sep, value = part.replace("<=", "=").partition("=")
+        name = name.strip()
+        if not sep:
+            raise BudgetError(f"budget '{part}': expected NAME<=VALUE")
+        if name not in METRICS:
+            raise BudgetError(f"budget '{part}': unknown limit '{name}' (known: {', '.join(METRICS)})")
+        try:
+            most = float(value)
+        except ValueError:
+            raise BudgetError(f"budget '{part}': '{value.strip()}' is not a number") from None
+        if not most >= 0 or most == float("inf"):
+            raise BudgetError(f"budget '{part}': the limit must be a finite number >= 0")
+        if any(l.metric == name for l in limits):
+            raise BudgetError(f"budget '{part}': {name} is limited twice")
+        limits.append(Limit(name, most))
+    if not limits:
+        raise BudgetError("the budget is empty: give at least one NAME<=VALUE")
+    return limits
+
+
+def broken(limits, figures):
+    """The limits these figures break."""
+    return [l for l in limits if not l.met(figures)]
+
+
+def binding(limits, figures):
+    """The limit with the least slack left."""
+    return min(limits, key=lambda l: l.slack(figures))

@@ -1,0 +1,60 @@
+"""bench/tune.py end to end, on a local cluster: a budget no setting meets is refused, naming
+the limit and the best measured, and nothing is written; a budget that can be met gives an
+overlay of the scene (read back by zone_node), chosen from measured runs and confirmed, with the
+binding limit named; a malformed budget is refused before any run. Runs one knob with two
+values and 3-second runs to stay short."""
+import json
+import subprocess
+import tempfile
+from pathlib import Path
+
+import harness as h
+
+TUNE = h.SOURCE_DIR / "bench" / "tune.py"
+SCENE = h.SOURCE_DIR / "scenes" / "test_e2e.yaml"
+
+
+def tune(work, budget, *extra):
+    env = h.base_env(h.free_dds_domain())
+    return subprocess.run(["/usr/bin/python3", TUNE, SCENE, "--budget", budget, "--work", work,
+                           "--knobs", "avatar order", "--seconds", "3", "--confirm-seconds", "3",
+                           "--players", "8", "--bin", h.bin_dir(), *extra],
+                          capture_output=True, text=True, env=env, timeout=400)
+
+
+with tempfile.TemporaryDirectory(prefix="zs_tune_") as tmp:
+    tmp = Path(tmp)
+    bad = tune(tmp / "bad", "shown_error_p99<=0.25,jitter<=3")
+    h.check(bad.returncode == 2 and "unknown limit 'jitter'" in bad.stderr and not (tmp / "bad").exists(),
+            f"a malformed budget is refused before any run: {bad.stderr.strip()[-300:]}")
+
+    impossible = tune(tmp / "impossible", "shown_error_p99<=0.0001")
+    h.check(impossible.returncode == 2, f"an impossible budget exits 2 ({impossible.returncode}): "
+            f"{impossible.stdout[-600:]} {impossible.stderr[-600:]}")
+    h.check("refused: no setting meets shown_error_p99 <= 0.0001 m: the best measured is" in impossible.stderr,
+            f"the refusal names the limit and the best reached: {impossible.stderr.strip()}")
+    h.check(not list((tmp / "impossible").glob("*.tuned.yaml")), "nothing is written for a refused budget")
+
+    out = tmp / "ok" / "e2e.tuned.yaml"
+    ok = tune(tmp / "ok", "shown_error_p99<=5,kbps_per_client<=100000", "--out", out)
+    h.check(ok.returncode == 0 and out.exists(), f"a budget that can be met writes the overlay: "
+            f"{ok.stdout[-800:]} {ok.stderr[-800:]}")
+    report = json.loads((tmp / "ok" / "tune.json").read_text())
+    h.check(len(report["runs"]) == 3, f"the scene's own run, one more value, one confirming run "
+            f"({len(report['runs'])} runs)")
+    h.check(report["chosen"]["avatar order"] in ("first", "second") and report["binding"] in
+            ("shown_error_p99 <= 5 m", "kbps_per_client <= 100000 kbit/s"),
+            f"a value chosen and the binding limit named: {report['chosen']}, {report['binding']}")
+    confirmed = report["confirmed"]
+    h.check(confirmed["shown_error_p99"] <= 5 and confirmed["samples"] > 0,
+            f"the confirming run met the budget with samples to show it: {confirmed}")
+    text = out.read_text()
+    h.check(f"overlay_of: ../../" in text or "overlay_of: /" in text, f"the overlay names its base: {text}")
+    h.check(f"order: {report['chosen']['avatar order']}" in text, f"the overlay sets the chosen order: {text}")
+    h.check((tmp / "ok" / "frontier.png").stat().st_size > 1000, "the frontier plot was drawn")
+    # Every program reads the overlay as the scene it changes.
+    dump = tmp / "ok" / "state.jsonl"
+    h.run(h.mpirun(4, h.bin_dir() / "zone_node", "--scene", out, "--ticks", 5, "--no-dds", "--dump-state", dump),
+          tmp / "ok" / "zone.log", h.base_env(), timeout=120)
+    h.check(dump.exists() and dump.read_text().count("\n") > 0, "zone_node runs the written overlay")
+print("tune passed")
