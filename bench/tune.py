@@ -7,7 +7,8 @@ It runs the scene on a local cluster (zone ranks, a gateway, a fleet of players)
 scene's own settings, then once per candidate value of each knob the scene uses (the others at
 the scene's values), and measures each run: the error clients showed against the zones' truth,
 the download per player and the tick time. Per knob it picks the cheapest value (least download,
-then tick time) whose run met every limit, and names the limit that stopped a cheaper one. The
+then tick time; downloads within --tie of each other are noise, and the more accurate of them
+wins) whose run met every limit, and names the limit that stopped a cheaper one. The
 choices together are confirmed by a longer run; if that run breaks a limit, the knob with the
 least slack steps back towards accuracy and the run is repeated. It writes the result as an
 overlay of the scene (docs/scene-format.md, "Overlay files") that every program's --scene
@@ -39,6 +40,8 @@ def parse_args(argv):
     p.add_argument("--confirm-seconds", type=float, default=30, help="players' time of the confirming run")
     p.add_argument("--players", type=int, default=16)
     p.add_argument("--truth-every", type=int, default=8, help="sample every K-th entity id for the error")
+    p.add_argument("--tie", type=float, default=0.03,
+                   help="downloads this close (a fraction) count as equal: the more accurate wins (default 0.03)")
     p.add_argument("--knobs", help="only these knobs (comma-separated names as printed), default all")
     p.add_argument("--bin", type=Path, default=ROOT / "build" / "bin", help="the built programs")
     a = p.parse_args(argv)
@@ -94,17 +97,20 @@ def cost(f):
     return (f["kbps_per_client"], f["tick_ms_p99"])
 
 
-def choose(knob, limits):
-    """The cheapest value whose run met every limit (or None), and why nothing cheaper was."""
+def choose(knob, limits, tie):
+    """The cheapest value whose run met every limit (or None), and why nothing cheaper was.
+    Downloads within `tie` (a fraction) of the cheapest are run-to-run noise, not savings:
+    among those the most accurate wins."""
     fine = [(v, f) for v, f in knob.sweep if not budget.broken(limits, f)]
     if not fine:
         return None, "no value met every limit: kept the scene's"
-    value, f = min(fine, key=lambda vf: cost(vf[1]))
-    cheaper = [(v, g) for v, g in knob.sweep if cost(g) < cost(f)]
-    if not cheaper:
-        return value, "the cheapest value measured"
+    least = min(f["kbps_per_client"] for _, f in fine)
+    level = [(v, f) for v, f in fine if f["kbps_per_client"] <= least * (1 + tie)]
+    value, f = min(level, key=lambda vf: (vf[1]["shown_error_p99"], cost(vf[1])))
+    cheaper = [(v, g) for v, g in knob.sweep if g["kbps_per_client"] < least * (1 - tie)]
+    why = f"the most accurate within {tie * 100:g} % of the least download that met the budget"
     held = sorted({l.describe() for _, g in cheaper for l in budget.broken(limits, g)})
-    return value, "cheaper values broke " + "; ".join(held)
+    return value, why + ("; cheaper values broke " + "; ".join(held) if held else "")
 
 
 def refuse_if_impossible(limits, knobs, baseline):
@@ -163,7 +169,7 @@ def main(argv):
 
     chosen, reasons = {}, {}
     for k in knobs:
-        value, reasons[k.name] = choose(k, a.limits)
+        value, reasons[k.name] = choose(k, a.limits, a.tie)
         chosen[k.name] = value if value is not None else k.scene_value
     print_frontier(knobs, chosen, reasons, a.limits)
 

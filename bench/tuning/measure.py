@@ -30,6 +30,9 @@ players = {players}
 """
 
 
+WARMUP_S = 2  # seconds of a run left out of its bandwidth
+
+
 class RunError(RuntimeError):
     pass
 
@@ -44,6 +47,16 @@ def percentile(values, p):
     return v[min(len(v) - 1, max(0, int(round(p / 100 * len(v) + 0.5)) - 1))] if v else float("nan")
 
 
+def steady_kbps(run):
+    """Download per player after the first WARMUP_S, when every view has spawned in (the first
+    second carries each player's whole view, several times a steady second's bytes)."""
+    seconds = [json.loads(l) for l in (run / "clients.jsonl").read_text().splitlines() if l.strip()]
+    steady = [s for s in seconds if s["t"] > WARMUP_S + 0.5 and s["players"] > 0]
+    if not steady:
+        return None
+    return sum(s["bytes_in_per_s"] / s["players"] for s in steady) / len(steady) * 8 / 1000
+
+
 def figures_of(run):
     """The budget's metrics (tuning/budget.py) from a finished run folder."""
     report = json.loads((run / "report.json").read_text())
@@ -55,7 +68,8 @@ def figures_of(run):
     if not shown:
         raise RunError(f"{run}: no shown sample met a truth sample (truth_every too sparse?)")
     return {"shown_error_p99": percentile(shown, 99),
-            "kbps_per_client": sum(c["bytes_in_per_s"] for c in clients) * 8 / 1000 / len(clients),
+            "kbps_per_client": steady_kbps(run) or
+            sum(c["bytes_in_per_s"] for c in clients) * 8 / 1000 / len(clients),
             "tick_ms_p99": max(z["tick_ms_p99"] for z in report["zones"]),
             "samples": len(shown)}
 
