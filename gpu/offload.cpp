@@ -10,10 +10,8 @@ const char* workloadName(Workload workload) {
   switch (workload) {
     case Workload::Particles:
       return "particles";
-    case Workload::Boids:
-      return "boids";
-    case Workload::Crowd:
-      return "crowd";
+    case Workload::Flock:
+      return "flock";
   }
   return "unknown";
 }
@@ -22,10 +20,8 @@ std::size_t OffloadThresholds::of(Workload workload) const {
   switch (workload) {
     case Workload::Particles:
       return particles;
-    case Workload::Boids:
-      return boids;
-    case Workload::Crowd:
-      return crowd;
+    case Workload::Flock:
+      return flock;
   }
   return kNeverOffload;
 }

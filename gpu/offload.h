@@ -12,10 +12,11 @@
 
 namespace zonesim::gpu {
 
-/// The kernels with their own threshold.
-enum class Workload { Particles, Boids, Crowd };
+/// The kernels with their own threshold: the particle system, and zone flocks (gpu::PlanarFlock
+/// against the crowd library's CPU flock, probed by zone_node/systems/flock_backend.h).
+enum class Workload { Particles, Flock };
 
-/// "particles", "boids" or "crowd".
+/// "particles" or "flock".
 const char* workloadName(Workload workload);
 
 /// Never offload under auto (the device lost at every probed size).
@@ -24,15 +25,14 @@ inline constexpr std::size_t kNeverOffload = std::numeric_limits<std::size_t>::m
 /// Item counts from which auto offloads, one per workload.
 struct OffloadThresholds {
   std::size_t particles = kAutoGpuThreshold;  ///< Live particles.
-  std::size_t boids = kNeverOffload;          ///< Boids in one flock.
-  std::size_t crowd = kNeverOffload;          ///< Crowd agents in one batch.
+  std::size_t flock = kNeverOffload;          ///< Agents in one zone flock.
   /// The threshold of workload.
   std::size_t of(Workload workload) const;
 };
 
 /// The thresholds when the probe fails on a device that exists: particles from
-/// kAutoGpuThreshold (measured on a quiet machine, gpu/backend.h); flocks and crowds never, since
-/// on PoCL sharing two loaded cores with the CPU path neither won reliably (docs/benchmarks.md).
+/// kAutoGpuThreshold (measured on a quiet machine, gpu/backend.h); flocks never, since on PoCL
+/// sharing two loaded cores with the CPU path they did not win reliably (docs/benchmarks.md).
 OffloadThresholds defaultThresholds();
 
 /// One timed probe: seconds per step on each path at n items.

@@ -2,8 +2,7 @@
 // Flocking on the ground plane on an OpenCL device, with read-only ghosts: the rules of the
 // crowd library's flock (crowd/flock.h: separation, alignment, cohesion, an optional
 // goal velocity, bounded force and speed, per-agent dt and detail) in float, for zone flocks too
-// large for the CPU. The crowd library's double flock is the reference (tests/gpu). Unlike
-// gpu::Flock (3-D rules of its own, state kept on the device, grid sorted there), a zone's
+// large for the CPU. The crowd library's double flock is the reference (tests/gpu). A zone's
 // flock lives in the zone's store and comes with new ghosts every tick, so each step uploads
 // the agents already sorted into cells (an O(n) counting sort on the host, during the pass that
 // converts them anyway) and reads back velocities. No OpenCL or Eigen header comes with it.

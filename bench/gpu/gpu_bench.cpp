@@ -1,10 +1,9 @@
-// gpu_bench [--sizes 1000,10000,...] [--workloads particles,boids,crowd] [--csv out.csv]
+// gpu_bench [--sizes 1000,10000,...] [--csv out.csv]
 //
-// For each workload and N: seconds per tick on the CPU reference (double) and on OpenCL
-// (float), where a tick is what a zone pays (step, then sync; boids and crowds also read the
-// positions back, since a zone publishes them every tick), the float-versus-double position
-// error after the same steps from the same start, and per workload the crossover N from which
-// OpenCL wins (gpu/offload.h's crossover, the rule --gpu auto uses).
+// The particle system at each N: seconds per tick on the CPU reference (double) and on OpenCL
+// (float), where a tick is what a zone pays (step, then sync), the float-versus-double position
+// error after the same steps from the same start, and the crossover N from which OpenCL wins
+// (gpu/offload.h's crossover, the rule --gpu auto uses). Zone flocks: planar_flock_bench.
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +28,6 @@ using zonesim::gpu::Workload;
 
 struct Options {
   std::vector<std::size_t> sizes{1'000, 10'000, 100'000, 1'000'000};
-  std::vector<Workload> workloads{Workload::Particles, Workload::Boids, Workload::Crowd};
   std::string csv;
 };
 
@@ -40,13 +38,6 @@ std::vector<std::string> split(const std::string& text) {
   return out;
 }
 
-Workload parseWorkload(const std::string& name) {
-  for (Workload w : {Workload::Particles, Workload::Boids, Workload::Crowd}) {
-    if (name == zonesim::gpu::workloadName(w)) return w;
-  }
-  throw std::invalid_argument("unknown workload '" + name + "'");
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -54,9 +45,6 @@ Options parse(int argc, char** argv) {
     if (flag == "--sizes") {
       o.sizes.clear();
       for (const std::string& s : split(value)) o.sizes.push_back(std::stoull(s));
-    } else if (flag == "--workloads") {
-      o.workloads.clear();
-      for (const std::string& s : split(value)) o.workloads.push_back(parseWorkload(s));
     } else if (flag == "--csv") {
       o.csv = value;
     } else {
@@ -104,11 +92,12 @@ int main(int argc, char** argv) {
       csv.open(o.csv);
       csv << "workload,n,cpu_ms,opencl_ms,steps,max_error_m,median_error_m\n";
     }
-    for (Workload w : o.workloads) {
+    {
+      const Workload w = Workload::Particles;
       std::vector<zonesim::gpu::ProbeSample> samples;
       for (std::size_t n : o.sizes) {
-        zonesim::gpu::WorkloadScene cpu(w, Backend::Cpu, n);
-        zonesim::gpu::WorkloadScene ocl(w, Backend::OpenCl, n, runtime);
+        zonesim::gpu::ParticleWorkload cpu(Backend::Cpu, n);
+        zonesim::gpu::ParticleWorkload ocl(Backend::OpenCl, n, runtime);
         const int steps = stepsFor(n), repeats = repeatsFor(n);
         double cpu_s = zonesim::gpu::secondsPerTick(cpu, steps, repeats);
         double ocl_s = zonesim::gpu::secondsPerTick(ocl, steps, repeats);

@@ -47,27 +47,26 @@ TEST(Crossover, OnlyTheLastWinningRunCounts) {
 TEST(ChooseBackendPerWorkload, EachWorkloadHasItsOwnThreshold) {
   OffloadThresholds t;
   t.particles = 8'000;
-  t.boids = 50'000;
-  t.crowd = kNeverOffload;
+  t.flock = 50'000;
   EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Particles, 10'000, true, t), Backend::OpenCl);
-  EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Boids, 10'000, true, t), Backend::Cpu);
-  EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Boids, 50'000, true, t), Backend::OpenCl);
-  EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Crowd, 100'000'000, true, t), Backend::Cpu);
+  EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Flock, 10'000, true, t), Backend::Cpu);
+  EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Flock, 50'000, true, t), Backend::OpenCl);
+  t.flock = kNeverOffload;
+  EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Flock, 100'000'000, true, t), Backend::Cpu);
   EXPECT_EQ(chooseBackend(GpuMode::Auto, Workload::Particles, 10'000, false, t), Backend::Cpu);
 }
 
 TEST(ChooseBackendPerWorkload, OnAndOffIgnoreThresholds) {
   OffloadThresholds t;
-  EXPECT_EQ(chooseBackend(GpuMode::On, Workload::Crowd, 1, false, t), Backend::OpenCl);
+  EXPECT_EQ(chooseBackend(GpuMode::On, Workload::Flock, 1, false, t), Backend::OpenCl);
   EXPECT_EQ(chooseBackend(GpuMode::Off, Workload::Particles, 100'000'000, true, t), Backend::Cpu);
 }
 
 TEST(ChooseBackendPerWorkload, DefaultsNameEveryWorkload) {
   OffloadThresholds t = defaultThresholds();
   EXPECT_EQ(t.of(Workload::Particles), kAutoGpuThreshold);
-  EXPECT_EQ(t.of(Workload::Boids), t.boids);
-  EXPECT_EQ(t.of(Workload::Crowd), t.crowd);
-  EXPECT_STREQ(workloadName(Workload::Boids), "boids");
+  EXPECT_EQ(t.of(Workload::Flock), kNeverOffload);
+  EXPECT_STREQ(workloadName(Workload::Flock), "flock");
 }
 
 // The probe's plumbing on the real device, at sizes small enough for the test budget: one
@@ -75,34 +74,12 @@ TEST(ChooseBackendPerWorkload, DefaultsNameEveryWorkload) {
 TEST(OffloadProbe, SamplesEverySizeOnBothPaths) {
   ZS_REQUIRE_OPENCL();
   const std::size_t sizes[] = {200, 800};
-  for (Workload w : {Workload::Particles, Workload::Boids, Workload::Crowd}) {
-    std::vector<ProbeSample> s = probeWorkload(w, test::sharedRuntime(), sizes);
-    ASSERT_EQ(s.size(), 2u) << workloadName(w);
-    for (const ProbeSample& p : s) {
-      EXPECT_GT(p.cpu_s, 0.0) << workloadName(w);
-      EXPECT_GT(p.device_s, 0.0) << workloadName(w);
-    }
+  std::vector<ProbeSample> s = probeParticles(test::sharedRuntime(), sizes);
+  ASSERT_EQ(s.size(), 2u);
+  for (const ProbeSample& p : s) {
+    EXPECT_GT(p.cpu_s, 0.0);
+    EXPECT_GT(p.device_s, 0.0);
   }
-}
-
-TEST(OffloadProbe, SelectBackendKeepsOnAndOffWithoutProbing) {
-  EXPECT_EQ(selectBackend("off", Workload::Boids, 100'000'000), Backend::Cpu);
-  EXPECT_EQ(selectBackend("on", Workload::Crowd, 0), Backend::OpenCl);
-  EXPECT_EQ(selectBackend("auto", Workload::Crowd, 0), Backend::Cpu);
-  EXPECT_EQ(selectBackend("auto", Workload::Boids, kProbeSizes[0] - 1), Backend::Cpu);
-}
-
-TEST(OffloadProbe, AutoFollowsTheProbedThreshold) {
-  std::size_t t = autoThreshold(Workload::Particles);
-  if (!openClAvailable()) {
-    EXPECT_EQ(t, defaultThresholds().particles);
-    EXPECT_EQ(selectBackend("auto", Workload::Particles, 100'000'000), Backend::Cpu);
-    return;
-  }
-  EXPECT_GE(t, kProbeSizes[0]) << "a crossover is never below the smallest probe";
-  if (t == kNeverOffload) return;
-  EXPECT_EQ(selectBackend("auto", Workload::Particles, t), Backend::OpenCl);
-  EXPECT_EQ(selectBackend("auto", Workload::Particles, t - 1), Backend::Cpu);
 }
 
 }  // namespace

@@ -35,9 +35,9 @@ gpu::OffloadThresholds agreedThresholds(MPI_Comm comm, bool probe, const Thresho
       ZS_WARN("offload probe failed (%s); using the default thresholds", e.what());
     }
   }
-  std::uint64_t wire[3] = {t.particles, t.boids, t.crowd};
-  MPI_Bcast(wire, 3, MPI_UINT64_T, 0, comm);
-  return {std::size_t(wire[0]), std::size_t(wire[1]), std::size_t(wire[2])};
+  std::uint64_t wire[2] = {t.particles, t.flock};
+  MPI_Bcast(wire, 2, MPI_UINT64_T, 0, comm);
+  return {std::size_t(wire[0]), std::size_t(wire[1])};
 }
 
 }  // namespace zonesim::zone

@@ -36,7 +36,7 @@ gpu::Backend flockBackendFor(std::string_view gpu_mode, std::size_t agents,
   gpu::GpuMode mode = gpu::parseGpuMode(gpu_mode);
   // Off never opens a device; on and auto ask whether one exists (on fails later without it).
   bool available = mode != gpu::GpuMode::Off && gpu::openClAvailable();
-  return gpu::chooseBackend(mode, gpu::Workload::Boids, agents, available, thresholds);
+  return gpu::chooseBackend(mode, gpu::Workload::Flock, agents, available, thresholds);
 }
 
 std::vector<gpu::ProbeSample> probeFlockBackends(std::span<const std::size_t> sizes) {

@@ -136,14 +136,14 @@ TEST(FlockBackend, OpenClGoalsAndPerAgentStepsMatchTheCrowdFlock) {
 
 TEST(FlockBackend, ModeAndPopulationPickTheBackend) {
   gpu::OffloadThresholds t;
-  t.boids = 10'000;
+  t.flock = 10'000;
   EXPECT_EQ(flockBackendFor("off", 1'000'000, t), gpu::Backend::Cpu);
   EXPECT_EQ(flockBackendFor("auto", 9'999, t), gpu::Backend::Cpu);
   // auto offloads from the threshold only where there is a device; on always asks for one.
   EXPECT_EQ(flockBackendFor("auto", 10'000, t),
             gpu::openClAvailable() ? gpu::Backend::OpenCl : gpu::Backend::Cpu);
   EXPECT_EQ(flockBackendFor("on", 10, t), gpu::Backend::OpenCl);
-  t.boids = gpu::kNeverOffload;
+  t.flock = gpu::kNeverOffload;
   EXPECT_EQ(flockBackendFor("auto", 1'000'000, t), gpu::Backend::Cpu);
 }
 
@@ -158,7 +158,7 @@ TEST(FlockBackend, FlockMovementReportsItsBackend) {
   EXPECT_EQ(FlockMovement(s).backendName(), "cpu");  // off unless asked
   // auto weighs a zone's share: 100 flockers on 2 ranks are 50 per zone, below 60.
   gpu::OffloadThresholds t;
-  t.boids = 60;
+  t.flock = 60;
   EXPECT_EQ(FlockMovement(s, "auto", t, 2).backendName(), "cpu");
   if (!gpu::openClAvailable()) GTEST_SKIP() << "no OpenCL device";
   EXPECT_EQ(FlockMovement(s, "auto", t, 1).backendName(), "opencl");
