@@ -19,6 +19,7 @@ a choice the confirmation cannot hold fails with exit 3. Nothing is written in e
 """
 import argparse
 import json
+import os
 import sys
 import time
 from pathlib import Path
@@ -115,7 +116,7 @@ def choose(knob, limits, tie):
 
 def refuse_if_impossible(limits, knobs, baseline):
     """Exit 2 naming each limit that no measured run met."""
-    points = [(f"the scene's own settings", baseline)] + \
+    points = [("the scene's own settings", baseline)] + \
         [(f"{k.name} = {k.label(v)}", f) for k in knobs for v, f in k.sweep]
     unmet = [l for l in limits if not any(l.met(f) for _, f in points)]
     for l in unmet:
@@ -175,9 +176,8 @@ def main(argv):
 
     # The choices were each measured alone; together they must hold too.
     for attempt in range(4):
-        label = "confirm: " + ", ".join(f"{k.name} {k.label(chosen[k.name])}" for k in knobs)
         try:
-            confirmed = t.measure(settings_of(knobs, chosen), label[:40], a.confirm_seconds)
+            confirmed = t.measure(settings_of(knobs, chosen), "all chosen together", a.confirm_seconds)
         except measure.RunError as e:
             sys.exit(f"tune.py: {e}")
         broken = budget.broken(a.limits, confirmed)
@@ -204,7 +204,7 @@ def main(argv):
               f"tick p99 {confirmed['tick_ms_p99']:.2f} ms",
               f"the binding limit: {binds.describe()} ({binds.slack(confirmed) * 100:.0f} % left)"]
     a.out.parent.mkdir(parents=True, exist_ok=True)
-    base = Path(__import__("os").path.relpath(a.scene, a.out.parent))
+    base = Path(os.path.relpath(a.scene, a.out.parent))
     a.out.write_text(knob_defs.overlay_text(base, settings_of(knobs, chosen), header))
     (a.work / "tune.json").write_text(json.dumps({
         "scene": str(a.scene), "budget": [l.describe() for l in a.limits],

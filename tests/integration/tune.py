@@ -49,7 +49,7 @@ with tempfile.TemporaryDirectory(prefix="zs_tune_") as tmp:
     h.check(confirmed["shown_error_p99"] <= 5 and confirmed["samples"] > 0,
             f"the confirming run met the budget with samples to show it: {confirmed}")
     text = out.read_text()
-    h.check(f"overlay_of: ../../" in text or "overlay_of: /" in text, f"the overlay names its base: {text}")
+    h.check("overlay_of: ../../" in text or "overlay_of: /" in text, f"the overlay names its base: {text}")
     h.check(f"order: {report['chosen']['avatar order']}" in text, f"the overlay sets the chosen order: {text}")
     h.check((tmp / "ok" / "frontier.png").stat().st_size > 1000, "the frontier plot was drawn")
     # Every program reads the overlay as the scene it changes.
