@@ -101,6 +101,7 @@ struct TickCounters {
   std::uint64_t published_keyframes = 0;
   std::uint64_t subscribed_cells = 0;
   std::uint64_t published_states = 0;   ///< entity states computed for subscribed cells
+  std::uint64_t published_histories = 0;  ///< motion histories kept: read cells and next to them
   std::uint64_t ghosts = 0;             ///< neighbours' entities held as ghosts after the refresh
   std::uint64_t ghosts_sent = 0;        ///< entity copies sent to neighbours
   std::uint64_t halo_bytes = 0;         ///< bytes of those copies
@@ -167,6 +168,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"published_keyframes", &TickCounters::published_keyframes, false},
     {"subscribed_cells", &TickCounters::subscribed_cells, true},
     {"published_states", &TickCounters::published_states, false},
+    {"published_histories", &TickCounters::published_histories, false},
     {"ghosts", &TickCounters::ghosts, true},
     {"ghosts_sent", &TickCounters::ghosts_sent, false},
     {"halo_bytes", &TickCounters::halo_bytes, false},

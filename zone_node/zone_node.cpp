@@ -377,6 +377,7 @@ void ZoneNode::publish() {
   counters_.published_keyframes = s.keyframes;
   counters_.subscribed_cells = s.subscribed_cells;
   counters_.published_states = s.states_computed;
+  counters_.published_histories = s.histories_kept;
   counters_.dds_write_failures = s.write_failures + link_->writeFailures() - link_failures_seen_;
   link_failures_seen_ = link_->writeFailures();
 }

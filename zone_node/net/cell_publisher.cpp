@@ -1,5 +1,7 @@
 #include "zone_node/net/cell_publisher.h"
 
+#include <algorithm>
+
 #include "common/scene.h"
 #include "idl/dds_qos.h"
 #include "idl/dr_sample.h"
@@ -95,6 +97,7 @@ void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats
   // matches meanwhile is seen at the next tick, as any discovery is.)
   if (!any_subscribed_ && readers_now_.load(std::memory_order_relaxed) == 0) return;
   bool periodic = keyframe_every_ > 0 && tick % std::uint64_t(keyframe_every_) == 0;
+  bool readers_moved = false;
   for (auto& [cell, ch] : channels_) {
     const MatchCounts& u = *ch.updates_matched;
     const MatchCounts& k = *ch.keyframes_matched;
@@ -105,12 +108,26 @@ void CellPublisher::refreshSubscriptions(std::uint64_t tick, PublishStats& stats
     // A new reader gets a fresh keyframe, so it starts from the current state.
     ch.keyframe_due = matched > 0 && (ever > ch.matched_ever || periodic);
     ch.all_readers_new = matched > 0 && ch.matched == 0;
+    readers_moved |= ch.subscribed != (matched > 0);
     ch.subscribed = matched > 0;
     ch.matched = matched;
     ch.matched_ever = ever;
     stats.subscribed_cells += ch.subscribed;
   }
   any_subscribed_ = stats.subscribed_cells > 0;
+  if (readers_moved || near_reader_.empty()) markCellsNearReaders();
+}
+
+void CellPublisher::markCellsNearReaders() {
+  near_reader_.assign(std::size_t(grid_.cellCount()), 0);
+  const int columns = grid_.columns(), rows = grid_.rows();
+  for (const auto& [cell, ch] : channels_) {
+    if (!ch.subscribed) continue;
+    const int ix = cell % columns, iz = cell / columns;
+    for (int z = std::max(iz - 1, 0); z <= std::min(iz + 1, rows - 1); ++z)
+      for (int x = std::max(ix - 1, 0); x <= std::min(ix + 1, columns - 1); ++x)
+        near_reader_[std::size_t(z * columns + x)] = 1;
+  }
 }
 
 PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departure> leavers,
@@ -158,14 +175,24 @@ PublishStats CellPublisher::publish(EntityStore& store, std::span<const Departur
       if (old.subscribed) old.leaves.push_back({id.value, zonesim_dds_LEAVE_MOVED_CELL});
     }
     if (!ch.subscribed) {
-      // Not computed, not encoded; a keyframe resynchronises on subscription. The history the
-      // motion estimate needs is still kept, so that first keyframe's state is right.
-      rememberTick(store, i);
+      // Not computed, not encoded; a keyframe resynchronises on subscription. Next to a read
+      // cell the history the motion estimate needs is kept, so the state a reader first gets
+      // when the entity crosses over is right; farther away the entity starts afresh when it
+      // comes near (its first state estimated from its velocity, as after an idle zone).
+      if (near_reader_[std::size_t(cell)]) {
+        rememberTick(store, i);
+        ++stats.histories_kept;
+      } else {
+        dr.has_last = false;
+        dr.vel_count = 0;
+        dr.vel_next = 0;
+      }
       continue;
     }
     dr::State truth = trueState(store, i, dt);  // from last tick's history, then remember
     rememberTick(store, i);
     ++stats.states_computed;
+    ++stats.histories_kept;
     dr::Model model = modelFor(reckoner_.config(), kind);
     auto sendNow = [&](std::vector<zonesim_dds_EntityUpdate>& out) {
       int largest = -1;

@@ -41,6 +41,9 @@ struct PublishStats {
   /// Entities whose client-facing state (motion estimate, orientation rate) was computed: only
   /// those in subscribed cells; a cell nobody reads costs no state and no encoding.
   std::uint64_t states_computed = 0;
+  /// Entities whose motion history was kept this tick: those in a read cell or next to one
+  /// (where a reader may see them next tick); farther ones cost no history either.
+  std::uint64_t histories_kept = 0;
 };
 
 class CellPublisher {
@@ -86,6 +89,7 @@ class CellPublisher {
 
   Channel& channel(int cell);
   void refreshSubscriptions(std::uint64_t tick, PublishStats& stats);
+  void markCellsNearReaders();
   void write(int cell, Channel& ch, std::uint64_t tick, double sim_time, PublishStats& stats);
 
   dds_entity_t participant_;
@@ -106,6 +110,9 @@ class CellPublisher {
   // reader at the last refresh, the cells need no refresh.
   std::atomic<std::int64_t> readers_now_{0};
   std::map<int, Channel> channels_;  // ordered by cell id: deterministic write order
+  // Per grid cell: read, or one of a read cell's 8 neighbours (an entity moves less than a
+  // cell a tick); redone when a cell's readers come or go.
+  std::vector<std::uint8_t> near_reader_;
   std::vector<int> entity_cell_;     // per store index, this publish: its cell
   std::vector<Channel*> entity_channel_;  // and that cell's channel
 };

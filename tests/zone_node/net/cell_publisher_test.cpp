@@ -177,6 +177,33 @@ TEST_F(CellPublisherTest, CellsWithNoSubscriberAreNotEncoded) {
   EXPECT_EQ(store_.dr[3].time, 0.0);
 }
 
+TEST_F(CellPublisherTest, OnlyEntitiesInOrNextToReadCellsKeepAMotionHistory) {
+  CellReader read = updates(0, 0);
+  ASSERT_TRUE(read.matched());
+  addNpc(10, 10);    // cell (0, 0): read
+  addNpc(60, 60);    // cell (1, 1): next to it
+  addNpc(110, 10);   // cell (2, 0): two cells away
+  addNpc(190, 190);  // cell (3, 3)
+  PublishStats first = publish();
+  EXPECT_EQ(first.states_computed, 1u);
+  EXPECT_EQ(first.histories_kept, 2u);
+  EXPECT_TRUE(store_.dr[1].has_last);
+  EXPECT_FALSE(store_.dr[2].has_last);
+  EXPECT_FALSE(store_.dr[3].has_last);
+  // The far entity walks next to the read cell: from then on its history is kept, and when it
+  // crosses in, its first state comes from that history.
+  store_.pos[2] = Vec3(90, 0, 10);  // cell (1, 0)
+  PublishStats second = publish();
+  EXPECT_EQ(second.histories_kept, 3u);
+  EXPECT_TRUE(store_.dr[2].has_last);
+  EXPECT_EQ(store_.dr[2].vel_count, 1);
+  store_.pos[2] = Vec3(45, 0, 10);  // cell (0, 0)
+  PublishStats third = publish();
+  EXPECT_EQ(third.states_computed, 2u);
+  EXPECT_EQ(third.enters, 1u);
+  EXPECT_EQ(store_.dr[2].vel_count, 2);
+}
+
 TEST_F(CellPublisherTest, AMovedEntityGetsAnUpdateAndAStillOneNone) {
   CellReader read = updates(0, 0);
   ASSERT_TRUE(read.matched());
