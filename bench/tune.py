@@ -4,13 +4,14 @@
     /usr/bin/python3 bench/tune.py SCENE --budget 'shown_error_p99<=0.25,kbps_per_client<=150'
 
 It runs the scene on a local cluster (zone ranks, a gateway, a fleet of players) once with the
-scene's own settings, then once per candidate value of each knob the scene uses (the others at
-the scene's values), and measures each run: the error clients showed against the zones' truth,
+scene's own settings, then once per candidate value of each knob the scene uses, knob after
+knob (those already swept at their choices, the rest at the scene's values), and measures each
+run: the error clients showed against the zones' truth,
 the download per player and the tick time. Per knob it picks the cheapest value (least download,
 then tick time; downloads within --tie of each other are noise, and the more accurate of them
 wins) whose run met every limit, and names the limit that stopped a cheaper one. The
-choices together are confirmed by a longer run; if that run breaks a limit, the knob with the
-least slack steps back towards accuracy and the run is repeated. It writes the result as an
+choices together are confirmed by a longer run; if that run breaks a limit, the knob value that
+lowered that figure most in its sweep is taken and the run is repeated. It writes the result as an
 overlay of the scene (docs/scene-format.md, "Overlay files") that every program's --scene
 reads, a JSON of every run, and a work-precision plot per knob.
 
@@ -128,7 +129,7 @@ def refuse_if_impossible(limits, knobs, baseline):
 
 
 def print_frontier(knobs, chosen, reasons, limits):
-    print("\nfrontier (each knob alone, the others at the scene's values):")
+    print("\nfrontier (each knob in turn, those before it at their choices, the rest at the scene's):")
     print(f"  {'knob':<22} {'value':<16} {'error p99 m':>11} {'kbit/s':>8} {'tick p99 ms':>11}  ")
     for k in knobs:
         for v, f in sorted(k.sweep, key=lambda vf: -vf[1]["kbps_per_client"]):
@@ -156,25 +157,28 @@ def main(argv):
           f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and one of {a.confirm_seconds:g} s, "
           f"{a.players} players, {measure.ranks_of(scene)} zone ranks; runs in {a.work}")
     t = Tuner(a, scene)
-    own = {k.name: k.scene_value for k in knobs}
+    chosen = {k.name: k.scene_value for k in knobs}
+    reasons = {}
     try:
-        baseline = t.measure(settings_of(knobs, own), "the scene's own settings", a.seconds)
+        # Coordinate descent: each knob is swept with the knobs before it at their choices, so
+        # a scene whose own settings break the budget still gets its later knobs judged.
+        here = t.measure(settings_of(knobs, chosen), "the scene's own settings", a.seconds)
+        baseline = here
         for k in knobs:
             for v in k.values:
-                f = baseline if v == k.scene_value else \
-                    t.measure(settings_of(knobs, {**own, k.name: v}), f"{k.name} = {k.label(v)}", a.seconds)
+                f = here if v == chosen[k.name] else \
+                    t.measure(settings_of(knobs, {**chosen, k.name: v}), f"{k.name} = {k.label(v)}", a.seconds)
                 k.sweep.append((v, f))
+            value, reasons[k.name] = choose(k, a.limits, a.tie)
+            if value is not None:
+                chosen[k.name] = value
+            here = dict(k.sweep)[chosen[k.name]]
     except measure.RunError as e:
         sys.exit(f"tune.py: {e}")
     refuse_if_impossible(a.limits, knobs, baseline)
-
-    chosen, reasons = {}, {}
-    for k in knobs:
-        value, reasons[k.name] = choose(k, a.limits, a.tie)
-        chosen[k.name] = value if value is not None else k.scene_value
     print_frontier(knobs, chosen, reasons, a.limits)
 
-    # The choices were each measured alone; together they must hold too.
+    # The choices were measured in short runs; a full-length run of them must hold too.
     for attempt in range(4):
         try:
             confirmed = t.measure(settings_of(knobs, chosen), "all chosen together", a.confirm_seconds)
@@ -183,16 +187,18 @@ def main(argv):
         broken = budget.broken(a.limits, confirmed)
         if not broken:
             break
-        # Step back the changed knob whose own run had least slack on the broken limit.
-        changed = [k for k in knobs if chosen[k.name] != k.scene_value]
-        if not changed or attempt == 3:
-            sys.exit(f"tune.py: the chosen settings together break {', '.join(l.describe() for l in broken)} "
-                     f"and no knob is left to step back; nothing written")
         limit = broken[0]
-        k = min(changed, key=lambda k: limit.slack(dict(k.sweep)[chosen[k.name]]))
-        accurate = [v for v, f in k.sweep if f[limit.metric] < dict(k.sweep)[chosen[k.name]][limit.metric]]
-        back = min(accurate, key=lambda v: cost(dict(k.sweep)[v])) if accurate else k.scene_value
-        print(f"  together they break {limit.describe()}: {k.name} steps back to {k.label(back)}")
+        # The knob value that lowered this figure most in its sweep, relative to the choice.
+        gains = [(dict(k.sweep)[chosen[k.name]][limit.metric] - f[limit.metric], k, v)
+                 for k in knobs for v, f in k.sweep if v != chosen[k.name]]
+        gains = [g for g in gains if g[0] > 0]
+        if not gains or attempt == 3:
+            sys.exit(f"tune.py: the chosen settings together break {limit.describe()}: "
+                     f"{confirmed[limit.metric]:.4g} {budget.METRICS[limit.metric][0]} over "
+                     f"{a.confirm_seconds:g} s, and no knob's sweep lowers it further; nothing written")
+        _, k, back = max(gains, key=lambda g: g[0])
+        print(f"  the full-length run breaks {limit.describe()} ({confirmed[limit.metric]:.4g}): "
+              f"{k.name} goes to {k.label(back)}")
         chosen[k.name] = back
 
     binds = budget.binding(a.limits, confirmed)
