@@ -182,6 +182,8 @@ void readRigidBodies(const SceneNode& node, Scene& scene) {
   m.read("rolling_resistance", p.rolling_resistance, Limit::atLeast(0));
   if (p.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::Projection)
     m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
+  if (p.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::SoftStepWide)
+    m.failAt("rolling_resistance", "is not solved by physics.solver soft_step_wide");
   m.read("mass", p.mass, Limit::above(0));
   m.read("restitution", p.restitution, Limit::between(0, 1));
   m.read("linear_damping", p.linear_damping, Limit::atLeast(0));
@@ -319,10 +321,11 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
   m.read("sleep", ps.sleep);
   m.read("gyroscopic", ps.gyroscopic);
-  ps.solver = PhysicsSettings::Solver(m.choice(
-      "solver",
-      {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty", "projection", "conjugate_gradient"},
-      int(ps.solver)));
+  ps.solver =
+      PhysicsSettings::Solver(m.choice("solver",
+                                       {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty",
+                                        "projection", "conjugate_gradient", "soft_step_wide"},
+                                       int(ps.solver)));
   m.read("sor_omega", ps.sor_omega, Limit::between(0.1, 1.99));
   m.read("joint_hertz", ps.joint_hertz, Limit::between(0.1, 1e4));
   m.read("joint_damping_ratio", ps.joint_damping_ratio, Limit::between(0, 100));

@@ -121,6 +121,8 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
   m.read("rolling_resistance", b.rolling_resistance, Limit::atLeast(0));
   if (b.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::Projection)
     m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
+  if (b.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::SoftStepWide)
+    m.failAt("rolling_resistance", "is not solved by physics.solver soft_step_wide");
   m.read("restitution", b.restitution, Limit::between(0, 1));
   m.read("linear_damping", b.linear_damping, Limit::atLeast(0));
   m.read("angular_damping", b.angular_damping, Limit::atLeast(0));

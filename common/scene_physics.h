@@ -129,7 +129,16 @@ struct PhysicsSettings {
   };
   enum class Broadphase { BruteForce, SweepAndPrune, UniformGrid, AabbTree };
   /// Contact response (docs/physics.md compares them); same order as physics::SolverKind.
-  enum class Solver { SoftStep, GaussSeidel, Sor, Jacobi, Penalty, Projection, ConjugateGradient };
+  enum class Solver {
+    SoftStep,
+    GaussSeidel,
+    Sor,
+    Jacobi,
+    Penalty,
+    Projection,
+    ConjugateGradient,
+    SoftStepWide
+  };
   Integrator integrator = Integrator::SemiImplicitEuler;
   Broadphase broadphase = Broadphase::SweepAndPrune;
   int substeps = 1;

@@ -43,6 +43,10 @@ enum class SolverKind {
   /// along the previous search direction by the Fletcher-Reeves ratio, restarting whenever the
   /// ratio exceeds 1. Same cost per iteration as Gauss-Seidel, faster convergence on stacks.
   ConjugateGradient,
+  /// The soft step solved wide (wide_contact_solver.h): the same sub-steps, with contacts
+  /// graph-coloured into blocks solved 4 or 8 at once in float. Bitwise the same at every width.
+  /// Rolling resistance is not solved by it.
+  SoftStepWide,
 };
 
 /// Iteration counts and tolerances of the contact solver.
@@ -77,6 +81,9 @@ struct SolverSettings {
   double joint_damping_ratio = 2.0;
   /// Soft step: the fastest the spring may push overlapping bodies apart (m/s).
   double max_push_velocity = 3.0;
+  /// Wide soft step: the most constraints solved at once, 1 (scalar reference), 4 (SSE2) or 8
+  /// (AVX2 where the CPU has it, else 4). The result is the same at every width.
+  int wide_lanes = 8;
 };
 
 /// A manifold between two bodies, with the impulses solved for each point (for warm starts).

@@ -42,6 +42,10 @@ BodyIndex World::addBody(const BodyDesc& desc) {
     throw std::invalid_argument(
         "rolling_resistance needs a velocity solver; SolverKind::Projection has none");
   }
+  if (desc.rolling_resistance > 0.0 && settings_.solver.kind == SolverKind::SoftStepWide) {
+    throw std::invalid_argument(
+        "rolling_resistance is not solved by SolverKind::SoftStepWide; use SoftStep");
+  }
   if (desc.shape.type == ShapeType::Compound && desc.type == BodyType::Dynamic) {
     // A body turns about its origin: a compound off its centre of mass would turn wrongly.
     const MassProperties mp = computeMassProperties(desc.shape, desc.density);
@@ -215,10 +219,16 @@ void World::substep(double dt) {
     // ticks).
     solver.restitution_threshold =
         std::max(solver.restitution_threshold, 2.5 * forces_.gravity.norm() * dt);
-    solver_.prepare(bodies_, contacts_, solver, dt);
+    const bool soft = settings_.solver.kind == SolverKind::SoftStep ||
+                      settings_.solver.kind == SolverKind::SoftStepWide;
+    if (settings_.solver.kind == SolverKind::SoftStepWide) {
+      wide_solver_.prepare(bodies_, contacts_, solver);
+    } else {
+      solver_.prepare(bodies_, contacts_, solver, dt);
+    }
     // Contacts and joints share the Gauss-Seidel iterations, so each sees the other's impulses.
     // (The soft step rebuilds its joints at every pass instead.)
-    if (settings_.solver.kind != SolverKind::SoftStep) {
+    if (!soft) {
       joints_.prepare(bodies_, dt, settings_.joint_beta);
       rigid_joints_.prepare(bodies_, dt, settings_.joint_beta);
     }
@@ -228,6 +238,9 @@ void World::substep(double dt) {
     switch (settings_.solver.kind) {
       case SolverKind::SoftStep:
         solveSoftStep(dt);
+        break;
+      case SolverKind::SoftStepWide:
+        solveSoftStepWide(dt);
         break;
       case SolverKind::Projection:
         solveProjection(dt);
@@ -571,10 +584,30 @@ void World::solveProjection(double dt) {
   }
 }
 
-void World::solveSoftStep(double dt) {
+World::SoftSprings World::softSprings(double dt) const {
   // The velocity iterations are spent as sub-steps of one biased and one relax pass each.
   const int n_sub = std::max(1, (settings_.solver.velocity_iterations + 1) / 2);
   const double h = dt / n_sub;
+  const SolverSettings& ss = settings_.solver;
+  // Stiffer than a quarter of the sub-step rate goes unstable in Gauss-Seidel (measured: a
+  // 20-box column falls at half); the sag of a soft contact is g / omega^2 per supported box.
+  const double hertz = std::min(ss.contact_hertz, ss.contact_rate_fraction / h);
+  const double static_hertz = std::min(ss.contact_hertz, ss.static_contact_rate_fraction / h);
+  // Joints are springs too, rebuilt at each sub-step's anchors; their impulses are per
+  // sub-step, so each sub-step starts from the last one's (a chain carries a heavy ball at once
+  // instead of after sweeps down its links).
+  // Capped at a quarter of the sub-step rate: at half (omega h = pi) the ball and chain
+  // gained 1.5 kJ with 4 sub-steps.
+  return SoftSprings{
+      n_sub, h, makeSoftness(hertz, ss.contact_damping_ratio, h),
+      makeSoftness(static_hertz, ss.contact_damping_ratio, h),
+      makeSoftness(std::min(ss.joint_hertz, kJointRateFraction / h), ss.joint_damping_ratio, h)};
+}
+
+void World::solveSoftStep(double dt) {
+  const SoftSprings springs = softSprings(dt);
+  const int n_sub = springs.substeps;
+  const double h = springs.h;
   const std::size_t n = bodies_.size();
   soft_dp_.assign(n, Vec3::Zero());
   soft_dtheta_.assign(n, Vec3::Zero());
@@ -584,21 +617,10 @@ void World::solveSoftStep(double dt) {
     soft_dv_[i] = (v_force_[i] - v_start_[i]) / n_sub;
     if (bodies_.type[i] != BodyType::Static) bodies_.linear_velocity[i] = v_start_[i];
   }
-  const SolverSettings& ss = settings_.solver;
-  // Stiffer than a quarter of the sub-step rate goes unstable in Gauss-Seidel (measured: a
-  // 20-box column falls at half); the sag of a soft contact is g / omega^2 per supported box.
-  const double hertz = std::min(ss.contact_hertz, ss.contact_rate_fraction / h);
-  const Softness soft = makeSoftness(hertz, ss.contact_damping_ratio, h);
-  const double static_hertz = std::min(ss.contact_hertz, ss.static_contact_rate_fraction / h);
-  const Softness soft_static = makeSoftness(static_hertz, ss.contact_damping_ratio, h);
-  const int relax_passes = std::max(1, ss.position_iterations);
-  // Joints are springs too, rebuilt at each sub-step's anchors; their impulses are per
-  // sub-step, so each sub-step starts from the last one's (a chain carries a heavy ball at once
-  // instead of after sweeps down its links).
-  // Capped at a quarter of the sub-step rate: at half (omega h = pi) the ball and chain
-  // gained 1.5 kJ with 4 sub-steps.
-  const Softness joint_soft =
-      makeSoftness(std::min(ss.joint_hertz, kJointRateFraction / h), ss.joint_damping_ratio, h);
+  const Softness& soft = springs.contact;
+  const Softness& soft_static = springs.contact_fixed;
+  const Softness& joint_soft = springs.joint;
+  const int relax_passes = std::max(1, settings_.solver.position_iterations);
   for (int sub = 0; sub < n_sub; ++sub) {
     for (std::size_t i = 0; i < n; ++i) bodies_.linear_velocity[i] += soft_dv_[i];
     joints_.prepareSoft(bodies_, soft_dp_, soft_dtheta_);

@@ -17,6 +17,7 @@
 #include "physics/rigid_joints.h"
 #include "physics/step_lod.h"
 #include "physics/step_profile.h"
+#include "physics/wide_contact_solver.h"
 
 namespace zonesim::physics {
 
@@ -136,7 +137,19 @@ class World {
   void wakeTouched();
   void warmStartFromPrevious();
   void integratePositions(double dt);
+  /// The soft step's springs and sub-steps for a step of dt (SoftStep and SoftStepWide).
+  struct SoftSprings {
+    int substeps;
+    double h;
+    Softness contact, contact_fixed, joint;
+  };
+  SoftSprings softSprings(double dt) const;
   void solveSoftStep(double dt);
+  /// SoftStepWide (world_soft_wide.cpp).
+  void solveSoftStepWide(double dt);
+  /// Wide soft step with joints: the solver bodies' velocities to and from bodies_.
+  void exportWideVelocities();
+  void importWideVelocities();
   void warmStartJoints();
   void iterateJoints();
   void iterateJointsSoft(const Softness& soft, bool use_bias);
@@ -150,6 +163,8 @@ class World {
   LinearIntegrator integrator_;
   Broadphase broadphase_;
   ContactSolver solver_;
+  WideContactSolver wide_solver_;
+  SolverBodies wide_bodies_;
   Islands islands_;
   DistanceJoints joints_;
   RigidJoints rigid_joints_;

@@ -3,11 +3,12 @@
 // thread, dt 1/60, sleeping off, and prints ms per step, where our step went by stage, and the
 // stability figures.
 //
-//   physics_vs_bullet pyramid [steps] [soft|pgs|both]: Jolt's pyramid, 10 velocity iterations
-//     (ours: plus 2 split-impulse position iterations; Bullet: split impulse on).
+//   physics_vs_bullet pyramid [steps] [soft|pgs|wide|both|all]: Jolt's pyramid, 10 velocity
+//     iterations (ours: plus 2 split-impulse position iterations; Bullet: split impulse on);
+//     both: soft and pgs; all (the default): soft, pgs and the wide soft step.
 //   physics_vs_bullet large_pyramid [steps] [base]: Box3D's large_pyramid (5,050 boxes at base
-//     100), set as Box3D sets it: soft step with 4 sub-steps of one solve and one relax pass;
-//     Bullet at 10 iterations.
+//     100), set as Box3D sets it: soft step with 4 sub-steps of one solve and one relax pass
+//     (and the same solved wide, SoftStepWide); Bullet at 10 iterations.
 //   physics_vs_bullet many_pyramids [steps] [rows]: Box3D's many_pyramids (14 x 14 pyramids of
 //     base 10), the same settings.
 //   physics_vs_bullet spheres [steps]: 5,000 spheres in a box.
@@ -66,6 +67,7 @@ double timeMs(F&& f) {
 struct OurSettings {
   zp::SolverKind kind = zp::SolverKind::SoftStep;
   int velocity_iterations = 10;  ///< Soft step: two per sub-step.
+  int wide_lanes = 8;            ///< Wide soft step: the widest the CPU allows.
   int position_iterations = 2;   ///< Soft step: relax passes per sub-step.
   bool sleeping = false;
   int settle = 0;  ///< Untimed steps before the timed ones.
@@ -103,6 +105,7 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
   settings.sleep.enabled = ours.sleeping;
   settings.solver.velocity_iterations = ours.velocity_iterations;
   settings.solver.position_iterations = ours.position_iterations;
+  settings.solver.wide_lanes = ours.wide_lanes;
   zp::World world(settings);
   for (const auto& b : scene.bodies) {
     zp::BodyDesc d;
@@ -212,9 +215,14 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
   soft.position_iterations = 1;
   OurSettings pgs;
   pgs.kind = zp::SolverKind::GaussSeidel;
-  Timing soft_t, pgs_t, bullet_t;
+  OurSettings wide = soft;
+  wide.kind = zp::SolverKind::SoftStepWide;
+  OurSettings wide4 = wide;
+  wide4.wide_lanes = 4;
+  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t;
   for (auto [label, settings, timing] :
-       {std::tuple{"zs-soft", soft, &soft_t}, std::tuple{"zs-pgs", pgs, &pgs_t}}) {
+       {std::tuple{"zs-soft", soft, &soft_t}, std::tuple{"zs-pgs", pgs, &pgs_t},
+        std::tuple{"zs-wide8", wide, &wide_t}, std::tuple{"zs-wide4", wide4, &wide4_t}}) {
     Stages stages;
     const auto p = runOurs(scene, steps, *timing, settings, nullptr, &stages);
     reportHeld(label, name, scene, p, *timing);
@@ -222,8 +230,11 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
   }
   const auto q = runBullet(scene, steps, bullet_t, 10);
   reportHeld(kBullet, name, scene, q, bullet_t);
-  std::printf("speed, Bullet mean / ours mean: soft step %.2f, Gauss-Seidel %.2f\n",
-              bullet_t.mean_ms / soft_t.mean_ms, bullet_t.mean_ms / pgs_t.mean_ms);
+  std::printf(
+      "speed, Bullet mean / ours mean: soft step %.2f, Gauss-Seidel %.2f, wide soft step %.2f "
+      "(8 lanes where AVX2, else 4), %.2f (4 lanes)\n",
+      bullet_t.mean_ms / soft_t.mean_ms, bullet_t.mean_ms / pgs_t.mean_ms,
+      bullet_t.mean_ms / wide_t.mean_ms, bullet_t.mean_ms / wide4_t.mean_ms);
   return 0;
 }
 
@@ -309,10 +320,13 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu bodies, %d steps of 1/60 s, 10 velocity iterations\n", which.c_str(),
               scene.bodies.size(), steps);
   // Our solvers (argument 3: "soft", "pgs" or "both"), then Bullet, in the same run.
-  const std::string solvers = argc > 3 ? argv[3] : "both";
+  const std::string solvers = argc > 3 ? argv[3] : "all";
+  const bool all = solvers == "all", both = solvers == "both";
   std::vector<std::pair<const char*, zp::SolverKind>> kinds;
-  if (solvers != "pgs") kinds.emplace_back("zs-soft", zp::SolverKind::SoftStep);
-  if (solvers != "soft") kinds.emplace_back("zs-pgs", zp::SolverKind::GaussSeidel);
+  if (all || both || solvers == "soft") kinds.emplace_back("zs-soft", zp::SolverKind::SoftStep);
+  if (all || both || solvers == "pgs") kinds.emplace_back("zs-pgs", zp::SolverKind::GaussSeidel);
+  if (all || solvers == "wide") kinds.emplace_back("zs-wide", zp::SolverKind::SoftStepWide);
+  double wide_mean = 0.0;
   for (const auto& [name, kind] : kinds) {
     Timing t;
     OurSettings settings;
@@ -325,6 +339,7 @@ int main(int argc, char** argv) {
     } else {
       reportSpheres(name, scene, ours, t);
     }
+    if (kind == zp::SolverKind::SoftStepWide) wide_mean = t.mean_ms;
   }
   Timing bullet_t;
   const auto bullet = runBullet(scene, steps, bullet_t);
@@ -332,6 +347,9 @@ int main(int argc, char** argv) {
     reportHeld(kBullet, "pyramid", scene, bullet, bullet_t);
   } else {
     reportSpheres(kBullet, scene, bullet, bullet_t);
+  }
+  if (wide_mean > 0.0) {
+    std::printf("speed, Bullet mean / wide soft step mean: %.2f\n", bullet_t.mean_ms / wide_mean);
   }
   return 0;
 }

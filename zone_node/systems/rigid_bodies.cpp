@@ -113,6 +113,7 @@ static_assert(int(physics::SolverKind::Projection) == int(PhysicsSettings::Solve
 static_assert(int(physics::SolverKind::ConjugateGradient) ==
               int(PhysicsSettings::Solver::ConjugateGradient));
 static_assert(int(physics::SolverKind::GaussSeidel) == int(PhysicsSettings::Solver::GaussSeidel));
+static_assert(int(physics::SolverKind::SoftStepWide) == int(PhysicsSettings::Solver::SoftStepWide));
 
 static_assert(int(physics::Falloff::Quadratic) == int(SceneExplosion::Falloff::Quadratic));
 static_assert(int(physics::ClothIntegrator::ImplicitEuler) ==

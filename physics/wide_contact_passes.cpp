@@ -1,0 +1,361 @@
+// The wide contact solver's passes, one template over the lane count W: 1 (the scalar
+// reference), 4 (SSE2, any x86-64) and 8 (AVX2, chosen at run time). Each lane carries out the
+// same float operations in the same order whatever W is: GCC vector extensions only add, multiply,
+// divide, compare and select lane by lane, square roots are taken one lane at a time, and the
+// file is compiled with -ffp-contract=off (no fused multiply-adds in one width and not another).
+// With the width-independent layout of constraint_colouring.h, every width ends bitwise equal.
+
+#include <cmath>
+#include <cstring>
+
+#include "physics/wide_contact_block.h"
+
+namespace zonesim::physics::wide {
+namespace {
+
+#define ZONESIM_WIDE_INLINE inline __attribute__((always_inline))
+
+// One vector type per width, spelled out: GCC drops vector_size on a dependent typedef.
+template <int W>
+struct Simd;
+template <>
+struct Simd<1> {
+  typedef float F __attribute__((vector_size(4)));
+};
+template <>
+struct Simd<4> {
+  typedef float F __attribute__((vector_size(16)));
+};
+template <>
+struct Simd<8> {
+  typedef float F __attribute__((vector_size(32)));
+};
+static_assert(sizeof(Simd<8>::F) == 8 * sizeof(float));
+
+template <class F>
+struct V3 {
+  F x, y, z;
+};
+
+template <class F>
+ZONESIM_WIDE_INLINE F load(const float* p) {
+  F v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE void store(float* p, F v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE F splat(float x) {
+  return F{} + x;
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE V3<F> load3(const Lanes* p, int o) {
+  return {load<F>(p[0] + o), load<F>(p[1] + o), load<F>(p[2] + o)};
+}
+
+// As std::max and std::min, lane by lane (the same answer for signed zeros).
+template <class F>
+ZONESIM_WIDE_INLINE F vmax(F a, F b) {
+  return a < b ? b : a;
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE F dot(const V3<F>& a, const V3<F>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE V3<F> cross(const V3<F>& a, const V3<F>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE V3<F> operator+(const V3<F>& a, const V3<F>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE V3<F> operator-(const V3<F>& a, const V3<F>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+template <class F>
+ZONESIM_WIDE_INLINE V3<F> operator*(F s, const V3<F>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+
+// A symmetric 3x3 matrix (xx yy zz xy xz yz) times v.
+template <class F>
+ZONESIM_WIDE_INLINE V3<F> symmetricTimes(const F* m, const V3<F>& v) {
+  return {m[0] * v.x + m[3] * v.y + m[4] * v.z, m[3] * v.x + m[1] * v.y + m[5] * v.z,
+          m[4] * v.x + m[5] * v.y + m[2] * v.z};
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void gather(const SolverMotion* m, const std::uint32_t* slot,
+                                V3<typename Simd<W>::F>& lin, V3<typename Simd<W>::F>& ang) {
+  using F = typename Simd<W>::F;
+  alignas(32) float part[6][W];
+  for (int l = 0; l < W; ++l) {
+    const SolverMotion& s = m[slot[l]];
+    for (int k = 0; k < 3; ++k) {
+      part[k][l] = s.linear[k];
+      part[3 + k][l] = s.angular[k];
+    }
+  }
+  lin = {load<F>(part[0]), load<F>(part[1]), load<F>(part[2])};
+  ang = {load<F>(part[3]), load<F>(part[4]), load<F>(part[5])};
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void scatter(SolverMotion* m, const std::uint32_t* slot,
+                                 const V3<typename Simd<W>::F>& lin,
+                                 const V3<typename Simd<W>::F>& ang) {
+  alignas(32) float part[6][W];
+  store(part[0], lin.x);
+  store(part[1], lin.y);
+  store(part[2], lin.z);
+  store(part[3], ang.x);
+  store(part[4], ang.y);
+  store(part[5], ang.z);
+  for (int l = 0; l < W; ++l) {
+    SolverMotion& s = m[slot[l]];
+    for (int k = 0; k < 3; ++k) {
+      s.linear[k] = part[k][l];
+      s.angular[k] = part[3 + k][l];
+    }
+  }
+}
+
+// The velocities of one block's lanes o .. o+W, with the bodies' masses.
+template <int W>
+struct Pair {
+  using F = typename Simd<W>::F;
+  V3<F> va, wa, vb, wb;
+  F ma, mb;
+  F ia[6], ib[6];
+
+  ZONESIM_WIDE_INLINE Pair(const BlockLanes& b, int o, const SolverBodies& bodies) {
+    gather<W>(bodies.velocity.data(), b.read_a + o, va, wa);
+    gather<W>(bodies.velocity.data(), b.read_b + o, vb, wb);
+    ma = load<F>(b.inv_mass_a + o);
+    mb = load<F>(b.inv_mass_b + o);
+    for (int k = 0; k < 6; ++k) {
+      ia[k] = load<F>(b.inv_inertia_a[k] + o);
+      ib[k] = load<F>(b.inv_inertia_b[k] + o);
+    }
+  }
+  ZONESIM_WIDE_INLINE void write(const BlockLanes& b, int o, SolverBodies& bodies) const {
+    scatter<W>(bodies.velocity.data(), b.write_a + o, va, wa);
+    scatter<W>(bodies.velocity.data(), b.write_b + o, vb, wb);
+  }
+  // Impulse p at anchors ra, rb: -p on body a, +p on body b.
+  ZONESIM_WIDE_INLINE void apply(const V3<F>& ra, const V3<F>& rb, const V3<F>& p) {
+    va = va - ma * p;
+    wa = wa - symmetricTimes(ia, cross(ra, p));
+    vb = vb + mb * p;
+    wb = wb + symmetricTimes(ib, cross(rb, p));
+  }
+  // Normal impulse lambda along n, with the normal row's precomputed angular images.
+  ZONESIM_WIDE_INLINE void applyNormal(const V3<F>& n, const V3<F>& ia_ca, const V3<F>& ib_cb,
+                                       F lambda) {
+    va = va - (ma * lambda) * n;
+    wa = wa - lambda * ia_ca;
+    vb = vb + (mb * lambda) * n;
+    wb = wb + lambda * ib_cb;
+  }
+  ZONESIM_WIDE_INLINE F normalVelocity(const V3<F>& n, const V3<F>& ca, const V3<F>& cb) const {
+    return dot(n, vb - va) + dot(cb, wb) - dot(ca, wa);
+  }
+};
+
+template <int W>
+ZONESIM_WIDE_INLINE void warmStartLanes(const BlockLanes& b, int o, SolverBodies& bodies) {
+  using F = typename Simd<W>::F;
+  Pair<W> v(b, o, bodies);
+  const V3<F> n = load3<F>(b.normal, o), t0 = load3<F>(b.tangent[0], o);
+  const V3<F> t1 = load3<F>(b.tangent[1], o);
+  for (int i = 0; i < b.points; ++i) {
+    const PointLanes& p = b.point[i];
+    const V3<F> impulse = load<F>(p.normal_impulse + o) * n +
+                          load<F>(p.tangent_impulse[0] + o) * t0 +
+                          load<F>(p.tangent_impulse[1] + o) * t1;
+    v.apply(load3<F>(p.ra, o), load3<F>(p.rb, o), impulse);
+  }
+  v.write(b, o, bodies);
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void solveLanes(BlockLanes& b, int o, SolverBodies& bodies,
+                                    const SoftPass& pass) {
+  using F = typename Simd<W>::F;
+  Pair<W> v(b, o, bodies);
+  V3<F> pa, qa, pb, qb;
+  gather<W>(bodies.displacement.data(), b.read_a + o, pa, qa);
+  gather<W>(bodies.displacement.data(), b.read_b + o, pb, qb);
+  const V3<F> n = load3<F>(b.normal, o);
+  const auto fixed = load<F>(b.fixed + o) > splat<F>(0.0f);
+  const F zero = splat<F>(0.0f), one = splat<F>(1.0f);
+  const F rate = fixed ? splat<F>(pass.soft_fixed.bias_rate) : splat<F>(pass.soft.bias_rate);
+  const F mass_scale =
+      fixed ? splat<F>(pass.soft_fixed.mass_scale) : splat<F>(pass.soft.mass_scale);
+  const F impulse_scale =
+      fixed ? splat<F>(pass.soft_fixed.impulse_scale) : splat<F>(pass.soft.impulse_scale);
+  const F inv_h = splat<F>(pass.inv_h), push_limit = splat<F>(-pass.max_push);
+  // Separation moves with the relative displacement of the anchors (small-angle rotation).
+  const F moved = dot(n, pb - pa);
+  for (int i = 0; i < b.points; ++i) {
+    PointLanes& p = b.point[i];
+    const V3<F> ca = load3<F>(p.ca, o), cb = load3<F>(p.cb, o);
+    const F s = load<F>(p.separation + o) + moved + dot(cb, qb) - dot(ca, qa);
+    // Speculative (s > 0): may close the gap within this sub-step. Else the soft spring with
+    // the bias, or the rigid relax pass without.
+    const auto gap = s > zero;
+    F bias = gap ? s * inv_h : zero;
+    F ms = one, is = zero;
+    if (pass.use_bias) {
+      bias = gap ? bias : vmax(rate * s, push_limit);
+      ms = gap ? one : mass_scale;
+      is = gap ? zero : impulse_scale;
+    }
+    const F vn = v.normalVelocity(n, ca, cb);
+    const F old = load<F>(p.normal_impulse + o);
+    const F delta = -(load<F>(p.normal_mass + o) * ms) * (vn + bias) - is * old;
+    const F impulse = vmax(zero, old + delta);
+    store(p.normal_impulse + o, impulse);
+    store(p.max_normal_impulse + o, vmax(load<F>(p.max_normal_impulse + o), impulse));
+    v.applyNormal(n, load3<F>(p.ia_ca, o), load3<F>(p.ib_cb, o), impulse - old);
+  }
+  // Friction: both tangents from the same velocities, then the pair clamped to the Coulomb
+  // disc (as Jolt does), one application per point.
+  const V3<F> t0 = load3<F>(b.tangent[0], o), t1 = load3<F>(b.tangent[1], o);
+  const F friction = load<F>(b.friction + o);
+  for (int i = 0; i < b.points; ++i) {
+    PointLanes& p = b.point[i];
+    const V3<F> ra = load3<F>(p.ra, o), rb = load3<F>(p.rb, o);
+    const F limit = friction * load<F>(p.normal_impulse + o);
+    const V3<F> dv = (v.vb + cross(v.wb, rb)) - (v.va + cross(v.wa, ra));
+    const F old0 = load<F>(p.tangent_impulse[0] + o), old1 = load<F>(p.tangent_impulse[1] + o);
+    F j0 = old0 - load<F>(p.tangent_mass[0] + o) * dot(dv, t0);
+    F j1 = old1 - load<F>(p.tangent_mass[1] + o) * dot(dv, t1);
+    // Square roots one lane at a time: the same IEEE result in every width.
+    alignas(32) float size2[W], bound[W], scale[W];
+    store(size2, j0 * j0 + j1 * j1);
+    store(bound, limit);
+    for (int l = 0; l < W; ++l) {
+      scale[l] = size2[l] > bound[l] * bound[l] ? bound[l] / std::sqrt(size2[l]) : 1.0f;
+    }
+    j0 = j0 * load<F>(scale);
+    j1 = j1 * load<F>(scale);
+    store(p.tangent_impulse[0] + o, j0);
+    store(p.tangent_impulse[1] + o, j1);
+    v.apply(ra, rb, (j0 - old0) * t0 + (j1 - old1) * t1);
+  }
+  v.write(b, o, bodies);
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void restituteLanes(BlockLanes& b, int o, SolverBodies& bodies,
+                                        float threshold) {
+  using F = typename Simd<W>::F;
+  Pair<W> v(b, o, bodies);
+  const V3<F> n = load3<F>(b.normal, o);
+  const F e = load<F>(b.restitution + o), zero = splat<F>(0.0f);
+  const auto bouncy = e != zero;
+  for (int i = 0; i < b.points; ++i) {
+    PointLanes& p = b.point[i];
+    const F approach = load<F>(p.approach + o);
+    // Only points that were approaching fast and actually pushed this step bounce.
+    const auto bounce =
+        bouncy & (approach <= splat<F>(-threshold)) & (load<F>(p.max_normal_impulse + o) != zero);
+    const V3<F> ca = load3<F>(p.ca, o), cb = load3<F>(p.cb, o);
+    const F vn = v.normalVelocity(n, ca, cb);
+    const F old = load<F>(p.normal_impulse + o);
+    const F bounced = vmax(zero, old - load<F>(p.normal_mass + o) * (vn + e * approach));
+    const F impulse = bounce ? bounced : old;
+    store(p.normal_impulse + o, impulse);
+    v.applyNormal(n, load3<F>(p.ia_ca, o), load3<F>(p.ib_cb, o), impulse - old);
+  }
+  v.write(b, o, bodies);
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void warmStartAll(std::span<const BlockLanes> blocks, SolverBodies& bodies) {
+  for (const BlockLanes& b : blocks)
+    for (int o = 0; o < kBlockLanes; o += W) warmStartLanes<W>(b, o, bodies);
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void solveAll(std::span<BlockLanes> blocks, SolverBodies& bodies,
+                                  const SoftPass& pass) {
+  for (BlockLanes& b : blocks)
+    for (int o = 0; o < kBlockLanes; o += W) solveLanes<W>(b, o, bodies, pass);
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void restituteAll(std::span<BlockLanes> blocks, SolverBodies& bodies,
+                                      float threshold) {
+  for (BlockLanes& b : blocks)
+    for (int o = 0; o < kBlockLanes; o += W) restituteLanes<W>(b, o, bodies, threshold);
+}
+
+// One function per width; the 8-lane ones alone are compiled for AVX2 (the rest of the library
+// stays baseline x86-64, so it runs where AVX2 is missing).
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ZONESIM_WIDE_AVX2 1
+#define ZONESIM_WIDE_TARGET_AVX2 __attribute__((target("avx2")))
+
+ZONESIM_WIDE_TARGET_AVX2 void warmStart8(std::span<const BlockLanes> blocks, SolverBodies& bodies) {
+  warmStartAll<8>(blocks, bodies);
+}
+ZONESIM_WIDE_TARGET_AVX2 void solve8(std::span<BlockLanes> blocks, SolverBodies& bodies,
+                                     const SoftPass& pass) {
+  solveAll<8>(blocks, bodies, pass);
+}
+ZONESIM_WIDE_TARGET_AVX2 void restitute8(std::span<BlockLanes> blocks, SolverBodies& bodies,
+                                         float threshold) {
+  restituteAll<8>(blocks, bodies, threshold);
+}
+#endif
+
+}  // namespace
+
+int supportedLanes(int wanted) {
+#if defined(ZONESIM_WIDE_AVX2)
+  static const bool kAvx2 = __builtin_cpu_supports("avx2");
+  if (wanted >= 8 && kAvx2) return 8;
+#endif
+  return wanted >= 4 ? 4 : 1;
+}
+
+void warmStart(int lanes, std::span<const BlockLanes> blocks, SolverBodies& bodies) {
+#if defined(ZONESIM_WIDE_AVX2)
+  if (lanes == 8) return warmStart8(blocks, bodies);
+#endif
+  if (lanes == 4) return warmStartAll<4>(blocks, bodies);
+  warmStartAll<1>(blocks, bodies);
+}
+
+void solve(int lanes, std::span<BlockLanes> blocks, SolverBodies& bodies, const SoftPass& pass) {
+#if defined(ZONESIM_WIDE_AVX2)
+  if (lanes == 8) return solve8(blocks, bodies, pass);
+#endif
+  if (lanes == 4) return solveAll<4>(blocks, bodies, pass);
+  solveAll<1>(blocks, bodies, pass);
+}
+
+void restitute(int lanes, std::span<BlockLanes> blocks, SolverBodies& bodies, float threshold) {
+#if defined(ZONESIM_WIDE_AVX2)
+  if (lanes == 8) return restitute8(blocks, bodies, threshold);
+#endif
+  if (lanes == 4) return restituteAll<4>(blocks, bodies, threshold);
+  restituteAll<1>(blocks, bodies, threshold);
+}
+
+}  // namespace zonesim::physics::wide

@@ -1,0 +1,236 @@
+// The wide soft step (SolverKind::SoftStepWide): the same final state bit for bit at every
+// SIMD width, a colouring whose blocks share no movable body, and stacks that hold within the
+// soft step's own bounds.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "physics/box_column.h"
+#include "physics/constraint_colouring.h"
+#include "physics/joint_scenes.h"
+#include "physics/world.h"
+
+namespace zonesim::physics {
+namespace {
+
+WorldSettings wideSettings(int lanes, int velocity_iterations = 10) {
+  WorldSettings settings;
+  settings.solver.kind = SolverKind::SoftStepWide;
+  settings.solver.velocity_iterations = velocity_iterations;
+  settings.solver.position_iterations = 2;
+  settings.solver.wide_lanes = lanes;
+  return settings;
+}
+
+// Box3D's 2D pyramid of unit boxes, `base` at the bottom, on a static ground box whose top is
+// y = 0. With `extras`, a restitutive ball falls beside it and a spinning box on its top, so
+// every pass (restitution and rotation included) takes part.
+World pyramid(const WorldSettings& settings, int base, std::vector<Vec3>& start,
+              bool extras = true) {
+  World world(settings);
+  BodyDesc ground;
+  ground.type = BodyType::Static;
+  ground.shape = Shape::box(Vec3(100, 1, 100));
+  ground.position = Vec3(0, -1, 0);
+  world.addBody(ground);
+  for (int level = 0; level < base; ++level) {
+    for (int i = 0; i < base - level; ++i) {
+      BodyDesc box;
+      box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
+      box.position = Vec3(i - 0.5 * (base - level - 1), 0.5 + level, 0);
+      box.friction = 0.6;
+      box.density = 100;
+      world.addBody(box);
+      start.push_back(box.position);
+    }
+  }
+  if (!extras) return world;
+  BodyDesc ball;
+  ball.shape = Shape::sphere(0.4);
+  ball.position = Vec3(base * 0.5 + 2.0, 3.0, 0.3);
+  ball.restitution = 0.5;
+  world.addBody(ball);
+  BodyDesc spinner;
+  spinner.shape = Shape::box(Vec3(0.3, 0.2, 0.4));
+  spinner.position = Vec3(0.1, base + 1.5, 0.2);
+  spinner.angular_velocity = Vec3(1.0, 2.0, -0.5);
+  world.addBody(spinner);
+  return world;
+}
+
+bool sameBits(const double& x, const double& y) {
+  return std::memcmp(&x, &y, sizeof x) == 0;
+}
+
+TEST(SoftStepWide, EveryWidthGivesTheSameStateBitwise) {
+  // 1 (scalar reference), 4 (SSE2) and 8 (AVX2 where the CPU has it; else 4 again).
+  std::vector<Vec3> start;
+  World reference = pyramid(wideSettings(1), 10, start);
+  for (int s = 0; s < 180; ++s) reference.step(1.0 / 60);
+  for (int lanes : {4, 8}) {
+    World world = pyramid(wideSettings(lanes), 10, start);
+    for (int s = 0; s < 180; ++s) world.step(1.0 / 60);
+    const BodyStorage& a = reference.bodies();
+    const BodyStorage& b = world.bodies();
+    int differ = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        differ += !sameBits(a.position[i][k], b.position[i][k]);
+        differ += !sameBits(a.linear_velocity[i][k], b.linear_velocity[i][k]);
+        differ += !sameBits(a.angular_velocity[i][k], b.angular_velocity[i][k]);
+      }
+      for (int k = 0; k < 4; ++k) {
+        differ += !sameBits(a.orientation[i].coeffs()[k], b.orientation[i].coeffs()[k]);
+      }
+    }
+    std::printf("wide soft step, %d lanes asked: %d in use\n", lanes, lanes == 4 ? 4 : 8);
+    EXPECT_EQ(differ, 0) << lanes << " lanes";
+    // The ball bounced and the spinner landed: the comparison covers moving bodies.
+    EXPECT_GT(reference.contacts().size(), 50u);
+  }
+}
+
+// Checks the colouring's promise on `constraints`: every constraint in exactly one lane, and
+// no block (nor colour) with two constraints on one movable body.
+void expectValidColouring(const ConstraintColouring& colouring,
+                          const std::vector<ConstraintBodies>& constraints) {
+  const auto lanes = colouring.lanes();
+  std::vector<int> seen(constraints.size(), 0);
+  for (std::uint32_t c : lanes) {
+    if (c != kEmptyLane) ++seen[c];
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(constraints.size()));
+  const auto first = colouring.colourFirstBlock();
+  const auto sharedIn = [&](std::size_t begin_block, std::size_t end_block) {
+    std::set<std::uint32_t> bodies;
+    int shared = 0;
+    for (std::size_t l = begin_block * kBlockLanes; l < end_block * kBlockLanes; ++l) {
+      if (lanes[l] == kEmptyLane) continue;
+      const ConstraintBodies& k = constraints[lanes[l]];
+      if (k.a_moves) shared += !bodies.insert(k.a).second;
+      if (k.b_moves) shared += !bodies.insert(k.b).second;
+    }
+    return shared;
+  };
+  for (std::size_t block = 0; block < colouring.blockCount(); ++block) {
+    EXPECT_EQ(sharedIn(block, block + 1), 0) << "block " << block;
+  }
+  for (std::size_t colour = 0; colour < colouring.colourCount(); ++colour) {
+    EXPECT_EQ(sharedIn(first[colour], first[colour + 1]), 0) << "colour " << colour;
+  }
+}
+
+TEST(ConstraintColouring, NoBlockSharesAMovableBodyAndEveryConstraintAppearsOnce) {
+  // Random pairs among 300 bodies, 20 of them static (shared freely), and one movable hub
+  // touching 100 others: 36 of its constraints overflow the 64 colours.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<std::uint32_t> body(0, 299);
+  std::vector<ConstraintBodies> constraints;
+  for (int c = 0; c < 2000; ++c) {
+    std::uint32_t a = body(rng), b = body(rng);
+    if (a == b) continue;
+    if (a > b) std::swap(a, b);
+    constraints.push_back({a, b, a >= 20, b >= 20});
+  }
+  for (std::uint32_t k = 0; k < 100; ++k) constraints.push_back({300, 301 + k, true, true});
+  ConstraintColouring colouring;
+  colouring.build(constraints, 401);
+  std::printf("%zu constraints: %zu colours, %zu blocks, %zu overflow\n", constraints.size(),
+              colouring.colourCount(), colouring.blockCount(), colouring.overflowCount());
+  EXPECT_GE(colouring.overflowCount(), 36u);
+  expectValidColouring(colouring, constraints);
+}
+
+TEST(ConstraintColouring, PyramidContactsColourValidly) {
+  std::vector<Vec3> start;
+  World world = pyramid(wideSettings(8), 20, start);
+  for (int s = 0; s < 5; ++s) world.step(1.0 / 60);
+  std::vector<ConstraintBodies> constraints;
+  for (const BodyContact& c : world.contacts()) {
+    constraints.push_back(
+        {c.a, c.b, world.bodies().inv_mass[c.a] > 0, world.bodies().inv_mass[c.b] > 0});
+  }
+  ConstraintColouring colouring;
+  colouring.build(constraints, world.bodies().size());
+  std::printf("pyramid of 20: %zu contacts, %zu colours, %zu blocks\n", constraints.size(),
+              colouring.colourCount(), colouring.blockCount());
+  EXPECT_EQ(colouring.overflowCount(), 0u);
+  expectValidColouring(colouring, constraints);
+}
+
+// The soft step's bounds (solver_kind_test.cpp) hold for the wide one: a 20-box column for
+// 60 s at one step of 1/60 s and 10 iterations (the springs' sag, 1.8 cm at the top, is the
+// soft step's; sideways it must not walk).
+TEST(SoftStepWide, TwentyBoxStackStandsSixtySeconds) {
+  BoxColumn column(wideSettings(8), std::vector<double>(20, 1000.0));
+  column.run(60.0);
+  const BoxColumn::Drift d = column.drift();
+  std::printf("wide soft step, 20 boxes, 60 s: horizontal drift %.3e m, sag %.3e m\n", d.horizontal,
+              d.vertical);
+  EXPECT_LT(d.horizontal, 5e-3);
+  EXPECT_LT(d.vertical, 0.025);
+}
+
+// A resting box and a 3-box column for 10 s, with the soft step's bounds in
+// SolverKinds.EachKeepsARestingBoxAndASmallStackStanding.
+TEST(SoftStepWide, KeepsARestingBoxAndASmallStackStanding) {
+  BoxColumn box(wideSettings(8), std::vector<double>{1000.0});
+  box.run(10.0);
+  BoxColumn stack(wideSettings(8), std::vector<double>(3, 1000.0));
+  stack.run(10.0);
+  std::printf("wide soft step: resting box drift %.3e m, 3-box column drift %.3e m\n",
+              box.drift().total, stack.drift().total);
+  EXPECT_LT(box.drift().total, 1e-3);
+  EXPECT_LT(stack.drift().total, 5e-3);
+}
+
+// Box3D's pyramid at base 10 (55 boxes) at its benchmark settings (4 sub-steps of one solve
+// and one relax pass) for 10 s, beside the soft step on the same scene. Neither holds it to
+// 1 cm (the soft contacts' sag lets its boxes tilt; docs/benchmarks.md): measured 6.9 cm for the
+// soft step and 5.9 cm for the wide one; both must stay under 10 cm.
+TEST(SoftStepWide, SmallPyramidHoldsAsTheSoftStepDoes) {
+  for (SolverKind kind : {SolverKind::SoftStep, SolverKind::SoftStepWide}) {
+    WorldSettings settings = wideSettings(8, 8);
+    settings.solver.kind = kind;
+    settings.solver.position_iterations = 1;
+    std::vector<Vec3> start;
+    World world = pyramid(settings, 10, start, false);
+    for (int s = 0; s < 600; ++s) world.step(1.0 / 60);
+    double worst = 0.0;
+    for (std::size_t k = 0; k < start.size(); ++k) {
+      worst = std::max(worst, (world.bodies().position[k + 1] - start[k]).norm());
+    }
+    const bool wide = kind == SolverKind::SoftStepWide;
+    std::printf("%s, pyramid of 10, 10 s: farthest box %.3e m from its start\n",
+                wide ? "wide soft step" : "soft step", worst);
+    EXPECT_LT(worst, 0.1) << (wide ? "wide" : "soft step");
+  }
+}
+
+// Joints stay in double on the bodies; the wide step hands them the velocities around each
+// joint pass. Solver2D's ball and chain (a 170:1 ball on 30 links, hinged and touching the
+// ground) at Box2D's 4 sub-steps and 60 Hz joints, for 2,000 steps: the soft step's bounds
+// (joint_records_test.cpp). Measured: worst gap 0.137 m (the soft step's too), 7.1 mm at the end.
+TEST(SoftStepWide, BallAndChainHoldsWithJoints) {
+  WorldSettings settings = wideSettings(8, 8);
+  settings.solver.joint_hertz = 60.0;
+  BallAndChain scene(settings);
+  const JointRunRecord r = runJointScene(scene, 2000, 10);
+  std::printf(
+      "wide soft step, ball and chain, 2000 steps: worst joint gap %.3e m, final %.3e m, energy "
+      "gain %.3e J\n",
+      r.worst_gap, r.final_gap, r.worst_energy_gain);
+  EXPECT_TRUE(r.finite);
+  EXPECT_LT(r.worst_gap, 0.2);
+  EXPECT_LT(r.final_gap, 0.05);
+}
+
+}  // namespace
+}  // namespace zonesim::physics
