@@ -93,20 +93,22 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
         wide::PointLanes& p = b.point[i];
         const Vec3 ra = cp.position - bodies.position[bc.a];
         const Vec3 rb = cp.position - bodies.position[bc.b];
-        // Effective mass along d: the rows are built in double, then rounded once.
+        // Effective mass along a tangent d: the rows are built in double, then rounded once.
         const auto mass = [&](const Vec3& d) {
           const Vec3 ca = ra.cross(d), cb = rb.cross(d);
           const double inv = ma + mb + ca.dot(ia * ca) + cb.dot(ib * cb);
           return inv > 0.0 ? 1.0 / inv : 0.0;
         };
         const Vec3 ca = ra.cross(normal), cb = rb.cross(normal);
+        const Vec3 ia_ca = ia * ca, ib_cb = ib * cb;
         put(p.ca, lane, ca);
         put(p.cb, lane, cb);
-        put(p.ia_ca, lane, ia * ca);
-        put(p.ib_cb, lane, ib * cb);
+        put(p.ia_ca, lane, ia_ca);
+        put(p.ib_cb, lane, ib_cb);
         put(p.ra, lane, ra);
         put(p.rb, lane, rb);
-        p.normal_mass[lane] = static_cast<float>(mass(normal));
+        const double normal_inv = ma + mb + ca.dot(ia_ca) + cb.dot(ib_cb);
+        p.normal_mass[lane] = static_cast<float>(normal_inv > 0.0 ? 1.0 / normal_inv : 0.0);
         p.tangent_mass[0][lane] = static_cast<float>(mass(t0));
         p.tangent_mass[1][lane] = static_cast<float>(mass(t1));
         p.separation[lane] = static_cast<float>(-cp.depth);
