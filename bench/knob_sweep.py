@@ -89,23 +89,8 @@ def main(argv):
             w.writeheader()
             w.writerows(rows)
     if a.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 4))
-        for metric, style in (("shown_error_p99", "o-"), ("near_error_p99", "s--")):
-            ax.plot([r["kbps_per_client"] for r in rows], [r[metric] for r in rows], style, label=metric)
-        for r in rows:
-            ax.annotate(str(r["value"]), (r["kbps_per_client"], r["shown_error_p99"]),
-                        textcoords="offset points", xytext=(4, 4), fontsize=8)
-        ax.set_xlabel("download per player, kbit/s")
-        ax.set_ylabel("error shown to players, p99, m")
-        ax.set_title(f"{a.scene.name}: {a.key}", fontsize=10)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(a.plot, dpi=90)
-
+        from tuning import sweep_plot
+        sweep_plot.plot(rows, f"{a.scene.name}: {a.key}", a.plot)
 
 if __name__ == "__main__":
     main(sys.argv[1:])
