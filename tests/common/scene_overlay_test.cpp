@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "common/scene.h"
 #include "scene_test_util.h"
@@ -122,6 +123,16 @@ TEST_F(SceneOverlay, ABaseThatCannotBeReadOrLoopsIsNamed) {
   std::string listed = write("listed.yaml", "overlay_of: [demo.yaml]\n");
   EXPECT_EQ(sceneError([&] { loadScene(listed); }),
             listed + ":1: overlay_of: expected the path of the scene this file changes");
+}
+
+TEST(ShippedOverlays, TheTunedScenesLoadAsTheScenesTheyChange) {
+  std::vector<std::string> tuned = test::yamlStems("scenes/tuned");
+  ASSERT_FALSE(tuned.empty());
+  for (const std::string& stem : tuned) {
+    Scene s = loadScene(sourcePath("scenes/tuned/" + stem + ".yaml"));
+    EXPECT_EQ(s.name + ".tuned", stem);
+    EXPECT_GT(s.npcs.size(), 0u) << stem;
+  }
 }
 
 }  // namespace
