@@ -1,0 +1,36 @@
+#pragma once
+// A topology_node's settings, from its command line (topologies/topology_node_main.cpp).
+
+#include <cstdint>
+#include <string>
+
+#include "topologies/topology_role.h"
+#include "wire/udp_socket.h"
+
+namespace zonesim::topo {
+
+/// What a node fakes, if anything (docs/networking.md, "Topologies": the cheating test).
+enum class Cheat { None, Teleport, Speed, Hit };
+
+const char* cheatName(Cheat cheat);
+/// Throws std::invalid_argument quoting the text and listing the cheats.
+Cheat parseCheat(const std::string& text);
+
+struct NodeConfig {
+  Role role = Role::Peer;
+  std::uint32_t player = 0;
+  std::uint32_t players = 16;  ///< in the game, the host included
+  std::string scene_path;
+  gateway::Endpoint discovery;
+  gateway::Endpoint bind;     ///< this node's UDP address (port 0: ephemeral)
+  std::uint64_t token = 0;    ///< the game's key: frames' checksums, inputs' token
+  std::int64_t start_ns = 0;  ///< CLOCK_REALTIME of tick 0, shared by every node
+  double duration_s = 10;
+  double join_timeout_s = 20;  ///< waiting for the others through discovery
+  std::string out_dir;
+  Cheat cheat = Cheat::None;
+  bool cross_check = false;  ///< a client checks the host's states and hits
+  std::uint64_t seed = 0;    ///< 0: the scene's
+};
+
+}  // namespace zonesim::topo
