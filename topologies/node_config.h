@@ -16,6 +16,18 @@ const char* cheatName(Cheat cheat);
 /// Throws std::invalid_argument quoting the text and listing the cheats.
 Cheat parseCheat(const std::string& text);
 
+/// The cheats a node plays at once.
+struct Cheats {
+  bool teleport = false, speed = false, hit = false;
+  bool has(Cheat c) const {
+    return c == Cheat::Teleport ? teleport : c == Cheat::Speed ? speed : c == Cheat::Hit && hit;
+  }
+  /// "none" or the names joined by commas.
+  std::string names() const;
+};
+/// A comma-separated list ("teleport,hit", "none"); throws as parseCheat on any name.
+Cheats parseCheats(const std::string& text);
+
 struct NodeConfig {
   Role role = Role::Peer;
   std::uint32_t player = 0;
@@ -28,7 +40,7 @@ struct NodeConfig {
   double duration_s = 10;
   double join_timeout_s = 20;  ///< waiting for the others through discovery
   std::string out_dir;
-  Cheat cheat = Cheat::None;
+  Cheats cheats;
   bool cross_check = false;  ///< a client checks the host's states and hits
   std::uint64_t seed = 0;    ///< 0: the scene's
 };

@@ -90,7 +90,7 @@ TopologyNode::TopologyNode(const NodeConfig& config, const Scene& scene)
 
 double TopologyNode::maxSpeed() const {
   return scene_.clients.speed *
-         (config_.cheat == Cheat::Speed && config_.role != Role::Client ? kSpeedHackFactor : 1.0);
+         (config_.cheats.speed && config_.role != Role::Client ? kSpeedHackFactor : 1.0);
 }
 
 // ---- discovery ----
@@ -279,7 +279,7 @@ void TopologyNode::tick(std::uint64_t t) {
   Move move = script_.at(t, here, changed);
   if (changed) log_.input(realtimeNs(), {move.x, 0, move.z});
   if (config_.role == Role::Client) {
-    double f = config_.cheat == Cheat::Speed ? kSpeedHackFactor : 1.0;
+    double f = config_.cheats.speed ? kSpeedHackFactor : 1.0;
     // The client's Input carries no acknowledgements: the host resends nothing.
     std::vector<std::uint8_t> input =
         gateway::encodeInput(config_.token, ++seq_, float(move.x * f), float(move.z * f));
@@ -287,7 +287,7 @@ void TopologyNode::tick(std::uint64_t t) {
   } else {
     stepOwn(t, move);
   }
-  if (config_.cheat == Cheat::Teleport && t % kTeleportEveryTicks == kTeleportEveryTicks - 1)
+  if (config_.cheats.teleport && t % kTeleportEveryTicks == kTeleportEveryTicks - 1)
     cheatTeleport(t);
   if (config_.role != Role::Client) sendStates(t);
   claimHits(t);
@@ -295,7 +295,7 @@ void TopologyNode::tick(std::uint64_t t) {
 }
 
 void TopologyNode::stepOwn(std::uint64_t t, const Move& move) {
-  double accel = zone::kAvatarAccel * (config_.cheat == Cheat::Speed ? kSpeedHackFactor : 1.0);
+  double accel = zone::kAvatarAccel * (config_.cheats.speed ? kSpeedHackFactor : 1.0);
   if (config_.role == Role::Host) {
     moves_[config_.player] = move;
     for (auto& [p, body] : bodies_) {
@@ -361,7 +361,7 @@ void TopologyNode::sendStates(std::uint64_t t) {
 }
 
 void TopologyNode::claimHits(std::uint64_t t) {
-  bool fake = config_.cheat == Cheat::Hit;
+  bool fake = config_.cheats.hit;
   if (t % (fake ? kFakeHitEveryTicks : kHitEveryTicks) != config_.player % kFakeHitEveryTicks)
     return;
   std::optional<dr::V3> me = shownAt(config_.player, t);
@@ -382,9 +382,12 @@ void TopologyNode::claimHits(std::uint64_t t) {
 }
 
 void TopologyNode::logViews(std::uint64_t t) {
+  // After tick t's step the world stands at tick t + 1 (what sendStates stamps): every node
+  // shows every player there, extrapolating what it last heard.
+  const std::uint64_t at = t + 1;
   for (const auto& [p, s] : shown_)
-    if (auto at = shownAt(p, t)) log_.view(t, p, *at);
-  if (config_.role == Role::Peer) log_.view(t, config_.player, own_.pos);
+    if (auto pos = shownAt(p, at)) log_.view(at, p, *pos);
+  if (config_.role == Role::Peer) log_.view(at, config_.player, own_.pos);
 }
 
 // ---- helpers ----
@@ -445,7 +448,7 @@ void TopologyNode::writeSummary(double played_s) const {
   nlohmann::json j;
   j["player"] = config_.player;
   j["role"] = roleName(config_.role);
-  j["cheat"] = cheatName(config_.cheat);
+  j["cheat"] = config_.cheats.names();
   j["cross_check"] = config_.cross_check;
   j["played_s"] = played_s;
   j["bytes_in"] = bytes_in_;

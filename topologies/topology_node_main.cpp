@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--join-timeout", cfg.join_timeout_s, "seconds to wait for the others")
       ->check(CLI::PositiveNumber);
   app.add_option("--out", cfg.out_dir, "write views, events and the summary here")->required();
-  app.add_option("--cheat", cheat, "none, teleport, speed or hit");
+  app.add_option("--cheat", cheat, "none, or teleport, speed, hit joined by commas");
   app.add_flag("--cross-check", cfg.cross_check,
                "a client holds the host's states and hits to the movement limits");
   app.add_option("--seed", cfg.seed, "seed of the scripted inputs (default: the scene's)");
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument(std::string("--role: ") + e.what());
     }
     try {
-      cfg.cheat = zonesim::topo::parseCheat(cheat);
+      cfg.cheats = zonesim::topo::parseCheats(cheat);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("--cheat: ") + e.what());
     }
