@@ -5,6 +5,7 @@
 #include <string>
 
 #include "topologies/topology_role.h"
+#include "wire/impairment.h"
 #include "wire/udp_socket.h"
 
 namespace zonesim::topo {
@@ -43,6 +44,9 @@ struct NodeConfig {
   Cheats cheats;
   bool cross_check = false;  ///< a client checks the host's states and hits
   std::uint64_t seed = 0;    ///< 0: the scene's
+  /// This player's access link, the same profile both ways as client_stub --link gives its
+  /// players (off by default): a datagram between two players crosses two such links.
+  gateway::ImpairmentSettings link;
 };
 
 }  // namespace zonesim::topo

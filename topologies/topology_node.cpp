@@ -75,6 +75,7 @@ TopologyNode::TopologyNode(const NodeConfig& config, const Scene& scene)
               std::uint64_t(std::lround(scene.clients.retarget_seconds / scene.dt))),
       socket_(config.bind),
       discovery_socket_(gateway::Endpoint{config.bind.address, 0}),
+      link_(config.link, config.player),
       log_(config.out_dir, config.player) {
   if (config.player >= config.players)
     throw std::invalid_argument("--player " + std::to_string(config.player) +
@@ -183,21 +184,33 @@ void TopologyNode::play() {
 
 void TopologyNode::receiveUntil(std::int64_t deadline_ns) {
   alignas(8) std::uint8_t buf[gateway::kMaxDatagramBytes + 1];
+  auto arrived = [&](std::span<const std::uint8_t> bytes, const gateway::Endpoint& from) {
+    ++datagrams_in_;
+    bytes_in_ += bytes.size();
+    handle(bytes, from);
+  };
   for (;;) {
+    // The link's held datagrams, either way, are due at their own times.
+    std::int64_t wake = std::min(deadline_ns, link_.nextDueNs());
     pollfd fds[2] = {{socket_.fd(), POLLIN, 0}, {discovery_socket_.fd(), POLLIN, 0}};
-    if (gateway::pollUntil(fds, deadline_ns) <= 0) return;
+    int ready = gateway::pollUntil(fds, wake);
+    std::int64_t now = nowNs();
+    if (link_.active()) link_.flush(socket_, now);
     while (auto r = discovery_socket_.receive(buf)) {
       if (r->from == config_.discovery && !r->truncated) handleDiscovery({buf, r->size});
     }
     while (auto r = socket_.receive(buf)) {
-      ++datagrams_in_;
-      bytes_in_ += r->size;
       if (r->truncated) {
+        ++datagrams_in_;
         drop(gateway::DropReason::TooLarge, playerAt(r->from));
-        continue;
+      } else if (link_.active()) {
+        link_.receive({buf, r->size}, r->from, now);  // the downlink: lost, or held a while
+      } else {
+        arrived({buf, r->size}, r->from);
       }
-      handle({buf, r->size}, r->from);
     }
+    link_.deliver(now, arrived);
+    if (ready <= 0 && now >= deadline_ns) return;
   }
 }
 
@@ -434,7 +447,8 @@ std::vector<gateway::Endpoint> TopologyNode::receivers() const {
 }
 
 void TopologyNode::send(const gateway::Endpoint& to, std::span<const std::uint8_t> bytes) {
-  if (!socket_.sendTo(to, bytes)) return;
+  bool sent = link_.active() ? link_.send(socket_, to, bytes, nowNs()) : socket_.sendTo(to, bytes);
+  if (!sent) return;
   ++datagrams_out_;
   bytes_out_ += bytes.size();
 }

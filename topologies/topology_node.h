@@ -24,6 +24,7 @@
 #include "topologies/node_log.h"
 #include "topologies/plausibility.h"
 #include "wire/drop_reason.h"
+#include "wire/impairment.h"
 #include "wire/udp_socket.h"
 
 namespace zonesim::topo {
@@ -81,6 +82,7 @@ class TopologyNode {
   PlausibilityChecker checker_;
   ScriptedInput script_;
   gateway::UdpSocket socket_, discovery_socket_;
+  gateway::Impairment link_;  // this player's access link, both ways (--link)
   NodeLog log_;
 
   std::map<std::uint32_t, Registration> directory_;  // from the discovery service, by player

@@ -8,6 +8,7 @@
 #include "common/stop_signal.h"
 #include "topologies/discovery_message.h"
 #include "topologies/topology_node.h"
+#include "wire/link_profile.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"zonesim topology_node: one player of a client-hosted or peer-to-peer game"};
@@ -35,6 +36,10 @@ int main(int argc, char** argv) {
   app.add_flag("--cross-check", cfg.cross_check,
                "a client holds the host's states and hits to the movement limits");
   app.add_option("--seed", cfg.seed, "seed of the scripted inputs (default: the scene's)");
+  std::string link;
+  app.add_option("--link", link,
+                 "this player's uplink and downlink: a preset (lan, wifi, 4g, congested, "
+                 "satellite) or a profile file, as client_stub --link");
   CLI11_PARSE(app, argc, argv);
   zonesim::installStopSignals();
   try {
@@ -68,6 +73,14 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--token '" + token +
                                   "' is not 16 hex digits (and not all zero)");
     cfg.start_ns = std::int64_t(start_at * 1e9);
+    if (!link.empty()) {
+      try {
+        cfg.link.out = cfg.link.in = zonesim::gateway::loadLinkProfile(link);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string("--link: ") + e.what());
+      }
+      cfg.link.seed = cfg.seed ? cfg.seed : 1;
+    }
     std::filesystem::create_directories(cfg.out_dir);
     zonesim::Scene scene = zonesim::loadScene(cfg.scene_path);
     zonesim::topo::TopologyNode node(cfg, scene);
