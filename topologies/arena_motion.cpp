@@ -1,5 +1,6 @@
 #include "topologies/arena_motion.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "zone_node/systems/avatar_movement.h"
@@ -30,6 +31,13 @@ Move ScriptedInput::at(std::uint64_t tick, const dr::V3& pos, bool& changed) {
   double dx = tx - pos.x, dz = tz - pos.z, n = std::hypot(dx, dz);
   move_ = n < 1e-6 ? Move{} : Move{dx / n, dz / n};
   return move_;
+}
+
+dr::V3 startPosition(const SceneBox& arena, std::uint32_t player, std::uint32_t players) {
+  double cx = 0.5 * (arena.min.x + arena.max.x), cz = 0.5 * (arena.min.z + arena.max.z);
+  double r = 0.35 * std::min(arena.max.x - arena.min.x, arena.max.z - arena.min.z);
+  double a = 2 * M_PI * double(player) / double(players == 0 ? 1 : players);
+  return {cx + r * std::cos(a), arena.min.y, cz + r * std::sin(a)};
 }
 
 void stepAvatar(const SceneBox& world, AvatarBody& body, const Move& move, double max_speed,

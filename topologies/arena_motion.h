@@ -17,6 +17,10 @@ struct Move {
   double x = 0, z = 0;
 };
 
+/// Where a player starts: spread on a circle around the arena's centre, the same in every
+/// topology (a host places its clients' avatars there too).
+dr::V3 startPosition(const SceneBox& arena, std::uint32_t player, std::uint32_t players);
+
 /// One player's scripted input.
 class ScriptedInput {
  public:

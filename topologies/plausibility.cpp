@@ -66,7 +66,12 @@ Violation PlausibilityChecker::checkState(std::uint32_t player, std::uint64_t ti
                                           const dr::V3& pos, const dr::V3& vel) {
   auto it = last_.find(player);
   Violation v = judge(it == last_.end() ? nullptr : &it->second, tick, pos, vel);
-  if (v == Violation::None) last_[player] = {tick, pos, vel};
+  if (v == Violation::None) {
+    last_[player] = {tick, pos, vel};
+    distrusted_.erase(player);
+  } else if (v != Violation::StaleTick) {  // a late duplicate says nothing of now
+    distrusted_.insert(player);
+  }
   return count(player, v);
 }
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 
 #include "dr/dr_state.h"
 
@@ -53,6 +54,9 @@ class PlausibilityChecker {
   /// Judges a hit claimed by attacker, from where the judge sees it, at a target.
   Violation checkHit(std::uint32_t attacker, const dr::V3& attacker_pos, const dr::V3& target_pos);
 
+  /// Whether the newest state player claimed was rejected: the judge shows it where it was
+  /// last believed, so it cannot judge a hit on it.
+  bool distrusts(std::uint32_t player) const { return distrusted_.count(player) != 0; }
   /// Rejections so far, per reason (index Violation::None is unused).
   const ViolationCounts& counts() const { return counts_; }
   /// Rejections of one player's states and hits.
@@ -72,6 +76,7 @@ class PlausibilityChecker {
   double dt_;
   std::map<std::uint32_t, Accepted> last_;
   std::map<std::uint32_t, std::uint64_t> rejected_;
+  std::set<std::uint32_t> distrusted_;
   ViolationCounts counts_{};
 };
 

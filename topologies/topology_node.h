@@ -97,7 +97,7 @@ class TopologyNode {
 
   // counters for the summary
   std::uint64_t bytes_in_ = 0, bytes_out_ = 0, datagrams_in_ = 0, datagrams_out_ = 0;
-  std::uint64_t hits_claimed_ = 0, hits_accepted_ = 0;
+  std::uint64_t hits_claimed_ = 0, hits_accepted_ = 0, hits_unjudged_ = 0;
   gateway::DropCounters drops_;
   std::map<std::uint32_t, std::uint64_t> drops_by_player_;
 };

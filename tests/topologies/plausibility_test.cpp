@@ -60,6 +60,18 @@ TEST(Plausibility, AFirstStateTooFastIsRejectedAndNotRemembered) {
   EXPECT_EQ(c.rejectedOf(7), 0u);
 }
 
+TEST(Plausibility, APlayerWhoseNewestStateWasRejectedIsDistrusted) {
+  PlausibilityChecker c(limits(), kDt);
+  EXPECT_EQ(c.checkState(5, 1, {0, 0, 0}, {0, 0, 0}), Violation::None);
+  EXPECT_FALSE(c.distrusts(5));
+  EXPECT_EQ(c.checkState(5, 2, {9, 0, 0}, {0, 0, 0}), Violation::Teleport);
+  EXPECT_TRUE(c.distrusts(5));
+  EXPECT_EQ(c.checkState(5, 1, {0, 0, 0}, {0, 0, 0}), Violation::StaleTick);
+  EXPECT_TRUE(c.distrusts(5));  // a late duplicate does not restore trust
+  EXPECT_EQ(c.checkState(5, 3, {0.1, 0, 0}, {0, 0, 0}), Violation::None);
+  EXPECT_FALSE(c.distrusts(5));
+}
+
 TEST(Plausibility, HitsBeyondReachAreRejected) {
   PlausibilityChecker c(limits(), kDt);
   EXPECT_EQ(c.checkHit(4, {0, 0, 0}, {1.0, 0, 1.0}), Violation::None);  // 1.41 m
