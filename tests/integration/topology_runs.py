@@ -344,15 +344,16 @@ def run_client_server(out, seconds, cheat=False, players=PLAYERS, link=None):
     }
 
 
-def display_views(out, clients_summary):
-    """{(tick, avatar): {observer: (x, z)}} from client_stub's display.csv, observers numbered
-    as its players, each player's avatar id from the summary (to leave its own view out)."""
+def display_views(out, clients_summary, avatars):
+    """{(tick, avatar): {observer: (x, z)}} from client_stub's display.csv for the players'
+    avatars only (the scene's crates are no player), observers numbered as client_stub's
+    players, each one's own avatar (from the summary) left out."""
     views = defaultdict(dict)
     avatar_of = {i: c.get("avatar_id", 0) for i, c in enumerate(clients_summary["clients"])}
     with open(out / "clients" / "display.csv") as fh:
         for r in csv.DictReader(fh):
             obs, eid = int(r["player"]), int(r["id"])
-            if avatar_of.get(obs) == eid:
+            if avatar_of.get(obs) == eid or eid not in avatars:
                 continue
             views[(int(r["tick"]), eid)][obs] = (float(r["x"]), float(r["z"]))
     return views
@@ -366,7 +367,9 @@ def client_server_figures(out, run, seconds):
         for eid, s in a.seen.items():
             seen[(a.c.avatar_id, eid)] = s
     l50, l99, matched, unmatched = latency(inputs, seen)
-    views = display_views(out, run["clients"])
+    avatars = {c.get("avatar_id", 0) for c in run["clients"]["clients"]} | \
+        {c.avatar_id for c in run["py"]} | ({run["cheater"].avatar_id} if run["cheater"] else set())
+    views = display_views(out, run["clients"], avatars)
     c50, c99, pairs = consistency(views, lambda player: None)  # the zone holds every truth
     e50, e99, _ = truth_error(views, zone_truth(out))
     t = run["clients"]["totals"]
