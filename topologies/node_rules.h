@@ -28,6 +28,9 @@ constexpr std::uint64_t kFakeHitEveryTicks = 10;
 // that the judges' slightly different views never reject an honest hit.
 constexpr std::uint64_t kHitEveryTicks = 20;
 constexpr double kHonestHitMargin = 0.5;
+// A hit is judged only from states at most this many ticks older than it: extrapolating a
+// turning avatar (24 m/s^2) by 2 ticks errs by 0.12 m, well inside the honest margin.
+constexpr std::uint64_t kHitJudgeMaxAgeTicks = 2;
 
 /// Wall-clock time: the start time and the logged events are compared across processes.
 inline std::int64_t realtimeNs() {

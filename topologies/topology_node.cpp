@@ -205,6 +205,12 @@ std::optional<dr::V3> TopologyNode::shownAt(std::uint32_t player, std::uint64_t 
   return dr::predictPosition(it->second.state, dr::Order::First, ahead);
 }
 
+bool TopologyNode::staleAt(std::uint32_t player, std::uint64_t t) const {
+  if (player == config_.player && config_.role != Role::Client) return false;
+  auto it = shown_.find(player);
+  return it == shown_.end() || !it->second.known || it->second.tick + kHitJudgeMaxAgeTicks < t;
+}
+
 std::optional<std::uint32_t> TopologyNode::playerAt(const gateway::Endpoint& from) const {
   for (const auto& [p, r] : directory_)
     if (r.address == from) return p;

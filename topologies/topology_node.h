@@ -70,6 +70,8 @@ class TopologyNode {
   void drop(gateway::DropReason reason, std::optional<std::uint32_t> sender);
   void show(std::uint32_t player, std::uint64_t t, const dr::State& s);
   std::optional<dr::V3> shownAt(std::uint32_t player, std::uint64_t t) const;
+  /// Whether what this node last heard of player is too old to judge a hit at tick t by.
+  bool staleAt(std::uint32_t player, std::uint64_t t) const;
   std::optional<std::uint32_t> playerAt(const gateway::Endpoint& from) const;
   std::vector<gateway::Endpoint> receivers() const;
   bool checks() const { return config_.role != Role::Client || config_.cross_check; }

@@ -41,8 +41,12 @@ void TopologyNode::handleHit(std::span<const std::uint8_t> bytes,
   std::optional<dr::V3> a = shownAt(h.hit.attacker, h.hit.tick),
                         b = shownAt(h.hit.target, h.hit.tick);
   if (!a || !b) return drop(gateway::DropReason::NotReady, sender);
-  // A judge that no longer believes where the target is cannot tell whether it was in reach.
-  if (checks() && checker_.distrusts(h.hit.target)) {
+  // A judge that no longer believes where the target is, or heard of either player too long
+  // before the hit (a loaded machine's late states), cannot tell whether it was in reach. An
+  // attacker it distrusts is judged where it was last believed: a hit from there is refused.
+  bool unknowable = checker_.distrusts(h.hit.target) || staleAt(h.hit.target, h.hit.tick) ||
+                    (!checker_.distrusts(h.hit.attacker) && staleAt(h.hit.attacker, h.hit.tick));
+  if (checks() && unknowable) {
     ++hits_unjudged_;
     return;
   }
