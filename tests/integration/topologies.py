@@ -10,7 +10,7 @@ scenes/duel_arena_16.yaml with 16 players (tests/integration/topology_runs.py ru
   cross-check the host's states and hits detect it;
 - peer to peer, cheating peers (teleport, speed, far hits): every honest peer rejects every
   cheater, and no honest peer rejects an honest one.
-Counts only, never times. About 45 s."""
+Counts only, never times. About 35 s."""
 import tempfile
 from pathlib import Path
 
