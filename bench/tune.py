@@ -21,6 +21,7 @@ a choice the confirmation cannot hold fails with exit 3. Nothing is written in e
 import argparse
 import json
 import os
+import shlex
 import sys
 import time
 from pathlib import Path
@@ -203,7 +204,7 @@ def main(argv):
 
     binds = budget.binding(a.limits, confirmed)
     header = [f"Written by bench/tune.py on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}:",
-              f"  /usr/bin/python3 bench/tune.py {' '.join(argv)}",
+              f"  /usr/bin/python3 bench/tune.py {shlex.join(argv)}",
               "budget: " + ", ".join(l.describe() for l in a.limits),
               f"confirmed over {a.confirm_seconds:g} s with {a.players} players: error p99 "
               f"{confirmed['shown_error_p99']:.3f} m, {confirmed['kbps_per_client']:.1f} kbit/s per player, "
