@@ -643,13 +643,7 @@ void World::solveSoftStep(double dt) {
   solver_.storeImpulses(contacts_);
   // A body under a constraint moves as the sub-steps moved it; a free body keeps the selected
   // integrator's motion (mixing the two would leave a gravity residual of g dt h (N-1)/2).
-  soft_touched_.assign(n, 0);
-  for (const BodyContact& c : contacts_) soft_touched_[c.a] = soft_touched_[c.b] = 1;
-  for (const DistanceJoint& j : joints_.joints()) {
-    soft_touched_[j.a] = 1;
-    if (j.b != kNoBody) soft_touched_[j.b] = 1;
-  }
-  rigid_joints_.markBodies(soft_touched_);
+  markConstrainedBodies();
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
     if (type == BodyType::Static || still(BodyIndex(i))) continue;
@@ -660,6 +654,16 @@ void World::solveSoftStep(double dt) {
     // turns in one step, which the joints then pull back as a burst of energy.
     bodies_.orientation[i] = rotatedBy(soft_dtheta_[i], bodies_.orientation[i]);
   }
+}
+
+void World::markConstrainedBodies() {
+  soft_touched_.assign(bodies_.size(), 0);
+  for (const BodyContact& c : contacts_) soft_touched_[c.a] = soft_touched_[c.b] = 1;
+  for (const DistanceJoint& j : joints_.joints()) {
+    soft_touched_[j.a] = 1;
+    if (j.b != kNoBody) soft_touched_[j.b] = 1;
+  }
+  rigid_joints_.markBodies(soft_touched_);
 }
 
 void World::quarantineNonFinite() {

@@ -147,6 +147,9 @@ class World {
   void solveSoftStep(double dt);
   /// SoftStepWide (world_soft_wide.cpp).
   void solveSoftStepWide(double dt);
+  /// soft_touched_: 1 for each body under a contact or joint this step (the soft steps move
+  /// those as their sub-steps did, and free bodies as the integrator did).
+  void markConstrainedBodies();
   /// Wide soft step with joints: the solver bodies' velocities to and from bodies_.
   void exportWideVelocities();
   void importWideVelocities();

@@ -101,13 +101,7 @@ void World::solveSoftStepWide(double dt) {
   wide_solver_.storeImpulses(contacts_);
   // As the soft step: a body under a constraint moves as the sub-steps moved it, a free body
   // keeps the integrator's motion (and its double velocity).
-  soft_touched_.assign(n, 0);
-  for (const BodyContact& c : contacts_) soft_touched_[c.a] = soft_touched_[c.b] = 1;
-  for (const DistanceJoint& j : joints_.joints()) {
-    soft_touched_[j.a] = 1;
-    if (j.b != kNoBody) soft_touched_[j.b] = 1;
-  }
-  rigid_joints_.markBodies(soft_touched_);
+  markConstrainedBodies();
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
     if (type == BodyType::Static || still(BodyIndex(i))) continue;
