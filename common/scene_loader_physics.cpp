@@ -41,12 +41,6 @@ SceneVec3 direction(const SceneNode& node) {
   return scaled(v, 1.0 / n);
 }
 
-void requireOneZone(const SceneNode& node, const Scene& scene, const char* what) {
-  if (scene.zones.columns * scene.zones.rows == 1) return;
-  node.fail(std::string(what) + " need a single zone (zones: columns 1, rows 1): " +
-            "their bodies and particles are not carried across zone borders");
-}
-
 /// rotation: {axis: [x, y, z], degrees: a} as a unit quaternion.
 SceneQuat readRotation(const SceneNode& node) {
   SceneMap m = node.map({"axis", "degrees"});
@@ -258,11 +252,9 @@ void readPhysicsObjects(const SceneMap& root, Scene& scene) {
       ps.bodies.push_back(readBody(item, scene, ps.bodies));
   if (auto list = physics.optional("joints")) {
     for (const SceneNode& item : list->items()) ps.joints.push_back(readJoint(item, scene));
-    if (!ps.joints.empty()) requireOneZone(*list, scene, "joints");
   }
   if (auto list = physics.optional("cloths")) {
     for (const SceneNode& item : list->items()) ps.cloths.push_back(readCloth(item, scene));
-    if (!ps.cloths.empty()) requireOneZone(*list, scene, "cloths");
   }
   if (auto list = physics.optional("explosions"))
     for (const SceneNode& item : list->items()) ps.explosions.push_back(readExplosion(item, scene));

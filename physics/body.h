@@ -29,10 +29,6 @@ struct BodyDesc {
   double rolling_resistance = 0.0;
   double linear_damping = 0.0;   ///< 1/s: v *= 1 / (1 + c dt) each step.
   double angular_damping = 0.0;  ///< 1/s: w *= 1 / (1 + c dt) each step.
-  /// A copy of a body that another world simulates (a zone's ghost): it is pushed by this
-  /// world's movable bodies, so the pushes can be handed back to its owner, but touches
-  /// nothing else here (no other foreign body, no static one).
-  bool foreign = false;
 };
 
 }  // namespace zonesim::physics

@@ -45,7 +45,6 @@ BodyIndex BodyStorage::add(const BodyDesc& desc) {
   linear_damping.push_back(desc.linear_damping);
   angular_damping.push_back(desc.angular_damping);
   position_prev.push_back(desc.position);
-  foreign.push_back(desc.foreign);
   const Eigen::Matrix3d r = orientation.back().toRotationMatrix();
   inv_inertia_world.back() = r * inv_inertia * r.transpose();
   return index;

@@ -33,8 +33,7 @@ struct BodyStorage {
   std::vector<double> rolling_resistance;
   std::vector<double> linear_damping;
   std::vector<double> angular_damping;
-  std::vector<Vec3> position_prev;    ///< Position Verlet history.
-  std::vector<std::uint8_t> foreign;  ///< BodyDesc::foreign
+  std::vector<Vec3> position_prev;  ///< Position Verlet history.
 
   /// Appends a body and returns its index.
   BodyIndex add(const BodyDesc& desc);

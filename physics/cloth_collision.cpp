@@ -93,7 +93,6 @@ double signedDistance(const Shape& shape, const Vec3& position, const Quat& orie
 void ClothColliders::gather(const BodyStorage& bodies) {
   colliders_.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies.foreign[i]) continue;
     colliders_.push_back(Collider{static_cast<BodyIndex>(i), bodies.shape[i], bodies.position[i],
                                   bodies.linear_velocity[i], bodies.angular_velocity[i],
                                   bodies.orientation[i], boundOf(bodies.shape[i]),

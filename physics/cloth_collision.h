@@ -26,7 +26,7 @@ double signedDistance(const Shape& shape, const Vec3& position, const Quat& orie
 /// The bodies a cloth collides with, snapshot from a world, and the reactions the cloth gave.
 class ClothColliders {
  public:
-  /// Takes every body of the world that is not foreign (poses and velocities as they are now).
+  /// Takes every body of the world (poses and velocities as they are now).
   void gather(const BodyStorage& bodies);
   /// Pushes particles out of the bodies and applies contact and friction velocity changes;
   /// called by Cloth::step after every sub-step.

@@ -33,6 +33,8 @@ class DistanceJoints {
   std::uint32_t add(const DistanceJoint& joint);
   /// The joints with their last impulses.
   std::span<const DistanceJoint> joints() const { return joints_; }
+  /// Sets joint i's impulse, the next step's warm start (a joint carried from another world).
+  void setImpulse(std::size_t i, double impulse) { joints_[i].impulse = impulse; }
   /// Builds the rows at the current positions; beta is the Baumgarte fraction per step.
   void prepare(const BodyStorage& bodies, double dt, double beta);
   /// Applies last step's impulses.

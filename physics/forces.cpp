@@ -18,10 +18,8 @@ double falloffFactor(Falloff falloff, double r, double radius) {
 
 void evaluateAccelerations(const ForceModel& model, std::span<const Vec3> x,
                            std::span<const Vec3> v, std::span<const double> inv_mass,
-                           std::span<const Vec3> external_force, std::span<Vec3> acceleration,
-                           std::span<const std::uint8_t> drag_exempt) {
+                           std::span<const Vec3> external_force, std::span<Vec3> acceleration) {
   const bool has_external = !external_force.empty();
-  const bool has_exempt = !drag_exempt.empty();
   const std::size_t n = x.size();
   for (std::size_t i = 0; i < n; ++i) {
     const double w = inv_mass[i];
@@ -29,9 +27,7 @@ void evaluateAccelerations(const ForceModel& model, std::span<const Vec3> x,
       acceleration[i].setZero();
       continue;
     }
-    Vec3 force = Vec3::Zero();
-    if (!(has_exempt && drag_exempt[i]))
-      force = -model.linear_drag * v[i] - model.quadratic_drag * v[i].norm() * v[i];
+    Vec3 force = -model.linear_drag * v[i] - model.quadratic_drag * v[i].norm() * v[i];
     if (has_external) force += external_force[i];
     acceleration[i] = model.gravity + w * force;
   }

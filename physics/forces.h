@@ -54,11 +54,9 @@ struct ForceModel {
 };
 
 /// Writes each body's acceleration at state (x, v) plus external forces (empty span: none);
-/// bodies with zero inverse mass get zero. Bodies flagged in drag_exempt (empty span: none)
-/// feel no drag: a zone's copy of a neighbour's body, whose owner applies it.
+/// bodies with zero inverse mass get zero.
 void evaluateAccelerations(const ForceModel& model, std::span<const Vec3> x,
                            std::span<const Vec3> v, std::span<const double> inv_mass,
-                           std::span<const Vec3> external_force, std::span<Vec3> acceleration,
-                           std::span<const std::uint8_t> drag_exempt = {});
+                           std::span<const Vec3> external_force, std::span<Vec3> acceleration);
 
 }  // namespace zonesim::physics

@@ -46,7 +46,7 @@ void LinearIntegrator::step(Integrator kind, const ForceModel& forces, const Lin
 void LinearIntegrator::explicitEuler(const ForceModel& f, const LinearStateView& s, double dt) {
   const std::size_t n = s.x.size();
   std::span<Vec3> a(a1_.data(), n);
-  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a, s.drag_exempt);
+  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a);
   for (std::size_t i = 0; i < n; ++i) {
     s.x_out[i] = s.x[i] + dt * s.v[i];
     s.v_out[i] = s.v[i] + dt * a[i];
@@ -56,7 +56,7 @@ void LinearIntegrator::explicitEuler(const ForceModel& f, const LinearStateView&
 void LinearIntegrator::semiImplicitEuler(const ForceModel& f, const LinearStateView& s, double dt) {
   const std::size_t n = s.x.size();
   std::span<Vec3> a(a1_.data(), n);
-  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a, s.drag_exempt);
+  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 v = s.v[i] + dt * a[i];
     s.v_out[i] = v;
@@ -69,7 +69,7 @@ void LinearIntegrator::positionVerlet(const ForceModel& f, const LinearStateView
   // reconstructed to second order as (x+ - x)/dt + a(x+) dt/2 for drag and for the caller.
   const std::size_t n = s.x.size();
   std::span<Vec3> a(a1_.data(), n);
-  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a, s.drag_exempt);
+  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a);
   if (!s.history_valid) {
     // Second-order start: x- = x - v dt + a dt^2/2 (Taylor backwards).
     for (std::size_t i = 0; i < n; ++i) s.x_prev[i] = s.x[i] - dt * s.v[i] + 0.5 * dt * dt * a[i];
@@ -84,7 +84,7 @@ void LinearIntegrator::positionVerlet(const ForceModel& f, const LinearStateView
   }
   std::span<Vec3> a_next(a2_.data(), n);
   evaluateAccelerations(f, std::span<const Vec3>(xs_.data(), n), v_est, s.inv_mass,
-                        s.external_force, a_next, s.drag_exempt);
+                        s.external_force, a_next);
   for (std::size_t i = 0; i < n; ++i) {
     s.x_prev[i] = s.x[i];
     s.x_out[i] = xs_[i];
@@ -95,7 +95,7 @@ void LinearIntegrator::positionVerlet(const ForceModel& f, const LinearStateView
 void LinearIntegrator::velocityVerlet(const ForceModel& f, const LinearStateView& s, double dt) {
   const std::size_t n = s.x.size();
   std::span<Vec3> a(a1_.data(), n);
-  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a, s.drag_exempt);
+  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a);
   std::span<Vec3> v_pred(vs_.data(), n);
   for (std::size_t i = 0; i < n; ++i) {
     xs_[i] = s.x[i] + dt * s.v[i] + 0.5 * dt * dt * a[i];
@@ -105,7 +105,7 @@ void LinearIntegrator::velocityVerlet(const ForceModel& f, const LinearStateView
   }
   std::span<Vec3> a_next(a2_.data(), n);
   evaluateAccelerations(f, std::span<const Vec3>(xs_.data(), n), v_pred, s.inv_mass,
-                        s.external_force, a_next, s.drag_exempt);
+                        s.external_force, a_next);
   for (std::size_t i = 0; i < n; ++i) {
     s.x_out[i] = xs_[i];
     s.v_out[i] = s.v[i] + 0.5 * dt * (a[i] + a_next[i]);
@@ -115,7 +115,7 @@ void LinearIntegrator::velocityVerlet(const ForceModel& f, const LinearStateView
 void LinearIntegrator::rk2Midpoint(const ForceModel& f, const LinearStateView& s, double dt) {
   const std::size_t n = s.x.size();
   std::span<Vec3> a(a1_.data(), n);
-  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a, s.drag_exempt);
+  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, a);
   std::span<Vec3> v_mid(vs_.data(), n);
   for (std::size_t i = 0; i < n; ++i) {
     xs_[i] = s.x[i] + 0.5 * dt * s.v[i];
@@ -123,7 +123,7 @@ void LinearIntegrator::rk2Midpoint(const ForceModel& f, const LinearStateView& s
   }
   std::span<Vec3> a_mid(a2_.data(), n);
   evaluateAccelerations(f, std::span<const Vec3>(xs_.data(), n), v_mid, s.inv_mass,
-                        s.external_force, a_mid, s.drag_exempt);
+                        s.external_force, a_mid);
   for (std::size_t i = 0; i < n; ++i) {
     s.x_out[i] = s.x[i] + dt * v_mid[i];
     s.v_out[i] = s.v[i] + dt * a_mid[i];
@@ -135,25 +135,25 @@ void LinearIntegrator::rk4(const ForceModel& f, const LinearStateView& s, double
   const std::span<const Vec3> xs(xs_.data(), n);
   std::span<Vec3> k1(a1_.data(), n), k2(a2_.data(), n), k3(a3_.data(), n), k4(a4_.data(), n);
   // Stage velocities double as the position derivatives of stages 2-4.
-  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, k1, s.drag_exempt);
+  evaluateAccelerations(f, s.x, s.v, s.inv_mass, s.external_force, k1);
   for (std::size_t i = 0; i < n; ++i) {
     xs_[i] = s.x[i] + 0.5 * dt * s.v[i];
     v2_[i] = s.v[i] + 0.5 * dt * k1[i];
   }
   evaluateAccelerations(f, xs, std::span<const Vec3>(v2_.data(), n), s.inv_mass, s.external_force,
-                        k2, s.drag_exempt);
+                        k2);
   for (std::size_t i = 0; i < n; ++i) {
     xs_[i] = s.x[i] + 0.5 * dt * v2_[i];
     v3_[i] = s.v[i] + 0.5 * dt * k2[i];
   }
   evaluateAccelerations(f, xs, std::span<const Vec3>(v3_.data(), n), s.inv_mass, s.external_force,
-                        k3, s.drag_exempt);
+                        k3);
   for (std::size_t i = 0; i < n; ++i) {
     xs_[i] = s.x[i] + dt * v3_[i];
     v4_[i] = s.v[i] + dt * k3[i];
   }
   evaluateAccelerations(f, xs, std::span<const Vec3>(v4_.data(), n), s.inv_mass, s.external_force,
-                        k4, s.drag_exempt);
+                        k4);
   for (std::size_t i = 0; i < n; ++i) {
     s.x_out[i] = s.x[i] + dt / 6.0 * (s.v[i] + 2.0 * v2_[i] + 2.0 * v3_[i] + v4_[i]);
     s.v_out[i] = s.v[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);

@@ -37,8 +37,6 @@ struct LinearStateView {
   bool history_valid = false;
   /// Per-body applied forces held constant over the step; empty for none.
   std::span<const Vec3> external_force;
-  /// Bodies that feel no drag (evaluateAccelerations); empty for none.
-  std::span<const std::uint8_t> drag_exempt;
 };
 
 /// Advances force-driven motion by one step with the chosen scheme.

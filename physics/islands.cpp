@@ -5,7 +5,7 @@
 namespace zonesim::physics {
 
 namespace {
-constexpr std::uint32_t kNoIsland = 0xffffffffu;
+constexpr std::uint32_t kNoIsland = SleepState::kNoGroup;
 }  // namespace
 
 void Islands::resize(std::size_t n) {
@@ -17,6 +17,12 @@ void Islands::resize(std::size_t n) {
 
 std::size_t Islands::sleepingCount() const {
   return static_cast<std::size_t>(std::count(asleep_.begin(), asleep_.end(), 1));
+}
+
+void Islands::setState(std::size_t i, const SleepState& s) {
+  asleep_[i] = s.asleep ? 1 : 0;
+  rest_time_[i] = s.rest_time;
+  island_[i] = s.asleep ? s.group : kNoIsland;
 }
 
 void Islands::wake(std::size_t i) {

@@ -21,6 +21,15 @@ struct SleepSettings {
   double time_to_sleep = 0.5;   ///< s an island must rest before sleeping.
 };
 
+/// One body's sleep: asleep or not, how long it has rested, and, when asleep, the island it
+/// fell asleep with (named by that island's root body index; waking one wakes them all).
+struct SleepState {
+  static constexpr std::uint32_t kNoGroup = 0xffffffffu;
+  bool asleep = false;
+  double rest_time = 0.0;
+  std::uint32_t group = kNoGroup;
+};
+
 /// Tracks rest time per body and the sleeping islands.
 class Islands {
  public:
@@ -28,6 +37,11 @@ class Islands {
   void resize(std::size_t n);
   /// True when body i is asleep.
   bool asleep(std::size_t i) const { return asleep_[i] != 0; }
+  /// Body i's sleep, to carry it into another world holding the same body.
+  SleepState state(std::size_t i) const { return {asleep_[i] != 0, rest_time_[i], island_[i]}; }
+  /// Sets body i's sleep (group: the index of its island's root body in this world, or any
+  /// value that names the island: bodies with equal groups wake together).
+  void setState(std::size_t i, const SleepState& s);
   /// Wakes body i and every body that fell asleep in its island.
   void wake(std::size_t i);
   /// After a solved step: accumulates rest time and puts resting islands to sleep, zeroing their

@@ -66,6 +66,38 @@ void RigidJoints::addAngularRow(const BodyStorage& bodies, BodyIndex a, BodyInde
   r.bias = rate * error;
 }
 
+std::pair<std::size_t, std::size_t> RigidJoints::rowsOf(std::size_t i) const {
+  if (i < balls_.size()) return {3 * i, 3};
+  return {3 * balls_.size() + 5 * (i - balls_.size()), 5};
+}
+
+std::array<double, RigidJoints::kWarmValues> RigidJoints::warmState(std::size_t i) const {
+  std::array<double, kWarmValues> out{};
+  const auto [first, count] = rowsOf(i);
+  for (std::size_t r = 0; r < count && first + r < rows_.size(); ++r)
+    out[r] = rows_[first + r].impulse;
+  if (i < soft_.size()) {
+    for (int k = 0; k < 3; ++k) {
+      out[5 + k] = soft_[i].linear[k];
+      out[8 + k] = soft_[i].angular[k];
+    }
+  }
+  return out;
+}
+
+void RigidJoints::setWarmState(std::size_t i, const std::array<double, kWarmValues>& values) {
+  // The rows and soft joints of a new world are made here, as prepare would make them; each
+  // keeps the impulse it is given until prepare reads it.
+  rows_.resize(3 * balls_.size() + 5 * hinges_.size());
+  const auto [first, count] = rowsOf(i);
+  for (std::size_t r = 0; r < count; ++r) rows_[first + r].impulse = values[r];
+  soft_.resize(balls_.size() + hinges_.size());
+  for (int k = 0; k < 3; ++k) {
+    soft_[i].linear[k] = values[5 + k];
+    soft_[i].angular[k] = values[8 + k];
+  }
+}
+
 void RigidJoints::prepare(const BodyStorage& bodies, double dt, double beta) {
   // Last step's impulses, in row order (the joint list only grows, at the end).
   stored_.resize(rows_.size());

@@ -7,8 +7,10 @@
 // hinge adds two angular rows that stop relative rotation about the two directions
 // perpendicular to its axis; their error is the small-angle misalignment a_A x a_B.
 
+#include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/math.h"
@@ -46,6 +48,15 @@ class RigidJoints {
   std::uint32_t addBall(const BallJoint& joint);
   /// Adds a hinge and returns its index among the hinges.
   std::uint32_t addHinge(const HingeJoint& joint);
+  /// Values a joint carries from one step to the next: its rows' impulses (3 for a ball, 5
+  /// for a hinge; the rest 0) and the soft step's point and angular impulses.
+  static constexpr std::size_t kWarmValues = 11;
+  /// The warm start of ball i (hinge: i = balls + hinge index).
+  std::array<double, kWarmValues> warmState(std::size_t i) const;
+  /// Sets it, as warmState() gave it in another world holding the same joint.
+  void setWarmState(std::size_t i, const std::array<double, kWarmValues>& values);
+  /// Number of ball joints (the hinges come after them).
+  std::size_t ballCount() const { return balls_.size(); }
   /// True when there is no joint (the world skips the calls).
   bool empty() const { return balls_.empty() && hinges_.empty(); }
   /// Bodies held by a joint get a 1 in touched (sized to the body count).
@@ -79,6 +90,8 @@ class RigidJoints {
     BodyIndex a, b;
     Vec3 local_a, local_b;
   };
+  /// Where joint i's rows start, and how many it has.
+  std::pair<std::size_t, std::size_t> rowsOf(std::size_t i) const;
   void addPointRows(const BodyStorage& bodies, const Anchor& anchor, double rate,
                     std::size_t& next);
   void addAngularRow(const BodyStorage& bodies, BodyIndex a, BodyIndex b, const Vec3& u,

@@ -274,7 +274,7 @@ void World::integrateForces(double dt) {
   // position recurrence cannot see.
   const LinearStateView view{x_start_, v_start_,     bodies_.inv_mass,
                              x_force_, v_force_,     bodies_.position_prev,
-                             false,    bodies_.force,       bodies_.foreign};
+                             false,    bodies_.force};
   integrator_.step(settings_.integrator, forces_, view, dt);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyType type = bodies_.type[i];
@@ -296,8 +296,7 @@ void World::integrateForces(double dt) {
     if (type == BodyType::Dynamic) {
       Vec3& w = bodies_.angular_velocity[i];
       w += dt * (bodies_.inv_inertia_world[i] * bodies_.torque[i]);
-      // A foreign body's owner applies its gyroscopic term; here it is only pushed.
-      if (settings_.gyroscopic && !bodies_.foreign[i]) w = gyroscopicStep(i, w, dt);
+      if (settings_.gyroscopic) w = gyroscopicStep(i, w, dt);
       w /= 1.0 + dt * bodies_.angular_damping[i];
     }
   }
@@ -383,6 +382,7 @@ void World::contactsOfPairs(double dt) {
   // Last step's contacts become the warm-start source; both buffers keep their capacity.
   previous_.swap(contacts_);
   contacts_.clear();
+  carrySleepingContacts();
   for (const ProxyPair& pair : pairs_) {
     const BodyIndex a = proxy_body_[pair.first], b = proxy_body_[pair.second];
     if (contactIgnored(a, b)) continue;
@@ -411,13 +411,6 @@ void World::contactsOfPairs(double dt) {
 void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   // Two immovable bodies exchange no impulses.
   if (bodies_.inv_mass[a] == 0.0 && bodies_.inv_mass[b] == 0.0) return;
-  // A foreign body meets only this world's own movable bodies (held ones too: it must not pass
-  // through a far pile held still this step).
-  const auto fixed = [&](BodyIndex i) {
-    return bodies_.inv_mass[i] == 0.0 && (held_.empty() || !held_[i]);
-  };
-  if (bodies_.foreign[a] && (bodies_.foreign[b] || fixed(b))) return;
-  if (bodies_.foreign[b] && fixed(a)) return;
   const Pose pa{bodies_.position[a], bodies_.orientation[a]};
   const Pose pb{bodies_.position[b], bodies_.orientation[b]};
   const double friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
@@ -458,6 +451,38 @@ void World::wakeTouched() {
     if (islands_.asleep(c.a)) islands_.wake(c.a);
     if (islands_.asleep(c.b)) islands_.wake(c.b);
   }
+}
+
+void World::carrySleepingContacts() {
+  const auto byPair = [](const BodyContact& x, const BodyContact& y) { return x < y; };
+  if (!sleeping_contacts_.empty()) {
+    warm_source_.clear();
+    std::merge(previous_.begin(), previous_.end(), sleeping_contacts_.begin(),
+               sleeping_contacts_.end(), std::back_inserter(warm_source_), byPair);
+    previous_.swap(warm_source_);
+  }
+  sleeping_contacts_.clear();
+  if (!settings_.sleep.enabled) return;
+  // Neither body moves this substep (asleep, or immovable and not held by the level of
+  // detail): the pair is not looked for, and its impulses wait for the island to wake. An
+  // island woken this substep keeps them one more, until its pairs are found.
+  const auto resting = [&](BodyIndex i) {
+    return islands_.asleep(i) || (bodies_.inv_mass[i] == 0.0 && (held_.empty() || !held_[i]));
+  };
+  for (const BodyContact& c : previous_)
+    if (resting(c.a) && resting(c.b)) sleeping_contacts_.push_back(c);
+}
+
+void World::warmStarts(std::vector<BodyContact>& out) const {
+  out.clear();
+  std::merge(contacts_.begin(), contacts_.end(), sleeping_contacts_.begin(),
+             sleeping_contacts_.end(), std::back_inserter(out),
+             [](const BodyContact& x, const BodyContact& y) { return x < y; });
+}
+
+void World::setWarmStarts(std::span<const BodyContact> contacts) {
+  contacts_.assign(contacts.begin(), contacts.end());
+  sleeping_contacts_.clear();
 }
 
 void World::warmStartFromPrevious() {

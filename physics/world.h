@@ -85,6 +85,26 @@ class World {
   std::uint32_t addBallJoint(const BallJoint& joint) { return rigid_joints_.addBall(joint); }
   /// Adds a hinge joint and returns its index among the hinges.
   std::uint32_t addHingeJoint(const HingeJoint& joint) { return rigid_joints_.addHinge(joint); }
+  /// Joint values carried from one step to the next (distance joint i; ball i; hinge i), to
+  /// carry a joint into another world holding it, as warmStarts() does contacts.
+  double distanceJointWarmStart(std::uint32_t i) const { return joints_.joints()[i].impulse; }
+  void setDistanceJointWarmStart(std::uint32_t i, double impulse) {
+    joints_.setImpulse(i, impulse);
+  }
+  std::array<double, RigidJoints::kWarmValues> ballJointWarmStart(std::uint32_t i) const {
+    return rigid_joints_.warmState(i);
+  }
+  void setBallJointWarmStart(std::uint32_t i,
+                             const std::array<double, RigidJoints::kWarmValues>& v) {
+    rigid_joints_.setWarmState(i, v);
+  }
+  std::array<double, RigidJoints::kWarmValues> hingeJointWarmStart(std::uint32_t i) const {
+    return rigid_joints_.warmState(rigid_joints_.ballCount() + i);
+  }
+  void setHingeJointWarmStart(std::uint32_t i,
+                              const std::array<double, RigidJoints::kWarmValues>& v) {
+    rigid_joints_.setWarmState(rigid_joints_.ballCount() + i, v);
+  }
   /// Bodies a and b never touch: their pair gets no contact. For jointed neighbours whose shapes
   /// overlap at the joint (chain links, ragdoll limbs), as Box2D's collideConnected = false.
   void ignoreContactsBetween(BodyIndex a, BodyIndex b);
@@ -94,6 +114,19 @@ class World {
   bool asleep(BodyIndex i) const { return islands_.asleep(i); }
   /// Number of sleeping bodies.
   std::size_t sleepingCount() const { return islands_.sleepingCount(); }
+  /// Body i's sleep (asleep, rest time, island), to carry into another world.
+  SleepState sleepState(BodyIndex i) const { return islands_.state(i); }
+  /// Sets body i's sleep, as sleepState() gave it (the group renamed to this world's index of
+  /// the island's root body).
+  void setSleepState(BodyIndex i, const SleepState& s) { islands_.setState(i, s); }
+
+  /// What the next step warm-starts from, sorted by body pair: the last substep's contacts and
+  /// those of sleeping islands (kept while they sleep, so that an island wakes warm).
+  void warmStarts(std::vector<BodyContact>& out) const;
+  /// Makes `contacts` (sorted by body pair, indices of this world) what the next step
+  /// warm-starts from, as if a step had found them: a world rebuilt with the same bodies in the
+  /// same order then steps as the old one would have. contacts() returns them until that step.
+  void setWarmStarts(std::span<const BodyContact> contacts);
 
   /// Body state (read and write between steps).
   BodyStorage& bodies() { return bodies_; }
@@ -135,6 +168,8 @@ class World {
   void addContact(BodyIndex a, BodyIndex b, double margin);
   bool contactIgnored(BodyIndex a, BodyIndex b) const;
   void wakeTouched();
+  /// previous_ += the sleeping islands' contacts; keeps those whose bodies still rest.
+  void carrySleepingContacts();
   void warmStartFromPrevious();
   void integratePositions(double dt);
   /// The soft step's springs and sub-steps for a step of dt (SoftStep and SoftStepWide).
@@ -182,6 +217,8 @@ class World {
   std::vector<ProxyPair> pairs_;
   std::vector<std::uint64_t> ignored_pairs_;  // sorted keys (lower index << 32 | higher index)
   std::vector<BodyContact> contacts_, previous_;
+  // Contacts of sleeping islands (not found while they sleep), kept for their warm start.
+  std::vector<BodyContact> sleeping_contacts_, warm_source_;
   std::vector<BodyIndex> quarantined_;
   StepProfile profile_;
 

@@ -3,6 +3,7 @@
 // Removal swaps the last entity into the hole, so indices are not stable across a tick's
 // migrations: hold EntityIds, and look them up with indexOf().
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <tuple>
@@ -95,6 +96,37 @@ struct AvatarData {
 };
 
 /// A rigid body simulated by physics/.
+/// One point of a cached contact: where it was, its narrowphase feature, and its normal and
+/// two tangent impulses (physics::BodyContact).
+struct CachedContactPoint {
+  Vec3 position = Vec3::Zero();
+  std::uint32_t feature = 0;
+  std::array<double, 3> impulse{};
+
+  bool operator==(const CachedContactPoint&) const = default;
+};
+
+/// A contact's impulses, kept for the next step's warm start. A body keeps those of its contacts
+/// with bodies of higher id and with the world's static bodies, so they migrate with it and
+/// reach whichever rank solves its island next (zone_node/systems/body_islands.h).
+struct CachedContact {
+  EntityId other;                ///< the other body (the higher id); none when world_body >= 0
+  std::int32_t world_body = -1;  ///< else the static body touched: ground, wall or set piece
+  std::uint16_t piece_self = 0, piece_other = 0;  ///< the pieces touching (compound parts)
+  std::vector<CachedContactPoint> points;         ///< 1 to 4
+  std::array<double, 2> rolling_impulse{};
+
+  bool operator==(const CachedContact&) const = default;
+};
+
+/// A joint's impulses, kept for the next step's warm start by its first dynamic body.
+struct CachedJoint {
+  std::int32_t joint = -1;       ///< the scene's joint (physics.joints index)
+  std::vector<double> impulses;  ///< physics::World's joint warm start (1 or 11 values)
+
+  bool operator==(const CachedJoint&) const = default;
+};
+
 struct BodyData {
   /// A compound's parts are not carried: it is a named scene body (physics.bodies), and each
   /// zone builds its shape from the scene by the entity's id.
@@ -111,6 +143,11 @@ struct BodyData {
   double linear_damping = 0;   ///< 1/s (physics::BodyDesc)
   double angular_damping = 0;  ///< 1/s
   double rolling_resistance = 0;  ///< c_rr (physics::BodyDesc)
+  // Carried so that a rank solving the body's island steps it exactly as one world would:
+  double rest_time = 0;                 ///< s the body has rested (physics::SleepState)
+  EntityId sleep_group;                 ///< asleep: the lowest id of the island it fell asleep with
+  std::vector<CachedContact> contacts;  ///< warm starts (CachedContact)
+  std::vector<CachedJoint> joints;      ///< warm starts of the joints it holds
 
   bool operator==(const BodyData&) const = default;
 };

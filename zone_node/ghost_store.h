@@ -17,15 +17,6 @@
 
 namespace zonesim::zone {
 
-/// A velocity change this zone's contacts gave another zone's entity: sent back to its owner
-/// (LAMMPS' reverse_comm), which alone writes the entity's state.
-struct GhostImpulse {
-  EntityId id;
-  int owner = -1;
-  Vec3 dv = Vec3::Zero();  ///< linear, m/s
-  Vec3 dw = Vec3::Zero();  ///< angular, rad/s
-};
-
 /// A per-entity value that a system reads on ghosts too (an NPC's crowd population, an agent's
 /// type). Systems name the columns they need (ZoneSystem::ghostColumns); the halo sends one
 /// integer per registered column with every ghost, so it carries no fixed slot per system.

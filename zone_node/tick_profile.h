@@ -106,7 +106,8 @@ struct TickCounters {
   std::uint64_t ghosts_sent = 0;        ///< entity copies sent to neighbours
   std::uint64_t halo_bytes = 0;         ///< bytes of those copies
   std::uint64_t halo_rebuilds = 0;      ///< 1 when the ghost send lists were rebuilt
-  std::uint64_t ghost_impulses_in = 0;  ///< pushes neighbours' contacts gave this zone's bodies
+  std::uint64_t island_bodies_in = 0;   ///< other zones' bodies this zone solved in its islands
+  std::uint64_t island_bodies_out = 0;  ///< this zone's bodies solved in other zones' islands
   std::uint64_t physics_steps = 0;      ///< engine world steps (0 while every body sleeps)
   std::uint64_t agents = 0;             ///< AI agents stepped
   std::uint64_t agent_transitions = 0;  ///< their state machine transitions
@@ -173,7 +174,8 @@ inline constexpr CounterField kCounterFields[] = {
     {"ghosts_sent", &TickCounters::ghosts_sent, false},
     {"halo_bytes", &TickCounters::halo_bytes, false},
     {"halo_rebuilds", &TickCounters::halo_rebuilds, false},
-    {"ghost_impulses_in", &TickCounters::ghost_impulses_in, false},
+    {"island_bodies_in", &TickCounters::island_bodies_in, false},
+    {"island_bodies_out", &TickCounters::island_bodies_out, false},
     {"physics_steps", &TickCounters::physics_steps, false},
     {"agents", &TickCounters::agents, true},
     {"agent_transitions", &TickCounters::agent_transitions, false},

@@ -61,16 +61,9 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
       halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)),
       mail_(comm, rank_, size_),
+      system_bytes_(comm, size_),
       players_(scene, rank_, size_, options.orphan_grace_ticks),
       dilation_(scene.time_dilation, scene.tick_rate) {
-  // Jointed bodies do not migrate together and a cloth belongs to no entity: one zone only
-  // (the loader checks the scene's zones; this catches a run on more ranks).
-  if (size_ > 1 && (!scene.physics.joints.empty() || !scene.physics.cloths.empty())) {
-    throw std::runtime_error(scene.name +
-                             ": physics.joints and physics.cloths need a single zone;"
-                             " run on 1 rank, not " +
-                             std::to_string(size_));
-  }
   for (const NpcPopulation& p : scene.npcs)
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
@@ -104,6 +97,12 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       return gatherValues(comm_, v);
     };
   collectives_.sum = [this](std::span<std::int64_t> v) { sumTrailDeltas(comm_, v); };
+  if (size_ > 1)
+    collectives_.swap = [this](const std::vector<std::vector<std::uint8_t>>& out) {
+      return system_bytes_.swap(out);
+    };
+  collectives_.rank = rank_;
+  collectives_.ranks = size_;
   // Hits, gifts and agents first: they read everyone where the tick found them, as their
   // ghosts are.
   ai_systems_ = {{Stage::AiInteractions, interactions_.get()},
@@ -228,6 +227,7 @@ PlayerZone ZoneNode::playerZone() {
 }
 
 StepContext ZoneNode::stepContext() {
+  collectives_.zone = layout_.rect(rank_);
   return {store_,       &halo_.ghosts(), near_,    scene_.dt, tick_, double(tick_) * scene_.dt,
           lod_players_, collectives_,    counters_};
 }
@@ -271,29 +271,26 @@ void ZoneNode::avatars() {
 }
 
 void ZoneNode::physics() {
-  if ((store_.count(EntityKind::RigidBody) > 0 || !scene_.physics.cloths.empty()) && !bodies_)
+  // On several ranks every zone takes part in each tick's island exchange (collective), with
+  // bodies or not; on one, the system starts with the first body or cloth.
+  const bool cluster_bodies = bodies_in_scene_ && size_ > 1;
+  if ((cluster_bodies || store_.count(EntityKind::RigidBody) > 0 ||
+       !scene_.physics.cloths.empty()) &&
+      !bodies_)
     bodies_ = std::make_unique<RigidBodySystem>(scene_, rank_);
-  if (bodies_) {
-    const std::uint64_t frozen_before = bodies_->quarantined();
-    StepContext ctx = stepContext();
-    bodies_->step(ctx);
-    counters_.quarantined += bodies_->quarantined() - frozen_before;
-    const physics::StepProfile& p = bodies_->profile();
-    profile_[Stage::PhysicsIntegrate] += p.integrate;
-    profile_[Stage::PhysicsBroadphase] += p.broadphase;
-    profile_[Stage::PhysicsNarrowphase] += p.narrowphase;
-    profile_[Stage::PhysicsPrepare] += p.prepare;
-    profile_[Stage::PhysicsSolve] += p.solve;
-    profile_[Stage::PhysicsIslands] += p.islands;
-  }
-  if (!bodies_in_scene_ || size_ == 1) return;
-  // Contacts across borders: the pushes this zone gave its neighbours' bodies go back to them
-  // (every rank takes part, bodies or not, as the exchange is collective).
-  ScopedTimer t(profile_[Stage::PhysicsBorder]);
-  static const std::vector<GhostImpulse> kNone;
-  std::vector<GhostImpulse> in = halo_.reverse(bodies_ ? bodies_->ghostImpulses() : kNone);
-  counters_.ghost_impulses_in = in.size();
-  if (bodies_) bodies_->applyImpulses(store_, in);
+  if (!bodies_) return;
+  const std::uint64_t frozen_before = bodies_->quarantined();
+  StepContext ctx = stepContext();
+  bodies_->step(ctx);
+  counters_.quarantined += bodies_->quarantined() - frozen_before;
+  const physics::StepProfile& p = bodies_->profile();
+  profile_[Stage::PhysicsIntegrate] += p.integrate;
+  profile_[Stage::PhysicsBroadphase] += p.broadphase;
+  profile_[Stage::PhysicsNarrowphase] += p.narrowphase;
+  profile_[Stage::PhysicsPrepare] += p.prepare;
+  profile_[Stage::PhysicsSolve] += p.solve;
+  profile_[Stage::PhysicsIslands] += p.islands;
+  profile_[Stage::PhysicsBorder] += bodies_->borderTime();
 }
 
 void ZoneNode::gpu() {

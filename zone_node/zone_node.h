@@ -17,6 +17,7 @@
 #include "common/scene.h"
 #include "crowd/vec2.h"
 #include "ledger/store.h"
+#include "zone_node/cluster/byte_exchange.h"
 #include "zone_node/cluster/entity_mail.h"
 #include "zone_node/cluster/halo.h"
 #include "zone_node/cluster/load_balancer.h"
@@ -202,6 +203,7 @@ class ZoneNode {
   std::unique_ptr<DuelSystem> duels_;  // duels against adaptive NPCs (scene key `adaptation`)
   /// The AI phase's systems in the order they step, each with its stage of the profile.
   std::vector<std::pair<Stage, ZoneSystem*>> ai_systems_;
+  ByteExchange system_bytes_;             // the systems' byte swaps (Collectives::swap)
   Collectives collectives_;               // what the systems may ask of the whole cluster
   std::vector<crowd::Vec2> lod_players_;  // every avatar of the cluster, for crowd LOD
   Players players_;                       // the player protocol

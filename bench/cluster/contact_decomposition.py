@@ -3,12 +3,12 @@
 differs and by how much").
 
 scenes/border_pile.yaml drops 400 spheres (r = 0.5 m) onto the point where four zones meet and
-runs 600 ticks at 60 Hz on 1, 2 and 4 ranks (--no-dds). Contacts between bodies of two zones
-are resolved by the lower rank against ghosts, the push going back to the owner one tick late
-in position, so a multi-rank pile is not bitwise the 1-rank pile. Reported: distance of each
-sphere from where it ends on 1 rank (median, p90, max), the deepest overlap of any two spheres
-at the end (all pairs, so also pairs of different zones), pushes handed across borders, and the
-mean physics + halo time per tick on the slowest rank.
+runs 600 ticks at 60 Hz on 1, 2 and 4 ranks (--no-dds). Every island of bodies that may touch is
+stepped whole by the rank holding its lowest id (zone_node/systems/body_islands.h), so the pile
+should end bitwise where it ends on 1 rank. Reported: distance of each sphere from where it ends
+on 1 rank (median, p90, max), the deepest overlap of any two spheres at the end (all pairs, so
+also pairs of different zones), the bodies solved in another zone's islands, and the mean
+physics + halo time per tick on the slowest rank.
 
 Usage: bench/cluster/contact_decomposition.py [BUILD_DIR]
 """
@@ -54,12 +54,12 @@ def main():
             runs[ranks] = run(ranks, Path(tmp))
     reference = runs[1][0]
     print("| ranks | median / p90 / max distance from the 1-rank end (m) | deepest overlap (mm) "
-          "| pushes across borders | physics + halo ms/tick (slowest rank) |")
+          "| bodies solved in other zones' islands | physics + halo ms/tick (slowest rank) |")
     print("|---|---|---|---|---|")
     for ranks, (state, summaries) in runs.items():
         d = sorted(math.dist(reference[k], state[k]) for k in reference)
         spread = f"{d[len(d) // 2]:.3f} / {d[int(0.9 * len(d))]:.3f} / {d[-1]:.3f}"
-        pushes = sum(s.get("ghost_impulses_in", 0) for s in summaries)
+        pushes = sum(s.get("island_bodies_out", 0) for s in summaries)
         cost = max(s["physics_ms_mean"] + s.get("halo_ms_mean", 0) for s in summaries)
         print(f"| {ranks}{' (oversubscribed)' if ranks == 4 else ''} | {spread} | "
               f"{1e3 * max(0.0, deepest_overlap(list(state.values()))):.1f} | {pushes} | {cost:.2f} |")

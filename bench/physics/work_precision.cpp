@@ -33,8 +33,7 @@ double run(zp::Integrator kind, const zp::ForceModel& f, double inv_mass, Vec3 x
   const int steps = static_cast<int>(std::lround(t / dt));
   for (int i = 0; i < steps; ++i) {
     zp::LinearStateView view{{&x, 1},     {&v, 1},    {&inv_mass, 1}, {&x_out, 1},
-                             {&v_out, 1}, {&prev, 1}, i > 0,          {},
-                             {}};
+                             {&v_out, 1}, {&prev, 1}, i > 0,          {}};
     integrator.step(kind, f, view, dt);
     x = x_out;
     v = v_out;

@@ -382,7 +382,6 @@ populations:
 }
 
 TEST(SceneLoader, ReadsJointSpringsAndCollideFlag) {
-  // Joints need a single zone.
   Scene s = parseScene(std::string("world: {min: [0, 0, 0], max: [10, 10, 10]}\n"
                                    "tick: {dt: 0.025}\nseed: 1\nzones: {columns: 1, rows: 1}\n") +
                            "physics:\n  solver: soft_step\n  joint_hertz: 120\n"

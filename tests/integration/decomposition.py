@@ -32,7 +32,11 @@ same tick: health, kills and knockback end bitwise equal only if every hit lands
 same order, and unique items claimed by several in one tick go to the same claimant;
 (scenes/duel_adaptive.yaml) duels against NPCs that adapt to the player, run by the zone that
 holds each arena, whose rounds, wins and final NPCs (the zone summaries' `duels`) are the same
-on every decomposition."""
+on every decomposition; (scenes/border_pile.yaml) 400 spheres piled where four zones meet,
+whose contacts across borders are solved island by island, each island whole on the rank holding
+its lowest id, with each body carrying its sleep and warm starts to whichever rank solves it;
+(scenes/physics_objects.yaml) a pendulum, a hinged door and a dumbbell whose joints carry their
+warm starts the same way, and cloths stepped on one rank with the bodies that may touch them."""
 import json
 import tempfile
 from pathlib import Path
@@ -45,7 +49,7 @@ SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flo
           "agents_paths": 600, "agents_paths_budget": 600, "agents_navmesh": 600,
           "courtyard_formation": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
           "flock_lod": 300, "roads": 1200, "skirmish": 300,
-          "duel_adaptive": 1200}
+          "duel_adaptive": 1200, "border_pile": 600, "physics_objects": 600}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
@@ -66,6 +70,7 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
         migrated = {}
         mail = {}
         duels = {}  # ranks -> every zone's duels, by index
+        islands = {}  # ranks -> bodies solved in another zone's islands, and physics steps
         for ranks in (1, 2, 4):
             dump = out / f"{scene}_{ranks}.jsonl"
             metrics = out / f"{scene}_{ranks}_metrics"
@@ -82,6 +87,8 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
             duels[ranks] = sorted((d for z in summaries for d in z.get("duels", [])),
                                   key=lambda d: d["duel"])
             ghosts_sent[ranks] = sum(s.get("ghosts_sent", 0) for s in summaries)
+            islands[ranks] = (sum(s.get("island_bodies_out", 0) for s in summaries),
+                              min(s.get("physics_steps", 0) for s in summaries))
             migrated[ranks] = sum(s.get("migrated_out", 0) for s in summaries)
             mail[ranks] = {k: sum(s.get(k, 0) for s in summaries)
                            for k in MAIL_FIGURES + ("mail_cross_zone", "mail_forwarded",
@@ -132,6 +139,13 @@ with tempfile.TemporaryDirectory(prefix="zs_decomp_") as tmp:
                     f" {mail[4]['mail_forwarded']} followed a target that crossed in that tick")
             h.check(all(m["mail_failures"] == 0 for m in mail.values()),
                     f"{scene}: every audit of the mail balanced")
+        if scene == "border_pile":
+            h.check(islands[2][0] > 1000 and islands[4][0] > 1000,
+                    f"{scene}: bodies were solved in other zones' islands ({islands[2][0]} times "
+                    f"on 2 ranks, {islands[4][0]} on 4)")
+            h.check(islands[4][1] < ticks, f"{scene}: on 4 ranks a zone slept whole while others "
+                    f"stepped (it stepped {islands[4][1]} of {ticks} ticks): sleep and the warm "
+                    "starts of sleeping islands carried across borders")
         if scene == "duel_adaptive":
             h.check(len(duels[1]) == 10 and all(d["rounds"] > 50 for d in duels[1]),
                     f"{scene}: 10 duels played {[d['rounds'] for d in duels[1]]} rounds")

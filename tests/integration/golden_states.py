@@ -8,8 +8,6 @@
         compares two such folders file by file, byte for byte; prints the first differing
         entity of each scene that differs and exits 1 if any does.
 
-A scene that needs a single zone (joints, cloths) is dumped on 1 rank only; the 4-rank run must
-then refuse it, and the refusal is recorded as `<scene>_4.refused` so that both sides agree.
 Typical use, the commit before a change against the commit after:
 
     git worktree add /tmp/before BASE && (cd /tmp/before && cmake -S . -B build -G Ninja &&
@@ -28,7 +26,6 @@ from pathlib import Path
 import harness as h
 
 RANKS = (1, 4)
-SINGLE_ZONE_REFUSAL = "need a single zone"
 
 
 def shipped_scenes():
@@ -59,12 +56,6 @@ def dump(out, bin_dir, ticks, only):
                 rc = subprocess.run(list(map(str, cmd)), stdout=f, stderr=subprocess.STDOUT,
                                     env=env, timeout=900).returncode
             if rc != 0:
-                text = log.read_text()
-                if ranks > 1 and SINGLE_ZONE_REFUSAL in text:
-                    (out / f"{key}_{ranks}.refused").write_text("single zone only\n")
-                    print(f"[{n}/{len(scenes)}] {key} on {ranks} ranks: refused (single zone)",
-                          flush=True)
-                    continue
                 sys.exit(f"golden_states: {key} on {ranks} ranks failed (exit {rc}):\n"
                          f"{h.tail(log)}")
             lines = target.read_text().count("\n")
@@ -81,7 +72,7 @@ def first_difference(a, b):
 
 
 def compare(a_dir, b_dir):
-    names = lambda d: {p.name for p in d.iterdir() if p.suffix in (".jsonl", ".refused")}
+    names = lambda d: {p.name for p in d.iterdir() if p.suffix == ".jsonl"}
     a_names, b_names = names(a_dir), names(b_dir)
     bad = 0
     for name in sorted(a_names ^ b_names):

@@ -24,8 +24,7 @@ struct Particle {
 
   void step(Integrator kind, const ForceModel& f, double dt) {
     LinearStateView view{{&x, 1},     {&v, 1},      {&inv_mass, 1}, {&x_out, 1},
-                         {&v_out, 1}, {&x_prev, 1}, started,        {},
-                         {}};
+                         {&v_out, 1}, {&x_prev, 1}, started,        {}};
     integrator.step(kind, f, view, dt);
     started = true;
     x = x_out;

@@ -301,27 +301,6 @@ TEST(World, NonFiniteBodyIsQuarantinedAndDoesNotSpread) {
   EXPECT_NEAR(world.bodies().position[above].y(), 1.5, 0.02);
 }
 
-// A zone holds a neighbour's body near the border as a foreign copy; its owner applies the
-// drag, so here it must feel gravity alone, or the velocity change handed back would double it.
-TEST(World, AForeignBodyFeelsGravityButNotDrag) {
-  World world;
-  world.forces().linear_drag = 1.0;
-  world.forces().quadratic_drag = 0.5;
-  BodyDesc own, copy;
-  own.shape = copy.shape = Shape::sphere(0.5);
-  own.position = Vec3(0, 100, 0);
-  copy.position = Vec3(10, 100, 0);
-  own.linear_velocity = copy.linear_velocity = Vec3(4, 0, 0);
-  copy.foreign = true;
-  const BodyIndex a = world.addBody(own), b = world.addBody(copy);
-  const double dt = 0.01;
-  world.step(dt);
-  const BodyStorage& s = world.bodies();
-  EXPECT_LT(s.linear_velocity[a].x(), 4.0);
-  EXPECT_NEAR(s.linear_velocity[b].x(), 4.0, 1e-15);
-  EXPECT_NEAR(s.linear_velocity[b].y(), -9.81 * dt, 1e-12);
-}
-
 TEST(World, IgnoredPairsNeverTouchAndOtherPairsStill) {
   // Three overlapping spheres in free space (no gravity): 0-1 ignored, 1-2 not.
   World world;

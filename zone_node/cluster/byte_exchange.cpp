@@ -20,6 +20,22 @@ ByteExchange::ByteExchange(MPI_Comm comm, int size)
       send_displs_(std::size_t(size)),
       recv_displs_(std::size_t(size)) {}
 
+std::vector<std::vector<std::uint8_t>> ByteExchange::swap(
+    const std::vector<std::vector<std::uint8_t>>& out) {
+  if (out.size() != std::size_t(size_))
+    throw std::invalid_argument("byte swap: " + std::to_string(out.size()) + " buffers for " +
+                                std::to_string(size_) + " ranks");
+  begin();
+  for (int r = 0; r < size_; ++r) out_[std::size_t(r)] = out[std::size_t(r)];
+  exchange();
+  std::vector<std::vector<std::uint8_t>> in(out.size());
+  for (int r = 0; r < size_; ++r) {
+    const std::span<const std::uint8_t> got = received(r);
+    in[std::size_t(r)].assign(got.begin(), got.end());
+  }
+  return in;
+}
+
 void ByteExchange::begin() {
   for (auto& o : out_) o.clear();
 }

@@ -28,6 +28,9 @@ class ByteExchange {
   void exchange();
   /// What rank r sent us in the last exchange.
   std::span<const std::uint8_t> received(int r) const;
+  /// out[r] to each rank r, and what each rank sent this one, by rank (collective): begin,
+  /// outgoing and exchange in one call, for callers that hold their buffers themselves.
+  std::vector<std::vector<std::uint8_t>> swap(const std::vector<std::vector<std::uint8_t>>& out);
   /// Bytes this rank sent in the last exchange.
   std::uint64_t bytesSent() const { return bytes_sent_; }
 

@@ -138,17 +138,79 @@ void decodeAvatar(const fb::AvatarState& s, AvatarData& a) {
 
 flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, EntityKind kind) {
   if (kind != EntityKind::RigidBody) return {};
+  flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::CachedContact>>> contacts;
+  if (!s.contacts.empty()) {
+    std::vector<flatbuffers::Offset<fb::CachedContact>> list;
+    std::vector<fb::CachedContactPoint> points;
+    for (const CachedContact& c : s.contacts) {
+      points.clear();
+      for (const CachedContactPoint& p : c.points) {
+        points.emplace_back(toFb(p.position), fb::Vec3d(p.impulse[0], p.impulse[1], p.impulse[2]),
+                            p.feature);
+      }
+      list.push_back(fb::CreateCachedContact(b, c.other.value, c.world_body, c.piece_self,
+                                             c.piece_other, b.CreateVectorOfStructs(points),
+                                             c.rolling_impulse[0], c.rolling_impulse[1]));
+    }
+    contacts = b.CreateVector(list);
+  }
+  flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::CachedJoint>>> joints;
+  if (!s.joints.empty()) {
+    std::vector<flatbuffers::Offset<fb::CachedJoint>> list;
+    for (const CachedJoint& j : s.joints)
+      list.push_back(fb::CreateCachedJoint(b, j.joint, b.CreateVector(j.impulses)));
+    joints = b.CreateVector(list);
+  }
   fb::Vec3d w = toFb(s.angular_velocity), h = toFb(s.half_extents);
   return fb::CreateBodyState(b, s.radius, s.mass, s.restitution, &w, s.sleeping, s.shape, &h,
                              s.half_height, s.friction, s.linear_damping, s.angular_damping,
-                             s.rolling_resistance);
+                             s.rolling_resistance, s.rest_time, s.sleep_group.value, contacts,
+                             joints);
 }
 
 void decodeBody(const fb::BodyState& s, BodyData& d) {
   if (s.shape() > BodyData::Compound) throw CodecError("body record with unknown shape");
-  d = {s.radius(),   s.mass(),           s.restitution(),          fromFb(s.angular_velocity()),
-       s.sleeping(), s.shape(),          fromFb(s.half_extents()), s.half_height(),
-       s.friction(), s.linear_damping(), s.angular_damping(),      s.rolling_resistance()};
+  d = {s.radius(),
+       s.mass(),
+       s.restitution(),
+       fromFb(s.angular_velocity()),
+       s.sleeping(),
+       s.shape(),
+       fromFb(s.half_extents()),
+       s.half_height(),
+       s.friction(),
+       s.linear_damping(),
+       s.angular_damping(),
+       s.rolling_resistance(),
+       s.rest_time(),
+       EntityId{s.sleep_group()},
+       {},
+       {}};
+  if (s.joints()) {
+    for (const fb::CachedJoint* j : *s.joints()) {
+      if (j->joint() < 0) throw CodecError("cached joint without a joint index");
+      CachedJoint out{j->joint(), {}};
+      if (j->impulses()) out.impulses.assign(j->impulses()->begin(), j->impulses()->end());
+      d.joints.push_back(std::move(out));
+    }
+  }
+  if (!s.contacts()) return;
+  for (const fb::CachedContact* c : *s.contacts()) {
+    const std::size_t n = c->points() ? c->points()->size() : 0;
+    if (n == 0 || n > 4) throw CodecError("cached contact with " + std::to_string(n) + " points");
+    CachedContact out{EntityId{c->other()},
+                      c->world_body(),
+                      c->piece_self(),
+                      c->piece_other(),
+                      {},
+                      {c->rolling_impulse_1(), c->rolling_impulse_2()}};
+    for (const fb::CachedContactPoint* p : *c->points()) {
+      out.points.push_back({fromFb(&p->position()),
+                            p->feature(),
+                            {p->impulse().x(), p->impulse().y(), p->impulse().z()}});
+    }
+    d.contacts.push_back(std::move(out));
+  }
 }
 
 flatbuffers::Offset<fb::EmitterState> encodeEmitter(Builder& b, const EmitterData& m,

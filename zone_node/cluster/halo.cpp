@@ -164,35 +164,4 @@ HaloStats HaloExchange::refresh(const EntityStore& store, const ZoneLayout& layo
   return stats;
 }
 
-std::vector<GhostImpulse> HaloExchange::reverse(const std::vector<GhostImpulse>& out) {
-  struct Wire {
-    std::uint64_t id;
-    double dv[3], dw[3];
-  };
-  std::vector<GhostImpulse> in;
-  if (size_ == 1) return in;
-  bytes_.begin();
-  for (const GhostImpulse& g : out) {
-    if (g.owner < 0 || g.owner >= size_ || g.owner == rank_)
-      throw std::logic_error("a ghost impulse must go to another rank");
-    Wire w{g.id.value, {g.dv.x(), g.dv.y(), g.dv.z()}, {g.dw.x(), g.dw.y(), g.dw.z()}};
-    std::vector<std::uint8_t>& o = bytes_.outgoing(g.owner);
-    std::size_t at = o.size();
-    o.resize(at + sizeof w);
-    std::memcpy(o.data() + at, &w, sizeof w);
-  }
-  bytes_.exchange();
-  for (int r = 0; r < size_; ++r) {
-    std::span<const std::uint8_t> bytes = bytes_.received(r);
-    if (bytes.size() % sizeof(Wire) != 0) throw std::runtime_error("impulse payload size is odd");
-    for (std::size_t off = 0; off < bytes.size(); off += sizeof(Wire)) {
-      Wire w;
-      std::memcpy(&w, bytes.data() + off, sizeof w);
-      in.push_back({EntityId{w.id}, rank_, Vec3(w.dv[0], w.dv[1], w.dv[2]),
-                    Vec3(w.dw[0], w.dw[1], w.dw[2])});
-    }
-  }
-  return in;
-}
-
 }  // namespace zonesim::zone

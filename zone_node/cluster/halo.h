@@ -38,9 +38,6 @@ class HaloExchange {
   /// zone boundaries move.
   HaloStats refresh(const EntityStore& store, const ZoneLayout& layout,
                     std::uint64_t layout_version);
-  /// Sends each impulse to the owner of its entity and returns the ones for this rank's
-  /// entities, in (sender rank, order sent) order (collective; LAMMPS' reverse_comm).
-  std::vector<GhostImpulse> reverse(const std::vector<GhostImpulse>& out);
   const GhostStore& ghosts() const { return ghosts_; }
   /// Sends `column` with every ghost from now on (GhostStore::addColumn); every rank must
   /// register the same columns in the same order, before the first refresh.

@@ -38,7 +38,7 @@ physics::WorldSettings settingsFor(const PhysicsSettings& p, const CrowdLod& lod
   return w;
 }
 
-physics::Shape shapeOf(const BodyData& b) {
+physics::Shape primitiveShape(const BodyData& b) {
   switch (b.shape) {
     case BodyData::Box:
       return physics::Shape::box(b.half_extents);
@@ -133,6 +133,16 @@ RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
     const double volume = physics::computeMassProperties(shape, 1.0).mass;
     compounds_.emplace(namedBodyId(scene, k), Compound{std::move(shape), volume});
   }
+  for (const SceneJoint& j : scene.physics.joints) {
+    // A joint to the world or to a set piece links nothing: statics join no island.
+    if (j.b < 0 || set_pieces_.indexOf(std::size_t(j.a)) || set_pieces_.indexOf(std::size_t(j.b)))
+      continue;
+    const EntityId a = namedBodyId(scene, std::size_t(j.a)),
+                   b = namedBodyId(scene, std::size_t(j.b));
+    joint_links_.emplace_back(std::min(a, b), std::max(a, b));
+    jointed_.insert(a.value);
+    jointed_.insert(b.value);
+  }
   for (const SceneCloth& c : scene.physics.cloths) {
     cloths_.push_back(std::make_unique<physics::Cloth>(makeCloth(c)));
     cloth_substeps_.push_back(substepsPerTick(c, scene.dt));
@@ -141,21 +151,20 @@ RigidBodySystem::RigidBodySystem(const Scene& scene, int rank)
 
 RigidBodySystem::~RigidBodySystem() = default;
 
+physics::Shape RigidBodySystem::shapeOf(EntityId id, const BodyData& b) const {
+  if (b.shape != BodyData::Compound) return primitiveShape(b);
+  auto it = compounds_.find(id);
+  if (it == compounds_.end())
+    throw std::runtime_error("rigid body " + toString(id) +
+                             " is a compound but no compound of physics.bodies has its id");
+  return it->second.shape;
+}
+
 physics::BodyDesc RigidBodySystem::descOf(EntityId id, const BodyData& b, const Vec3& pos,
                                           const Quat& rot, const Vec3& vel) const {
   physics::BodyDesc d;
-  double volume = 0;
-  if (b.shape == BodyData::Compound) {
-    auto it = compounds_.find(id);
-    if (it == compounds_.end())
-      throw std::runtime_error("rigid body " + toString(id) +
-                               " is a compound but no compound of physics.bodies has its id");
-    d.shape = it->second.shape;
-    volume = it->second.volume;
-  } else {
-    d.shape = shapeOf(b);
-    volume = volumeOf(b);
-  }
+  d.shape = shapeOf(id, b);
+  const double volume = b.shape == BodyData::Compound ? compounds_.at(id).volume : volumeOf(b);
   d.position = pos;
   d.orientation = rot;
   d.linear_velocity = vel;
@@ -169,17 +178,7 @@ physics::BodyDesc RigidBodySystem::descOf(EntityId id, const BodyData& b, const 
   return d;
 }
 
-std::vector<std::size_t> RigidBodySystem::foreignBodies(const GhostStore* ghosts) const {
-  std::vector<std::size_t> out;
-  if (!ghosts) return out;
-  for (std::size_t g = 0; g < ghosts->size(); ++g)
-    if (ghosts->kind[g] == EntityKind::RigidBody && ghosts->owner[g] > rank_) out.push_back(g);
-  std::sort(out.begin(), out.end(), [&](auto a, auto b) { return ghosts->id[a] < ghosts->id[b]; });
-  return out;
-}
-
-void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts,
-                              const std::vector<std::size_t>& foreign) {
+void RigidBodySystem::rebuild(const std::vector<BodyRef>& bodies) {
   world_ = std::make_unique<physics::World>(settingsFor(scene_.physics, scene_.lod));
   world_->forces().linear_drag = scene_.physics.linear_drag;
   world_->forces().quadratic_drag = scene_.physics.quadratic_drag;
@@ -194,31 +193,25 @@ void RigidBodySystem::rebuild(const EntityStore& store, const GhostStore* ghosts
   body_entity_.clear();
   members_ = {};
   // In id order, so the engine sees the same body order whichever rank holds them.
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < store.size(); ++i)
-    if (store.kind[i] == EntityKind::RigidBody) order.push_back(i);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return store.id[a] < store.id[b]; });
-  for (std::size_t i : order) {
-    world_->addBody(descOf(store.id[i], store.body[i], store.pos[i], store.rot[i], store.vel[i]));
-    body_entity_.push_back(store.id[i]);
-    members_.add(store.id[i]);
+  for (const BodyRef& r : bodies) {
+    const EntityStore& s = *r.store;
+    const std::size_t i = r.index;
+    const physics::BodyIndex bi =
+        world_->addBody(descOf(s.id[i], s.body[i], s.pos[i], s.rot[i], s.vel[i]));
+    // Exactly the engine's own orientation: normalising it again would move the last bit, and
+    // a rebuilt world must step a body as the old one would have.
+    world_->bodies().orientation[bi] = s.rot[i];
+    body_entity_.push_back(s.id[i]);
+    members_.add(s.id[i]);
   }
-  foreign_entity_.clear();
-  for (std::size_t g : foreign) {
-    physics::BodyDesc d =
-        descOf(ghosts->id[g], ghosts->body[g], ghosts->pos[g], ghosts->rot[g], ghosts->vel[g]);
-    d.foreign = true;
-    // Its owner damps it; damping here too would be handed back as a push (applyImpulses).
-    d.linear_damping = d.angular_damping = 0;
-    world_->addBody(d);
-    foreign_entity_.push_back(ghosts->id[g]);
-  }
+  world_->bodies().updateWorldInertia();
   addJoints();
   ++rebuilds_;
 }
 
 void RigidBodySystem::addJoints() {
   joints_added_ = 0;
+  joint_slots_.clear();
   const std::vector<SceneBody>& named = scene_.physics.bodies;
   auto bodyOf = [&](int k) -> std::optional<physics::BodyIndex> {
     if (auto piece = set_pieces_.indexOf(std::size_t(k))) return piece;
@@ -227,7 +220,8 @@ void RigidBodySystem::addJoints() {
     if (it == body_entity_.end()) return std::nullopt;
     return physics::BodyIndex(first_dynamic_ + (it - body_entity_.begin()));
   };
-  for (const SceneJoint& j : scene_.physics.joints) {
+  for (std::size_t k = 0; k < scene_.physics.joints.size(); ++k) {
+    const SceneJoint& j = scene_.physics.joints[k];
     std::optional<physics::BodyIndex> a = bodyOf(j.a);
     std::optional<physics::BodyIndex> b = j.b >= 0 ? bodyOf(j.b) : physics::kNoBody;
     if (!a || !b) continue;  // a body is gone (quarantined, or never here)
@@ -239,6 +233,8 @@ void RigidBodySystem::addJoints() {
     const Quat qb = j.b >= 0 ? toQuat(named[j.b].orientation) : Quat::Identity();
     auto local_a = [&](const SceneVec3& p) -> Vec3 { return qa.conjugate() * (toVec3(p) - pa); };
     auto local_b = [&](const SceneVec3& p) -> Vec3 { return qb.conjugate() * (toVec3(p) - pb); };
+    // Its first dynamic body keeps its warm start (the other may be a set piece or the world).
+    JointSlot slot{int(k), int(j.type), 0, *a >= first_dynamic_ ? *a : *b};
     switch (j.type) {
       case SceneJoint::Type::Distance: {
         physics::DistanceJoint d;
@@ -247,7 +243,7 @@ void RigidBodySystem::addJoints() {
         d.local_a = local_a(j.anchor_a);
         d.local_b = local_b(j.anchor_b);
         d.length = j.length;
-        world_->addDistanceJoint(d);
+        slot.index = world_->addDistanceJoint(d);
         break;
       }
       case SceneJoint::Type::Ball: {
@@ -256,7 +252,7 @@ void RigidBodySystem::addJoints() {
         d.b = *b;
         d.local_a = local_a(j.anchor);
         d.local_b = local_b(j.anchor);
-        world_->addBallJoint(d);
+        slot.index = world_->addBallJoint(d);
         break;
       }
       case SceneJoint::Type::Hinge: {
@@ -267,11 +263,12 @@ void RigidBodySystem::addJoints() {
         d.local_b = local_b(j.anchor);
         d.axis_a = qa.conjugate() * toVec3(j.axis);
         d.axis_b = qb.conjugate() * toVec3(j.axis);
-        world_->addHingeJoint(d);
+        slot.index = world_->addHingeJoint(d);
         break;
       }
     }
     if (!j.collide) world_->ignoreContactsBetween(*a, *b);
+    joint_slots_.push_back(slot);
     ++joints_added_;
   }
 }
@@ -319,8 +316,10 @@ void RigidBodySystem::stepCloths(double dt) {
 
 void RigidBodySystem::step(StepContext& ctx) {
   profile_ = {};
+  border_time_ = 0;
+  bodies_held_ = 0;
   const std::uint64_t steps_before = world_steps_;
-  ctx.counters.bodies_awake = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.tick, ctx.players);
+  ctx.counters.bodies_awake = ctx.cluster.swap ? advanceInCluster(ctx) : advanceAlone(ctx);
   ctx.counters.physics_steps = world_steps_ - steps_before;
   ctx.counters.bodies_held = bodies_held_;
 }
@@ -336,66 +335,63 @@ void RigidBodySystem::setStepPeriods(std::span<const crowd::Vec2> players) {
   }
 }
 
-std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghosts, double dt,
-                                     std::uint64_t tick_index,
-                                     std::span<const crowd::Vec2> players) {
-  ghost_impulses_.clear();
-  bodies_held_ = 0;
-  IdSetDigest now;
+std::vector<std::size_t> RigidBodySystem::bodiesById(const EntityStore& store) {
+  std::vector<std::size_t> order;
   for (std::size_t i = 0; i < store.size(); ++i)
-    if (store.kind[i] == EntityKind::RigidBody) now.add(store.id[i]);
-  if (now.count == 0 && cloths_.empty()) {
+    if (store.kind[i] == EntityKind::RigidBody) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return store.id[a] < store.id[b]; });
+  return order;
+}
+
+std::size_t RigidBodySystem::advanceAlone(StepContext& ctx) {
+  std::vector<BodyRef> bodies;
+  for (std::size_t i : bodiesById(ctx.store)) bodies.push_back({&ctx.store, i});
+  if (bodies.empty() && cloths_.empty()) {
     world_.reset();
     members_ = {};
-    foreign_entity_.clear();
     return 0;
   }
-  std::vector<std::size_t> foreign = foreignBodies(ghosts);
-  bool same_foreign = foreign.size() == foreign_entity_.size();
-  for (std::size_t k = 0; same_foreign && k < foreign.size(); ++k)
-    same_foreign = ghosts->id[foreign[k]] == foreign_entity_[k];
-  if (!world_ || !(now == members_) || !same_foreign) rebuild(store, ghosts, foreign);
-  std::size_t bodies = body_entity_.size();
-  const auto first_foreign = physics::BodyIndex(first_dynamic_ + bodies);
+  holdBodies(bodies, false);
+  if (!stepWorld(ctx) && !holdsCloths(ctx)) return 0;
+  return writeBack(bodies, false);
+}
 
-  // Foreign bodies take their owners' state of this tick.
-  physics::BodyStorage& s = world_->bodies();
-  bool foreign_awake = false;
-  for (std::size_t k = 0; k < foreign.size(); ++k) {
-    std::size_t g = foreign[k];
-    auto bi = physics::BodyIndex(first_foreign + k);
-    s.position[bi] = ghosts->pos[g];
-    s.position_prev[bi] = ghosts->pos[g];
-    s.orientation[bi] = ghosts->rot[g];
-    s.linear_velocity[bi] = ghosts->vel[g];
-    s.angular_velocity[bi] = ghosts->body[g].angular_velocity;
-    if (!ghosts->body[g].sleeping) {
-      world_->wake(bi);
-      foreign_awake = true;
-    }
-  }
-  set_pieces_.pose(*world_, tick_index, dt);
-  explode(tick_index, dt);
+void RigidBodySystem::holdBodies(const std::vector<BodyRef>& bodies, bool carried) {
+  IdSetDigest now;
+  for (const BodyRef& r : bodies) now.add(r.id());
+  if (world_ && now == members_) return;
+  rebuild(bodies);
+  if (carried) importCarried(bodies);
+}
+
+bool RigidBodySystem::stepWorld(StepContext& ctx) {
+  set_pieces_.pose(*world_, ctx.tick, ctx.dt);
+  explode(ctx.tick, ctx.dt);
   // Sleeping bodies are not stepped at all; the statics count as asleep in the engine or not,
   // so compare the dynamic bodies' state directly. A moving kinematic body may wake them.
   std::size_t awake = 0;
-  for (std::size_t n = 0; n < bodies; ++n)
+  for (std::size_t n = 0; n < body_entity_.size(); ++n)
     awake += !world_->asleep(physics::BodyIndex(first_dynamic_ + n));
-  const bool pushed = foreign_awake || set_pieces_.moving();
-  if (awake == 0 && !pushed && cloths_.empty()) return 0;
-  if (awake > 0 || pushed) {
+  const bool stepped = awake > 0 || set_pieces_.moving();
+  if (stepped) {
     std::size_t frozen_before = world_->quarantined().size();
-    if (scene_.lod.enabled && scene_.lod.physics_every > 1) setStepPeriods(players);
-    world_->step(dt);
+    if (scene_.lod.enabled && scene_.lod.physics_every > 1) setStepPeriods(ctx.players);
+    world_->step(ctx.dt);
     ++world_steps_;
     profile_ = world_->profile();
     quarantined_ += world_->quarantined().size() - frozen_before;
   }
-  stepCloths(dt);
-  awake = 0;
-  for (std::size_t n = 0; n < bodies; ++n) {
-    auto bi = physics::BodyIndex(first_dynamic_ + n);
-    std::size_t i = *store.indexOf(body_entity_[n]);
+  if (holdsCloths(ctx)) stepCloths(ctx.dt);
+  return stepped;
+}
+
+std::size_t RigidBodySystem::writeBack(const std::vector<BodyRef>& bodies, bool carried) {
+  const physics::BodyStorage& s = world_->bodies();
+  std::size_t awake = 0;
+  for (std::size_t n = 0; n < bodies.size(); ++n) {
+    const auto bi = physics::BodyIndex(first_dynamic_ + n);
+    EntityStore& store = *bodies[n].store;
+    const std::size_t i = bodies[n].index;
     store.pos[i] = s.position[bi];
     store.vel[i] = s.linear_velocity[bi];
     store.rot[i] = s.orientation[bi];
@@ -404,36 +400,8 @@ std::size_t RigidBodySystem::advance(EntityStore& store, const GhostStore* ghost
     awake += !store.body[i].sleeping;
     bodies_held_ += world_->stepLod().lag(bi) > 0;
   }
-  // What our bodies did to the foreign ones: their velocity change less gravity's (they have
-  // no damping or drag here: their owner applies those). Round-off of that subtraction is far below 1e-9 m/s.
-  const Vec3 gravity_dv = world_->forces().gravity * dt;
-  for (std::size_t k = 0; k < foreign.size(); ++k) {
-    std::size_t g = foreign[k];
-    auto bi = physics::BodyIndex(first_foreign + k);
-    if (world_->asleep(bi)) continue;
-    GhostImpulse imp{ghosts->id[g], ghosts->owner[g],
-                     s.linear_velocity[bi] - ghosts->vel[g] - gravity_dv,
-                     s.angular_velocity[bi] - ghosts->body[g].angular_velocity};
-    if (imp.dv.squaredNorm() + imp.dw.squaredNorm() > 1e-18) ghost_impulses_.push_back(imp);
-  }
+  if (carried) exportCarried(bodies);
   return awake;
-}
-
-void RigidBodySystem::applyImpulses(EntityStore& store, const std::vector<GhostImpulse>& in) {
-  for (const GhostImpulse& imp : in) {
-    std::optional<std::size_t> i = store.indexOf(imp.id);
-    if (!i) continue;  // cannot happen before migrate: the owner still holds its bodies
-    store.vel[*i] += imp.dv;
-    store.body[*i].angular_velocity += imp.dw;
-    store.body[*i].sleeping = false;
-    if (!world_) continue;
-    auto k = std::find(body_entity_.begin(), body_entity_.end(), imp.id);
-    if (k == body_entity_.end()) continue;
-    auto bi = physics::BodyIndex(first_dynamic_ + (k - body_entity_.begin()));
-    world_->bodies().linear_velocity[bi] = store.vel[*i];
-    world_->bodies().angular_velocity[bi] = store.body[*i].angular_velocity;
-    world_->wake(bi);
-  }
 }
 
 }  // namespace zonesim::zone

@@ -11,6 +11,7 @@
 #include "crowd/vec2.h"
 #include "zone_node/entity_store.h"
 #include "zone_node/ghost_store.h"
+#include "zone_node/zone_layout.h"
 
 namespace zonesim::zone {
 
@@ -23,11 +24,23 @@ using ClusterGather = std::function<std::vector<std::uint64_t>(const std::vector
 /// Replaces the values by their element-wise sum over all ranks (collective, exact in integers).
 using ClusterSum = std::function<void(std::span<std::int64_t>)>;
 
+/// Sends out[r] to each rank r and returns what each rank sent this one, by rank (collective: a
+/// personalised all-to-all of bytes).
+using ClusterSwap = std::function<std::vector<std::vector<std::uint8_t>>(
+    const std::vector<std::vector<std::uint8_t>>&)>;
+
 /// The cluster-wide calls a system may make during its step. The scene decides which systems
-/// run, so every rank makes the same calls in the same order.
+/// run, so every rank makes the same calls in the same order. Unset on a lone zone.
 struct Collectives {
   ClusterGather gather;
   ClusterSum sum;
+  ClusterSwap swap;
+  int rank = 0;   ///< this zone's rank
+  int ranks = 1;  ///< zones in the cluster
+  /// This zone's ground-plane rectangle (the load balancer may move it): everywhere on a lone
+  /// zone.
+  ZoneRect zone{-kEverywhere, -kEverywhere, kEverywhere, kEverywhere};
+  static constexpr double kEverywhere = 1e300;
 };
 
 /// One tick of one zone, as the systems see it.

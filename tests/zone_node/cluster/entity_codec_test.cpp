@@ -56,7 +56,18 @@ EntityRecordData everyColumnSet() {
             .friction = 0.3,
             .linear_damping = 0.05,
             .angular_damping = 0.125,
-            .rolling_resistance = 0.0625};
+            .rolling_resistance = 0.0625,
+            .rest_time = 0.375,
+            .sleep_group = EntityId::make(2, 77),
+            .contacts = {{.other = EntityId::make(3, 9),
+                          .piece_self = 1,
+                          .piece_other = 2,
+                          .points = {{Vec3(1, 2, 3), 0x10203, {0.5, -0.25, 0.125}},
+                                     {Vec3(-1, 0, 2), 7, {1.5, 0, -2}}},
+                          .rolling_impulse = {0.01, -0.02}},
+                         {.world_body = 0, .points = {{Vec3(4, 0, 5), 3, {9.81, 0, 0}}}}},
+            .joints = {{.joint = 2, .impulses = {0.5}},
+                       {.joint = 0, .impulses = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}}}};
   r.emitter = {.rate = 250,
                .lifetime = 1.5,
                .speed = 7,
@@ -180,6 +191,21 @@ TEST(EntityCodec, OutOfRangeValuesAreRefusedWithTheirReason) {
        [](EntityRecordData& r) {
          r.kind = EntityKind::RigidBody;
          r.body.shape = BodyData::Compound + 1;
+       }},
+      {"cached contact with 0 points",
+       [](EntityRecordData& r) {
+         r.kind = EntityKind::RigidBody;
+         r.body.contacts[0].points.clear();
+       }},
+      {"cached contact with 5 points",
+       [](EntityRecordData& r) {
+         r.kind = EntityKind::RigidBody;
+         r.body.contacts[1].points.assign(5, CachedContactPoint{});
+       }},
+      {"cached joint without a joint index",
+       [](EntityRecordData& r) {
+         r.kind = EntityKind::RigidBody;
+         r.body.joints[0].joint = -1;
        }},
       {"npc record with an odd cell list",
        [](EntityRecordData& r) {

@@ -1,7 +1,6 @@
 // The drag keys of `physics:` reach the engine: a body falling under linear drag follows
 // v(t) = (m g / k)(1 - exp(-k t / m)) and one under quadratic drag v_t tanh(g t / v_t) with
-// v_t = sqrt(m g / c), to RK4's error. (That a zone's foreign copy of a neighbour's body feels
-// no drag, since its owner applies it, is tests/physics/world_test.cpp's.)
+// v_t = sqrt(m g / c), to RK4's error.
 #include <gtest/gtest.h>
 
 #include <cmath>
