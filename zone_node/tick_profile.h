@@ -108,6 +108,7 @@ struct TickCounters {
   std::uint64_t halo_rebuilds = 0;      ///< 1 when the ghost send lists were rebuilt
   std::uint64_t island_bodies_in = 0;   ///< other zones' bodies this zone solved in its islands
   std::uint64_t island_bodies_out = 0;  ///< this zone's bodies solved in other zones' islands
+  std::uint64_t island_exchanges = 0;   ///< 1 when islands were found and bodies traded
   std::uint64_t physics_steps = 0;      ///< engine world steps (0 while every body sleeps)
   std::uint64_t agents = 0;             ///< AI agents stepped
   std::uint64_t agent_transitions = 0;  ///< their state machine transitions
@@ -176,6 +177,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"halo_rebuilds", &TickCounters::halo_rebuilds, false},
     {"island_bodies_in", &TickCounters::island_bodies_in, false},
     {"island_bodies_out", &TickCounters::island_bodies_out, false},
+    {"island_exchanges", &TickCounters::island_exchanges, false},
     {"physics_steps", &TickCounters::physics_steps, false},
     {"agents", &TickCounters::agents, true},
     {"agent_transitions", &TickCounters::agent_transitions, false},

@@ -104,6 +104,17 @@ int substepsPerTick(const SceneCloth& c, double dt) {
   return std::max(1, int(std::ceil(dt * w / 0.5)));
 }
 
+/// The impulse (N s at the centre) explosion e gives in tick k of length dt; 0 when none.
+double explosionImpulse(const SceneExplosion& e, std::uint64_t k, double dt) {
+  // The first tick starting at or after its time (1e-9 of a tick forgives round-off).
+  const auto fire = std::uint64_t(std::max(0.0, std::ceil(e.time / dt - 1e-9)));
+  if (k < fire) return 0;
+  if (e.impulse > 0) return k == fire ? e.impulse : 0.0;
+  const double left = e.duration - double(k - fire) * dt;
+  if (left <= 1e-12) return 0;
+  return e.force * std::min(dt, left);
+}
+
 }  // namespace
 
 // The engine and its enums mirror the scene's (same order): checked here, where both are seen.
@@ -273,22 +284,18 @@ void RigidBodySystem::addJoints() {
   }
 }
 
+bool RigidBodySystem::explosionDue(std::uint64_t k, double dt) const {
+  for (const SceneExplosion& e : scene_.physics.explosions)
+    if (explosionImpulse(e, k, dt) > 0) return true;
+  return false;
+}
+
 bool RigidBodySystem::explode(std::uint64_t k, double dt) {
   bool acted = false;
   physics::BodyStorage& s = world_->bodies();
   for (const SceneExplosion& e : scene_.physics.explosions) {
-    // The first tick starting at or after its time (1e-9 of a tick forgives round-off).
-    const auto fire = std::uint64_t(std::max(0.0, std::ceil(e.time / dt - 1e-9)));
-    if (k < fire) continue;
-    double impulse = 0;
-    if (e.impulse > 0) {
-      if (k != fire) continue;
-      impulse = e.impulse;
-    } else {
-      const double left = e.duration - double(k - fire) * dt;
-      if (left <= 1e-12) continue;
-      impulse = e.force * std::min(dt, left);
-    }
+    const double impulse = explosionImpulse(e, k, dt);
+    if (impulse == 0) continue;
     const Vec3 centre = toVec3(e.position);
     for (std::size_t n = 0; n < body_entity_.size(); ++n) {
       auto i = physics::BodyIndex(first_dynamic_ + n);

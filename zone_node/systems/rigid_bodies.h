@@ -142,6 +142,8 @@ class RigidBodySystem : public ZoneSystem {
   void addJoints();
   /// Applies the scene's explosions due in tick k to the world's bodies; true if any acted.
   bool explode(std::uint64_t k, double dt);
+  /// Whether some explosion acts in tick k.
+  bool explosionDue(std::uint64_t k, double dt) const;
   /// Steps every cloth by dt against the world's bodies.
   void stepCloths(double dt);
 

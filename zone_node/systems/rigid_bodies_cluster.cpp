@@ -69,22 +69,33 @@ std::size_t RigidBodySystem::advanceInCluster(StepContext& ctx) {
   // bodies are always shared (their partner may be anywhere), and so are bodies that may touch
   // a cloth: the cloths' rank sends their reach boxes with the widest box.
   const std::vector<BorderBody> cloths = clothBoxes(ctx);
-  std::vector<std::uint64_t> first = {std::bit_cast<std::uint64_t>(widest), cloths.size()};
+  std::uint64_t awake = 0;
+  for (std::size_t i : own) awake += !store.body[i].sleeping;
+  std::vector<std::uint64_t> first = {std::bit_cast<std::uint64_t>(widest), awake, cloths.size()};
   for (const BorderBody& c : cloths) appendWords(c, first);
   double pad = 0;
+  std::uint64_t awake_anywhere = 0;
   std::vector<BorderBody> cloth_boxes;
   {
-    // Each rank's list: its widest box, its number of cloths, their records.
+    // Each rank's list: its widest box, its awake bodies, its number of cloths, their records.
     const std::vector<std::uint64_t> got = cluster.gather(first);
-    for (std::size_t at = 0; at + 2 <= got.size();) {
+    for (std::size_t at = 0; at + 3 <= got.size();) {
       pad = std::max(pad, std::bit_cast<double>(got[at]));
-      const std::size_t words = std::size_t(got[at + 1]) * kBorderBodyWords;
-      if (at + 2 + words > got.size())
+      awake_anywhere += got[at + 1];
+      const std::size_t words = std::size_t(got[at + 2]) * kBorderBodyWords;
+      if (at + 3 + words > got.size())
         throw std::runtime_error("island exchange: a rank's cloth list runs past the gather");
-      for (const BorderBody& c : borderBodiesOf(std::span(got).subspan(at + 2, words)))
+      for (const BorderBody& c : borderBodiesOf(std::span(got).subspan(at + 3, words)))
         cloth_boxes.push_back(c);
-      at += 2 + words;
+      at += 3 + words;
     }
+  }
+  // Every body of the cluster asleep and nothing to wake one: no world would step (as one
+  // world holding them all would not), so the rest of the exchange is skipped everywhere.
+  if (awake_anywhere == 0 && cloths_.empty() && !set_pieces_.moving() &&
+      !explosionDue(ctx.tick, ctx.dt)) {
+    border_time_ += border.elapsedSeconds();
+    return 0;
   }
   std::vector<std::uint64_t> words;
   for (std::size_t k = 0; k < own.size(); ++k) {
@@ -95,6 +106,7 @@ std::size_t RigidBodySystem::advanceInCluster(StepContext& ctx) {
   for (const BorderBody& c : cloths) appendWords(c, words);
   const std::unordered_map<std::uint64_t, IslandSolver> solver =
       joinAcrossZones(borderBodiesOf(cluster.gather(words)), joint_links_);
+  ctx.counters.island_exchanges = 1;
 
   // Each body goes to the rank solving its island; the visitors come here.
   const auto ranks = std::size_t(cluster.ranks);
@@ -170,7 +182,7 @@ std::size_t RigidBodySystem::advanceInCluster(StepContext& ctx) {
     }
   }
   border_time_ += back.elapsedSeconds();
-  std::size_t awake = 0;
+  awake = 0;
   for (std::size_t i : own) awake += !store.body[i].sleeping;
   return awake;
 }

@@ -128,5 +128,44 @@ TEST(BorderContact, TwoZonesEndBitForBitAsOneWorld) {
                 after.momentum.x());
 }
 
+TEST(BorderContact, ASleepingClusterTradesNoBodies) {
+  // Two spheres dropped onto the ground either side of the border, touching across it: they
+  // settle and fall asleep, and from then on no zone finds islands or trades bodies (one
+  // gather a tick tells every zone that nothing anywhere is awake).
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  ASSERT_EQ(size, 2) << "run with mpirun -np 2";
+  const Scene scene = borderScene();
+  ASSERT_TRUE(scene.physics.sleep);
+  EntityRecordData mine = sphere(std::uint32_t(rank), rank == 0 ? 49.5 : 50.5, 0.0, 1.0);
+  mine.pos.y() = 0.6;
+  mine.body.restitution = 0.0;
+  mine.body.friction = 0.5;
+  ZoneLayout layout(scene.world, 2, 1);
+  EntityStore store;
+  store.add(mine);
+  ByteExchange bytes(MPI_COMM_WORLD, size);
+  LoneZone zone{scene.dt};
+  zone.cluster.gather = [](const std::vector<std::uint64_t>& v) {
+    return gatherValues(MPI_COMM_WORLD, v);
+  };
+  zone.cluster.swap = [&](const std::vector<std::vector<std::uint8_t>>& out) {
+    return bytes.swap(out);
+  };
+  zone.cluster.rank = rank;
+  zone.cluster.ranks = size;
+  zone.cluster.zone = layout.rect(rank);
+  RigidBodySystem bodies(scene, rank);
+  std::uint64_t early = 0, late = 0, shared = 0;
+  for (int t = 0; t < 300; ++t) {
+    const TickCounters& c = zone.step(bodies, store, std::uint64_t(t));
+    (t < 30 ? early : t >= 200 ? late : shared) += c.island_exchanges;
+  }
+  EXPECT_EQ(early, 30u) << "while the spheres fall and settle, islands are found every tick";
+  EXPECT_TRUE(store.body[0].sleeping);
+  EXPECT_EQ(late, 0u) << "asleep everywhere: no islands found, no bodies traded";
+}
+
 }  // namespace
 }  // namespace zonesim::zone
