@@ -70,6 +70,8 @@ class FlowCrowd {
   const FlowCrowdSettings& settings() const { return settings_; }
   /// The map frame.
   const MapFrame& frame() const { return frame_; }
+  /// The grid of the last step: the agents still walking, at their positions before it.
+  const NeighbourGrid& grid() const { return grid_; }
 
  private:
   Vec2 separation(const GridEntry& self) const;

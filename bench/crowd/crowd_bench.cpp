@@ -1,11 +1,16 @@
 // crowd_bench [--agents 1000,10000,100000] [--lanes 1,2,4,8] [--steps N]
-//              [--only flock|flow|lod|lod-flock|lod-sweep] [--lod-seconds S]
-//              [--crowded LIST]
+//              [--only flock|flow|lod|lod-flock|lod-sweep|overlap] [--lod-seconds S]
+//              [--crowded LIST] [--overlap-seconds S] [--overlap-every K]
+//              [--separation-weight LIST] [--separation-radius R] [--max-force F]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
 // fields on one core, flow field build time, and (--only lod: flow crowds; --only lod-flock:
 // flocks) AI time and outcome drift with and without level of detail; --crowded adds flow LOD
 // variants that keep agents at full detail where a 4 m cell holds that many agents or more;
-// --only lod-sweep prints CSV of time against outcome drift over a grid of LOD bands.
+// --only lod-sweep prints CSV of time against outcome drift over a grid of LOD bands;
+// --only overlap: the deepest overlap between two agents' bodies over a run of the flow crowd
+// and of the flock, next to the step time (--separation-weight, --separation-radius and
+// --max-force change the flow crowd's settings for it). The flock and flow tables end with a digest
+// of the final state, so that two builds can be shown to step bitwise alike.
 
 #include <cstdio>
 #include <cstring>
@@ -20,6 +25,7 @@
 #include "crowd/flock.h"
 #include "crowd/flow_crowd.h"
 #include "crowd/lod.h"
+#include "crowd/overlap.h"
 
 using namespace zonesim;
 using namespace zonesim::crowd;
@@ -46,6 +52,20 @@ struct Agents {
   AgentSpan span() { return AgentSpan{ids, pos, vel}; }
 };
 
+// FNV-1a over the bytes of every id, position and velocity, in storage order: equal digests
+// mean bitwise equal states (up to hash collisions).
+std::uint64_t stateDigest(const Agents& a) {
+  std::uint64_t h = 1469598103934665603ULL;
+  const auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+  };
+  mix(a.ids.data(), a.ids.size() * sizeof(std::uint64_t));
+  mix(a.pos.data(), a.pos.size() * sizeof(Vec2));
+  mix(a.vel.data(), a.vel.size() * sizeof(Vec2));
+  return h;
+}
+
 void benchFlock(const std::vector<int>& counts, const std::vector<int>& laneList, int steps) {
   std::printf(
       "\nFlocking (density 0.5 agents/m^2, neighbour radius 3 m, %d steps of 1/30 s; "
@@ -53,8 +73,8 @@ void benchFlock(const std::vector<int>& counts, const std::vector<int>& laneList
       "into the grid's cell order once before timing)\n\n",
       steps);
   std::printf(
-      "| agents | storage | lanes | ms/step | agent updates/s | neighbours/agent |\n"
-      "|---|---|---|---|---|---|\n");
+      "| agents | storage | lanes | ms/step | agent updates/s | neighbours/agent | digest |\n"
+      "|---|---|---|---|---|---|---|\n");
   for (int n : counts) {
     for (bool sorted : {false, true})
       for (int lanes : laneList) {
@@ -90,8 +110,9 @@ void benchFlock(const std::vector<int>& counts, const std::vector<int>& laneList
           flock.grid().forEachNear(e.pos, 3.0, [&](const GridEntry& o) {
             if (o.id != e.id && lengthSq(o.pos - e.pos) < 9.0) ++pairs;
           });
-        std::printf("| %d | %s | %d | %.3f | %.3g | %.1f |\n", n, sorted ? "cell" : "random", used,
-                    ms, n / (ms * 1e-3), double(pairs) / n);
+        std::printf("| %d | %s | %d | %.3f | %.3g | %.1f | %016llx |\n", n,
+                    sorted ? "cell" : "random", used, ms, n / (ms * 1e-3), double(pairs) / n,
+                    static_cast<unsigned long long>(stateDigest(a)));
       }
   }
 }
@@ -136,7 +157,7 @@ void benchFlow(const std::vector<int>& counts, int steps) {
       "\nFlow fields on random512-10-0 (512x512, 1 m cells), 4 destinations: build %.1f "
       "ms per field (Dijkstra + directions), %.2f MiB per field\n\n",
       buildMs, crowd.field(0).bytes() / 1048576.0);
-  std::printf("| agents | ms/step | agent updates/s |\n|---|---|---|\n");
+  std::printf("| agents | ms/step | agent updates/s | digest |\n|---|---|---|---|\n");
   for (int n : counts) {
     Agents a;
     std::vector<std::uint16_t> dest;
@@ -146,7 +167,8 @@ void benchFlow(const std::vector<int>& counts, int steps) {
     auto t1 = Clock::now();
     for (int k = 0; k < steps; ++k) crowd.step(a.span(), dest, arrived, {}, 1.0 / 30);
     double ms = msSince(t1) / steps;
-    std::printf("| %d | %.3f | %.3g |\n", n, ms, n / (ms * 1e-3));
+    std::printf("| %d | %.3f | %.3g | %016llx |\n", n, ms, n / (ms * 1e-3),
+                static_cast<unsigned long long>(stateDigest(a)));
   }
 }
 
@@ -251,7 +273,7 @@ void benchLod(const std::vector<int>& counts, double seconds, const std::vector<
   std::printf(
       "| agents | variant | ms/tick | speed-up | updates ratio | arrived | arrival "
       "|dt| mean s | max s | end pos error mean m | max m |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n");
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : counts) {
     LodRun full = runLod(map, n, ticks, nullptr);
     int arrivedFull = 0;
@@ -404,6 +426,121 @@ void benchLodSweep(const std::vector<int>& counts, double seconds) {
   }
 }
 
+/// Overlap over one run: the deepest overlap measured once the placement has settled, where
+/// and when, and the cost of the measurement beside the step's.
+struct OverlapRun {
+  double placed = 0;     // deepest overlap of the random placement (step 0), m
+  double deepest = 0;    // deepest overlap from `settle` s on, m
+  double deepestAt = 0;  // when, s
+  Vec2 deepestWhere;     // midpoint of that pair
+  double last = 0;       // deepest overlap at the last measurement, m
+  std::size_t lastPairs = 0;
+  double stepMs = 0, measureMs = 0;
+};
+
+// Steps `steps` times; after every `every`-th step measures the overlap on the grid that step
+// built (the positions at the start of the step: no extra build).
+template <class Step, class Grid>
+OverlapRun runOverlap(int steps, int every, double dt, double settle, double radius,
+                      const Step& step, const Grid& grid) {
+  OverlapRun r;
+  double stepCpu = 0, measureCpu = 0;
+  int measures = 0;
+  for (int k = 0; k < steps; ++k) {
+    double t0 = Clock::now();
+    step();
+    stepCpu += msSince(t0);
+    if (k % every != 0 && k != steps - 1) continue;
+    t0 = Clock::now();
+    const Overlap o = deepestOverlap(grid(), radius);
+    measureCpu += msSince(t0);
+    ++measures;
+    const double t = k * dt;  // the grid holds the state after k steps
+    if (k == 0) r.placed = o.depth;
+    if (t >= settle && o.depth > r.deepest) {
+      r.deepest = o.depth;
+      r.deepestAt = t;
+      r.deepestWhere = o.at;
+    }
+    r.last = o.depth;
+    r.lastPairs = o.pairs;
+  }
+  r.stepMs = stepCpu / steps;
+  r.measureMs = measureCpu / measures;
+  return r;
+}
+
+/// Flow crowd settings for the overlap runs (0: keep the default).
+struct OverlapFlowSettings {
+  std::vector<double> weights{0};
+  double separationRadius = 0, maxForce = 0;
+};
+
+void benchOverlap(const std::vector<int>& counts, double seconds, int every,
+                  const OverlapFlowSettings& flow) {
+  const double dt = 1.0 / 30, settle = 5.0;
+  const int steps = int(seconds / dt);
+  // Bodies of the default settings: discs whose edges touch where separation starts.
+  const double flowBody = FlowCrowdSettings{}.separation_radius / 2;
+  const double flockBody = FlockSettings{}.separation_radius / 2;
+  ai::GridMap map = benchMap();
+  std::printf(
+      "\nOverlap: agents are discs (flow %.2f m, flock %.2f m: half the default separation "
+      "radius); overlap = 2 radius - centre distance of the closest pair, measured every %d "
+      "step(s) on the step's own neighbour grid, %d steps of 1/30 s (%.0f s). Flow: "
+      "random512-10-0, 4 destinations, arrived agents leave; flock: 0.5/m^2, no goal. "
+      "`deepest`: from %.0f s on (the random placement overlaps by up to 2 radius); `placed`: "
+      "at step 0.\n\n",
+      flowBody, flockBody, every, steps, seconds, settle);
+  std::printf(
+      "| crowd | agents | separation radius | weight | max force | placed m | deepest m | at s "
+      "| where | last m | pairs overlapping at the end | arrived | ms/step | ms/measurement "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  const auto row = [](const char* kind, int n, double sep, double w, double force,
+                      const OverlapRun& r, long arrived) {
+    std::printf(
+        "| %s | %d | %g | %g | %g | %.4f | %.4f | %.1f | (%.1f, %.1f) | %.4f | %zu | %ld | %.3f "
+        "| %.3f |\n",
+        kind, n, sep, w, force, r.placed, r.deepest, r.deepestAt, r.deepestWhere.x,
+        r.deepestWhere.y, r.last, r.lastPairs, arrived, r.stepMs, r.measureMs);
+  };
+  for (int n : counts)
+    for (double w : flow.weights) {
+      FlowCrowdSettings fs;
+      if (w > 0) fs.separation_weight = w;
+      if (flow.separationRadius > 0) fs.separation_radius = flow.separationRadius;
+      if (flow.maxForce > 0) fs.max_force = flow.maxForce;
+      FlowCrowd crowd(map, MapFrame{}, fs);
+      for (ai::Cell g : cornerGoals(map)) crowd.addDestination(g);
+      Agents a;
+      std::vector<std::uint16_t> dest;
+      placeFlowAgents(crowd, map, n, a, dest);
+      std::vector<std::uint8_t> arrived(a.ids.size(), 0);
+      const OverlapRun r = runOverlap(
+          steps, every, dt, settle, flowBody, [&] { crowd.step(a.span(), dest, arrived, {}, dt); },
+          [&]() -> const NeighbourGrid& { return crowd.grid(); });
+      long done = 0;
+      for (std::uint8_t f : arrived) done += f;
+      row("flow", n, fs.separation_radius, fs.separation_weight, fs.max_force, r, done);
+    }
+  for (int n : counts) {
+    const FlockSettings fs;
+    const double side = std::sqrt(n / 0.5);
+    Agents a;
+    Pcg32 rng(1, 1);
+    for (int i = 0; i < n; ++i) {
+      a.ids.push_back(std::uint64_t(i) * 2654435761ULL);
+      a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
+      a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
+    }
+    Flock flock{fs};
+    const OverlapRun r = runOverlap(
+        steps, every, dt, settle, flockBody, [&] { flock.step(a.span(), {}, dt); },
+        [&]() -> const NeighbourGrid& { return flock.grid(); });
+    row("flock", n, fs.separation_radius, fs.separation_weight, fs.max_force, r, 0);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -414,6 +551,9 @@ int main(int argc, char** argv) {
   double lodSeconds = 200;
   std::string only;
   std::vector<int> crowded;
+  double overlapSeconds = 60;
+  int overlapEvery = 1;
+  OverlapFlowSettings overlapFlow;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--agents") && i + 1 < argc)
       counts = bench::parseCounts("--agents", argv[++i]);
@@ -427,12 +567,27 @@ int main(int argc, char** argv) {
       lodSeconds = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--crowded") && i + 1 < argc)
       crowded = bench::parseCounts("--crowded", argv[++i]);
+    else if (!std::strcmp(argv[i], "--overlap-seconds") && i + 1 < argc)
+      overlapSeconds = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--overlap-every") && i + 1 < argc)
+      overlapEvery = std::max(1, std::stoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--separation-weight") && i + 1 < argc) {
+      overlapFlow.weights.clear();
+      for (int w : bench::parseCounts("--separation-weight", argv[++i]))
+        overlapFlow.weights.push_back(w);
+    } else if (!std::strcmp(argv[i], "--separation-radius") && i + 1 < argc)
+      overlapFlow.separationRadius = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--max-force") && i + 1 < argc)
+      overlapFlow.maxForce = std::stod(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N]\n"
-                   "                   [--only flock|flow|lod|lod-flock|lod-sweep] "
+                   "                   [--only flock|flow|lod|lod-flock|lod-sweep|overlap] "
                    "[--lod-seconds S]\n"
-                   "                   [--crowded LIST]\n");
+                   "                   [--crowded LIST] [--overlap-seconds S] "
+                   "[--overlap-every K]\n"
+                   "                   [--separation-weight LIST] [--separation-radius R] "
+                   "[--max-force F]\n");
       return 2;
     }
   }
@@ -441,5 +596,6 @@ int main(int argc, char** argv) {
   if (only == "lod") benchLod(counts, lodSeconds, crowded);
   if (only == "lod-flock") benchLodFlock(counts, lodSeconds);
   if (only == "lod-sweep") benchLodSweep(counts, lodSeconds);
+  if (only == "overlap") benchOverlap(counts, overlapSeconds, overlapEvery, overlapFlow);
   return 0;
 }
