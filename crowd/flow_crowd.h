@@ -74,7 +74,7 @@ class FlowCrowd {
   const NeighbourGrid& grid() const { return grid_; }
 
  private:
-  Vec2 separation(const GridEntry& self) const;
+  Vec2 separation(std::int32_t self) const;  // self: the agent's index in grid_.entries()
   bool leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const;
 
   const ai::GridMap& map_;

@@ -42,6 +42,7 @@ FlowField::FlowField(const ai::GridMap& map, ai::Cell goal)
         }
       }
     }
+  chebyshev_bound_ = checkChebyshevBound();
 }
 
 FlowField::FlowField(const ai::GridMap& map, ai::Cell goal, std::vector<float> distance,
@@ -58,18 +59,17 @@ FlowField::FlowField(const ai::GridMap& map, ai::Cell goal, std::vector<float> d
   if (!map.passable(goal.x, goal.y)) throw std::invalid_argument("FlowField: goal is blocked");
   for (std::int8_t k : dir_)
     if (k < -1 || k > 7) throw std::invalid_argument("FlowField: a direction out of range");
+  chebyshev_bound_ = checkChebyshevBound();
 }
 
-double FlowField::distance(ai::Cell c) const {
-  if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return -1.0;
-  return distance_[std::size_t(c.y) * width_ + c.x];
-}
-
-bool FlowField::next(ai::Cell c, ai::Cell& out) const {
-  if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return false;
-  int k = dir_[std::size_t(c.y) * width_ + c.x];
-  if (k < 0) return false;
-  out = gridStep(c, k);
+bool FlowField::checkChebyshevBound() const {
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      const std::size_t i = std::size_t(y) * width_ + x;
+      if (dir_[i] < 0) continue;
+      const int chebyshev = std::max(std::abs(x - goal_.x), std::abs(y - goal_.y));
+      if (!(double(distance_[i]) >= double(chebyshev))) return false;
+    }
   return true;
 }
 

@@ -5,10 +5,13 @@
 // destination and shared read-only by every agent heading there; looking up an agent's next
 // cell is one array read, whatever the number of agents.
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 #include "ai/grid_map.h"
+#include "crowd/grid_step.h"
 
 namespace zonesim::crowd {
 
@@ -26,9 +29,34 @@ class FlowField {
   /// The destination cell.
   ai::Cell goal() const { return goal_; }
   /// Octile path length from `c` to the goal; negative when unreachable or off the map.
-  double distance(ai::Cell c) const;
+  double distance(ai::Cell c) const {
+    if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return -1.0;
+    return distance_[std::size_t(c.y) * width_ + c.x];
+  }
   /// The next cell on a shortest path from `c`; false at the goal or where unreachable.
-  bool next(ai::Cell c, ai::Cell& out) const;
+  bool next(ai::Cell c, ai::Cell& out) const {
+    if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return false;
+    const int k = dir_[std::size_t(c.y) * width_ + c.x];
+    if (k < 0) return false;
+    out = gridStep(c, k);
+    return true;
+  }
+  /// For a cell with a next cell: a lower bound on distance(c) that reads no field memory,
+  /// the Chebyshev distance to the goal (no 8-connected path is shorter); 0 for a loaded field
+  /// that breaks it. A crowd asks it first and reads the distance only near the goal.
+  double nextCellLowerBound(ai::Cell c) const {
+    if (!chebyshev_bound_) return 0.0;
+    return double(std::max(std::abs(c.x - goal_.x), std::abs(c.y - goal_.y)));
+  }
+  /// Starts loading the cache lines that distance(c) and next(c) read (no effect off the map):
+  /// a crowd steps agents in neighbour-grid order, and each field's lines are evicted between
+  /// one row of grid cells and the next.
+  void prefetch(ai::Cell c) const {
+    if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return;
+    const std::size_t i = std::size_t(c.y) * width_ + c.x;
+    __builtin_prefetch(&distance_[i]);
+    __builtin_prefetch(&dir_[i]);
+  }
   /// The map version the fields were built from (rebuild when the map's version differs).
   std::uint64_t mapVersion() const { return map_version_; }
   /// Memory held by the fields, in bytes.
@@ -44,6 +72,11 @@ class FlowField {
   std::uint64_t map_version_ = 0;
   std::vector<float> distance_;   // float: 24 bits cover paths of millions of cells to 0.1
   std::vector<std::int8_t> dir_;  // 0..7 into kNeighbourSteps, -1 at the goal or unreachable
+  // Every cell with a direction lies at least its Chebyshev distance from the goal (checked
+  // once; see nextCellLowerBound).
+  bool chebyshev_bound_ = false;
+
+  bool checkChebyshevBound() const;
 };
 
 }  // namespace zonesim::crowd

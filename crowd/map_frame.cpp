@@ -46,6 +46,11 @@ Vec2 slideMove(const ai::GridMap& map, const MapFrame& frame, Vec2 from, Vec2 to
   // Long moves (large LOD steps) are cut into sub-moves of under half a cell, so that no move
   // jumps over a blocked cell.
   Vec2 d = to - from;
+  // Moves of a tick are far shorter than half a cell: one piece, no square root. The bound has
+  // a margin of 1e-9 so that every move taken here has length(d) < half a cell exactly as the
+  // general path below would compute it.
+  const double half = 0.5 * frame.cell_size;
+  if (lengthSq(d) < half * half * (1.0 - 1e-9)) return slideOnce(map, frame, from, to, vel);
   double len = length(d);
   int pieces = len < 0.5 * frame.cell_size ? 1 : int(std::ceil(len / (0.45 * frame.cell_size)));
   Vec2 piece = d * (1.0 / pieces), at = from;
