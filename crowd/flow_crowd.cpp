@@ -125,16 +125,10 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
   // every agent has the same h: one exp per step.
   const auto relaxFactor = [this](double h) { return 1.0 - std::exp(-settings_.steer_rate * h); };
   const double relaxDt = relaxFactor(dt);
-  constexpr std::size_t kAhead = 24, kFieldAhead = 12;
+  constexpr std::size_t kAhead = 8;
   for (std::size_t k = 0; k < entries.size(); ++k) {
     // Agents come in cell order but are stored in the caller's order: fetch the lines of the
-    // agents a few entries ahead (each is a cache miss in random storage order). Then, once an
-    // agent's destination has arrived, the lines of its field at its cell (4 fields of 1.25
-    // MiB at 100k agents: each line was evicted since the previous row of grid cells).
-    if (k + kFieldAhead < entries.size() && entries[k + kFieldAhead].src >= 0) {
-      const GridEntry& f = entries[k + kFieldAhead];
-      fields_[dest[static_cast<std::size_t>(f.src)]]->prefetch(frame_.cellOf(f.pos));
-    }
+    // agents a few entries ahead (each is a cache miss in random storage order).
     if (k + kAhead < entries.size() && entries[k + kAhead].src >= 0) {
       const std::size_t a = static_cast<std::size_t>(entries[k + kAhead].src);
       __builtin_prefetch(&dest[a]);

@@ -48,15 +48,6 @@ class FlowField {
     if (!chebyshev_bound_) return 0.0;
     return double(std::max(std::abs(c.x - goal_.x), std::abs(c.y - goal_.y)));
   }
-  /// Starts loading the cache lines that distance(c) and next(c) read (no effect off the map):
-  /// a crowd steps agents in neighbour-grid order, and each field's lines are evicted between
-  /// one row of grid cells and the next.
-  void prefetch(ai::Cell c) const {
-    if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return;
-    const std::size_t i = std::size_t(c.y) * width_ + c.x;
-    __builtin_prefetch(&distance_[i]);
-    __builtin_prefetch(&dir_[i]);
-  }
   /// The map version the fields were built from (rebuild when the map's version differs).
   std::uint64_t mapVersion() const { return map_version_; }
   /// Memory held by the fields, in bytes.
