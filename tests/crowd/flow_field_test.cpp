@@ -1,7 +1,9 @@
 // Flow fields: the integration field equals the A* optimum from every cell, following the
 // direction field walks an optimal path, and agents released on a map with walls and random
 // obstacles all reach their destinations without ever standing in a blocked cell. Two ranks
-// stepping their halves with each other's agents as ghosts reproduce one rank bitwise.
+// stepping their halves with each other's agents as ghosts reproduce one rank bitwise. The
+// lower bound that lets a crowd skip reading the distance never exceeds it, and a loaded
+// field that breaks the bound gets none.
 
 #include <gtest/gtest.h>
 
@@ -58,6 +60,33 @@ TEST(FlowField, DistancesEqualAStarAndDirectionsFollowOptimalPaths) {
       ++checked;
     }
   EXPECT_GT(checked, 150);
+}
+
+TEST(FlowField, LowerBoundNeverExceedsTheDistanceAndLoadedFieldsThatBreakItGetNone) {
+  ai::GridMap map = obstacleMap();
+  const FlowField field(map, ai::Cell{2, 2});
+  int withNext = 0, positive = 0;
+  ai::Cell broken{-1, -1}, next;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x) {
+      const ai::Cell c{x, y};
+      if (!field.next(c, next)) continue;
+      ++withNext;
+      EXPECT_LE(field.nextCellLowerBound(c), field.distance(c)) << x << "," << y;
+      positive += field.nextCellLowerBound(c) > 0;
+      if (x == 40 && broken.x < 0) broken = c;
+    }
+  EXPECT_GT(withNext, 1000);
+  EXPECT_EQ(positive, withNext);  // every cell with a next cell is off the goal
+  ASSERT_GE(broken.x, 0);
+  // The same fields as if loaded from a file, but one distance shorter than any path.
+  std::vector<float> distance = field.distances();
+  distance[std::size_t(broken.y) * 48 + std::size_t(broken.x)] = 1.0f;
+  const FlowField loaded(map, field.goal(), distance, field.directions());
+  EXPECT_EQ(loaded.nextCellLowerBound(broken), 0.0);
+  EXPECT_EQ(loaded.nextCellLowerBound(ai::Cell{40, 40}), 0.0);
+  const FlowField intact(map, field.goal(), field.distances(), field.directions());
+  EXPECT_EQ(intact.nextCellLowerBound(broken), field.nextCellLowerBound(broken));
 }
 
 TEST(FlowCrowd, AllAgentsReachTheirDestination) {
