@@ -68,8 +68,12 @@ bool GridSearch::run(int start, int goal, const CellRect& bounds) {
   const std::uint32_t open = generation_, closed = generation_ + 1;
   const int w = map_.width();
   const Cell goalCell = goal >= 0 ? map_.cellAt(goal) : Cell{};
+  const bool landmarks = goal >= 0 && landmarks_ != nullptr && landmarks_->validFor(map_);
+  if (landmarks) landmarks_->prepareGoal(goalCell.x, goalCell.y, goal_landmarks_);
   auto heuristic = [&](int x, int y) {
-    return goal >= 0 ? octileFixed(x - goalCell.x, y - goalCell.y) : std::int64_t(0);
+    if (goal < 0) return std::int64_t(0);
+    const std::int64_t octile = octileFixed(x - goalCell.x, y - goalCell.y);
+    return landmarks ? std::max(octile, landmarks_->bound(x, y, goal_landmarks_)) : octile;
   };
   Cell s = map_.cellAt(start);
   nodes_[start] = Node{0, -1, open, -1};
@@ -143,9 +147,14 @@ void GridSearch::explore(Cell start, const CellRect& bounds) {
 }
 
 double GridSearch::distanceTo(Cell c) const {
-  if (!map_.inside(c.x, c.y)) return -1.0;
+  const std::int64_t cost = costTo(c);
+  return cost >= 0 ? double(cost) / double(kStraight) : -1.0;
+}
+
+std::int64_t GridSearch::costTo(Cell c) const {
+  if (!map_.inside(c.x, c.y)) return -1;
   const Node& n = nodes_[map_.index(c.x, c.y)];
-  return n.stamp == generation_ + 1 ? double(n.g) / double(kStraight) : -1.0;
+  return n.stamp == generation_ + 1 ? n.g : -1;
 }
 
 void GridSearch::pathTo(Cell c, GridPath& out) const {

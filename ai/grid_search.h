@@ -12,6 +12,7 @@
 
 #include "ai/grid_map.h"
 #include "ai/grid_path.h"
+#include "ai/landmark_heuristic.h"
 
 namespace zonesim::ai {
 
@@ -29,12 +30,17 @@ class GridSearch {
 
   /// Optimal 8-connected path without corner cutting; false (and `out` empty) when none.
   bool findPath(Cell start, Cell goal, GridPath& out);
+  /// Estimates costs with `landmarks` as well as the octile distance while they are valid for
+  /// the map (null: octile alone); they must outlive the searcher. Paths stay optimal.
+  void useLandmarks(const LandmarkHeuristic* landmarks) { landmarks_ = landmarks; }
   /// As findPath, never leaving `bounds` (both ends must be inside).
   bool findPath(Cell start, Cell goal, const CellRect& bounds, GridPath& out);
   /// Dijkstra from `start` over `bounds`; distanceTo() then answers for any cell.
   void explore(Cell start, const CellRect& bounds);
   /// Cost from the last explore()'s start, or a negative value when unreached.
   double distanceTo(Cell c) const;
+  /// The same cost in fixed point (ai/fixed_cost.h, exact sums of steps), or -1 when unreached.
+  std::int64_t costTo(Cell c) const;
   /// Cells from the last explore()'s start to `c` (empty when unreached).
   void pathTo(Cell c, GridPath& out) const;
   /// Counters of the last search.
@@ -77,6 +83,8 @@ class GridSearch {
   void tracePath(int goal, GridPath& out) const;
 
   const GridMap& map_;
+  const LandmarkHeuristic* landmarks_ = nullptr;
+  LandmarkHeuristic::Goal goal_landmarks_;  // kept to avoid allocating per query
   std::vector<Node> nodes_;
   std::vector<HeapEntry> heap_;
   std::uint32_t generation_ = 0;

@@ -32,9 +32,11 @@ int bitsFor(int width) {
 
 }  // namespace
 
-JumpPointSearch::JumpPointSearch(const GridMap& map, Jumps jumps)
+JumpPointSearch::JumpPointSearch(const GridMap& map, Jumps jumps,
+                                 const LandmarkHeuristic* landmarks)
     : map_(map),
       jumps_(jumps),
+      landmarks_(landmarks),
       shift_(bitsFor(map.width())),
       nodes_(std::size_t(map.height()) << shift_, Node{0, -1}),
       stamps_(nodes_.size(), 0) {}
@@ -157,7 +159,7 @@ void JumpPointSearch::relaxJump(int from, int x, int y, std::int64_t g, Jump jum
   stamps_[to] = std::uint16_t(generation_ + kOpen);
   nodes_[to] = Node{g, from};
   const int tx = to & ((1 << shift_) - 1), ty = to >> shift_;
-  open_.push(to, g, octileFixed(tx - goal_x_, ty - goal_y_));
+  open_.push(to, g, estimate(tx, ty));
   ++stats_.generated;
 }
 
@@ -233,11 +235,13 @@ bool JumpPointSearch::findPath(Cell start, Cell goal, GridPath& out) {
   goal_x_ = goal.x;
   goal_y_ = goal.y;
   goal_idx_ = node(goal.x, goal.y);
+  use_landmarks_ = landmarks_ != nullptr && landmarks_->validFor(map_);
+  if (use_landmarks_) landmarks_->prepareGoal(goal.x, goal.y, goal_landmarks_);
   const std::uint16_t closed = std::uint16_t(generation_ + kClosed);
   const int start_idx = node(start.x, start.y);
   stamps_[start_idx] = std::uint16_t(generation_ + kOpen);
   nodes_[start_idx] = Node{0, -1};
-  open_.push(start_idx, 0, octileFixed(start.x - goal.x, start.y - goal.y));
+  open_.push(start_idx, 0, estimate(start.x, start.y));
   ++stats_.generated;
   while (!open_.empty()) {
     const int idx = open_.pop().node;

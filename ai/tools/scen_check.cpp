@@ -1,4 +1,5 @@
-// scen_check MAP SCEN [--planner astar|jps|jps+|hpa] [--direct-distance D]: runs every problem of a
+// scen_check MAP SCEN [--planner astar|jps|jps+|hpa] [--direct-distance D] [--landmarks K]: runs
+// every problem of a
 // MAP (the map path inside the scenario is ignored) and compares each length with the listed
 // optimum, at the precision the file lists it with (older files give 2 decimals). Ends with
 // `problems N mismatches M us_per_path X mean_overhead A p99_overhead B max_overhead Y` (an
@@ -7,7 +8,9 @@
 // not optimal, a mismatch is a missing or too-short path), 2 on bad input or usage. A* and
 // jump point search (jps scans its jumps, jps+ reads them from precomputed tables) must match
 // every optimum; jps also checks that each path is a valid
-// sequence of moves (its cells are filled in between jump points).
+// sequence of moves (its cells are filled in between jump points). --landmarks K gives A* or jump
+// point search K landmarks (ai/landmark_heuristic.h), built before the clock starts: the line
+// then ends `landmarks K landmarks_ms B landmarks_mb M`.
 //
 // --planner navmesh (radius 0, so the mesh covers every passable cell, as the optima assume)
 // compares any-angle lengths with the 8-connected optima instead: it ends with
@@ -30,6 +33,7 @@
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
 #include "ai/jump_point_search.h"
+#include "ai/landmark_heuristic.h"
 #include "ai/navmesh.h"
 #include "ai/navmesh_search.h"
 #include "ai/parse_error.h"
@@ -43,12 +47,14 @@ using zonesim::ai::Cell;
 using zonesim::ai::GridPath;
 
 int usage() {
-  std::fprintf(stderr,
-               "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa|navmesh] "
-               "[--direct-distance D]\n"
-               "  --direct-distance: hpa hands queries whose ends are at most D cells apart to\n"
-               "  the optimal jump point search (default %g; negative: never)\n",
-               zonesim::ai::HpaConfig{}.direct_distance);
+  std::fprintf(
+      stderr,
+      "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa|navmesh] "
+      "[--direct-distance D] [--landmarks K]\n"
+      "  --direct-distance: hpa hands queries whose ends are at most D cells apart to\n"
+      "  the optimal jump point search (default %g; negative: never)\n"
+      "  --landmarks: astar, jps and jps+ estimate costs with K landmarks as well (1 to %d)\n",
+      zonesim::ai::HpaConfig{}.direct_distance, zonesim::ai::LandmarkHeuristic::kMaxLandmarks);
   return 2;
 }
 
@@ -119,6 +125,7 @@ int main(int argc, char** argv) {
   using namespace zonesim::ai;
   std::string map_path, scenPath, planner = "astar";
   double direct_distance = HpaConfig{}.direct_distance;
+  int landmark_count = 0;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--planner" && i + 1 < argc) {
@@ -129,6 +136,15 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       direct_distance = std::strtod(argv[++i], &end);
       if (end == argv[i] || *end != '\0') return usage();
+    } else if (a == "--landmarks" && i + 1 < argc) {
+      char* end = nullptr;
+      const long k = std::strtol(argv[++i], &end, 10);
+      if (end == argv[i] || *end != '\0' || k < 1 || k > LandmarkHeuristic::kMaxLandmarks) {
+        std::fprintf(stderr, "scen_check: --landmarks %s: not a count from 1 to %d\n", argv[i],
+                     LandmarkHeuristic::kMaxLandmarks);
+        return 2;
+      }
+      landmark_count = int(k);
     } else if (!a.empty() && a[0] == '-') {
       return usage();
     } else if (map_path.empty()) {
@@ -143,6 +159,11 @@ int main(int argc, char** argv) {
       (planner != "astar" && planner != "jps" && planner != "jps+" && planner != "hpa" &&
        planner != "navmesh")) {
     return usage();
+  }
+  if (landmark_count > 0 && planner != "astar" && planner != "jps" && planner != "jps+") {
+    std::fprintf(stderr, "scen_check: --landmarks is for --planner astar, jps or jps+, not %s\n",
+                 planner.c_str());
+    return 2;
   }
   const bool optimal = planner != "hpa";
 
@@ -167,13 +188,22 @@ int main(int argc, char** argv) {
     std::unique_ptr<GridSearch> astar;
     std::unique_ptr<JumpPointSearch> jps;
     std::unique_ptr<HpaPlanner> hpa;
+    std::unique_ptr<LandmarkHeuristic> landmarks;
+    double landmarks_ms = 0;
+    if (landmark_count > 0) {
+      zonesim::Stopwatch build;
+      landmarks = std::make_unique<LandmarkHeuristic>(map, landmark_count);
+      landmarks_ms = build.elapsedSeconds() * 1e3;
+    }
     if (planner == "astar") {
       astar = std::make_unique<GridSearch>(map);
+      astar->useLandmarks(landmarks.get());
       plan = [&](Cell s, Cell g, GridPath& out) { return astar->findPath(s, g, out); };
     } else if (planner == "jps" || planner == "jps+") {
-      jps = std::make_unique<JumpPointSearch>(map, planner == "jps"
-                                                       ? JumpPointSearch::Jumps::Scanned
-                                                       : JumpPointSearch::Jumps::Precomputed);
+      jps = std::make_unique<JumpPointSearch>(
+          map,
+          planner == "jps" ? JumpPointSearch::Jumps::Scanned : JumpPointSearch::Jumps::Precomputed,
+          landmarks.get());
       plan = [&](Cell s, Cell g, GridPath& out) { return jps->findPath(s, g, out); };
     } else {
       HpaConfig config;
@@ -221,8 +251,12 @@ int main(int argc, char** argv) {
     };
     std::printf(
         "problems %zu mismatches %d us_per_path %.2f mean_overhead %.6f p99_overhead %.6f "
-        "max_overhead %.6f\n",
+        "max_overhead %.6f",
         problems.size(), mismatches, usPerPath, mean, rank(0.99), rank(1.0));
+    if (landmarks)
+      std::printf(" landmarks %zu landmarks_ms %.1f landmarks_mb %.1f",
+                  landmarks->landmarks().size(), landmarks_ms, double(landmarks->bytes()) / 1e6);
+    std::printf("\n");
     return mismatches > 0 ? 1 : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "scen_check: %s\n", e.what());

@@ -1,13 +1,16 @@
-// Jump point search (scanned and JPS+): the same optimal lengths as an independent Dijkstra on
-// random maps of every density, every cell of the path a legal move, no corner cutting, doors
-// that open and close between searches, and the Moving AI optima on a subset of each file (the
-// whole files run through scen_check --planner jps / jps+, see CMakeLists.txt).
+// Jump point search (scanned and JPS+, each with and without landmarks): the same optimal lengths
+// as an independent Dijkstra on random maps of every density, every cell of the path a legal move,
+// no corner cutting, doors that open and close between searches, and the Moving AI optima on a
+// subset of each file (the whole files run through scen_check --planner jps / jps+, see
+// CMakeLists.txt).
 
 #include "ai/jump_point_search.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -20,14 +23,32 @@ namespace {
 
 using Jumps = JumpPointSearch::Jumps;
 
-class JumpPointSearchTest : public ::testing::TestWithParam<Jumps> {};
+/// Scanned or precomputed jumps, with the octile estimate alone or with landmarks.
+struct Variant {
+  Jumps jumps;
+  int landmarks;  // 0: none
+};
+
+class JumpPointSearchTest : public ::testing::TestWithParam<Variant> {
+ protected:
+  /// A searcher of this variant for `m`, its landmarks built for the map as it is now.
+  JumpPointSearch searcher(const GridMap& m) {
+    landmarks_.reset();
+    if (GetParam().landmarks > 0)
+      landmarks_ = std::make_unique<LandmarkHeuristic>(m, GetParam().landmarks);
+    return JumpPointSearch(m, GetParam().jumps, landmarks_.get());
+  }
+
+ private:
+  std::unique_ptr<LandmarkHeuristic> landmarks_;
+};
 
 TEST_P(JumpPointSearchTest, EqualsDijkstraOnRandomMaps) {
   int found_paths = 0, no_paths = 0;
   for (std::uint64_t seed = 1; seed <= 60; ++seed) {
     const double density = 0.05 + 0.01 * double(seed % 40);
     GridMap m = test::randomMap(48, 40, density, seed);
-    JumpPointSearch search(m, GetParam());
+    JumpPointSearch search = searcher(m);
     GridPath path;
     Pcg32 rng(seed, 11);
     for (int q = 0; q < 25; ++q) {
@@ -99,7 +120,7 @@ TEST_P(JumpPointSearchTest, EqualsDijkstraInCorridorMazes) {
   int checked = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     GridMap m = corridorMaze(14, int(seed % 4) * 20, seed);
-    JumpPointSearch search(m, GetParam());
+    JumpPointSearch search = searcher(m);
     GridPath path;
     Pcg32 rng(seed, 13);
     for (int q = 0; q < 30; ++q, ++checked) {
@@ -119,7 +140,7 @@ TEST_P(JumpPointSearchTest, StaysOptimalWhenItsStampsWrapAround) {
   // Node states are 16-bit generation stamps, reset when they wrap (every 21,845 searches):
   // searches on either side of the wrap must not see each other's records.
   GridMap m = test::randomMap(12, 10, 0.2, 3);
-  JumpPointSearch search(m, GetParam());
+  JumpPointSearch search = searcher(m);
   GridPath path;
   Pcg32 rng(3, 17);
   int wrong = 0;
@@ -138,7 +159,7 @@ TEST_P(JumpPointSearchTest, GoesAroundACornerInsteadOfCuttingIt) {
   GridMap m(2, 2);
   m.setPassable(1, 0, true);
   m.setPassable(0, 0, false);
-  JumpPointSearch search(m, GetParam());
+  JumpPointSearch search = searcher(m);
   GridPath path;
   ASSERT_TRUE(search.findPath(Cell{0, 1}, Cell{1, 0}, path));
   EXPECT_DOUBLE_EQ(path.length, 2.0);
@@ -150,7 +171,7 @@ TEST_P(JumpPointSearchTest, FollowsADoorThatOpensAndCloses) {
   // through it; the searcher notices each change (its copy and tables follow the map).
   GridMap m(30, 20);
   for (int y = 0; y < 20; ++y) m.setPassable(15, y, false);
-  JumpPointSearch search(m, GetParam());
+  JumpPointSearch search = searcher(m);
   GridPath path;
   EXPECT_FALSE(search.findPath(Cell{2, 10}, Cell{27, 10}, path));
   m.setPassable(15, 3, true);
@@ -166,7 +187,7 @@ TEST_P(JumpPointSearchTest, MatchesTheMovingAiOptimaOnASubsetOfEachFile) {
   for (const char* map : {"random512-10-0.map", "8room_000.map", "maze512-1-0.map"}) {
     GridMap m = loadMovingAiMap(test::movingAiPath(map));
     auto problems = loadScenario(test::movingAiPath(std::string(map) + ".scen"));
-    JumpPointSearch search(m, GetParam());
+    JumpPointSearch search = searcher(m);
     GridPath path;
     int checked = 0;
     for (std::size_t i = 0; i < problems.size(); i += 37, ++checked) {
@@ -179,11 +200,14 @@ TEST_P(JumpPointSearchTest, MatchesTheMovingAiOptimaOnASubsetOfEachFile) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Jumps, JumpPointSearchTest,
-                         ::testing::Values(Jumps::Scanned, Jumps::Precomputed),
-                         [](const auto& info) {
-                           return info.param == Jumps::Scanned ? "Scanned" : "Precomputed";
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Jumps, JumpPointSearchTest,
+    ::testing::Values(Variant{Jumps::Scanned, 0}, Variant{Jumps::Precomputed, 0},
+                      Variant{Jumps::Scanned, 6}, Variant{Jumps::Precomputed, 6}),
+    [](const auto& info) {
+      return std::string(info.param.jumps == Jumps::Scanned ? "Scanned" : "Precomputed") +
+             (info.param.landmarks > 0 ? "Landmarks" : "");
+    });
 
 }  // namespace
 }  // namespace zonesim::ai
