@@ -15,6 +15,7 @@
 #include "ai/grid_map.h"
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
+#include "ai/landmark_heuristic.h"
 #include "ai/navmesh.h"
 #include "ai/navmesh_search.h"
 #include "ai/path_cache.h"
@@ -32,6 +33,9 @@ struct PathServiceConfig {
   int paths_per_tick = 8;                  ///< planner calls allowed per tick
   int expansions_per_tick = 0;             ///< node expansions allowed per tick (0: no limit)
   std::size_t cache_capacity = 1024;       ///< cached paths (0: no cache)
+  /// Landmarks for the A* planner's estimate (ai/landmark_heuristic.h; 0: the octile distance
+  /// alone). Built with the service and again at the first plan after the map changed.
+  int landmarks = 0;
   /// Closing a cell clears the cache too. A kept path stays optimal, but a fresh plan on the new
   /// map may pick another path of the same length; set this where a hit must equal a fresh plan
   /// (zones, whose caches differ from rank to rank).
@@ -53,6 +57,7 @@ struct PathServiceStats {
   std::uint64_t cache_hits = 0;  ///< requests served from the cache
   std::uint64_t replans = 0;     ///< requests re-queued because the map cut their path
   std::uint64_t expanded = 0;    ///< nodes expanded by all planner calls
+  std::uint64_t landmark_builds = 0;  ///< landmark tables rebuilt after map changes
 };
 
 /// Budgeted, cached path finding over one map that the service owns changes to.
@@ -108,6 +113,7 @@ class PathService {
   GridMap& map_;
   PathServiceConfig config_;
   std::unique_ptr<GridSearch> astar_;
+  std::unique_ptr<LandmarkHeuristic> landmarks_;  // A* only, when config_.landmarks > 0
   std::unique_ptr<HpaPlanner> hpa_;
   std::unique_ptr<NavMesh> mesh_;  // rebuilt whole on a map change
   std::unique_ptr<NavMeshSearch> mesh_search_;

@@ -108,6 +108,7 @@ struct AgentPathSettings {
   int paths_per_tick = 8;       ///< planner calls per tick and zone
   int expansions_per_tick = 0;  ///< node expansions per tick and zone (0: no limit)
   int cache = 1024;             ///< cached paths per zone (0: none; a hit equals a fresh plan)
+  int landmarks = 0;            ///< landmark cells for the grid planner (0: octile estimate)
 };
 
 /// Everything under the scene's `agents` key.

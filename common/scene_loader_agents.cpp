@@ -254,8 +254,8 @@ void readPopulation(const SceneNode& node, Scene& scene) {
 // `map.navigation` names the planner; `agents.paths.planner` is its older spelling, kept so
 // existing scenes load unchanged. Both may be given only when they agree.
 void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings& p) {
-  SceneMap m = agents.section(
-      "paths", {"planner", "cluster_size", "paths_per_tick", "expansions_per_tick", "cache"});
+  SceneMap m = agents.section("paths", {"planner", "cluster_size", "paths_per_tick",
+                                        "expansions_per_tick", "cache", "landmarks"});
   const int planner = m.choice("planner", {"astar", "hpa"}, -1);
   const AgentPlanner by_map[] = {AgentPlanner::AStar, AgentPlanner::Hpa, AgentPlanner::NavMesh};
   if (map.navigation >= 0 && planner >= 0 && planner != map.navigation) {
@@ -272,6 +272,9 @@ void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings
   m.read("paths_per_tick", p.paths_per_tick, Limit::between(1, 1000000));
   m.read("expansions_per_tick", p.expansions_per_tick, Limit::atLeast(0));
   m.read("cache", p.cache, Limit::atLeast(0));
+  m.read("landmarks", p.landmarks, Limit::between(0, 32));
+  if (p.landmarks > 0 && p.planner != AgentPlanner::AStar)
+    m.failAt("landmarks", "serve the grid planner only (map.navigation: grid)");
 }
 
 }  // namespace

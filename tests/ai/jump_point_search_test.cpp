@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,11 @@ struct Variant {
   Jumps jumps;
   int landmarks;  // 0: none
 };
+
+void PrintTo(const Variant& v, std::ostream* os) {
+  *os << (v.jumps == Jumps::Scanned ? "scanned" : "precomputed") << " jumps, " << v.landmarks
+      << " landmarks";
+}
 
 class JumpPointSearchTest : public ::testing::TestWithParam<Variant> {
  protected:

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "ai/segment_cells.h"
 #include "tests/ai/reference_dijkstra.h"
@@ -223,6 +224,41 @@ TEST_P(PathServiceTest, ReleasedHandlesGoStale) {
   EXPECT_EQ(service.status(a), PathStatus::Unknown);
   EXPECT_EQ(service.status(b), PathStatus::Ready);
   EXPECT_EQ(service.stats().planned, 1u);
+}
+
+TEST(PathService, AStarWithLandmarksStaysOptimalAndRebuildsThemOnceTheMapChanged) {
+  GridMap m = twoDoors();
+  PathServiceConfig config;
+  config.planner = PlannerKind::AStar;
+  config.landmarks = 4;
+  PathService service(m, config);
+  const Cell from{2, 2}, to{38, 2};
+  PathRequestId cross = service.request(from, to);
+  service.tick();
+  ASSERT_EQ(service.status(cross), PathStatus::Ready);
+  EXPECT_NEAR(service.path(cross).length, test::referenceDistance(m, from, to), 1e-9);
+  EXPECT_EQ(service.stats().landmark_builds, 0u);  // built with the service
+  service.setCell({20, 5}, false);                 // the near door shuts: round by the far one
+  service.setCell({30, 30}, false);                // and a second change in the same tick
+  service.tick();
+  ASSERT_EQ(service.status(cross), PathStatus::Ready);
+  EXPECT_NEAR(service.path(cross).length, test::referenceDistance(m, from, to), 1e-9);
+  EXPECT_TRUE(validPath(m, service.path(cross)));
+  EXPECT_EQ(service.stats().landmark_builds, 1u);  // one rebuild for the tick's two changes
+  service.setCell({20, 5}, true);
+  PathRequestId again = service.request({3, 2}, to);
+  service.tick();
+  ASSERT_EQ(service.status(again), PathStatus::Ready);
+  EXPECT_NEAR(service.path(again).length, test::referenceDistance(m, {3, 2}, to), 1e-9);
+  EXPECT_EQ(service.stats().landmark_builds, 2u);
+}
+
+TEST(PathService, RefusesLandmarksForAPlannerThatTakesNone) {
+  GridMap m = twoDoors();
+  PathServiceConfig config;
+  config.planner = PlannerKind::Hpa;
+  config.landmarks = 4;
+  EXPECT_THROW(PathService(m, config), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Planners, PathServiceTest,

@@ -49,6 +49,8 @@ AgentNavigation::AgentNavigation(const Scene& scene, ZoneMap* map)
   c.paths_per_tick = p.paths_per_tick;
   c.expansions_per_tick = p.expansions_per_tick;
   c.cache_capacity = std::size_t(p.cache);
+  c.landmarks = p.landmarks;  // the loader's limit, 32, is LandmarkHeuristic's
+  static_assert(ai::LandmarkHeuristic::kMaxLandmarks == 32);
   // Caches differ between ranks, so a hit must be exactly what a fresh plan would give: the
   // planners are deterministic for a given map (A* and HPA* break every tie by a fixed order),
   // and any door, closing or opening, clears the cache.

@@ -220,12 +220,13 @@ struct CourierRun {
 // Runs scenes/agents_paths.yaml (courtyard map, north door closing at 4 s) with a budget, or
 // another courier scene.
 CourierRun runCouriers(int paths_per_tick, int expansions_per_tick, int ticks, int cache = 0,
-                       const char* scene = "scenes/agents_paths.yaml") {
+                       const char* scene = "scenes/agents_paths.yaml", int landmarks = 0) {
   Scene s = loadScene(source(scene));
   const bool mesh = s.agents.paths.planner == AgentPlanner::NavMesh;
   s.agents.paths.paths_per_tick = paths_per_tick;
   s.agents.paths.expansions_per_tick = expansions_per_tick;
   s.agents.paths.cache = cache;
+  s.agents.paths.landmarks = landmarks;
   ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
   const WorldMap& map = *node.worldMap();
   CourierRun r;
@@ -273,6 +274,15 @@ TEST(Agents, CouriersReachTheirGoalsAndReplanAroundAClosedDoor) {
   EXPECT_GT(r.replans, 5);       // the door cut paths, which were planned again
   EXPECT_EQ(r.door_crossings_after_close, 0);
   EXPECT_EQ(r.ticks_on_blocked_cells, 0);  // splines through the cells never enter a wall
+}
+
+TEST(Agents, CouriersPlanningWithLandmarksReachTheirGoalsAndReplanAroundAClosedDoor) {
+  // agents.paths.landmarks: A* with 8 landmarks, rebuilt after the door closes.
+  CourierRun r = runCouriers(1000, 0, 1400, 0, "scenes/agents_paths.yaml", 8);
+  EXPECT_GE(r.min_arrivals, 2);
+  EXPECT_GT(r.replans, 5);
+  EXPECT_EQ(r.door_crossings_after_close, 0);
+  EXPECT_EQ(r.ticks_on_blocked_cells, 0);
 }
 
 TEST(Agents, NavMeshCouriersReachTheirGoalsAndReplanAroundAClosedDoor) {
