@@ -24,6 +24,12 @@ void StepLod::setPeriod(BodyIndex i, int period) {
   period_[i] = period;
 }
 
+void StepLod::setLag(BodyIndex i, int lag) {
+  lag = std::clamp(lag, 0, kMaxLag);
+  lagging_ += std::size_t(lag > 0) - std::size_t(lag_[i] > 0);
+  lag_[i] = lag;
+}
+
 void StepLod::plan(const BodyStorage& bodies, std::span<const BodyContact> contacts,
                    const DistanceJoints& joints, const RigidJoints& rigid_joints,
                    std::span<const std::uint8_t> asleep, std::uint64_t step,

@@ -30,6 +30,8 @@ class StepLod {
   void resize(std::size_t n);
   /// Body i may step every `period` steps (1-64; clamped).
   void setPeriod(BodyIndex i, int period);
+  /// Sets the steps body i still owes (0 up to a bound; a rebuilt world's restored lags).
+  void setLag(BodyIndex i, int lag);
   /// The period set for body i.
   int period(BodyIndex i) const { return period_[i]; }
   /// Steps body i was held still and still owes (0 after it steps).

@@ -62,6 +62,12 @@ class World {
   /// Level of detail in time: body i may step every `period` calls of step() (1-64; 1, the
   /// default, every call). Its island steps as often as its most often stepped body.
   void setStepPeriod(BodyIndex i, int period) { lod_.setPeriod(i, period); }
+  /// Restores the steps body i was held and still owes (StepLod::lag), for a world rebuilt
+  /// around bodies another world held: it then pays them as the old one would have.
+  void setStepLag(BodyIndex i, int lag) { lod_.setLag(i, lag); }
+  /// Numbers the next step() call: islands of period k step on calls numbered a multiple of
+  /// k, so a rebuilt world keeps the old one's phase (a zone numbers them by its tick).
+  void setStepNumber(std::uint64_t n) { steps_ = n; }
   /// Step periods, what each body still owes, and the body steps taken and held so far.
   const StepLod& stepLod() const { return lod_; }
 

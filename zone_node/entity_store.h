@@ -148,6 +148,7 @@ struct BodyData {
   EntityId sleep_group;                 ///< asleep: the lowest id of the island it fell asleep with
   std::vector<CachedContact> contacts;  ///< warm starts (CachedContact)
   std::vector<CachedJoint> joints;      ///< warm starts of the joints it holds
+  std::int32_t step_lag = 0;            ///< ticks held by level of detail, still owed (StepLod)
 
   bool operator==(const BodyData&) const = default;
 };

@@ -165,11 +165,13 @@ flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, Ent
   return fb::CreateBodyState(b, s.radius, s.mass, s.restitution, &w, s.sleeping, s.shape, &h,
                              s.half_height, s.friction, s.linear_damping, s.angular_damping,
                              s.rolling_resistance, s.rest_time, s.sleep_group.value, contacts,
-                             joints);
+                             joints, s.step_lag);
 }
 
 void decodeBody(const fb::BodyState& s, BodyData& d) {
   if (s.shape() > BodyData::Compound) throw CodecError("body record with unknown shape");
+  if (s.step_lag() < 0)
+    throw CodecError("body record with step lag " + std::to_string(s.step_lag()));
   d = {s.radius(),
        s.mass(),
        s.restitution(),
@@ -185,7 +187,8 @@ void decodeBody(const fb::BodyState& s, BodyData& d) {
        s.rest_time(),
        EntityId{s.sleep_group()},
        {},
-       {}};
+       {},
+       s.step_lag()};
   if (s.joints()) {
     for (const fb::CachedJoint* j : *s.joints()) {
       if (j->joint() < 0) throw CodecError("cached joint without a joint index");

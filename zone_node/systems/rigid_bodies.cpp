@@ -212,6 +212,7 @@ void RigidBodySystem::rebuild(const std::vector<BodyRef>& bodies) {
     // Exactly the engine's own orientation: normalising it again would move the last bit, and
     // a rebuilt world must step a body as the old one would have.
     world_->bodies().orientation[bi] = s.rot[i];
+    world_->setStepLag(bi, s.body[i].step_lag);  // owed ticks survive the rebuild
     body_entity_.push_back(s.id[i]);
     members_.add(s.id[i]);
   }
@@ -383,6 +384,8 @@ bool RigidBodySystem::stepWorld(StepContext& ctx) {
   if (stepped) {
     std::size_t frozen_before = world_->quarantined().size();
     if (scene_.lod.enabled && scene_.lod.physics_every > 1) setStepPeriods(ctx.players);
+    // Numbered by the tick, so far islands step on the same ticks whichever world holds them.
+    world_->setStepNumber(ctx.tick);
     world_->step(ctx.dt);
     ++world_steps_;
     profile_ = world_->profile();
@@ -405,7 +408,8 @@ std::size_t RigidBodySystem::writeBack(const std::vector<BodyRef>& bodies, bool 
     store.body[i].angular_velocity = s.angular_velocity[bi];
     store.body[i].sleeping = world_->asleep(bi);
     awake += !store.body[i].sleeping;
-    bodies_held_ += world_->stepLod().lag(bi) > 0;
+    store.body[i].step_lag = world_->stepLod().lag(bi);
+    bodies_held_ += store.body[i].step_lag > 0;
   }
   if (carried) exportCarried(bodies);
   return awake;

@@ -128,6 +128,74 @@ TEST(BorderContact, TwoZonesEndBitForBitAsOneWorld) {
                 after.momentum.x());
 }
 
+TEST(BorderContact, FarIslandsEndBitForBitAsOneWorldUnderLevelOfDetail) {
+  // No player anywhere: every island steps every 4th tick (lod.physics_every), by the 4 ticks
+  // it owed. Three spheres fall together across the border and part again, so the worlds
+  // holding them are rebuilt mid-period: the ticks each body owes travel with it, and every
+  // world numbers its steps by the tick, so all step on the ticks one world would.
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  ASSERT_EQ(size, 2) << "run with mpirun -np 2";
+  Scene scene = borderScene();
+  scene.lod.enabled = true;
+  scene.lod.physics_every = 4;
+  const int kTicks = 90;
+  auto spheres = [](int owner) {
+    std::vector<EntityRecordData> out;
+    const double xs[] = {47.0, 53.0, 50.6};
+    const double vxs[] = {3.0, -3.0, 0.0};
+    for (int k = 0; k < 3; ++k) {
+      EntityRecordData r = sphere(std::uint32_t(k), xs[k], vxs[k], 1.0 + k);
+      r.id = EntityId::make(std::uint32_t(k), 1);
+      r.pos.y() = 2.0 + 0.5 * k;
+      r.body.restitution = 0.5;
+      r.body.friction = 0.5;
+      if (owner < 0 || (r.pos.x() < 50.0) == (owner == 0)) out.push_back(r);
+    }
+    return out;
+  };
+  EntityStore one;
+  for (const EntityRecordData& r : spheres(-1)) one.add(r);
+  RigidBodySystem single(scene, 0);
+  LoneZone lone{scene.dt};
+  std::uint64_t held = 0;
+  for (int t = 0; t < kTicks; ++t) held += lone.step(single, one, std::uint64_t(t)).bodies_held;
+  EXPECT_GT(held, 100u) << "far bodies waited for their island's step";
+
+  ZoneLayout layout(scene.world, 2, 1);
+  EntityStore store;
+  for (const EntityRecordData& r : spheres(rank)) store.add(r);
+  Migrator migrator(MPI_COMM_WORLD, rank, size);
+  ByteExchange bytes(MPI_COMM_WORLD, size);
+  LoneZone zone{scene.dt};
+  zone.cluster.gather = [](const std::vector<std::uint64_t>& v) {
+    return gatherValues(MPI_COMM_WORLD, v);
+  };
+  zone.cluster.swap = [&](const std::vector<std::vector<std::uint8_t>>& out) {
+    return bytes.swap(out);
+  };
+  zone.cluster.rank = rank;
+  zone.cluster.ranks = size;
+  zone.cluster.zone = layout.rect(rank);
+  RigidBodySystem bodies(scene, rank);
+  std::vector<std::vector<ForwardedInput>> forward(2);
+  std::uint64_t traded = 0;
+  for (int t = 0; t < kTicks; ++t) {
+    traded += zone.step(bodies, store, std::uint64_t(t)).island_bodies_in;
+    migrator.exchange(store, layout, std::uint64_t(t), forward);
+  }
+  std::uint64_t all_traded = 0;
+  MPI_Allreduce(&traded, &all_traded, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_GT(all_traded, 0u) << "an island crossed the border";
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    const std::size_t k = *one.indexOf(store.id[i]);
+    EXPECT_EQ(store.pos[i], one.pos[k]) << toString(store.id[i]);
+    EXPECT_EQ(store.vel[i], one.vel[k]) << toString(store.id[i]);
+    EXPECT_EQ(store.rot[i].coeffs(), one.rot[k].coeffs()) << toString(store.id[i]);
+  }
+}
+
 TEST(BorderContact, ASleepingClusterTradesNoBodies) {
   // Two spheres dropped onto the ground either side of the border, touching across it: they
   // settle and fall asleep, and from then on no zone finds islands or trades bodies (one

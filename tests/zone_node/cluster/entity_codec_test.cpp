@@ -67,7 +67,8 @@ EntityRecordData everyColumnSet() {
                           .rolling_impulse = {0.01, -0.02}},
                          {.world_body = 0, .points = {{Vec3(4, 0, 5), 3, {9.81, 0, 0}}}}},
             .joints = {{.joint = 2, .impulses = {0.5}},
-                       {.joint = 0, .impulses = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}}}};
+                       {.joint = 0, .impulses = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}}},
+            .step_lag = 3};
   r.emitter = {.rate = 250,
                .lifetime = 1.5,
                .speed = 7,
@@ -201,6 +202,11 @@ TEST(EntityCodec, OutOfRangeValuesAreRefusedWithTheirReason) {
        [](EntityRecordData& r) {
          r.kind = EntityKind::RigidBody;
          r.body.contacts[1].points.assign(5, CachedContactPoint{});
+       }},
+      {"body record with step lag -2",
+       [](EntityRecordData& r) {
+         r.kind = EntityKind::RigidBody;
+         r.body.step_lag = -2;
        }},
       {"cached joint without a joint index",
        [](EntityRecordData& r) {
