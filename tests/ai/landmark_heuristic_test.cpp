@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -159,6 +160,8 @@ TEST(LandmarkHeuristic, CutsTheNodesJumpPointSearchExpandsOnTheMaze) {
     plain_expanded += plain.lastStats().expanded;
     guided_expanded += guided.lastStats().expanded;
   }
+  std::printf("maze, every 37th problem: %ld jump points expanded with 8 landmarks, %ld without\n",
+              guided_expanded, plain_expanded);
   EXPECT_LT(guided_expanded * 3, plain_expanded)
       << "with landmarks " << guided_expanded << ", without " << plain_expanded;
 }

@@ -45,6 +45,40 @@ struct Totals {
   double va = 0, vb = 0;
 };
 
+/// This rank's zone of a 2 x 1 layout, stepped as zone_node steps it: the island exchange over
+/// MPI, then migration.
+struct ClusterZone {
+  ClusterZone(const Scene& scene, int rank)
+      : layout(scene.world, 2, 1),
+        migrator(MPI_COMM_WORLD, rank, 2),
+        bytes(MPI_COMM_WORLD, 2),
+        zone{scene.dt} {
+    zone.cluster.gather = [](const std::vector<std::uint64_t>& v) {
+      return gatherValues(MPI_COMM_WORLD, v);
+    };
+    zone.cluster.swap = [this](const std::vector<std::vector<std::uint8_t>>& out) {
+      return bytes.swap(out);
+    };
+    zone.cluster.rank = rank;
+    zone.cluster.ranks = 2;
+    zone.cluster.zone = layout.rect(rank);
+  }
+  ClusterZone(const ClusterZone&) = delete;  // the exchange's lambda points at this one
+
+  /// Tick t; returns its counters.
+  TickCounters step(RigidBodySystem& bodies, EntityStore& store, int t) {
+    const TickCounters c = zone.step(bodies, store, std::uint64_t(t));
+    migrator.exchange(store, layout, std::uint64_t(t), forward);
+    return c;
+  }
+
+  ZoneLayout layout;
+  Migrator migrator;
+  ByteExchange bytes;
+  LoneZone zone;
+  std::vector<std::vector<ForwardedInput>> forward = std::vector<std::vector<ForwardedInput>>(2);
+};
+
 Totals totals(const EntityStore& store, MPI_Comm comm) {
   double local[5] = {0, 0, 0, 0, 0};
   for (std::size_t i = 0; i < store.size(); ++i) {
@@ -76,29 +110,13 @@ TEST(BorderContact, TwoZonesEndBitForBitAsOneWorld) {
 
   // Two zones, each owning one body, stepping as zone_node does: the island exchange, then
   // migration.
-  ZoneLayout layout(scene.world, 2, 1);
   EntityStore store;
   store.add(rank == 0 ? sphere(0, 48.0, kSpeed, kA) : sphere(1, 52.0, -kSpeed, kB));
-  Migrator migrator(MPI_COMM_WORLD, rank, size);
-  ByteExchange bytes(MPI_COMM_WORLD, size);
-  LoneZone zone{scene.dt};
-  zone.cluster.gather = [](const std::vector<std::uint64_t>& v) {
-    return gatherValues(MPI_COMM_WORLD, v);
-  };
-  zone.cluster.swap = [&](const std::vector<std::vector<std::uint8_t>>& out) {
-    return bytes.swap(out);
-  };
-  zone.cluster.rank = rank;
-  zone.cluster.ranks = size;
-  zone.cluster.zone = layout.rect(rank);
+  ClusterZone zone(scene, rank);
   RigidBodySystem bodies(scene, rank);
-  std::vector<std::vector<ForwardedInput>> forward(2);
   const Totals before = totals(store, MPI_COMM_WORLD);
   std::size_t shared = 0;
-  for (int t = 0; t < kTicks; ++t) {
-    shared += zone.step(bodies, store, std::uint64_t(t)).island_bodies_in;
-    migrator.exchange(store, layout, std::uint64_t(t), forward);
-  }
+  for (int t = 0; t < kTicks; ++t) shared += zone.step(bodies, store, t).island_bodies_in;
   const Totals after = totals(store, MPI_COMM_WORLD);
   std::size_t all_shared = 0;
   MPI_Allreduce(&shared, &all_shared, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
@@ -163,28 +181,12 @@ TEST(BorderContact, FarIslandsEndBitForBitAsOneWorldUnderLevelOfDetail) {
   for (int t = 0; t < kTicks; ++t) held += lone.step(single, one, std::uint64_t(t)).bodies_held;
   EXPECT_GT(held, 100u) << "far bodies waited for their island's step";
 
-  ZoneLayout layout(scene.world, 2, 1);
   EntityStore store;
   for (const EntityRecordData& r : spheres(rank)) store.add(r);
-  Migrator migrator(MPI_COMM_WORLD, rank, size);
-  ByteExchange bytes(MPI_COMM_WORLD, size);
-  LoneZone zone{scene.dt};
-  zone.cluster.gather = [](const std::vector<std::uint64_t>& v) {
-    return gatherValues(MPI_COMM_WORLD, v);
-  };
-  zone.cluster.swap = [&](const std::vector<std::vector<std::uint8_t>>& out) {
-    return bytes.swap(out);
-  };
-  zone.cluster.rank = rank;
-  zone.cluster.ranks = size;
-  zone.cluster.zone = layout.rect(rank);
+  ClusterZone zone(scene, rank);
   RigidBodySystem bodies(scene, rank);
-  std::vector<std::vector<ForwardedInput>> forward(2);
   std::uint64_t traded = 0;
-  for (int t = 0; t < kTicks; ++t) {
-    traded += zone.step(bodies, store, std::uint64_t(t)).island_bodies_in;
-    migrator.exchange(store, layout, std::uint64_t(t), forward);
-  }
+  for (int t = 0; t < kTicks; ++t) traded += zone.step(bodies, store, t).island_bodies_in;
   std::uint64_t all_traded = 0;
   MPI_Allreduce(&traded, &all_traded, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
   EXPECT_GT(all_traded, 0u) << "an island crossed the border";
@@ -210,24 +212,13 @@ TEST(BorderContact, ASleepingClusterTradesNoBodies) {
   mine.pos.y() = 0.6;
   mine.body.restitution = 0.0;
   mine.body.friction = 0.5;
-  ZoneLayout layout(scene.world, 2, 1);
   EntityStore store;
   store.add(mine);
-  ByteExchange bytes(MPI_COMM_WORLD, size);
-  LoneZone zone{scene.dt};
-  zone.cluster.gather = [](const std::vector<std::uint64_t>& v) {
-    return gatherValues(MPI_COMM_WORLD, v);
-  };
-  zone.cluster.swap = [&](const std::vector<std::vector<std::uint8_t>>& out) {
-    return bytes.swap(out);
-  };
-  zone.cluster.rank = rank;
-  zone.cluster.ranks = size;
-  zone.cluster.zone = layout.rect(rank);
+  ClusterZone zone(scene, rank);
   RigidBodySystem bodies(scene, rank);
   std::uint64_t early = 0, late = 0, shared = 0;
   for (int t = 0; t < 300; ++t) {
-    const TickCounters& c = zone.step(bodies, store, std::uint64_t(t));
+    const TickCounters c = zone.step(bodies, store, t);
     (t < 30 ? early : t >= 200 ? late : shared) += c.island_exchanges;
   }
   EXPECT_EQ(early, 30u) << "while the spheres fall and settle, islands are found every tick";
