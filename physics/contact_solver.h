@@ -134,7 +134,9 @@ class ContactSolver {
   void iterateJacobi(BodyStorage& bodies);
   /// One nonsmooth conjugate-gradient iteration (contact_solver_cg.cpp): a Gauss-Seidel sweep,
   /// then, unless `last`, the momentum step along the search direction. `first` starts a new
-  /// direction (the first iteration of a step).
+  /// direction (the first iteration of a step). Each group of contacts linked through movable
+  /// bodies takes its own step length and restarts on its own, so an island converges as it
+  /// would alone, bit for bit, whatever else the world holds.
   void iterateConjugateGradient(BodyStorage& bodies, bool first, bool last);
   /// |lambda after - lambda before| of the last conjugate-gradient sweep, in N s: how far the
   /// impulses still moved (zero at convergence).
@@ -225,9 +227,12 @@ class ContactSolver {
   std::vector<Vec3> ps_v_, ps_w_;
   std::vector<Vec3> jac_v_, jac_w_;       // Jacobi: velocities the iteration reads.
   // Conjugate gradients: impulses before the sweep and the search direction, three per point
-  // (normal, two tangents), and the squared gradient of the previous sweep.
+  // (normal, two tangents); per contact group (cg_group_ per constraint) the squared gradient
+  // of this sweep and of the previous one, and the momentum factor.
   std::vector<double> cg_before_, cg_direction_;
-  double cg_previous_ = 0.0, cg_change_ = 0.0;
+  std::vector<std::uint32_t> cg_group_;
+  std::vector<double> cg_g2_, cg_previous_, cg_beta_;
+  double cg_change_ = 0.0;
   std::vector<std::uint16_t> row_count_;  // Jacobi: contact points touching each body.
   SolverSettings settings_;
   double dt_ = 0.0;

@@ -6,19 +6,63 @@
 // restart (p = -g) whenever beta > 1. The last iteration of a step is a plain sweep, so the
 // impulses the step ends with are projected (no pulling normal, friction within its cone).
 // Joints and rolling rows take part in each sweep but not in the momentum.
+//
+// Contacts that share no movable body are independent problems, so beta and the restarts are
+// per group of contacts linked through movable bodies: one global beta mixed every island's
+// gradient into every other's step, and an island then ended differently beside others than
+// alone (and on one zone than split over several, where islands are stepped apart).
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "physics/contact_solver.h"
 #include "physics/solver_row.h"
+#include "physics/union_find.h"
 
 namespace zonesim::physics {
 
 using solver_row::applyRow;
 
+namespace {
+
+/// Each constraint's group: contacts linked through movable bodies (a static body links
+/// nothing), numbered in order of first appearance. Returns the number of groups.
+std::size_t groupContacts(std::span<const BodyIndex> a, std::span<const BodyIndex> b,
+                          std::span<const char> movable_a, std::span<const char> movable_b,
+                          std::size_t bodies, std::vector<std::uint32_t>& group) {
+  UnionFind sets;
+  sets.reset(bodies);
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (movable_a[k] && movable_b[k]) sets.unite(a[k], b[k]);
+  std::unordered_map<std::uint32_t, std::uint32_t> number;
+  group.resize(a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const std::uint32_t root = sets.find(movable_a[k] ? a[k] : b[k]);
+    group[k] = number.try_emplace(root, std::uint32_t(number.size())).first->second;
+  }
+  return number.size();
+}
+
+}  // namespace
+
 void ContactSolver::iterateConjugateGradient(BodyStorage& bodies, bool first, bool last) {
   const std::size_t points = jn_.size();
+  if (first) {
+    std::vector<BodyIndex> a(constraints_.size()), b(constraints_.size());
+    std::vector<char> ma(constraints_.size()), mb(constraints_.size());
+    for (std::size_t k = 0; k < constraints_.size(); ++k) {
+      a[k] = constraints_[k].a;
+      b[k] = constraints_[k].b;
+      ma[k] = constraints_[k].ma != 0.0;
+      mb[k] = constraints_[k].mb != 0.0;
+    }
+    const std::size_t groups = groupContacts(a, b, ma, mb, bodies.size(), cg_group_);
+    cg_previous_.assign(groups, 0.0);
+    cg_g2_.resize(groups);
+    cg_beta_.resize(groups);
+    cg_direction_.assign(3 * points, 0.0);
+  }
   cg_before_.resize(3 * points);
   for (std::size_t i = 0; i < points; ++i) {
     cg_before_[3 * i] = jn_[i];
@@ -26,43 +70,52 @@ void ContactSolver::iterateConjugateGradient(BodyStorage& bodies, bool first, bo
     cg_before_[3 * i + 2] = jt_[i][1];
   }
   iterate(bodies, 1.0);
-  // g = lambda_before - PGS(lambda_before), kept in cg_before_.
-  double g2 = 0.0;
-  for (std::size_t i = 0; i < points; ++i) {
-    cg_before_[3 * i] -= jn_[i];
-    cg_before_[3 * i + 1] -= jt_[i][0];
-    cg_before_[3 * i + 2] -= jt_[i][1];
-    for (int r = 0; r < 3; ++r) g2 += cg_before_[3 * i + r] * cg_before_[3 * i + r];
+  // g = lambda_before - PGS(lambda_before), kept in cg_before_; |g|^2 per group.
+  std::fill(cg_g2_.begin(), cg_g2_.end(), 0.0);
+  double all = 0.0;
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    const Constraint& k = constraints_[c];
+    double& g2 = cg_g2_[cg_group_[c]];
+    for (int p = 0; p < k.count; ++p) {
+      const std::size_t i = k.first + p;
+      cg_before_[3 * i] -= jn_[i];
+      cg_before_[3 * i + 1] -= jt_[i][0];
+      cg_before_[3 * i + 2] -= jt_[i][1];
+      for (int r = 0; r < 3; ++r) g2 += cg_before_[3 * i + r] * cg_before_[3 * i + r];
+    }
   }
-  cg_change_ = std::sqrt(g2);
-  double beta = 0.0;
-  if (!first && cg_previous_ > 0.0) beta = g2 / cg_previous_;
-  if (beta > 1.0 || first) {
-    beta = 0.0;  // Restart: the direction became worse than steepest descent.
-    cg_direction_.assign(3 * points, 0.0);
+  for (std::size_t g = 0; g < cg_g2_.size(); ++g) {
+    all += cg_g2_[g];
+    double beta = !first && cg_previous_[g] > 0.0 ? cg_g2_[g] / cg_previous_[g] : 0.0;
+    // Restart (beta 0, the direction forgotten) when it became worse than steepest descent.
+    if (beta > 1.0) beta = -1.0;
+    cg_beta_[g] = beta;
+    cg_previous_[g] = cg_g2_[g];
   }
-  cg_previous_ = g2;
-  if (!last && beta > 0.0) {
-    // lambda += beta p, with the velocities following the impulses.
-    auto& v = bodies.linear_velocity;
-    auto& w = bodies.angular_velocity;
-    for (const Constraint& k : constraints_) {
-      for (int i = 0; i < k.count; ++i) {
-        const std::size_t at = k.first + i;
-        const double dn = beta * cg_direction_[3 * at];
+  cg_change_ = std::sqrt(all);
+  auto& v = bodies.linear_velocity;
+  auto& w = bodies.angular_velocity;
+  for (std::size_t c = 0; c < constraints_.size(); ++c) {
+    const Constraint& k = constraints_[c];
+    double& beta = cg_beta_[cg_group_[c]];
+    const double step = std::max(beta, 0.0);
+    for (int p = 0; p < k.count; ++p) {
+      const std::size_t at = k.first + p;
+      // lambda += beta p, with the velocities following the impulses.
+      if (!last && step > 0.0) {
+        const double dn = step * cg_direction_[3 * at];
         jn_[at] += dn;
         applyRow(v, w, k, k.n, normal_[at].row, dn);
         for (int t = 0; t < 2; ++t) {
-          const double dt = beta * cg_direction_[3 * at + 1 + t];
+          const double dt = step * cg_direction_[3 * at + 1 + t];
           jt_[at][t] += dt;
           applyRow(v, w, k, k.t[t], friction_[at].row[t], dt);
         }
       }
+      // p = beta p - g (a restart forgets p).
+      for (int r = 0; r < 3; ++r)
+        cg_direction_[3 * at + r] = step * cg_direction_[3 * at + r] - cg_before_[3 * at + r];
     }
-  }
-  // p = beta p - g.
-  for (std::size_t i = 0; i < cg_direction_.size(); ++i) {
-    cg_direction_[i] = beta * cg_direction_[i] - cg_before_[i];
   }
 }
 
