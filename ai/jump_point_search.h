@@ -56,6 +56,9 @@ class JumpPointSearch {
   /// Optimal 8-connected path without corner cutting, every cell listed; false (and `out`
   /// empty) when there is none.
   bool findPath(Cell start, Cell goal, GridPath& out);
+  /// Estimates with `landmarks` too while they are valid for the map (null: octile alone);
+  /// they must outlive the searcher.
+  void useLandmarks(const LandmarkHeuristic* landmarks) { landmarks_ = landmarks; }
   /// Counters of the last search (expanded: jump points taken off the open list).
   const SearchStats& lastStats() const { return stats_; }
 

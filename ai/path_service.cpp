@@ -10,14 +10,17 @@ namespace zonesim::ai {
 
 PathService::PathService(GridMap& map, const PathServiceConfig& config)
     : map_(map), config_(config), cache_(config.cache_capacity) {
-  if (config_.landmarks != 0 && config_.planner != PlannerKind::AStar)
-    throw std::invalid_argument("path service: landmarks serve the A* planner only");
+  const bool grid = config_.planner == PlannerKind::AStar || config_.planner == PlannerKind::Jps;
+  if (config_.landmarks != 0 && !grid)
+    throw std::invalid_argument("path service: landmarks serve the A* and JPS planners only");
+  if (config_.landmarks != 0)
+    landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
   if (config_.planner == PlannerKind::AStar) {
     astar_ = std::make_unique<GridSearch>(map_);
-    if (config_.landmarks != 0) {
-      landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
-      astar_->useLandmarks(landmarks_.get());
-    }
+    astar_->useLandmarks(landmarks_.get());
+  } else if (config_.planner == PlannerKind::Jps) {
+    jps_ =
+        std::make_unique<JumpPointSearch>(map_, JumpPointSearch::Jumps::Scanned, landmarks_.get());
   } else if (config_.planner == PlannerKind::Hpa) {
     hpa_ = std::make_unique<HpaPlanner>(map_, config_.hpa);
   } else {
@@ -110,14 +113,18 @@ const PathService::Request* PathService::find(PathRequestId id) const {
 bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
   ++stats_.planned;
   bool found;
-  if (astar_) {
-    if (landmarks_ && !landmarks_->validFor(map_)) {
-      // Rebuilt here rather than on each change: a tick's doors cost one rebuild, and the
-      // table always matches the map the plan sees (so every rank plans alike).
-      landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
-      astar_->useLandmarks(landmarks_.get());
-      ++stats_.landmark_builds;
-    }
+  if (landmarks_ && !landmarks_->validFor(map_)) {
+    // Rebuilt here rather than on each change: a tick's doors cost one rebuild, and the
+    // table always matches the map the plan sees (so every rank plans alike).
+    landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
+    if (astar_) astar_->useLandmarks(landmarks_.get());
+    if (jps_) jps_->useLandmarks(landmarks_.get());
+    ++stats_.landmark_builds;
+  }
+  if (jps_) {
+    found = jps_->findPath(start, goal, out);
+    expanded = jps_->lastStats().expanded;
+  } else if (astar_) {
     found = astar_->findPath(start, goal, out);
     expanded = astar_->lastStats().expanded;
   } else if (mesh_) {

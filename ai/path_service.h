@@ -15,6 +15,7 @@
 #include "ai/grid_map.h"
 #include "ai/grid_search.h"
 #include "ai/hpa_planner.h"
+#include "ai/jump_point_search.h"
 #include "ai/landmark_heuristic.h"
 #include "ai/navmesh.h"
 #include "ai/navmesh_search.h"
@@ -23,18 +24,21 @@
 namespace zonesim::ai {
 
 /// Which planner serves requests.
-enum class PlannerKind { AStar, Hpa, NavMesh };
+enum class PlannerKind { AStar, Hpa, NavMesh, Jps };
 
 /// Settings of a PathService.
 struct PathServiceConfig {
-  PlannerKind planner = PlannerKind::Hpa;  ///< A* (optimal) or HPA* (faster on large maps)
+  /// A* or jump point search (both optimal, the same lengths), HPA* (faster on large maps) or
+  /// a navigation mesh.
+  PlannerKind planner = PlannerKind::Hpa;
   HpaConfig hpa;                           ///< abstraction settings when planner is Hpa
   NavMeshConfig navmesh;                   ///< mesh settings when planner is NavMesh
   int paths_per_tick = 8;                  ///< planner calls allowed per tick
   int expansions_per_tick = 0;             ///< node expansions allowed per tick (0: no limit)
   std::size_t cache_capacity = 1024;       ///< cached paths (0: no cache)
-  /// Landmarks for the A* planner's estimate (ai/landmark_heuristic.h; 0: the octile distance
-  /// alone). Built with the service and again at the first plan after the map changed.
+  /// Landmarks for the A* or jump point search estimate (ai/landmark_heuristic.h; 0: the
+  /// octile distance alone). Built with the service and again at the first plan after the map
+  /// changed.
   int landmarks = 0;
   /// Closing a cell clears the cache too. A kept path stays optimal, but a fresh plan on the new
   /// map may pick another path of the same length; set this where a hit must equal a fresh plan
@@ -113,7 +117,8 @@ class PathService {
   GridMap& map_;
   PathServiceConfig config_;
   std::unique_ptr<GridSearch> astar_;
-  std::unique_ptr<LandmarkHeuristic> landmarks_;  // A* only, when config_.landmarks > 0
+  std::unique_ptr<JumpPointSearch> jps_;
+  std::unique_ptr<LandmarkHeuristic> landmarks_;  // A* or JPS, when config_.landmarks > 0
   std::unique_ptr<HpaPlanner> hpa_;
   std::unique_ptr<NavMesh> mesh_;  // rebuilt whole on a map change
   std::unique_ptr<NavMeshSearch> mesh_search_;

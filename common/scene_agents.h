@@ -97,18 +97,18 @@ struct AgentPopulation {
 };
 
 /// Which planner serves a zone's navigating agents.
-enum class AgentPlanner { AStar, Hpa, NavMesh };
+enum class AgentPlanner { AStar, Hpa, NavMesh, Jps };
 
 /// The path service shared by a zone's navigating agents.
 struct AgentPathSettings {
-  /// `map.navigation` (grid, hpa, navmesh), or its older spelling `agents.paths.planner`
+  /// `map.navigation` (grid, hpa, navmesh, jps), or its older spelling `agents.paths.planner`
   /// (astar, hpa).
   AgentPlanner planner = AgentPlanner::AStar;
   int cluster_size = 16;        ///< HPA* cluster side, cells
   int paths_per_tick = 8;       ///< planner calls per tick and zone
   int expansions_per_tick = 0;  ///< node expansions per tick and zone (0: no limit)
   int cache = 1024;             ///< cached paths per zone (0: none; a hit equals a fresh plan)
-  int landmarks = 0;            ///< landmark cells for the grid planner (0: octile estimate)
+  int landmarks = 0;  ///< landmark cells for the grid and jps planners (0: octile estimate)
 };
 
 /// Everything under the scene's `agents` key.

@@ -256,10 +256,12 @@ void readPopulation(const SceneNode& node, Scene& scene) {
 void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings& p) {
   SceneMap m = agents.section("paths", {"planner", "cluster_size", "paths_per_tick",
                                         "expansions_per_tick", "cache", "landmarks"});
-  const int planner = m.choice("planner", {"astar", "hpa"}, -1);
-  const AgentPlanner by_map[] = {AgentPlanner::AStar, AgentPlanner::Hpa, AgentPlanner::NavMesh};
-  if (map.navigation >= 0 && planner >= 0 && planner != map.navigation) {
-    const char* names[] = {"grid", "hpa", "navmesh"};
+  const int planner = m.choice("planner", {"astar", "hpa", "jps"}, -1);
+  const AgentPlanner by_map[] = {AgentPlanner::AStar, AgentPlanner::Hpa, AgentPlanner::NavMesh,
+                                 AgentPlanner::Jps};
+  const AgentPlanner by_name[] = {AgentPlanner::AStar, AgentPlanner::Hpa, AgentPlanner::Jps};
+  if (map.navigation >= 0 && planner >= 0 && by_name[planner] != by_map[map.navigation]) {
+    const char* names[] = {"grid", "hpa", "navmesh", "jps"};
     m.failAt("planner", std::string("contradicts map.navigation: ") + names[map.navigation] +
                             " (line " + std::to_string(map.navigation_line) +
                             "); give one of them");
@@ -267,14 +269,14 @@ void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings
   if (map.navigation >= 0)
     p.planner = by_map[map.navigation];
   else if (planner >= 0)
-    p.planner = by_map[planner];
+    p.planner = by_name[planner];
   m.read("cluster_size", p.cluster_size, Limit::between(2, 256));
   m.read("paths_per_tick", p.paths_per_tick, Limit::between(1, 1000000));
   m.read("expansions_per_tick", p.expansions_per_tick, Limit::atLeast(0));
   m.read("cache", p.cache, Limit::atLeast(0));
   m.read("landmarks", p.landmarks, Limit::between(0, 32));
-  if (p.landmarks > 0 && p.planner != AgentPlanner::AStar)
-    m.failAt("landmarks", "serve the grid planner only (map.navigation: grid)");
+  if (p.landmarks > 0 && p.planner != AgentPlanner::AStar && p.planner != AgentPlanner::Jps)
+    m.failAt("landmarks", "serve the grid and jps planners only (map.navigation)");
 }
 
 }  // namespace

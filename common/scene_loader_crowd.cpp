@@ -79,7 +79,7 @@ void readObstacleMap(const SceneMap& root, Scene& scene) {
     map.fields = fields_path.lexically_normal().string();
     map.fields_line = fields->line();
   }
-  map.navigation = m.choice("navigation", {"grid", "hpa", "navmesh"}, -1);
+  map.navigation = m.choice("navigation", {"grid", "hpa", "navmesh", "jps"}, -1);
   if (std::optional<SceneNode> nav = m.optional("navigation")) map.navigation_line = nav->line();
   readMapDoors(m, map);
 }

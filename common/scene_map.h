@@ -29,7 +29,7 @@ struct ObstacleMap {
   /// bake_fields reads the scene to write it).
   std::string fields;
   int fields_line = 0;  ///< line of `map.fields` in the scene
-  /// `map.navigation`: 0 grid (A*), 1 hpa, 2 navmesh; -1 when absent, so that
+  /// `map.navigation`: 0 grid (A*), 1 hpa, 2 navmesh, 3 jps; -1 when absent, so that
   /// `agents.paths.planner` decides (common/scene_loader_agents.cpp).
   int navigation = -1;
   int navigation_line = 0;  ///< its line

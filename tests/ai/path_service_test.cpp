@@ -226,10 +226,12 @@ TEST_P(PathServiceTest, ReleasedHandlesGoStale) {
   EXPECT_EQ(service.stats().planned, 1u);
 }
 
-TEST(PathService, AStarWithLandmarksStaysOptimalAndRebuildsThemOnceTheMapChanged) {
+class GridPlannerTest : public ::testing::TestWithParam<PlannerKind> {};
+
+TEST_P(GridPlannerTest, WithLandmarksStaysOptimalAndRebuildsThemOnceTheMapChanged) {
   GridMap m = twoDoors();
   PathServiceConfig config;
-  config.planner = PlannerKind::AStar;
+  config.planner = GetParam();
   config.landmarks = 4;
   PathService service(m, config);
   const Cell from{2, 2}, to{38, 2};
@@ -253,6 +255,13 @@ TEST(PathService, AStarWithLandmarksStaysOptimalAndRebuildsThemOnceTheMapChanged
   EXPECT_EQ(service.stats().landmark_builds, 2u);
 }
 
+INSTANTIATE_TEST_SUITE_P(AStarAndJps, GridPlannerTest,
+                         ::testing::Values(PlannerKind::AStar, PlannerKind::Jps),
+                         [](const auto& info) {
+                           return info.param == PlannerKind::AStar ? std::string("AStar")
+                                                                   : std::string("Jps");
+                         });
+
 TEST(PathService, RefusesLandmarksForAPlannerThatTakesNone) {
   GridMap m = twoDoors();
   PathServiceConfig config;
@@ -263,10 +272,11 @@ TEST(PathService, RefusesLandmarksForAPlannerThatTakesNone) {
 
 INSTANTIATE_TEST_SUITE_P(Planners, PathServiceTest,
                          ::testing::Values(PlannerKind::AStar, PlannerKind::Hpa,
-                                           PlannerKind::NavMesh),
+                                           PlannerKind::NavMesh, PlannerKind::Jps),
                          [](const auto& info) {
                            return info.param == PlannerKind::AStar ? std::string("AStar")
                                   : info.param == PlannerKind::Hpa ? std::string("Hpa")
+                                  : info.param == PlannerKind::Jps ? std::string("Jps")
                                                                    : std::string("NavMesh");
                          });
 

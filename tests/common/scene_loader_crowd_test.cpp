@@ -108,6 +108,9 @@ TEST(SceneMap, NavigationChoosesThePlannerAndTheOlderKeyStillWorks) {
   EXPECT_EQ(planner(", navigation: navmesh", ""), AgentPlanner::NavMesh);
   EXPECT_EQ(planner(", navigation: hpa", ""), AgentPlanner::Hpa);
   EXPECT_EQ(planner(", navigation: grid", ""), AgentPlanner::AStar);
+  EXPECT_EQ(planner(", navigation: jps", ""), AgentPlanner::Jps);
+  EXPECT_EQ(planner(", navigation: jps", "  paths: {planner: jps}\n"), AgentPlanner::Jps);
+  EXPECT_EQ(planner("", "  paths: {planner: jps}\n"), AgentPlanner::Jps);
   EXPECT_EQ(planner("", "  paths: {planner: hpa}\n"), AgentPlanner::Hpa);
   EXPECT_EQ(planner(", navigation: hpa", "  paths: {planner: hpa}\n"), AgentPlanner::Hpa);
 }

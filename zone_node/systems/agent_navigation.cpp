@@ -30,6 +30,8 @@ ai::PlannerKind plannerOf(AgentPlanner p) {
       return ai::PlannerKind::Hpa;
     case AgentPlanner::NavMesh:
       return ai::PlannerKind::NavMesh;
+    case AgentPlanner::Jps:
+      return ai::PlannerKind::Jps;
     case AgentPlanner::AStar:
       break;
   }

@@ -220,13 +220,15 @@ struct CourierRun {
 // Runs scenes/agents_paths.yaml (courtyard map, north door closing at 4 s) with a budget, or
 // another courier scene.
 CourierRun runCouriers(int paths_per_tick, int expansions_per_tick, int ticks, int cache = 0,
-                       const char* scene = "scenes/agents_paths.yaml", int landmarks = 0) {
+                       const char* scene = "scenes/agents_paths.yaml", int landmarks = 0,
+                       bool jps = false) {
   Scene s = loadScene(source(scene));
   const bool mesh = s.agents.paths.planner == AgentPlanner::NavMesh;
   s.agents.paths.paths_per_tick = paths_per_tick;
   s.agents.paths.expansions_per_tick = expansions_per_tick;
   s.agents.paths.cache = cache;
   s.agents.paths.landmarks = landmarks;
+  if (jps) s.agents.paths.planner = AgentPlanner::Jps;
   ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
   const WorldMap& map = *node.worldMap();
   CourierRun r;
@@ -283,6 +285,17 @@ TEST(Agents, CouriersPlanningWithLandmarksReachTheirGoalsAndReplanAroundAClosedD
   EXPECT_GT(r.replans, 5);
   EXPECT_EQ(r.door_crossings_after_close, 0);
   EXPECT_EQ(r.ticks_on_blocked_cells, 0);
+}
+
+TEST(Agents, CouriersPlanningWithJumpPointSearchReachTheirGoalsAndReplanAroundAClosedDoor) {
+  // map.navigation: jps, with and without landmarks: the same optimal lengths as A*.
+  for (int landmarks : {0, 8}) {
+    CourierRun r = runCouriers(1000, 0, 1400, 0, "scenes/agents_paths.yaml", landmarks, true);
+    EXPECT_GE(r.min_arrivals, 2) << landmarks << " landmarks";
+    EXPECT_GT(r.replans, 5) << landmarks << " landmarks";
+    EXPECT_EQ(r.door_crossings_after_close, 0) << landmarks << " landmarks";
+    EXPECT_EQ(r.ticks_on_blocked_cells, 0) << landmarks << " landmarks";
+  }
 }
 
 TEST(Agents, NavMeshCouriersReachTheirGoalsAndReplanAroundAClosedDoor) {
