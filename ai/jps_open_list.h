@@ -3,9 +3,11 @@
 // improved node is pushed again; its old entry, with a larger f, pops after it and is skipped
 // as closed). Ties on f go to the entry nearer the goal (the deeper one, as in popsBefore of
 // ai/open_order.h, whose exact g would make entries 24 bytes: here h is kept to 32 bits, which
-// can only reorder entries whose h differ by less than 2^-16 cells), then to the lower index,
-// so the order never depends on insertion order.
+// can only reorder entries whose h differ by less than 2^-16 cells, and saturates at 2^16
+// cells, beyond which ties on f fall to the index: a landmark bound on a winding maze can
+// exceed it), then to the lower index, so the order never depends on insertion order.
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -27,7 +29,7 @@ class JpsOpenList {
   bool empty() const { return heap_.empty(); }
   /// Queues node `node` with cost so far `g` and heuristic `h` (fixed point).
   void push(std::int32_t node, std::int64_t g, std::int64_t h) {
-    Entry e{g + h, std::uint32_t(h >> 24), node};
+    Entry e{g + h, std::uint32_t(std::min<std::int64_t>(h >> 24, 0xFFFFFFFF)), node};
     std::size_t i = heap_.size();
     heap_.push_back(e);
     while (i > 0) {

@@ -42,7 +42,7 @@ std::vector<int> largestArea(const GridMap& map) {
 }  // namespace
 
 LandmarkHeuristic::LandmarkHeuristic(const GridMap& map, int count)
-    : width_(map.width()), height_(map.height()), version_(map.version()) {
+    : map_(&map), width_(map.width()), height_(map.height()), version_(map.version()) {
   if (count < 1 || count > kMaxLandmarks)
     throw std::invalid_argument("landmark count " + std::to_string(count) +
                                 " is out of range (1 to " + std::to_string(kMaxLandmarks) + ")");

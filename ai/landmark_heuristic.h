@@ -8,7 +8,8 @@
 // bound is exact whenever one cell lies on an optimal path from the other to a landmark.
 //
 // Landmarks are chosen farthest first in the largest connected area: the first is the cell
-// farthest from one of its cells, each next the cell farthest from all chosen so far.
+// farthest from one of its cells, each next the cell farthest from all chosen so far (K + 1
+// Dijkstra searches for K landmarks).
 // The costs hold for the map as it was when they were built: after a change (a door) they may
 // over-estimate, so a search asks validFor() and falls back to the octile distance alone.
 
@@ -31,10 +32,8 @@ class LandmarkHeuristic {
   /// cells) for `map` as it is now; throws std::invalid_argument naming a bad count.
   LandmarkHeuristic(const GridMap& map, int count);
 
-  /// True when built for this map in its current version (the costs are still exact).
-  bool validFor(const GridMap& map) const {
-    return map.width() == width_ && map.height() == height_ && map.version() == version_;
-  }
+  /// True when built for this map object in its current version (the costs are still exact).
+  bool validFor(const GridMap& map) const { return &map == map_ && map.version() == version_; }
   /// The landmark cells, in the order chosen.
   const std::vector<Cell>& landmarks() const { return landmarks_; }
   /// Memory held by the cost table, in bytes.
@@ -62,6 +61,7 @@ class LandmarkHeuristic {
   }
 
  private:
+  const GridMap* map_;  // only compared: another map of the same size and version is not this
   int width_ = 0, height_ = 0, count_ = 0;
   std::uint64_t version_ = 0;
   std::vector<Cell> landmarks_;

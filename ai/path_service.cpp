@@ -116,6 +116,10 @@ bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
   if (landmarks_ && !landmarks_->validFor(map_)) {
     // Rebuilt here rather than on each change: a tick's doors cost one rebuild, and the
     // table always matches the map the plan sees (so every rank plans alike).
+    // The old table goes first: two at once would double the memory for a moment.
+    if (astar_) astar_->useLandmarks(nullptr);
+    if (jps_) jps_->useLandmarks(nullptr);
+    landmarks_.reset();
     landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
     if (astar_) astar_->useLandmarks(landmarks_.get());
     if (jps_) jps_->useLandmarks(landmarks_.get());

@@ -102,7 +102,7 @@ enum class AgentPlanner { AStar, Hpa, NavMesh, Jps };
 /// The path service shared by a zone's navigating agents.
 struct AgentPathSettings {
   /// `map.navigation` (grid, hpa, navmesh, jps), or its older spelling `agents.paths.planner`
-  /// (astar, hpa).
+  /// (astar, hpa, jps).
   AgentPlanner planner = AgentPlanner::AStar;
   int cluster_size = 16;        ///< HPA* cluster side, cells
   int paths_per_tick = 8;       ///< planner calls per tick and zone

@@ -17,6 +17,7 @@
 #include "physics/body_storage.h"
 #include "physics/contact.h"
 #include "physics/softness.h"
+#include "physics/union_find.h"
 
 namespace zonesim::physics {
 
@@ -231,6 +232,8 @@ class ContactSolver {
   // of this sweep and of the previous one, and the momentum factor.
   std::vector<double> cg_before_, cg_direction_;
   std::vector<std::uint32_t> cg_group_;
+  std::vector<std::uint32_t> cg_group_of_root_;  // per body: its group while grouping
+  UnionFind cg_sets_;
   std::vector<double> cg_g2_, cg_previous_, cg_beta_;
   double cg_change_ = 0.0;
   std::vector<std::uint16_t> row_count_;  // Jacobi: contact points touching each body.

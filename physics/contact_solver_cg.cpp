@@ -14,50 +14,32 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 #include "physics/contact_solver.h"
 #include "physics/solver_row.h"
-#include "physics/union_find.h"
 
 namespace zonesim::physics {
 
 using solver_row::applyRow;
 
-namespace {
-
-/// Each constraint's group: contacts linked through movable bodies (a static body links
-/// nothing), numbered in order of first appearance. Returns the number of groups.
-std::size_t groupContacts(std::span<const BodyIndex> a, std::span<const BodyIndex> b,
-                          std::span<const char> movable_a, std::span<const char> movable_b,
-                          std::size_t bodies, std::vector<std::uint32_t>& group) {
-  UnionFind sets;
-  sets.reset(bodies);
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (movable_a[k] && movable_b[k]) sets.unite(a[k], b[k]);
-  std::unordered_map<std::uint32_t, std::uint32_t> number;
-  group.resize(a.size());
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    const std::uint32_t root = sets.find(movable_a[k] ? a[k] : b[k]);
-    group[k] = number.try_emplace(root, std::uint32_t(number.size())).first->second;
-  }
-  return number.size();
-}
-
-}  // namespace
-
 void ContactSolver::iterateConjugateGradient(BodyStorage& bodies, bool first, bool last) {
   const std::size_t points = jn_.size();
   if (first) {
-    std::vector<BodyIndex> a(constraints_.size()), b(constraints_.size());
-    std::vector<char> ma(constraints_.size()), mb(constraints_.size());
-    for (std::size_t k = 0; k < constraints_.size(); ++k) {
-      a[k] = constraints_[k].a;
-      b[k] = constraints_[k].b;
-      ma[k] = constraints_[k].ma != 0.0;
-      mb[k] = constraints_[k].mb != 0.0;
+    // Each constraint's group: contacts linked through movable bodies (a static body links
+    // nothing), numbered in order of first appearance.
+    cg_sets_.reset(bodies.size());
+    for (const Constraint& k : constraints_)
+      if (k.ma != 0.0 && k.mb != 0.0) cg_sets_.unite(k.a, k.b);
+    constexpr std::uint32_t kNone = ~std::uint32_t(0);
+    cg_group_of_root_.assign(bodies.size(), kNone);
+    cg_group_.resize(constraints_.size());
+    std::uint32_t groups = 0;
+    for (std::size_t c = 0; c < constraints_.size(); ++c) {
+      const Constraint& k = constraints_[c];
+      std::uint32_t& group = cg_group_of_root_[cg_sets_.find(k.ma != 0.0 ? k.a : k.b)];
+      if (group == kNone) group = groups++;
+      cg_group_[c] = group;
     }
-    const std::size_t groups = groupContacts(a, b, ma, mb, bodies.size(), cg_group_);
     cg_previous_.assign(groups, 0.0);
     cg_g2_.resize(groups);
     cg_beta_.resize(groups);
