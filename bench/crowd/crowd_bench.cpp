@@ -66,6 +66,19 @@ std::uint64_t stateDigest(const Agents& a) {
   return h;
 }
 
+/// n flockers placed uniformly in a square of this side with random velocities up to 1 m/s
+/// a component, from the seed; ids are unrelated to position.
+Agents flockInSquare(int n, double side, std::uint64_t seed) {
+  Agents a;
+  Pcg32 rng(seed, seed);
+  for (int i = 0; i < n; ++i) {
+    a.ids.push_back(std::uint64_t(i) * 2654435761ULL);
+    a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
+    a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
+  }
+  return a;
+}
+
 void benchFlock(const std::vector<int>& counts, const std::vector<int>& laneList, int steps) {
   std::printf(
       "\nFlocking (density 0.5 agents/m^2, neighbour radius 3 m, %d steps of 1/30 s; "
@@ -78,14 +91,7 @@ void benchFlock(const std::vector<int>& counts, const std::vector<int>& laneList
   for (int n : counts) {
     for (bool sorted : {false, true})
       for (int lanes : laneList) {
-        double side = std::sqrt(n / 0.5);
-        Agents a;
-        Pcg32 rng(1, 1);
-        for (int i = 0; i < n; ++i) {
-          a.ids.push_back(std::uint64_t(i) * 2654435761ULL);  // ids unrelated to position
-          a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
-          a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
-        }
+        Agents a = flockInSquare(n, std::sqrt(n / 0.5), 1);
         Flock flock{FlockSettings{}};
         // Agents per pass over the neighbour cells: 1, 2 (SSE2) or 4 (AVX); same results.
         int used = flock.useLanes(lanes);
@@ -303,13 +309,7 @@ struct FlockLodRun {
 // (goal velocity 2 m/s, weight 1/s); players as in the flow case, scaled to the square.
 FlockLodRun runFlockLod(int n, int ticks, double progress, const LodSettings* lodSettings) {
   const double side = std::sqrt(n / 0.5), dt = 1.0 / 30;
-  Agents a;
-  Pcg32 rng(3, 3);
-  for (int i = 0; i < n; ++i) {
-    a.ids.push_back(std::uint64_t(i) * 2654435761ULL);
-    a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
-    a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
-  }
+  Agents a = flockInSquare(n, side, 3);
   const Vec2 goal{side + 1000, side + 1000};
   const Vec2 dir = withLength(goal, 1.0);
   std::vector<double> start(a.ids.size());
@@ -526,13 +526,7 @@ void benchOverlap(const std::vector<int>& counts, double seconds, int every,
   for (int n : counts) {
     const FlockSettings fs;
     const double side = std::sqrt(n / 0.5);
-    Agents a;
-    Pcg32 rng(1, 1);
-    for (int i = 0; i < n; ++i) {
-      a.ids.push_back(std::uint64_t(i) * 2654435761ULL);
-      a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
-      a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
-    }
+    Agents a = flockInSquare(n, side, 1);
     Flock flock{fs};
     const OverlapRun r = runOverlap(
         steps, every, dt, settle, flockBody, [&] { flock.step(a.span(), {}, dt); },
