@@ -47,6 +47,7 @@ struct NpcFlow {
   double separation_weight = 10.0;        ///< 1/s^2 per unit of (radius / distance - 1)
   double arrive_radius = 0.75;            ///< m from the goal cell's centre: arrived, stops
   double slow_radius = 2.0;               ///< m: speed ramps down this close to the goal
+  double body_radius = 0.0;  ///< m: bodies that never step into each other (0: may overlap)
 };
 
 /// A road network: NPCs travel between waypoints of a weighted graph along cheapest paths

@@ -8,7 +8,12 @@ namespace zonesim::crowd {
 
 FlowCrowd::FlowCrowd(const ai::GridMap& map, const MapFrame& frame,
                      const FlowCrowdSettings& settings)
-    : map_(map), frame_(frame), settings_(settings) {}
+    : map_(map), frame_(frame), settings_(settings) {
+  if (!(settings.body_radius >= 0.0))
+    throw std::invalid_argument("FlowCrowd: body_radius must be at least 0");
+  if (settings.body_radius > 0.0 && !(settings.sight > 2.0 * settings.body_radius))
+    throw std::invalid_argument("FlowCrowd: sight must exceed twice body_radius");
+}
 
 int FlowCrowd::addDestination(ai::Cell goal) {
   fields_.push_back(std::make_unique<FlowField>(map_, goal));
@@ -80,20 +85,24 @@ bool FlowCrowd::hasArrived(Vec2 pos, int d) const {
   return lengthSq(pos - goal) <= settings_.arrive_radius * settings_.arrive_radius;
 }
 
-Vec2 FlowCrowd::separation(std::int32_t self) const {
+Vec2 FlowCrowd::separation(std::int32_t self, KeepApart* gaps) const {
   // Reads the grid's coordinate arrays (16 bytes a candidate instead of a 48-byte entry) and
   // knows itself by its entry index (ids are unique); the sum is the same, in the same order.
+  // The neighbours whose gaps bind are gathered in the same pass: a wider query visits more
+  // entries but keeps the order of those within the separation radius.
   const double r = settings_.separation_radius, r2 = r * r;
+  const double q = gaps ? std::max(r, gaps->queryRadius()) : r, q2 = q * q;
   const std::span<const GridEntry> entries = grid_.entries();
   const double* xs = grid_.xs();
   const double* ys = grid_.ys();
   const Vec2 p = entries[self].pos;
   Vec2 sep;
-  grid_.forEachRowNear(p, r, [&](std::int32_t begin, std::int32_t end) {
+  grid_.forEachRowNear(p, q, [&](std::int32_t begin, std::int32_t end) {
     for (std::int32_t k = begin; k < end; ++k) {
       if (k == self) continue;
       const Vec2 rel{xs[k] - p.x, ys[k] - p.y};
       const double d2 = lengthSq(rel);
+      if (gaps && d2 < q2) gaps->neighbour(rel, entries[self].id < entries[k].id);
       if (d2 >= r2) continue;
       if (d2 > 1e-18) {
         const double d = std::sqrt(d2);
@@ -104,6 +113,26 @@ Vec2 FlowCrowd::separation(std::int32_t self) const {
     }
   });
   return sep * settings_.separation_weight;
+}
+
+Vec2 FlowCrowd::keepGaps(Vec2 from, Vec2 to, double h, Vec2& vel) const {
+  const Vec2 wish = to - from;
+  Vec2 x = keep_apart_.solve(wish);
+  if (x == wish) return to;
+  // Held back by a gap: step to the right as well (three times as far as ahead, about 72
+  // degrees, within the reach). Two agents meeting head-on both do, so they pass instead of
+  // pressing on the line between them for ever, and opposing flows in a doorway form lanes
+  // (with a sidestep only as far as ahead, and only when less than half the move was left,
+  // 132 of the courtyard's 400 NPCs never got through its doors; docs/benchmarks.md).
+  constexpr double kSidestep = 3.0;
+  x = keep_apart_.solve(wish + Vec2{wish.y, -wish.x} * kSidestep);
+  // Kept short of a neighbour: the agent moves (and goes on) as it can. The new move may meet
+  // a wall the first did not, so it slides again; a slide that breaks a gap stays put.
+  vel = x * (1.0 / h);
+  const Vec2 at = slideMove(map_, frame_, from, from + x, vel);
+  if (keep_apart_.keeps(at - from)) return at;
+  vel = Vec2{};
+  return from;
 }
 
 void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> dest,
@@ -144,14 +173,22 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
     const int d = dest[e.src];
     Vec2 desired = desiredVelocity(e.pos, d);
     Vec2 v;
+    KeepApart* gaps = nullptr;  // kept apart: the neighbours that may bind this agent
     if (plan.empty() || plan.steer[e.src]) {
+      if (settings_.body_radius > 0.0) {
+        const double reach =
+            std::min(settings_.max_speed * h, 0.5 * settings_.sight - settings_.body_radius);
+        keep_apart_.begin(settings_.body_radius, reach);
+        gaps = &keep_apart_;
+      }
       const double relax = plan.empty() ? relaxDt : relaxFactor(h);
-      Vec2 dv = (desired - e.vel) * relax + separation(std::int32_t(k)) * h;
+      Vec2 dv = (desired - e.vel) * relax + separation(std::int32_t(k), gaps) * h;
       v = clampLength(e.vel + clampLength(dv, settings_.max_force * h), settings_.max_speed);
     } else {
       v = desired;  // cheap update: ride the field, no neighbours, no inertia
     }
     Vec2 p = slideMove(map_, frame_, e.pos, e.pos + v * h, v);
+    if (gaps) p = keepGaps(e.pos, p, h, v);
     agents.pos[e.src] = p;
     agents.vel[e.src] = v;
     if (hasArrived(p, d)) {

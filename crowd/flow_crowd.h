@@ -3,7 +3,8 @@
 // centre of the next cell its field gives for the cell it stands in (so agents drift to cell
 // centres and clear wall corners), slows down inside a radius of the goal, and is pushed
 // apart from close neighbours (owned and ghosts) by a separation term summed in the grid's
-// canonical order. Moves never enter blocked cells (they slide along walls).
+// canonical order. Moves never enter blocked cells (they slide along walls). With a body
+// radius, agents are discs that never step into each other (keep_apart.h).
 
 #include <cstdint>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "ai/grid_map.h"
 #include "crowd/agents.h"
 #include "crowd/flow_field.h"
+#include "crowd/keep_apart.h"
 #include "crowd/map_frame.h"
 #include "crowd/neighbour_grid.h"
 #include "crowd/step_plan.h"
@@ -33,6 +35,13 @@ struct FlowCrowdSettings {
   /// dominates for sparse crowds on big maps; every rank must use the same value (it fixes
   /// the order of the separation sums).
   double grid_cell = 2.0;
+  /// Agents are discs of this radius that never step into each other (keep_apart.h); 0: they
+  /// may overlap, kept apart by separation alone. Holds for agents at full steering detail.
+  double body_radius = 0.0;
+  /// How far the caller shows every agent its neighbours (the zone's halo width): an agent
+  /// keeping its gaps moves at most (sight - 2 body_radius) / 2 a step, so that every
+  /// neighbour that could bind it is seen on every rank. Must exceed 2 body_radius.
+  double sight = 1e9;
 };
 
 /// Steps agents along shared flow fields on one map.
@@ -74,14 +83,20 @@ class FlowCrowd {
   const NeighbourGrid& grid() const { return grid_; }
 
  private:
-  Vec2 separation(std::int32_t self) const;  // self: the agent's index in grid_.entries()
+  // self: the agent's index in grid_.entries(); `gaps` (if any) gathers the neighbours whose
+  // gaps may bind it.
+  Vec2 separation(std::int32_t self, KeepApart* gaps) const;
   bool leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const;
+  // Where an agent at `from` ends when it keeps the gaps gathered in keep_apart_, given where
+  // its steering took it (`to`, velocity `vel`, updated to the move it makes).
+  Vec2 keepGaps(Vec2 from, Vec2 to, double h, Vec2& vel) const;
 
   const ai::GridMap& map_;
   MapFrame frame_;
   FlowCrowdSettings settings_;
   std::vector<std::unique_ptr<FlowField>> fields_;
   NeighbourGrid grid_;
+  KeepApart keep_apart_;  // the gaps of the agent being stepped
 };
 
 }  // namespace zonesim::crowd

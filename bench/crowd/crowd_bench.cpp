@@ -2,6 +2,7 @@
 //              [--only flock|flow|lod|lod-flock|lod-sweep|overlap] [--lod-seconds S]
 //              [--crowded LIST] [--overlap-seconds S] [--overlap-every K]
 //              [--separation-weight LIST] [--separation-radius R] [--max-force F]
+//              [--body-radius LIST] [--place-apart]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
 // fields on one core, flow field build time, and (--only lod: flow crowds; --only lod-flock:
 // flocks) AI time and outcome drift with and without level of detail; --crowded adds flow LOD
@@ -9,8 +10,10 @@
 // --only lod-sweep prints CSV of time against outcome drift over a grid of LOD bands;
 // --only overlap: the deepest overlap between two agents' bodies over a run of the flow crowd
 // and of the flock, next to the step time (--separation-weight, --separation-radius and
-// --max-force change the flow crowd's settings for it). The flock and flow tables end with a digest
-// of the final state, so that two builds can be shown to step bitwise alike.
+// --max-force change the flow crowd's settings for it; --body-radius runs it with bodies kept
+// apart, crowd/keep_apart.h, 0 for none; --place-apart places the flow crowd without overlaps). The
+// flock and flow tables end with a digest of the final state, so that two builds can be shown to
+// step bitwise alike.
 
 #include <cstdio>
 #include <cstring>
@@ -139,13 +142,30 @@ std::vector<ai::Cell> cornerGoals(const ai::GridMap& map) {
 }
 
 // n agents on random cells from which their destination (i mod 4) is reachable.
+// `apart` > 0: no two agents closer than it (candidates that would be are drawn again).
 void placeFlowAgents(const FlowCrowd& crowd, const ai::GridMap& map, int n, Agents& a,
-                     std::vector<std::uint16_t>& dest) {
+                     std::vector<std::uint16_t>& dest, double apart = 0) {
   Pcg32 rng(2, 2);
+  // Agents so far by 1 m cell of the map, for the spacing test.
+  std::vector<std::vector<std::int32_t>> near(apart > 0 ? map.width() * map.height() : 0);
+  const auto tooClose = [&](Vec2 p) {
+    const int reach = int(std::ceil(apart));
+    for (int y = int(p.y) - reach; y <= int(p.y) + reach; ++y)
+      for (int x = int(p.x) - reach; x <= int(p.x) + reach; ++x) {
+        if (x < 0 || y < 0 || x >= map.width() || y >= map.height()) continue;
+        for (std::int32_t i : near[std::size_t(y) * map.width() + x])
+          if (lengthSq(a.pos[i] - p) < apart * apart) return true;
+      }
+    return false;
+  };
   while (int(a.ids.size()) < n) {
     Vec2 p{rng.uniform(0, map.width()), rng.uniform(0, map.height())};
     int d = int(a.ids.size() % crowd.destinationCount());
     if (crowd.field(d).distance(crowd.frame().cellOf(p)) < 0) continue;
+    if (apart > 0) {
+      if (tooClose(p)) continue;
+      near[std::size_t(int(p.y)) * map.width() + int(p.x)].push_back(std::int32_t(a.ids.size()));
+    }
     a.ids.push_back(std::uint64_t(a.ids.size()) * 2654435761ULL);
     a.pos.push_back(p);
     a.vel.push_back(Vec2{});
@@ -473,7 +493,9 @@ OverlapRun runOverlap(int steps, int every, double dt, double settle, double rad
 /// Flow crowd settings for the overlap runs (0: keep the default).
 struct OverlapFlowSettings {
   std::vector<double> weights{0};
+  std::vector<double> bodies{0};  // body_radius: agents kept apart (0: overlap allowed)
   double separationRadius = 0, maxForce = 0;
+  bool placeApart = false;  // place the flow crowd without overlaps (of its default bodies)
 };
 
 void benchOverlap(const std::vector<int>& counts, double seconds, int every,
@@ -493,36 +515,41 @@ void benchOverlap(const std::vector<int>& counts, double seconds, int every,
       "at step 0.\n\n",
       flowBody, flockBody, every, steps, seconds, settle);
   std::printf(
-      "| crowd | agents | separation radius | weight | max force | placed m | deepest m | at s "
-      "| where | last m | pairs overlapping at the end | arrived | ms/step | ms/measurement "
-      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  const auto row = [](const char* kind, int n, double sep, double w, double force,
+      "| crowd | agents | separation radius | weight | max force | kept apart (body m) | placed m "
+      "| deepest m | at s | where | last m | pairs overlapping at the end | arrived | ms/step "
+      "| ms/measurement |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  const auto row = [](const char* kind, int n, double sep, double w, double force, double body,
                       const OverlapRun& r, long arrived) {
+    char kept[32] = "no";
+    if (body > 0) std::snprintf(kept, sizeof kept, "%g", body);
     std::printf(
-        "| %s | %d | %g | %g | %g | %.4f | %.4f | %.1f | (%.1f, %.1f) | %.4f | %zu | %ld | %.3f "
-        "| %.3f |\n",
-        kind, n, sep, w, force, r.placed, r.deepest, r.deepestAt, r.deepestWhere.x,
+        "| %s | %d | %g | %g | %g | %s | %.4f | %.6f | %.1f | (%.1f, %.1f) | %.6f | %zu | %ld "
+        "| %.3f | %.3f |\n",
+        kind, n, sep, w, force, kept, r.placed, r.deepest, r.deepestAt, r.deepestWhere.x,
         r.deepestWhere.y, r.last, r.lastPairs, arrived, r.stepMs, r.measureMs);
   };
   for (int n : counts)
-    for (double w : flow.weights) {
-      FlowCrowdSettings fs;
-      if (w > 0) fs.separation_weight = w;
-      if (flow.separationRadius > 0) fs.separation_radius = flow.separationRadius;
-      if (flow.maxForce > 0) fs.max_force = flow.maxForce;
-      FlowCrowd crowd(map, MapFrame{}, fs);
-      for (ai::Cell g : cornerGoals(map)) crowd.addDestination(g);
-      Agents a;
-      std::vector<std::uint16_t> dest;
-      placeFlowAgents(crowd, map, n, a, dest);
-      std::vector<std::uint8_t> arrived(a.ids.size(), 0);
-      const OverlapRun r = runOverlap(
-          steps, every, dt, settle, flowBody, [&] { crowd.step(a.span(), dest, arrived, {}, dt); },
-          [&]() -> const NeighbourGrid& { return crowd.grid(); });
-      long done = 0;
-      for (std::uint8_t f : arrived) done += f;
-      row("flow", n, fs.separation_radius, fs.separation_weight, fs.max_force, r, done);
-    }
+    for (double body : flow.bodies)
+      for (double w : flow.weights) {
+        FlowCrowdSettings fs;
+        fs.body_radius = body;
+        if (w > 0) fs.separation_weight = w;
+        if (flow.separationRadius > 0) fs.separation_radius = flow.separationRadius;
+        if (flow.maxForce > 0) fs.max_force = flow.maxForce;
+        FlowCrowd crowd(map, MapFrame{}, fs);
+        for (ai::Cell g : cornerGoals(map)) crowd.addDestination(g);
+        Agents a;
+        std::vector<std::uint16_t> dest;
+        placeFlowAgents(crowd, map, n, a, dest, flow.placeApart ? 2 * flowBody : 0);
+        std::vector<std::uint8_t> arrived(a.ids.size(), 0);
+        const OverlapRun r = runOverlap(
+            steps, every, dt, settle, flowBody,
+            [&] { crowd.step(a.span(), dest, arrived, {}, dt); },
+            [&]() -> const NeighbourGrid& { return crowd.grid(); });
+        long done = 0;
+        for (std::uint8_t f : arrived) done += f;
+        row("flow", n, fs.separation_radius, fs.separation_weight, fs.max_force, body, r, done);
+      }
   for (int n : counts) {
     const FlockSettings fs;
     const double side = std::sqrt(n / 0.5);
@@ -531,7 +558,7 @@ void benchOverlap(const std::vector<int>& counts, double seconds, int every,
     const OverlapRun r = runOverlap(
         steps, every, dt, settle, flockBody, [&] { flock.step(a.span(), {}, dt); },
         [&]() -> const NeighbourGrid& { return flock.grid(); });
-    row("flock", n, fs.separation_radius, fs.separation_weight, fs.max_force, r, 0);
+    row("flock", n, fs.separation_radius, fs.separation_weight, fs.max_force, 0, r, 0);
   }
 }
 
@@ -573,6 +600,10 @@ int main(int argc, char** argv) {
       overlapFlow.separationRadius = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--max-force") && i + 1 < argc)
       overlapFlow.maxForce = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--place-apart"))
+      overlapFlow.placeApart = true;
+    else if (!std::strcmp(argv[i], "--body-radius") && i + 1 < argc)
+      overlapFlow.bodies = bench::parseReals("--body-radius", argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N]\n"
@@ -581,7 +612,7 @@ int main(int argc, char** argv) {
                    "                   [--crowded LIST] [--overlap-seconds S] "
                    "[--overlap-every K]\n"
                    "                   [--separation-weight LIST] [--separation-radius R] "
-                   "[--max-force F]\n");
+                   "[--max-force F] [--body-radius LIST] [--place-apart]\n");
       return 2;
     }
   }

@@ -40,7 +40,7 @@ int flowDestination(std::uint64_t id, int count) {
 
 namespace {
 
-crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
+crowd::FlowCrowdSettings settingsOf(const NpcFlow& f, double halo_width) {
   crowd::FlowCrowdSettings s;
   s.max_speed = f.max_speed;
   s.max_force = f.max_force;
@@ -50,6 +50,8 @@ crowd::FlowCrowdSettings settingsOf(const NpcFlow& f) {
   s.arrive_radius = f.arrive_radius;
   s.slow_radius = f.slow_radius;
   s.grid_cell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
+  s.body_radius = f.body_radius;
+  s.sight = halo_width;  // every neighbour that could bind a body is a ghost on every rank
   return s;
 }
 
@@ -74,8 +76,8 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
     const NpcFlow& f = scene.npcs[p].flow;
     if (!f.enabled) continue;
     if (!map) throw SceneError(sceneFile(scene) + ":0: map: a flow population needs a map");
-    auto g = std::make_unique<Group>(std::int32_t(p), map->grid, map->frame, settingsOf(f),
-                                     lodOf(scene.lod));
+    auto g = std::make_unique<Group>(std::int32_t(p), map->grid, map->frame,
+                                     settingsOf(f, scene.halo_width), lodOf(scene.lod));
     for (std::size_t k = 0; k < f.destinations.size(); ++k) {
       const NpcFlow::Destination& d = f.destinations[k];
       if (!map->walkable(d.x, d.z)) {

@@ -1,0 +1,111 @@
+#include "crowd/keep_apart.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace zonesim::crowd {
+
+namespace {
+
+constexpr double kTolerance = 1e-12;  // m: rounding allowed on a limit
+
+// How hard the limits are: every overlap backed off by half its depth; by as much as the
+// reach allows; or only not deepened (each overlap's line moves toward the origin).
+enum class Ask { kHalfDepth, kReach, kNoDeeper };
+
+double offsetOf(const GapPlane& p, Ask ask, double reach) {
+  switch (ask) {
+    case Ask::kHalfDepth:
+      return p.offset;
+    case Ask::kReach:
+      return std::max(p.offset, -reach);
+    case Ask::kNoDeeper:
+      break;
+  }
+  return std::max(p.offset, 0.0);
+}
+
+// The point of plane j's line closest to `wish` that keeps planes [0, j) and the reach; false
+// when that part of the line is empty.
+bool bestOnLine(std::span<const GapPlane> planes, std::size_t j, Ask ask, Vec2 wish, double reach,
+                Vec2& out) {
+  const Vec2 n = planes[j].normal;
+  const double c = offsetOf(planes[j], ask, reach);
+  const double inside = reach * reach - c * c;
+  if (inside < 0.0) return false;  // the line misses the disc
+  const Vec2 base = n * c;
+  const Vec2 along{-n.y, n.x};
+  double lo = -std::sqrt(inside), hi = std::sqrt(inside);
+  for (std::size_t i = 0; i < j; ++i) {
+    const double slope = dot(along, planes[i].normal);
+    const double room = offsetOf(planes[i], ask, reach) - dot(base, planes[i].normal);
+    if (std::abs(slope) <= kTolerance) {
+      if (room < -kTolerance) return false;  // parallel, and the whole line is outside
+      continue;
+    }
+    if (slope > 0.0)
+      hi = std::min(hi, room / slope);
+    else
+      lo = std::max(lo, room / slope);
+  }
+  if (lo > hi + kTolerance) return false;
+  const double t = lo > hi ? 0.5 * (lo + hi) : std::clamp(dot(wish - base, along), lo, hi);
+  out = base + along * t;
+  return true;
+}
+
+}  // namespace
+
+void KeepApart::neighbour(Vec2 rel, bool self_first) {
+  const double d2 = lengthSq(rel);
+  GapPlane p;
+  double d;
+  if (d2 > 1e-18) {
+    d = std::sqrt(d2);
+    p.normal = rel * (1.0 / d);
+  } else {
+    d = 0.0;  // one point: the lower id backs off toward -x, as separation pushes it
+    p.normal = {self_first ? 1.0 : -1.0, 0.0};
+  }
+  p.offset = 0.5 * (d - 2.0 * radius_);
+  if (p.offset >= reach_) return;  // farther than any move this step: cannot bind
+  planes_.push_back(p);
+}
+
+namespace {
+
+// The displacement closest to `wish` within the reach and the planes asked as `ask`; false
+// when there is none.
+bool closest(std::span<const GapPlane> planes, Ask ask, Vec2 wish, double reach, Vec2& out) {
+  // Incremental: the optimum for the planes so far either keeps the next one, or lies on its
+  // line (the objective, distance to the wish, is convex).
+  Vec2 x = clampLength(wish, reach);
+  for (std::size_t j = 0; j < planes.size(); ++j) {
+    if (dot(x, planes[j].normal) <= offsetOf(planes[j], ask, reach)) continue;
+    if (!bestOnLine(planes, j, ask, wish, reach, x)) return false;
+  }
+  out = x;
+  return true;
+}
+
+}  // namespace
+
+Vec2 KeepApart::solve(Vec2 wish) const {
+  Vec2 x;
+  if (closest(planes_, Ask::kHalfDepth, wish, reach_, x)) return x;
+  // An overlap deeper than twice the reach: back off as fast as the reach allows.
+  if (closest(planes_, Ask::kReach, wish, reach_, x)) return x;
+  // Squeezed: some overlap cannot be backed off from. Staying put keeps every plane asked not
+  // to deepen, so this succeeds; the fallback to zero only guards against rounding.
+  if (closest(planes_, Ask::kNoDeeper, wish, reach_, x) && keeps(x)) return x;
+  return {};
+}
+
+bool KeepApart::keeps(Vec2 x) const {
+  if (lengthSq(x) > reach_ * reach_ * (1.0 + 1e-12) + kTolerance) return false;
+  for (const GapPlane& p : planes_)
+    if (dot(x, p.normal) > offsetOf(p, Ask::kNoDeeper, reach_) + kTolerance) return false;
+  return true;
+}
+
+}  // namespace zonesim::crowd
