@@ -91,8 +91,8 @@ void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p)
   }
   NpcFlock& f = p.flock;
   f.enabled = true;
-  SceneMap m = population.section(
-      "flock", {"radius", "separation", "alignment", "cohesion", "max_speed", "max_force", "goal"});
+  SceneMap m = population.section("flock", {"radius", "separation", "alignment", "cohesion",
+                                            "max_speed", "max_force", "goal", "body_radius"});
   m.read("radius", f.radius, Limit::above(0));
   m.read("alignment", f.alignment_weight, Limit::atLeast(0));
   m.read("cohesion", f.cohesion_weight, Limit::atLeast(0));
@@ -102,6 +102,7 @@ void readFlock(const SceneMap& population, const Scene& scene, NpcPopulation& p)
   SceneMap sep = m.section("separation", {"radius", "weight"});
   sep.read("radius", f.separation_radius, Limit::atLeast(0));
   sep.read("weight", f.separation_weight, Limit::atLeast(0));
+  readBodyRadius(m, scene, f.body_radius);
   // Flockers across a border are seen through the halo; it must reach as far as they look.
   if (f.radius > scene.halo_width) {
     m.failAt("radius", formatNumber(f.radius) + " m is wider than halo.width (" +

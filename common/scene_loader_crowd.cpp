@@ -182,13 +182,14 @@ void readNpcFlow(const SceneMap& population, const Scene& scene, NpcPopulation& 
   m.read("arrive_radius", f.arrive_radius, Limit::above(0));
   m.read("slow_radius", f.slow_radius, Limit::above(0));
   readSeparation(m, scene, f.separation_radius, f.separation_weight);
-  m.read("body_radius", f.body_radius, Limit::atLeast(0));
-  // A body sees the neighbours that could bind it within 2 (radius + reach): the halo must
-  // show more than the two bodies themselves (crowd/keep_apart.h).
-  if (f.body_radius > 0 && 2 * f.body_radius >= scene.halo_width) {
-    m.failAt("body_radius", formatNumber(f.body_radius) +
-                                " m: twice it must be less than "
-                                "halo.width (" +
+  readBodyRadius(m, scene, f.body_radius);
+}
+
+void readBodyRadius(const SceneMap& m, const Scene& scene, double& radius) {
+  m.read("body_radius", radius, Limit::atLeast(0));
+  // The halo must show more than the two bodies themselves (crowd/keep_apart.h).
+  if (radius > 0 && 2 * radius >= scene.halo_width) {
+    m.failAt("body_radius", formatNumber(radius) + " m: twice it must be less than halo.width (" +
                                 formatNumber(scene.halo_width) + " m)");
   }
 }

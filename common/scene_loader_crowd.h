@@ -37,6 +37,9 @@ void readNpcRoads(const SceneMap& population, const Scene& scene, NpcPopulation&
 /// absent); a radius wider than the halo fails, since neighbours across a border are seen only
 /// through it.
 void readSeparation(const SceneMap& m, const Scene& scene, double& radius, double& weight);
+/// `body_radius` of a flow or flock block: at least 0, and twice it less than the halo width
+/// (a body sees the neighbours that could bind it within 2 (radius + reach)).
+void readBodyRadius(const SceneMap& m, const Scene& scene, double& radius);
 
 /// A point [x, y, z] on the ground plane inside the world (y is ignored).
 ScenePoint readGroundPoint(const SceneNode& node, const Scene& scene);

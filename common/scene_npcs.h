@@ -28,6 +28,7 @@ struct NpcFlock {
   double goal_weight = 1.0;       ///< 1/s: rate at which velocity follows the goal velocity
   double goal_speed = 0;          ///< m/s toward the point (the loader sets max_speed if unset)
   double goal_slow_radius = 5.0;  ///< m: the goal speed ramps down to 0 this close
+  double body_radius = 0.0;       ///< m: bodies that never step into each other (0: may overlap)
 };
 
 /// A flow-field crowd (crowd/flow_crowd.h, docs/crowd.md): each NPC heads for one

@@ -380,6 +380,14 @@ Vec2 Flock::steering(const GridEntry& self, Vec2 goal, bool hasGoal) const {
                       goal, hasGoal);
 }
 
+Flock::Flock(const FlockSettings& settings) : settings_(settings) {
+  if (!(settings.body_radius >= 0.0))
+    throw std::invalid_argument("Flock: body_radius must be at least 0");
+  if (settings.body_radius > 0.0 && !(settings.sight > 2.0 * settings.body_radius))
+    throw std::invalid_argument("Flock: sight must exceed twice body_radius");
+  useLanes(8);
+}
+
 void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
                  std::span<const Vec2> goal_vel, const StepPlan& plan) {
   const std::size_t n = agents.size();
@@ -390,11 +398,22 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
   grid_.build(agents, ghosts, settings_.neighbour_radius);
   const bool hasGoal = !goal_vel.empty();
   const FlockSettings& s = settings_;
+  const std::span<const GridEntry> entries = grid_.entries();
   auto advance = [&](const GridEntry& e, Vec2 acc) {
     const double h = plan.empty() ? dt : plan.dt[e.src];
     Vec2 v = clampLength(e.vel + acc * h, s.max_speed);
+    Vec2 x = v * h;
+    if (s.body_radius > 0.0 && (plan.empty() || plan.steer[e.src])) {
+      keep_apart_.begin(s.body_radius, std::min(s.max_speed * h, 0.5 * s.sight - s.body_radius));
+      gatherGaps(grid_, std::int32_t(&e - entries.data()), keep_apart_);
+      const Vec2 kept = keep_apart_.move(x);
+      if (!(kept == x)) {
+        x = kept;
+        v = x * (1.0 / h);
+      }
+    }
     agents.vel[e.src] = v;
-    agents.pos[e.src] = e.pos + v * h;
+    agents.pos[e.src] = e.pos + x;
   };
   auto goalOf = [&](const GridEntry& e) { return hasGoal ? goal_vel[e.src] : Vec2{}; };
   auto steerPair = [&](const GridEntry& a, const GridEntry& b) {

@@ -4,12 +4,15 @@
 // the flock through it, as the seed suggests for alignment). All agents read the state at the
 // start of the step and write the new one (a Jacobi update), and neighbour sums run in the
 // grid's canonical order, so the result is independent of storage order and of ownership.
+// With a body radius, agents are discs that never step into each other (keep_apart.h); the
+// gaps are a scalar pass after the sums, so every lane width still moves them alike.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "crowd/agents.h"
+#include "crowd/keep_apart.h"
 #include "crowd/neighbour_grid.h"
 #include "crowd/step_plan.h"
 
@@ -25,13 +28,20 @@ struct FlockSettings {
   double goal_weight = 1.0;         ///< 1/s: rate at which velocity follows the goal velocity
   double max_speed = 2.0;           ///< m/s
   double max_force = 8.0;           ///< m/s^2, bound on the steering acceleration
+  /// Agents are discs of this radius that never step into each other (keep_apart.h); 0: they
+  /// may overlap, kept apart by separation alone. Holds for agents at full steering detail.
+  double body_radius = 0.0;
+  /// How far the caller shows every agent its neighbours (the zone's halo width): an agent
+  /// keeping its gaps moves at most (sight - 2 body_radius) / 2 a step. Must exceed
+  /// 2 body_radius.
+  double sight = 1e9;
 };
 
 /// Steps flocks; owns the neighbour grid so that a warm step allocates nothing.
 class Flock {
  public:
   /// A flock stepper with the given settings.
-  explicit Flock(const FlockSettings& settings) : settings_(settings) { useLanes(8); }
+  explicit Flock(const FlockSettings& settings);
 
   /// Agents whose neighbour sums run in one pass: 1, 2 (SSE2), 4 (AVX) or 8 (AVX-512; the
   /// default, narrower where the CPU lacks it). Every width gives bitwise the same step;
@@ -54,6 +64,7 @@ class Flock {
   NeighbourGrid grid_;
   int lanes_ = 1;
   std::vector<std::int32_t> noted_;  // candidates close enough to separate, per group
+  KeepApart keep_apart_;             // the gaps of the agent being moved
 };
 
 }  // namespace zonesim::crowd

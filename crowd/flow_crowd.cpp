@@ -117,15 +117,8 @@ Vec2 FlowCrowd::separation(std::int32_t self, KeepApart* gaps) const {
 
 Vec2 FlowCrowd::keepGaps(Vec2 from, Vec2 to, double h, Vec2& vel) const {
   const Vec2 wish = to - from;
-  Vec2 x = keep_apart_.solve(wish);
+  const Vec2 x = keep_apart_.move(wish);
   if (x == wish) return to;
-  // Held back by a gap: step to the right as well (three times as far as ahead, about 72
-  // degrees, within the reach). Two agents meeting head-on both do, so they pass instead of
-  // pressing on the line between them for ever, and opposing flows in a doorway form lanes
-  // (with a sidestep only as far as ahead, and only when less than half the move was left,
-  // 132 of the courtyard's 400 NPCs never got through its doors; docs/benchmarks.md).
-  constexpr double kSidestep = 3.0;
-  x = keep_apart_.solve(wish + Vec2{wish.y, -wish.x} * kSidestep);
   // Kept short of a neighbour: the agent moves (and goes on) as it can. The new move may meet
   // a wall the first did not, so it slides again; a slide that breaks a gap stays put.
   vel = x * (1.0 / h);

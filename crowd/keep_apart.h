@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "crowd/neighbour_grid.h"
 #include "crowd/vec2.h"
 
 namespace zonesim::crowd {
@@ -51,6 +52,11 @@ class KeepApart {
   /// the reach; where not even that fits, the closest that keeps every gap and deepens no
   /// overlap (half-planes through the origin for those).
   Vec2 solve(Vec2 wish) const;
+  /// The move an agent makes: solve(wish), or, where a gap holds it back, solved again with
+  /// a sidestep to its right (three times as far as ahead, about 72 degrees, within the
+  /// reach). Two agents meeting head-on both step aside, so they pass instead of pressing on
+  /// the line between them for ever, and opposing flows in a doorway form lanes.
+  Vec2 move(Vec2 wish) const;
   /// True when `x` keeps every gap and deepens no overlap (up to rounding of 1e-12 m).
   bool keeps(Vec2 x) const;
 
@@ -58,5 +64,9 @@ class KeepApart {
   double radius_ = 0.0, reach_ = 0.0;
   std::vector<GapPlane> planes_;
 };
+
+/// Gathers into `k` (begun) the neighbours of the grid's entry `self` that may bind it, in the
+/// grid's canonical order.
+void gatherGaps(const NeighbourGrid& grid, std::int32_t self, KeepApart& k);
 
 }  // namespace zonesim::crowd

@@ -2,7 +2,7 @@
 //              [--only flock|flow|lod|lod-flock|lod-sweep|overlap] [--lod-seconds S]
 //              [--crowded LIST] [--overlap-seconds S] [--overlap-every K]
 //              [--separation-weight LIST] [--separation-radius R] [--max-force F]
-//              [--body-radius LIST] [--place-apart]
+//              [--body-radius LIST] [--place-apart] [--flock-body-radius LIST]
 // Prints markdown tables: ms per step and agent updates per second for flocking and flow
 // fields on one core, flow field build time, and (--only lod: flow crowds; --only lod-flock:
 // flocks) AI time and outcome drift with and without level of detail; --crowded adds flow LOD
@@ -11,7 +11,8 @@
 // --only overlap: the deepest overlap between two agents' bodies over a run of the flow crowd
 // and of the flock, next to the step time (--separation-weight, --separation-radius and
 // --max-force change the flow crowd's settings for it; --body-radius runs it with bodies kept
-// apart, crowd/keep_apart.h, 0 for none; --place-apart places the flow crowd without overlaps). The
+// apart, crowd/keep_apart.h, 0 for none, and --flock-body-radius the flock; --place-apart
+// places both crowds without overlaps). The
 // flock and flow tables end with a digest of the final state, so that two builds can be shown to
 // step bitwise alike.
 
@@ -71,13 +72,47 @@ std::uint64_t stateDigest(const Agents& a) {
 
 /// n flockers placed uniformly in a square of this side with random velocities up to 1 m/s
 /// a component, from the seed; ids are unrelated to position.
-Agents flockInSquare(int n, double side, std::uint64_t seed) {
+/// Points placed at random on [0, width) x [0, height) that keep `apart` (> 0) from each
+/// other: a candidate too close to one already placed is refused (1 m cells of the area).
+class Spacing {
+ public:
+  Spacing(double width, double height, double apart)
+      : width_(int(std::ceil(width))),
+        height_(int(std::ceil(height))),
+        apart_(apart),
+        cells_(apart > 0 ? std::size_t(width_) * height_ : 0) {}
+  /// True (and `p` is kept) when `p` keeps the spacing from every point kept so far.
+  bool admit(Vec2 p) {
+    if (apart_ <= 0) return true;
+    const int reach = int(std::ceil(apart_));
+    for (int y = int(p.y) - reach; y <= int(p.y) + reach; ++y)
+      for (int x = int(p.x) - reach; x <= int(p.x) + reach; ++x) {
+        if (x < 0 || y < 0 || x >= width_ || y >= height_) continue;
+        for (Vec2 q : cells_[std::size_t(y) * width_ + x])
+          if (lengthSq(q - p) < apart_ * apart_) return false;
+      }
+    cells_[std::size_t(int(p.y)) * width_ + int(p.x)].push_back(p);
+    return true;
+  }
+
+ private:
+  int width_, height_;
+  double apart_;
+  std::vector<std::vector<Vec2>> cells_;
+};
+
+// `apart` > 0: no two agents closer than it (candidates that would be are drawn again).
+Agents flockInSquare(int n, double side, std::uint64_t seed, double apart = 0) {
   Agents a;
   Pcg32 rng(seed, seed);
-  for (int i = 0; i < n; ++i) {
-    a.ids.push_back(std::uint64_t(i) * 2654435761ULL);
-    a.pos.push_back(Vec2{rng.uniform(0, side), rng.uniform(0, side)});
-    a.vel.push_back(Vec2{rng.uniform(-1, 1), rng.uniform(-1, 1)});
+  Spacing spacing(side, side, apart);
+  while (int(a.ids.size()) < n) {
+    const Vec2 p{rng.uniform(0, side), rng.uniform(0, side)};
+    const Vec2 v{rng.uniform(-1, 1), rng.uniform(-1, 1)};
+    if (!spacing.admit(p)) continue;
+    a.ids.push_back(std::uint64_t(a.ids.size()) * 2654435761ULL);
+    a.pos.push_back(p);
+    a.vel.push_back(v);
   }
   return a;
 }
@@ -146,26 +181,12 @@ std::vector<ai::Cell> cornerGoals(const ai::GridMap& map) {
 void placeFlowAgents(const FlowCrowd& crowd, const ai::GridMap& map, int n, Agents& a,
                      std::vector<std::uint16_t>& dest, double apart = 0) {
   Pcg32 rng(2, 2);
-  // Agents so far by 1 m cell of the map, for the spacing test.
-  std::vector<std::vector<std::int32_t>> near(apart > 0 ? map.width() * map.height() : 0);
-  const auto tooClose = [&](Vec2 p) {
-    const int reach = int(std::ceil(apart));
-    for (int y = int(p.y) - reach; y <= int(p.y) + reach; ++y)
-      for (int x = int(p.x) - reach; x <= int(p.x) + reach; ++x) {
-        if (x < 0 || y < 0 || x >= map.width() || y >= map.height()) continue;
-        for (std::int32_t i : near[std::size_t(y) * map.width() + x])
-          if (lengthSq(a.pos[i] - p) < apart * apart) return true;
-      }
-    return false;
-  };
+  Spacing spacing(map.width(), map.height(), apart);
   while (int(a.ids.size()) < n) {
     Vec2 p{rng.uniform(0, map.width()), rng.uniform(0, map.height())};
     int d = int(a.ids.size() % crowd.destinationCount());
     if (crowd.field(d).distance(crowd.frame().cellOf(p)) < 0) continue;
-    if (apart > 0) {
-      if (tooClose(p)) continue;
-      near[std::size_t(int(p.y)) * map.width() + int(p.x)].push_back(std::int32_t(a.ids.size()));
-    }
+    if (!spacing.admit(p)) continue;
     a.ids.push_back(std::uint64_t(a.ids.size()) * 2654435761ULL);
     a.pos.push_back(p);
     a.vel.push_back(Vec2{});
@@ -494,8 +515,9 @@ OverlapRun runOverlap(int steps, int every, double dt, double settle, double rad
 struct OverlapFlowSettings {
   std::vector<double> weights{0};
   std::vector<double> bodies{0};  // body_radius: agents kept apart (0: overlap allowed)
+  std::vector<double> flockBodies{0};  // the same for the flock
   double separationRadius = 0, maxForce = 0;
-  bool placeApart = false;  // place the flow crowd without overlaps (of its default bodies)
+  bool placeApart = false;  // place both crowds without overlaps (of their default bodies)
 };
 
 void benchOverlap(const std::vector<int>& counts, double seconds, int every,
@@ -550,16 +572,18 @@ void benchOverlap(const std::vector<int>& counts, double seconds, int every,
         for (std::uint8_t f : arrived) done += f;
         row("flow", n, fs.separation_radius, fs.separation_weight, fs.max_force, body, r, done);
       }
-  for (int n : counts) {
-    const FlockSettings fs;
-    const double side = std::sqrt(n / 0.5);
-    Agents a = flockInSquare(n, side, 1);
-    Flock flock{fs};
-    const OverlapRun r = runOverlap(
-        steps, every, dt, settle, flockBody, [&] { flock.step(a.span(), {}, dt); },
-        [&]() -> const NeighbourGrid& { return flock.grid(); });
-    row("flock", n, fs.separation_radius, fs.separation_weight, fs.max_force, 0, r, 0);
-  }
+  for (int n : counts)
+    for (double body : flow.flockBodies) {
+      FlockSettings fs;
+      fs.body_radius = body;
+      const double side = std::sqrt(n / 0.5);
+      Agents a = flockInSquare(n, side, 1, flow.placeApart ? 2 * flockBody : 0);
+      Flock flock{fs};
+      const OverlapRun r = runOverlap(
+          steps, every, dt, settle, flockBody, [&] { flock.step(a.span(), {}, dt); },
+          [&]() -> const NeighbourGrid& { return flock.grid(); });
+      row("flock", n, fs.separation_radius, fs.separation_weight, fs.max_force, body, r, 0);
+    }
 }
 
 }  // namespace
@@ -604,6 +628,8 @@ int main(int argc, char** argv) {
       overlapFlow.placeApart = true;
     else if (!std::strcmp(argv[i], "--body-radius") && i + 1 < argc)
       overlapFlow.bodies = bench::parseReals("--body-radius", argv[++i]);
+    else if (!std::strcmp(argv[i], "--flock-body-radius") && i + 1 < argc)
+      overlapFlow.flockBodies = bench::parseReals("--flock-body-radius", argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: crowd_bench [--agents LIST] [--lanes LIST] [--steps N]\n"
@@ -612,7 +638,8 @@ int main(int argc, char** argv) {
                    "                   [--crowded LIST] [--overlap-seconds S] "
                    "[--overlap-every K]\n"
                    "                   [--separation-weight LIST] [--separation-radius R] "
-                   "[--max-force F] [--body-radius LIST] [--place-apart]\n");
+                   "[--max-force F] [--body-radius LIST] [--place-apart]\n"
+                   "                   [--flock-body-radius LIST]\n");
       return 2;
     }
   }

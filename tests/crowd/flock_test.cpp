@@ -1,11 +1,17 @@
 // Flocking: a flock started on a loose lattice with random velocities keeps every pair at
 // least a fixed fraction of the separation radius apart and stays within a radius bound of
 // its centroid, while it settles into a common heading. Without the separation term the same
-// flock collapses below the bound (the measurement detects a violation).
+// flock collapses below the bound (the measurement detects a violation). With bodies kept
+// apart, no pair of the same flock ever comes closer than two body radii, even without
+// separation.
 
 #include "crowd/flock.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
 
 #include "crowd_test_util.h"
 
@@ -77,6 +83,33 @@ TEST(Flock, WithoutSeparationTheFlockCollapses) {
   FlockRun r = runFlock(s, 12, 30.0);
   std::printf("no separation: min distance %.3f, max radius %.3f\n", r.minDistance, r.maxRadius);
   EXPECT_LT(r.minDistance, 0.5 * s.separation_radius);
+}
+
+TEST(Flock, BodiesKeptApartNeverComeCloserThanTwoRadii) {
+  FlockSettings s;
+  s.body_radius = 0.5;  // the lattice starts 1.2 m apart: no overlap at the start
+  for (double weight : {20.0, 0.0}) {
+    s.separation_weight = weight;  // without separation, cohesion presses the flock together
+    auto a = test::lattice(12, 1.2, 1.0, 21);
+    Flock flock(s);
+    double closest = 1e300;
+    for (int k = 0; k < 300; ++k) {
+      flock.step(a.span(), {}, 1.0 / 30);
+      closest = std::min(closest, test::minPairDistance(a.pos));
+    }
+    std::printf("separation weight %g: closest pair %.6f m over 10 s (bodies 2 x 0.5 m)\n", weight,
+                closest);
+    EXPECT_GE(closest, 2 * s.body_radius - 1e-9) << "weight " << weight;
+  }
+}
+
+TEST(Flock, BodiesNeedASightWiderThanTwoRadii) {
+  FlockSettings s;
+  s.body_radius = 1.0;
+  s.sight = 2.0;
+  EXPECT_THROW(Flock{s}, std::invalid_argument);
+  s.body_radius = -0.1;
+  EXPECT_THROW(Flock{s}, std::invalid_argument);
 }
 
 }  // namespace

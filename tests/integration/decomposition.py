@@ -5,8 +5,8 @@ borders from ghosts that are bitwise the owners' state; (scenes/crowd_flock.yaml
 do the same through the crowd library's Flock, whose sums run in a canonical order;
 (scenes/courtyard_flow.yaml) a flow-field crowd on an obstacle map pushes apart across borders
 through ghosts and decides arrivals from positions alone, and (scenes/courtyard_flow_bodies.yaml)
-keeps its bodies apart from them; (scenes/courtyard_flow_lod.yaml) the
-same under level of detail, with crowded cells counted over agents and ghosts kept at full
+keeps its bodies apart from them, as do the flockers of (scenes/crowd_flock_bodies.yaml);
+(scenes/courtyard_flow_lod.yaml) the same under level of detail, with crowded cells counted over agents and ghosts kept at full
 detail; (scenes/flock_lod.yaml) a flock with
 a goal under level of detail, whose plan (from ids, positions, the tick and a scripted
 observer) is the same on every rank;
@@ -47,7 +47,7 @@ import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
           "courtyard_flow_lod": 300,
-          "courtyard_flow_bodies": 300,
+          "courtyard_flow_bodies": 300, "crowd_flock_bodies": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "agents_navmesh": 600, "agents_jps": 600,
           "courtyard_formation": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
@@ -57,8 +57,9 @@ FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's sc
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
          "flock_lod": ["--gpu", "off"]}
-GHOST_SCENES = ("crowd", "crowd_flock", "courtyard_flow", "courtyard_flow_lod", "courtyard_flow_bodies",
-                "crowd_flock_gpu", "agents", "agents_sliced", "courtyard_formation", "courtyard_groups_lod", "flock_lod", "skirmish")
+GHOST_SCENES = ("crowd", "crowd_flock", "crowd_flock_bodies", "courtyard_flow", "courtyard_flow_lod",
+                "courtyard_flow_bodies", "crowd_flock_gpu", "agents", "agents_sliced",
+                "courtyard_formation", "courtyard_groups_lod", "flock_lod", "skirmish")
 MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition
 MAIL_FIGURES = ("hits", "kills", "pickups", "pickups_contested", "pickups_denied", "mail_posted",
                 "mail_applied", "mail_refused")

@@ -28,7 +28,7 @@ struct FlockMovement::Group {
 
 namespace {
 
-crowd::FlockSettings settingsOf(const NpcFlock& f) {
+crowd::FlockSettings settingsOf(const NpcFlock& f, double halo_width) {
   crowd::FlockSettings s;
   s.neighbour_radius = f.radius;
   s.separation_radius = f.separation_radius;
@@ -38,6 +38,8 @@ crowd::FlockSettings settingsOf(const NpcFlock& f) {
   s.max_speed = f.max_speed;
   s.max_force = f.max_force;
   s.goal_weight = f.goal_weight;
+  s.body_radius = f.body_radius;
+  s.sight = halo_width;  // every neighbour that could bind a body is a ghost on every rank
   return s;
 }
 
@@ -50,8 +52,11 @@ FlockMovement::FlockMovement(const Scene& scene, const std::string& gpu_mode,
     const NpcFlock& f = scene.npcs[p].flock;
     if (!f.enabled) continue;
     const std::size_t share = std::size_t(scene.npcs[p].count) / std::size_t(std::max(1, ranks));
-    gpu::Backend b = flockBackendFor(gpu_mode, share, thresholds);
-    auto g = std::make_unique<Group>(std::int32_t(p), settingsOf(f), b, lodOf(scene.lod));
+    // The device kernel has no bodies: a flock that keeps them apart runs on the CPU.
+    gpu::Backend b =
+        f.body_radius > 0 ? gpu::Backend::Cpu : flockBackendFor(gpu_mode, share, thresholds);
+    auto g = std::make_unique<Group>(std::int32_t(p), settingsOf(f, scene.halo_width), b,
+                                     lodOf(scene.lod));
     g->hasGoal = f.has_goal;
     g->goal = {f.goal_x, f.goal_z};
     g->goalSpeed = f.goal_speed > 0 ? f.goal_speed : f.max_speed;
