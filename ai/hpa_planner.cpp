@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "ai/fixed_cost.h"
 #include "ai/open_order.h"
 
 namespace zonesim::ai {
@@ -186,6 +187,12 @@ HpaStats HpaPlanner::stats() const {
                   grid_expanded_,           last_direct_};
 }
 
+void HpaPlanner::useLandmarks(const LandmarkHeuristic* landmarks) {
+  landmarks_ = landmarks;
+  search_.useLandmarks(landmarks);
+  direct_search_.useLandmarks(landmarks);
+}
+
 bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
   const std::uint32_t open = generation_, closed = generation_ + 1;
   auto cellOf = [&](int node) {
@@ -194,6 +201,17 @@ bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
   auto push = [&](const HeapEntry& e) {
     heap_.push_back(e);
     std::push_heap(heap_.begin(), heap_.end(), PopsLater{});
+  };
+  // Abstract edges cost at least the grid distance they span, so a lower bound on the grid
+  // distance to the goal is a consistent estimate here too. The landmarks' fixed-point bound
+  // is scaled back to cells (its rounding is far below any difference of two path costs).
+  const bool landmarks = landmarks_ != nullptr && landmarks_->validFor(map_);
+  if (landmarks) landmarks_->prepareGoal(goal.x, goal.y, goal_landmarks_);
+  auto estimate = [&](Cell c) {
+    const double octile = octileDistance(c, goal);
+    if (!landmarks) return octile;
+    return std::max(octile,
+                    double(landmarks_->bound(c.x, c.y, goal_landmarks_)) / double(kStraight));
   };
   heap_.clear();
   records_[std::size_t(startNode)] = AbstractNode{0.0, -1, open};
@@ -204,7 +222,7 @@ bool HpaPlanner::searchAbstract(int startNode, int goalNode, Cell goal) {
     double g = records_[std::size_t(from)].g + cost;
     if (n.stamp == closed || (n.stamp == open && n.g <= g)) return;
     n = AbstractNode{g, from, open};
-    push(HeapEntry{g + (to == goalNode ? 0.0 : octileDistance(cellOf(to), goal)), g, to});
+    push(HeapEntry{g + (to == goalNode ? 0.0 : estimate(cellOf(to))), g, to});
   };
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), PopsLater{});

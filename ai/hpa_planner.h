@@ -14,6 +14,7 @@
 #include "ai/grid_path.h"
 #include "ai/grid_search.h"
 #include "ai/jump_point_search.h"
+#include "ai/landmark_heuristic.h"
 
 namespace zonesim::ai {
 
@@ -56,6 +57,11 @@ class HpaPlanner {
   void rebuild();
   /// Size of the abstraction and work of the last query.
   HpaStats stats() const;
+  /// Estimates costs with `landmarks` as well (may be null; must outlive the planner, and is
+  /// used only while valid for the map): the abstract search, the searches that link and
+  /// refine, and the direct jump point search. Costs stay optimal where they were; a query
+  /// expands fewer nodes where the walls mislead the octile distance.
+  void useLandmarks(const LandmarkHeuristic* landmarks);
 
  private:
   struct Transition {
@@ -93,6 +99,8 @@ class HpaPlanner {
 
   const GridMap& map_;
   HpaConfig config_;
+  const LandmarkHeuristic* landmarks_ = nullptr;
+  LandmarkHeuristic::Goal goal_landmarks_;  // kept to avoid allocating per query
   int clusters_x_ = 0, clustersY_ = 0;
   // Borders: first the vertical ones (between (cx, cy) and (cx + 1, cy)), then horizontal.
   std::vector<std::vector<Transition>> borders_;

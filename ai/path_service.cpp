@@ -10,22 +10,27 @@ namespace zonesim::ai {
 
 PathService::PathService(GridMap& map, const PathServiceConfig& config)
     : map_(map), config_(config), cache_(config.cache_capacity) {
-  const bool grid = config_.planner == PlannerKind::AStar || config_.planner == PlannerKind::Jps;
-  if (config_.landmarks != 0 && !grid)
-    throw std::invalid_argument("path service: landmarks serve the A* and JPS planners only");
-  if (config_.landmarks != 0)
-    landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
+  if (config_.landmarks != 0 && config_.planner == PlannerKind::NavMesh)
+    throw std::invalid_argument("path service: landmarks serve the A*, JPS and HPA* planners only");
   if (config_.planner == PlannerKind::AStar) {
     astar_ = std::make_unique<GridSearch>(map_);
-    astar_->useLandmarks(landmarks_.get());
   } else if (config_.planner == PlannerKind::Jps) {
-    jps_ =
-        std::make_unique<JumpPointSearch>(map_, JumpPointSearch::Jumps::Scanned, landmarks_.get());
+    jps_ = std::make_unique<JumpPointSearch>(map_, JumpPointSearch::Jumps::Scanned);
   } else if (config_.planner == PlannerKind::Hpa) {
     hpa_ = std::make_unique<HpaPlanner>(map_, config_.hpa);
   } else {
     rebuildMesh();
   }
+  if (config_.landmarks != 0) {
+    landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
+    lendLandmarks(landmarks_.get());
+  }
+}
+
+void PathService::lendLandmarks(const LandmarkHeuristic* landmarks) {
+  if (astar_) astar_->useLandmarks(landmarks);
+  if (jps_) jps_->useLandmarks(landmarks);
+  if (hpa_) hpa_->useLandmarks(landmarks);
 }
 
 void PathService::rebuildMesh() {
@@ -117,12 +122,10 @@ bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
     // Rebuilt here rather than on each change: a tick's doors cost one rebuild, and the
     // table always matches the map the plan sees (so every rank plans alike).
     // The old table goes first: two at once would double the memory for a moment.
-    if (astar_) astar_->useLandmarks(nullptr);
-    if (jps_) jps_->useLandmarks(nullptr);
+    lendLandmarks(nullptr);
     landmarks_.reset();
     landmarks_ = std::make_unique<LandmarkHeuristic>(map_, config_.landmarks);
-    if (astar_) astar_->useLandmarks(landmarks_.get());
-    if (jps_) jps_->useLandmarks(landmarks_.get());
+    lendLandmarks(landmarks_.get());
     ++stats_.landmark_builds;
   }
   if (jps_) {

@@ -113,12 +113,13 @@ class PathService {
   bool plan(Cell start, Cell goal, GridPath& out, int& expanded);
   bool planOnMesh(Vec2 from, Vec2 to, GridPath& out, int& expanded);
   void rebuildMesh();
+  void lendLandmarks(const LandmarkHeuristic* landmarks);  // to the grid planner in use
 
   GridMap& map_;
   PathServiceConfig config_;
   std::unique_ptr<GridSearch> astar_;
   std::unique_ptr<JumpPointSearch> jps_;
-  std::unique_ptr<LandmarkHeuristic> landmarks_;  // A* or JPS, when config_.landmarks > 0
+  std::unique_ptr<LandmarkHeuristic> landmarks_;  // A*, JPS or HPA*, when config_.landmarks > 0
   std::unique_ptr<HpaPlanner> hpa_;
   std::unique_ptr<NavMesh> mesh_;  // rebuilt whole on a map change
   std::unique_ptr<NavMeshSearch> mesh_search_;

@@ -275,8 +275,8 @@ void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings
   m.read("expansions_per_tick", p.expansions_per_tick, Limit::atLeast(0));
   m.read("cache", p.cache, Limit::atLeast(0));
   m.read("landmarks", p.landmarks, Limit::between(0, 32));
-  if (p.landmarks > 0 && p.planner != AgentPlanner::AStar && p.planner != AgentPlanner::Jps)
-    m.failAt("landmarks", "serve the grid and jps planners only (map.navigation)");
+  if (p.landmarks > 0 && p.planner == AgentPlanner::NavMesh)
+    m.failAt("landmarks", "serve the grid, hpa and jps planners only (map.navigation)");
 }
 
 }  // namespace

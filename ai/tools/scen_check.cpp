@@ -8,9 +8,9 @@
 // not optimal, a mismatch is a missing or too-short path), 2 on bad input or usage. A* and
 // jump point search (jps scans its jumps, jps+ reads them from precomputed tables) must match
 // every optimum; jps also checks that each path is a valid
-// sequence of moves (its cells are filled in between jump points). --landmarks K gives A* or jump
-// point search K landmarks (ai/landmark_heuristic.h), built before the clock starts: the line
-// then ends `landmarks K landmarks_ms B landmarks_mb M`.
+// sequence of moves (its cells are filled in between jump points). --landmarks K gives A*, jump
+// point search or HPA* K landmarks (ai/landmark_heuristic.h), built before the clock starts: the
+// line then ends `landmarks K landmarks_ms B landmarks_mb M`.
 //
 // --planner navmesh (radius 0, so the mesh covers every passable cell, as the optima assume)
 // compares any-angle lengths with the 8-connected optima instead: it ends with
@@ -53,7 +53,7 @@ int usage() {
       "[--direct-distance D] [--landmarks K]\n"
       "  --direct-distance: hpa hands queries whose ends are at most D cells apart to\n"
       "  the optimal jump point search (default %g; negative: never)\n"
-      "  --landmarks: astar, jps and jps+ estimate costs with K landmarks as well (1 to %d)\n",
+      "  --landmarks: astar, jps, jps+ and hpa estimate costs with K landmarks as well (1 to %d)\n",
       zonesim::ai::HpaConfig{}.direct_distance, zonesim::ai::LandmarkHeuristic::kMaxLandmarks);
   return 2;
 }
@@ -160,8 +160,9 @@ int main(int argc, char** argv) {
        planner != "navmesh")) {
     return usage();
   }
-  if (landmark_count > 0 && planner != "astar" && planner != "jps" && planner != "jps+") {
-    std::fprintf(stderr, "scen_check: --landmarks is for --planner astar, jps or jps+, not %s\n",
+  if (landmark_count > 0 && planner == "navmesh") {
+    std::fprintf(stderr,
+                 "scen_check: --landmarks is for --planner astar, jps, jps+ or hpa, not %s\n",
                  planner.c_str());
     return 2;
   }
@@ -209,6 +210,7 @@ int main(int argc, char** argv) {
       HpaConfig config;
       config.direct_distance = direct_distance;
       hpa = std::make_unique<HpaPlanner>(map, config);
+      hpa->useLandmarks(landmarks.get());
       plan = [&](Cell s, Cell g, GridPath& out) { return hpa->findPath(s, g, out); };
     }
 

@@ -255,17 +255,19 @@ TEST_P(GridPlannerTest, WithLandmarksStaysOptimalAndRebuildsThemOnceTheMapChange
   EXPECT_EQ(service.stats().landmark_builds, 2u);
 }
 
-INSTANTIATE_TEST_SUITE_P(AStarAndJps, GridPlannerTest,
-                         ::testing::Values(PlannerKind::AStar, PlannerKind::Jps),
+// HPA* answers these queries (ends under 64 cells apart) by its direct jump point search.
+INSTANTIATE_TEST_SUITE_P(AStarJpsAndHpa, GridPlannerTest,
+                         ::testing::Values(PlannerKind::AStar, PlannerKind::Jps, PlannerKind::Hpa),
                          [](const auto& info) {
                            return info.param == PlannerKind::AStar ? std::string("AStar")
-                                                                   : std::string("Jps");
+                                  : info.param == PlannerKind::Jps ? std::string("Jps")
+                                                                   : std::string("Hpa");
                          });
 
 TEST(PathService, RefusesLandmarksForAPlannerThatTakesNone) {
   GridMap m = twoDoors();
   PathServiceConfig config;
-  config.planner = PlannerKind::Hpa;
+  config.planner = PlannerKind::NavMesh;
   config.landmarks = 4;
   EXPECT_THROW(PathService(m, config), std::invalid_argument);
 }

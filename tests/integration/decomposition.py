@@ -20,7 +20,8 @@ agent carrying what it last perceived; (scenes/agents_paths.yaml) couriers whose
 and are re-planned when a door closes; (scenes/agents_paths_budget.yaml) the same couriers under
 a path budget that binds, shared by the cluster, with HPA* and its path cache;
 (scenes/agents_jps.yaml) the couriers planned by jump point search with landmarks, whose table
-every rank rebuilds alike after the door; (scenes/agents_navmesh.yaml) the couriers on navigation-mesh paths, whose corners migrate with
+every rank rebuilds alike after the door, and (scenes/agents_hpa.yaml) by HPA* with landmarks;
+(scenes/agents_navmesh.yaml) the couriers on navigation-mesh paths, whose corners migrate with
 them and whose mesh every rank rebuilds alike when the door closes;
 (scenes/courtyard_formation.yaml) a formation whose centre every rank computes alike, whose
 members carry their rejoin paths when they migrate and push apart through ghosts;
@@ -50,6 +51,7 @@ SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flo
           "courtyard_flow_bodies": 300, "crowd_flock_bodies": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "agents_navmesh": 600, "agents_jps": 600,
+          "agents_hpa": 600,
           "courtyard_formation": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
           "flock_lod": 300, "roads": 1200, "skirmish": 300,
           "duel_adaptive": 1200, "border_pile": 600, "physics_objects": 600}
