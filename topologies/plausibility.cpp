@@ -62,16 +62,39 @@ Violation PlausibilityChecker::count(std::uint32_t player, Violation v) {
   return v;
 }
 
+bool PlausibilityChecker::probation(std::uint32_t player, Violation v, const Accepted& claim) {
+  if (limits_.probation_ticks == 0) return false;
+  if (v != Violation::Teleport && v != Violation::Acceleration) {  // impossible in itself
+    candidates_.erase(player);
+    return false;
+  }
+  auto it = candidates_.find(player);
+  Violation since = it == candidates_.end()
+                        ? Violation::Teleport
+                        : judge(&it->second.newest, claim.tick, claim.pos, claim.vel);
+  if (since == Violation::StaleTick) return false;
+  if (since != Violation::None) {
+    candidates_[player] = {claim.tick, claim};  // a new trajectory starts here
+    return false;
+  }
+  it->second.newest = claim;
+  return claim.tick - it->second.since >= limits_.probation_ticks;
+}
+
 Violation PlausibilityChecker::checkState(std::uint32_t player, std::uint64_t tick,
                                           const dr::V3& pos, const dr::V3& vel) {
   auto it = last_.find(player);
   Violation v = judge(it == last_.end() ? nullptr : &it->second, tick, pos, vel);
-  if (v == Violation::None) {
+  if (v == Violation::StaleTick) return count(player, v);  // a late duplicate says nothing of now
+  bool reanchor = v != Violation::None && probation(player, v, {tick, pos, vel});
+  if (v == Violation::None || reanchor) {
     last_[player] = {tick, pos, vel};
     distrusted_.erase(player);
-  } else if (v != Violation::StaleTick) {  // a late duplicate says nothing of now
-    distrusted_.insert(player);
+    candidates_.erase(player);
+    if (reanchor) ++reanchored_[player];
+    return Violation::None;
   }
+  distrusted_.insert(player);
   return count(player, v);
 }
 
@@ -86,6 +109,11 @@ Violation PlausibilityChecker::checkHit(std::uint32_t attacker, const dr::V3& at
 std::uint64_t PlausibilityChecker::rejectedOf(std::uint32_t player) const {
   auto it = rejected_.find(player);
   return it == rejected_.end() ? 0 : it->second;
+}
+
+std::uint64_t PlausibilityChecker::reanchoredOf(std::uint32_t player) const {
+  auto it = reanchored_.find(player);
+  return it == reanchored_.end() ? 0 : it->second;
 }
 
 std::uint64_t PlausibilityChecker::rejected() const {

@@ -3,7 +3,10 @@
 // runs on what its clients claim, and every peer runs on every other peer. A state is judged
 // against the last one accepted from the same player, by the sample ticks both carry (so a
 // late datagram is not mistaken for a jump); a rejected state is not remembered, so a player
-// who teleported keeps being rejected until it comes back within reach of where it was seen.
+// who teleported keeps being rejected until it comes back within reach of where it was seen,
+// or, with a probation, until its claims since the jump have been plausible among themselves
+// for probation_ticks: the judge then re-anchors on them (it shows the player where it now is
+// rather than frozen where it was last believed; the jump itself stays rejected and counted).
 // Hit claims are judged by the distance between where the judge sees the two players.
 
 #include <array>
@@ -24,6 +27,9 @@ struct MovementLimits {
   /// move may exceed the limits by this much, so honest players are never rejected.
   double position_slack_m = 0.05;
   double velocity_slack_m_s = 0.05;
+  /// Ticks of mutually plausible states after a teleport or acceleration violation before the
+  /// judge re-anchors on them (0: never; a state too fast or not finite restarts it).
+  std::uint64_t probation_ticks = 0;
 };
 
 /// Why a claim was rejected.
@@ -62,6 +68,8 @@ class PlausibilityChecker {
   /// Rejections of one player's states and hits.
   std::uint64_t rejectedOf(std::uint32_t player) const;
   std::uint64_t rejected() const;
+  /// Times the judge re-anchored on a player after its probation.
+  std::uint64_t reanchoredOf(std::uint32_t player) const;
 
  private:
   struct Accepted {
@@ -71,10 +79,18 @@ class PlausibilityChecker {
   Violation judge(const Accepted* last, std::uint64_t tick, const dr::V3& pos,
                   const dr::V3& vel) const;
   Violation count(std::uint32_t player, Violation v);
+  // A rejected player's claims since its jump: is it on probation long enough to re-anchor?
+  bool probation(std::uint32_t player, Violation v, const Accepted& claim);
 
   MovementLimits limits_;
   double dt_;
   std::map<std::uint32_t, Accepted> last_;
+  struct Candidate {
+    std::uint64_t since;  // tick of the first claim of the trajectory
+    Accepted newest;
+  };
+  std::map<std::uint32_t, Candidate> candidates_;
+  std::map<std::uint32_t, std::uint64_t> reanchored_;
   std::map<std::uint32_t, std::uint64_t> rejected_;
   std::set<std::uint32_t> distrusted_;
   ViolationCounts counts_{};

@@ -80,6 +80,59 @@ TEST(Plausibility, HitsBeyondReachAreRejected) {
   EXPECT_EQ(c.rejectedOf(4), 2u);
 }
 
+TEST(Plausibility, WithoutProbationATeleporterStaysFrozenWhereItWasBelieved) {
+  PlausibilityChecker c(limits(), kDt);
+  EXPECT_EQ(c.checkState(6, 0, {10, 0, 10}, {0, 0, 0}), Violation::None);
+  // ... until it could have walked there: 20 m at 5 m/s, 80 ticks.
+  for (std::uint64_t t = 1; t < 80; ++t)
+    EXPECT_EQ(c.checkState(6, t, {30, 0, 10}, {0, 0, 0}), Violation::Teleport) << t;
+  EXPECT_EQ(c.reanchoredOf(6), 0u);
+}
+
+TEST(Plausibility, AfterItsProbationATeleporterIsShownWhereItNowIs) {
+  MovementLimits l = limits();
+  l.probation_ticks = 20;
+  PlausibilityChecker c(l, kDt);
+  EXPECT_EQ(c.checkState(6, 0, {10, 0, 10}, {0, 0, 0}), Violation::None);
+  // It jumps 8 m at tick 1 and walks on from there at 2 m/s: every state is rejected against
+  // the last one believed, until 20 ticks of them agree with each other.
+  auto at = [](std::uint64_t t) { return dr::V3{18 + 0.1 * double(t - 1), 0, 10}; };
+  for (std::uint64_t t = 1; t <= 20; ++t)
+    EXPECT_EQ(c.checkState(6, t, at(t), {2, 0, 0}), Violation::Teleport) << t;
+  EXPECT_TRUE(c.distrusts(6));
+  EXPECT_EQ(c.checkState(6, 21, at(21), {2, 0, 0}), Violation::None);
+  EXPECT_FALSE(c.distrusts(6));
+  EXPECT_EQ(c.reanchoredOf(6), 1u);
+  EXPECT_EQ(c.rejectedOf(6), 20u);
+  // From the new anchor it is judged as anyone: the next step is fine, a jump back is not.
+  EXPECT_EQ(c.checkState(6, 22, at(22), {2, 0, 0}), Violation::None);
+  EXPECT_EQ(c.checkState(6, 23, {10, 0, 10}, {2, 0, 0}), Violation::Teleport);
+}
+
+TEST(Plausibility, AProbationRestartsOnEveryNewJumpAndNeverForgivesSpeed) {
+  MovementLimits l = limits();
+  l.probation_ticks = 20;
+  PlausibilityChecker c(l, kDt);
+  EXPECT_EQ(c.checkState(7, 0, {10, 0, 10}, {0, 0, 0}), Violation::None);
+  // Jumping 8 m every 10 ticks: its claims never agree for 20 ticks. (From tick 40 on, the
+  // first place is within walking distance of where it was believed at tick 0.)
+  for (std::uint64_t t = 1; t < 40; ++t) {
+    double x = 18 + 8 * double(t / 10 % 2);
+    EXPECT_NE(c.checkState(7, t, {x, 0, 10}, {0, 0, 0}), Violation::None) << t;
+  }
+  // Three times full speed, smoothly: each claim agrees with the last, but none is possible.
+  for (std::uint64_t t = 200; t < 300; ++t)
+    EXPECT_EQ(c.checkState(7, t, {0.75 * double(t - 200), 0, 30}, {15, 0, 0}), Violation::Speed);
+  EXPECT_EQ(c.reanchoredOf(7), 0u);
+  // A late duplicate neither restarts nor advances it.
+  EXPECT_EQ(c.checkState(8, 0, {0, 0, 0}, {0, 0, 0}), Violation::None);
+  for (std::uint64_t t = 1; t <= 20; ++t) {
+    EXPECT_EQ(c.checkState(8, t, {9, 0, 0}, {0, 0, 0}), Violation::Teleport) << t;
+    EXPECT_EQ(c.checkState(8, t, {9, 0, 0}, {0, 0, 0}), Violation::Teleport) << t;
+  }
+  EXPECT_EQ(c.checkState(8, 21, {9, 0, 0}, {0, 0, 0}), Violation::None);
+}
+
 TEST(Plausibility, ViolationsHaveNames) {
   EXPECT_STREQ(violationName(Violation::Teleport), "teleport");
   EXPECT_STREQ(violationName(Violation::HitOutOfReach), "hit_out_of_reach");
