@@ -4,6 +4,11 @@
 
 namespace zonesim::topo {
 
+namespace {
+constexpr Cheat kCheats[] = {Cheat::None, Cheat::Teleport, Cheat::Speed,
+                             Cheat::Hit,  Cheat::Vote,     Cheat::Equivocate};
+}  // namespace
+
 const char* cheatName(Cheat cheat) {
   switch (cheat) {
     case Cheat::None:
@@ -14,20 +19,25 @@ const char* cheatName(Cheat cheat) {
       return "speed";
     case Cheat::Hit:
       return "hit";
+    case Cheat::Vote:
+      return "vote";
+    case Cheat::Equivocate:
+      return "equivocate";
   }
   return "?";
 }
 
 Cheat parseCheat(const std::string& text) {
-  for (Cheat c : {Cheat::None, Cheat::Teleport, Cheat::Speed, Cheat::Hit})
+  for (Cheat c : kCheats)
     if (text == cheatName(c)) return c;
-  throw std::invalid_argument("cheat '" + text + "' is not one of none, teleport, speed, hit");
+  throw std::invalid_argument("cheat '" + text +
+                              "' is not one of none, teleport, speed, hit, vote, equivocate");
 }
 
 std::string Cheats::names() const {
   std::string out;
-  for (Cheat c : {Cheat::Teleport, Cheat::Speed, Cheat::Hit})
-    if (has(c)) out += (out.empty() ? "" : ",") + std::string(cheatName(c));
+  for (Cheat c : kCheats)
+    if (c != Cheat::None && has(c)) out += (out.empty() ? "" : ",") + std::string(cheatName(c));
   return out.empty() ? "none" : out;
 }
 
@@ -41,6 +51,8 @@ Cheats parseCheats(const std::string& text) {
     out.teleport |= c == Cheat::Teleport;
     out.speed |= c == Cheat::Speed;
     out.hit |= c == Cheat::Hit;
+    out.vote |= c == Cheat::Vote;
+    out.equivocate |= c == Cheat::Equivocate;
     if (comma == std::string::npos) return out;
     at = comma + 1;
   }

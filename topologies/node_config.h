@@ -10,8 +10,10 @@
 
 namespace zonesim::topo {
 
-/// What a node fakes, if anything (docs/networking.md, "Topologies": the cheating test).
-enum class Cheat { None, Teleport, Speed, Hit };
+/// What a node fakes, if anything (docs/networking.md, "Topologies": the cheating test). Vote
+/// and equivocate are a peer's: it votes against every other peer (and forges votes in their
+/// names), or shows its teleports to a bare majority of the others and the truth to the rest.
+enum class Cheat { None, Teleport, Speed, Hit, Vote, Equivocate };
 
 const char* cheatName(Cheat cheat);
 /// Throws std::invalid_argument quoting the text and listing the cheats.
@@ -19,10 +21,26 @@ Cheat parseCheat(const std::string& text);
 
 /// The cheats a node plays at once.
 struct Cheats {
-  bool teleport = false, speed = false, hit = false;
+  bool teleport = false, speed = false, hit = false, vote = false, equivocate = false;
   bool has(Cheat c) const {
-    return c == Cheat::Teleport ? teleport : c == Cheat::Speed ? speed : c == Cheat::Hit && hit;
+    switch (c) {
+      case Cheat::Teleport:
+        return teleport;
+      case Cheat::Speed:
+        return speed;
+      case Cheat::Hit:
+        return hit;
+      case Cheat::Vote:
+        return vote;
+      case Cheat::Equivocate:
+        return equivocate;
+      case Cheat::None:
+        break;
+    }
+    return false;
   }
+  /// Only a peer can play it.
+  bool peerOnly() const { return vote || equivocate; }
   /// "none" or the names joined by commas.
   std::string names() const;
 };
@@ -42,6 +60,7 @@ struct NodeConfig {
   double join_timeout_s = 20;  ///< waiting for the others through discovery
   std::string out_dir;
   Cheats cheats;
+  double cheat_seconds = 0;  ///< cheat for this long from tick 0, then play honestly (0: always)
   bool cross_check = false;  ///< a client checks the host's states and hits
   std::uint64_t seed = 0;    ///< 0: the scene's
   /// This player's access link, the same profile both ways as client_stub --link gives its

@@ -31,6 +31,23 @@ constexpr double kHonestHitMargin = 0.5;
 // A hit is judged only from states at most this many ticks older than it: extrapolating a
 // turning avatar (24 m/s^2) by 2 ticks errs by 0.12 m, well inside the honest margin.
 constexpr std::uint64_t kHitJudgeMaxAgeTicks = 2;
+// Correction: a rejected player's states that are plausible among themselves for 1 s re-anchor
+// its judge on them, so a teleporter is shown where it now is, not frozen where it was.
+constexpr std::uint64_t kProbationTicks = 20;
+// Voting among peers (topologies/vote_tally.h). A peer holds a player caught lying for 2 s
+// after the last lie it caught; it sends its verdict twice a second while it holds one against
+// anyone, and once more when it no longer does (an honest game sends no votes). A vote counts
+// for three vote periods after its tick, so one or two lost votes change nothing and a lost
+// withdrawal lapses by itself. A vote stamped more than half a second ahead of the receiver's
+// tick is refused: it would count long after its time.
+constexpr std::uint64_t kVerdictTicks = 40;
+constexpr std::uint64_t kVoteEveryTicks = 10;
+constexpr std::uint64_t kVoteTtlTicks = 3 * kVoteEveryTicks;
+constexpr std::uint64_t kVoteAheadTicks = 10;
+// An equivocating peer shows its teleports to the lowest-numbered 3/5 of the others (9 of 15:
+// more than the 8 votes that exclude it) and the truth to the rest, who never catch it
+// themselves and exclude it on the others' word.
+constexpr double kEquivocateShare = 0.6;
 
 /// Wall-clock time: the start time and the logged events are compared across processes.
 inline std::int64_t realtimeNs() {

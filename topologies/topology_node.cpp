@@ -33,23 +33,31 @@ TopologyNode::TopologyNode(const NodeConfig& config, const Scene& scene)
     : config_(config),
       scene_(scene),
       codec_(dr::codecParams(scene)),
-      limits_{scene.clients.speed, zone::kAvatarAccel, scene.interactions.hit_reach},
+      limits_{.max_speed = scene.clients.speed,
+              .max_acceleration = zone::kAvatarAccel,
+              .hit_reach = scene.interactions.hit_reach,
+              .probation_ticks = kProbationTicks},
       checker_(limits_, scene.dt),
       script_(scene.world, config.seed ? config.seed : scene.seed, config.player,
               std::uint64_t(std::lround(scene.clients.retarget_seconds / scene.dt))),
       socket_(config.bind),
       discovery_socket_(gateway::Endpoint{config.bind.address, 0}),
       link_(config.link, config.player),
-      log_(config.out_dir, config.player) {
+      log_(config.out_dir, config.player),
+      verdict_(kVerdictTicks),
+      tally_(config.players, kVoteTtlTicks) {
   if (config.player >= config.players)
     throw std::invalid_argument("--player " + std::to_string(config.player) +
                                 " is not below --players " + std::to_string(config.players));
+  if (config.cheats.peerOnly() && config.role != Role::Peer)
+    throw std::invalid_argument("--cheat " + config.cheats.names() + ": vote and equivocate " +
+                                "are a peer's cheats, not a " + roleName(config.role) + "'s");
   own_.pos = startPosition(scene.world, config.player, config.players);
 }
 
 double TopologyNode::maxSpeed() const {
   return scene_.clients.speed *
-         (config_.cheats.speed && config_.role != Role::Client ? kSpeedHackFactor : 1.0);
+         (cheats_.speed && config_.role != Role::Client ? kSpeedHackFactor : 1.0);
 }
 
 // ---- discovery ----
@@ -177,6 +185,7 @@ void TopologyNode::handle(std::span<const std::uint8_t> bytes, const gateway::En
   if (!sender) return drop(gateway::DropReason::WrongAddress, sender);  // not in the game
   if (bytes.empty()) return drop(gateway::DropReason::Truncated, sender);
   if (bytes[0] == kHitTag) return handleHit(bytes, sender);
+  if (bytes[0] == kVoteTag) return handleVote(bytes, sender);
   if (gateway::isDownlinkFrame(bytes)) return handleStates(bytes, sender);
   handleInput(bytes, sender);
 }
@@ -188,7 +197,7 @@ void TopologyNode::show(std::uint32_t player, std::uint64_t t, const dr::State& 
   if (shown.known && t < shown.tick) return;  // an older state overtaken on the way
   bool moved = !shown.known || std::hypot(s.vel.x - shown.logged_vel.x,
                                           s.vel.z - shown.logged_vel.z) > kSeenVelocityChange;
-  if (moved && player != config_.player) {
+  if (moved && player != config_.player && !excluded(player)) {
     log_.seen(realtimeNs(), player, s.vel);
     shown.logged_vel = s.vel;
   }
@@ -217,17 +226,21 @@ std::optional<std::uint32_t> TopologyNode::playerAt(const gateway::Endpoint& fro
   return std::nullopt;
 }
 
-std::vector<gateway::Endpoint> TopologyNode::receivers() const {
+std::vector<const Registration*> TopologyNode::recipients() const {
   // The host sends to its clients, a client to its host, a peer to every other peer.
-  std::vector<gateway::Endpoint> out;
+  std::vector<const Registration*> out;
   for (const auto& [p, r] : directory_) {
     if (p == config_.player) continue;
     bool wanted = config_.role == Role::Host   ? r.role == Role::Client
                   : config_.role == Role::Peer ? r.role == Role::Peer
                                                : r.role == Role::Host;
-    if (wanted) out.push_back(r.address);
+    if (wanted) out.push_back(&r);
   }
   return out;
+}
+
+void TopologyNode::caught(std::uint32_t player) {
+  verdict_.caught(player, now_tick_);
 }
 
 void TopologyNode::send(const gateway::Endpoint& to, std::span<const std::uint8_t> bytes) {

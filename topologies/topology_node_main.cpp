@@ -32,7 +32,11 @@ int main(int argc, char** argv) {
   app.add_option("--join-timeout", cfg.join_timeout_s, "seconds to wait for the others")
       ->check(CLI::PositiveNumber);
   app.add_option("--out", cfg.out_dir, "write views, events and the summary here")->required();
-  app.add_option("--cheat", cheat, "none, or teleport, speed, hit joined by commas");
+  app.add_option("--cheat", cheat,
+                 "none, or teleport, speed, hit (and a peer's vote, equivocate) joined by commas");
+  app.add_option("--cheat-seconds", cfg.cheat_seconds,
+                 "cheat for this many seconds of play, then play honestly (default: all along)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--cross-check", cfg.cross_check,
                "a client holds the host's states and hits to the movement limits");
   app.add_option("--seed", cfg.seed, "seed of the scripted inputs (default: the scene's)");

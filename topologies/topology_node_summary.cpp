@@ -1,5 +1,5 @@
-// A node's summary for the benchmark and the test: its traffic, its drops and rejections, and
-// what it caught of each player.
+// A node's summary for the benchmark and the test: its traffic, its drops and rejections, what
+// it caught of each player, and a peer's votes and exclusions.
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -41,6 +41,26 @@ void TopologyNode::writeSummary(double played_s) const {
   j["drops"] = drops;
   j["violations"] = violations;
   j["detected_by_player"] = detected;
+  // Voting: what this peer sent and heard, whom it excluded (from which tick, and whether still
+  // at the end), whom it let back in, and on whom its checker re-anchored after a probation.
+  auto byPlayer = [](const std::map<std::uint32_t, std::uint64_t>& m) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [p, n] : m) out[std::to_string(p)] = n;
+    return out;
+  };
+  std::map<std::uint32_t, std::uint64_t> reanchored;
+  for (std::uint32_t p = 0; p < config_.players; ++p)
+    if (auto n = checker_.reanchoredOf(p)) reanchored[p] = n;
+  j["votes_sent"] = votes_sent_;
+  j["votes_in"] = votes_in_;
+  j["votes_stale"] = votes_stale_;
+  j["votes_against_by_voter"] = byPlayer(votes_against_by_voter_);
+  j["excluded_since_tick"] = byPlayer(excluded_since_);
+  j["excluded_at_end"] = excluded_;
+  j["readmitted"] = byPlayer(readmitted_);
+  j["reanchored"] = byPlayer(reanchored);
+  j["states_of_excluded"] = states_of_excluded_;
+  j["hits_of_excluded"] = hits_of_excluded_;
   std::string path = config_.out_dir + "/node_" + std::to_string(config_.player) + ".json";
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);

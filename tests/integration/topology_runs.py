@@ -50,10 +50,13 @@ def percentile(values, p):
 
 # ---- client-hosted and peer to peer ----
 
-def run_nodes(out, topology, seconds, cheats=None, cross_check=(), players=PLAYERS, link=None):
+def run_nodes(out, topology, seconds, cheats=None, cross_check=(), players=PLAYERS, link=None,
+              cheat_seconds=None):
     """topology 'client_hosted' (player 0 hosts) or 'p2p'. cheats: {player: 'teleport'|'speed'|
-    'hit'}; cross_check: clients that judge their host; link: every player's access link both
-    ways (a wire/link_profile.h preset). Returns the nodes' summaries by player."""
+    'hit', or a peer's 'vote'|'equivocate', or several joined by commas}; cheat_seconds:
+    {player: seconds it cheats before playing honestly}; cross_check: clients that judge their
+    host; link: every player's access link both ways (a wire/link_profile.h preset). Returns
+    the nodes' summaries by player."""
     out.mkdir(parents=True, exist_ok=True)
     env = h.base_env()
     disc = h.start([h.bin_dir() / "discovery", "--bind", "127.0.0.1", "--port", 0,
@@ -71,6 +74,8 @@ def run_nodes(out, topology, seconds, cheats=None, cross_check=(), players=PLAYE
                "--cheat", (cheats or {}).get(p, "none")]
         if p in cross_check:
             cmd.append("--cross-check")
+        if p in (cheat_seconds or {}):
+            cmd += ["--cheat-seconds", cheat_seconds[p]]
         if link:
             cmd += ["--link", link]
         nodes.append(h.start(cmd, out / f"node_{p}.log", env))

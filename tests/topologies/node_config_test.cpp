@@ -14,6 +14,10 @@ TEST(NodeConfig, CheatListsParseAndName) {
   EXPECT_TRUE(c.teleport);
   EXPECT_FALSE(c.speed);
   EXPECT_EQ(c.names(), "teleport,hit");
+  EXPECT_FALSE(c.peerOnly());
+  Cheats peer = parseCheats("equivocate,vote");
+  EXPECT_TRUE(peer.vote && peer.equivocate && peer.peerOnly());
+  EXPECT_EQ(peer.names(), "vote,equivocate");
 }
 
 TEST(NodeConfig, AnUnknownCheatOrRoleIsNamed) {
@@ -21,7 +25,8 @@ TEST(NodeConfig, AnUnknownCheatOrRoleIsNamed) {
     parseCheats("speed,fly");
     FAIL() << "fly accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "cheat 'fly' is not one of none, teleport, speed, hit");
+    EXPECT_STREQ(e.what(),
+                 "cheat 'fly' is not one of none, teleport, speed, hit, vote, equivocate");
   }
   EXPECT_THROW(parseCheats("speed,"), std::invalid_argument);
   try {
