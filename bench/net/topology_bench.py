@@ -8,8 +8,8 @@ third player at the same tick (p50/p99). Then the cheating runs of tests/integra
 topologies.py, with what each judge caught of each cheater.
 
 With --link PRESET every player's access link, both ways, is that wire/link_profile.h preset
-(client_stub --link, topology_node --link) and the cheating runs are skipped; client-server's
-latency then still comes from the two Python players, which have no link model: it is left out.
+(client_stub --link, topology_node --link, and bench/net/link_relay in front of the Python
+players that time client-server's latency) and the cheating runs are skipped.
 
 Usage: bench/net/topology_bench.py [--link PRESET] [SECONDS] [OUT_DIR]
        (defaults: no link, 20, runs/topology_bench or runs/topology_bench_PRESET)
@@ -81,9 +81,6 @@ def main():
         tmp = Path(tmp)
         run = tr.run_client_server(tmp / "cs", SECONDS, link=LINK)
         row = tr.client_server_figures(tmp / "cs", run, SECONDS)
-        if LINK:
-            row["latency_ms_p50"] = row["latency_ms_p99"] = float("nan")
-            row["latency_samples"] = 0
         results.append({"topology": "client_server", **row})
         s = tr.run_nodes(tmp / "hosted", "client_hosted", SECONDS, link=LINK)
         results.append({"topology": "client_hosted", **tr.node_figures(tmp / "hosted", s, SECONDS)})

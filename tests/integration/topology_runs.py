@@ -5,7 +5,8 @@ bench/net/topology_bench.py measures them.
 
 - client-server: zone_node (one zone) + gateway + client_stub players, and four Python clients
   (clients/python/zonesim_client.py) that follow the topology nodes' kind of script, log their
-  inputs and the velocity changes they see of each other: the input-to-effect latency;
+  inputs and the velocity changes they see of each other: the input-to-effect latency (with a
+  link profile, through link_relay, which gives them client_stub's link model);
   client_stub --truth-every 1 logs where every player showed every avatar each server tick:
   the consistency between views. A Python cheater sends what a client can fake: an input over
   full speed, a forged state frame.
@@ -292,8 +293,9 @@ def forged_state_frame():
 
 def run_client_server(out, seconds, cheat=False, players=PLAYERS, link=None):
     """zone_node (one zone) + gateway + client_stub + four scripted Python players (+ a
-    Python cheater). link: client_stub --link for its players (the Python players have none, so their
-    latency is the unimpaired path's). Returns what the figures and the checks need."""
+    Python cheater). link: every player's access link both ways, client_stub --link for its
+    players and bench/net/link_relay (the same model) in front of the Python ones. Returns what
+    the figures and the checks need."""
     zc = _zonesim_client()
     out.mkdir(parents=True, exist_ok=True)
     env = h.base_env()
@@ -306,8 +308,16 @@ def run_client_server(out, seconds, cheat=False, players=PLAYERS, link=None):
                        "--port-file", out / "gateway_port", "--dds-domain", domain, "--metrics", out],
                       out / "gateway.log", env)
     port = int(h.wait_for_port(out / "gateway_port", gateway, out / "gateway.log"))
-    py = [zc.Client("127.0.0.1", port, name=f"scripted{i}") for i in range(SCRIPTED_PYTHON_PLAYERS)]
-    cheater = zc.Client("127.0.0.1", port, name="cheater") if cheat else None
+    ports = [port] * (SCRIPTED_PYTHON_PLAYERS + 1)
+    relay = None
+    if link:
+        relay = h.start([h.bin_dir() / "link_relay", "--to", f"127.0.0.1:{port}", "--link", link,
+                         "--pairs", len(ports), "--port-file", out / "relay_ports"],
+                        out / "link_relay.log", env)
+        h.wait_for_port(out / "relay_ports", relay, out / "link_relay.log")
+        ports = [int(x) for x in (out / "relay_ports").read_text().split()]
+    py = [zc.Client("127.0.0.1", ports[i], name=f"scripted{i}") for i in range(SCRIPTED_PYTHON_PLAYERS)]
+    cheater = zc.Client("127.0.0.1", ports[-1], name="cheater") if cheat else None
     for c in py + ([cheater] if cheater else []):
         h.check(c.connect(timeout=30), f"a Python player was welcomed (avatar {c.avatar_id})")
     stub_players = players - len(py) - (1 if cheater else 0)
@@ -339,6 +349,8 @@ def run_client_server(out, seconds, cheat=False, players=PLAYERS, link=None):
     except Exception:
         h.fail("client_stub did not finish\n" + h.tail(out / "client_stub.log"))
     h.check(rc == 0, "client_stub exited 0" + ("" if rc == 0 else "\n" + h.tail(out / "client_stub.log")))
+    if relay:
+        h.stop(relay)
     h.stop(gateway)
     h.stop(zones)
     return {
