@@ -125,7 +125,7 @@ class TopologyNode {
   std::uint64_t states_of_excluded_ = 0, hits_of_excluded_ = 0;
   std::map<std::uint32_t, std::uint64_t> votes_against_by_voter_;  // accepted votes naming anyone
   std::map<std::uint32_t, std::uint64_t> excluded_since_;          // first tick each was excluded
-  std::map<std::uint32_t, std::uint64_t> readmitted_;              // times each was let back in
+  std::map<std::uint32_t, std::uint64_t> readmitted_at_;  // the last tick each was let back in
 };
 
 }  // namespace zonesim::topo

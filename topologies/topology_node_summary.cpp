@@ -42,7 +42,8 @@ void TopologyNode::writeSummary(double played_s) const {
   j["violations"] = violations;
   j["detected_by_player"] = detected;
   // Voting: what this peer sent and heard, whom it excluded (from which tick, and whether still
-  // at the end), whom it let back in, and on whom its checker re-anchored after a probation.
+  // at the end), whom it let back in (last at which tick), and on whom its checker re-anchored
+  // after a probation.
   auto byPlayer = [](const std::map<std::uint32_t, std::uint64_t>& m) {
     nlohmann::json out = nlohmann::json::object();
     for (const auto& [p, n] : m) out[std::to_string(p)] = n;
@@ -57,7 +58,7 @@ void TopologyNode::writeSummary(double played_s) const {
   j["votes_against_by_voter"] = byPlayer(votes_against_by_voter_);
   j["excluded_since_tick"] = byPlayer(excluded_since_);
   j["excluded_at_end"] = excluded_;
-  j["readmitted"] = byPlayer(readmitted_);
+  j["readmitted_at_tick"] = byPlayer(readmitted_at_);
   j["reanchored"] = byPlayer(reanchored);
   j["states_of_excluded"] = states_of_excluded_;
   j["hits_of_excluded"] = hits_of_excluded_;

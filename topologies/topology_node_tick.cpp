@@ -144,7 +144,7 @@ void TopologyNode::tallyVotes(std::uint64_t t) {
       excluded_since_.emplace(p, t);
     } else {
       excluded_.erase(p);
-      ++readmitted_[p];
+      readmitted_at_[p] = t;
     }
   }
 }

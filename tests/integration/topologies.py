@@ -62,10 +62,10 @@ with tempfile.TemporaryDirectory(prefix="zs_topologies_") as tmp:
                 f"votes ({sorted(ever[judge])} of {sorted(P2P_CHEATERS)})")
         h.check({EQUIVOCATOR, 14, 15} <= at_end[judge],
                 f"p2p: peer {judge} still excludes the cheaters that never stopped ({sorted(at_end[judge])})")
-        h.check(REFORMED not in at_end[judge] and s[judge]["readmitted"].get(str(REFORMED), 0) > 0
+        h.check(REFORMED not in at_end[judge] and str(REFORMED) in s[judge]["readmitted_at_tick"]
                 and s[judge]["reanchored"].get(str(REFORMED), 0) > 0,
                 f"p2p: peer {judge} let the reformed teleporter {REFORMED} back in after its "
-                f"probation (readmitted {s[judge]['readmitted']}, re-anchored {s[judge]['reanchored']})")
+                f"probation (at ticks {s[judge]['readmitted_at_tick']}, re-anchored {s[judge]['reanchored']})")
         false = {p: n for p, n in found[judge].items() if p in P2P_HONEST}
         h.check(not false, f"p2p: peer {judge} rejected no honest peer ({false})")
         wrongly = ever[judge] & set(P2P_HONEST)
