@@ -38,6 +38,8 @@ SEEN_VELOCITY_CHANGE = 0.25
 SCRIPTED_PYTHON_PLAYERS = 4
 # The scene's arena, speed, retarget period and tick (scenes/duel_arena_16.yaml).
 ARENA, WALL_MARGIN, RETARGET_S, TICK_S = 40.0, 2.0, 1.0, 0.05
+# How much of a tick each Python player's retarget drifts (ScriptedClient).
+PHASE_STEP = (math.sqrt(5) - 1) / 2
 
 
 def percentile(values, p):
@@ -236,16 +238,17 @@ class ScriptedClient(threading.Thread):
     target in the arena, an input toward it 20 times a second. It logs its inputs and every
     velocity change it sees of the avatars it watches, with the wall time they arrived.
     speed_factor > 1 makes it a speed hacker: every other second its inputs ask for that many
-    times full speed, which the gateway must drop. phase_s delays its first input: the zone and
-    the gateway act on 50 ms ticks, so an input's latency depends on where in the tick it
-    arrives, and players started together would all sample one phase (and a link's delay would
-    add either nothing or a whole tick); the scripted players spread theirs over the tick."""
+    times full speed, which the gateway must drop.
+    The zone and the gateway act on 50 ms ticks, so an input's latency depends on where in the
+    tick it arrives: a player that sent every input at one phase would sample one latency (and a
+    link's delay would add either nothing or a whole tick). So a new input goes out as soon as it
+    is chosen, restarting the 20 Hz cadence, and each retarget comes PHASE_STEP of a tick later
+    than a whole second, which sweeps the tick's phases evenly (the golden ratio's fraction)."""
 
-    def __init__(self, client, seconds, seed, speed_factor=1.0, phase_s=0.0):
+    def __init__(self, client, seconds, seed, speed_factor=1.0):
         super().__init__(daemon=True)
         self.c, self.seconds, self.rng = client, seconds, random.Random(seed)
         self.speed_factor = speed_factor
-        self.phase_s = phase_s
         self.watch = set()
         self.inputs, self.seen = [], defaultdict(list)
         self.max_speed_seen = defaultdict(float)
@@ -253,7 +256,7 @@ class ScriptedClient(threading.Thread):
 
     def run(self):
         end = time.monotonic() + self.seconds
-        next_input = next_target = time.monotonic() + self.phase_s
+        next_input = next_target = time.monotonic()
         move, cheat = (0.0, 0.0), False
         while time.monotonic() < end:
             now = time.monotonic()
@@ -266,7 +269,8 @@ class ScriptedClient(threading.Thread):
                 move = ((tx - x) / n, (tz - z) / n)
                 cheat = self.speed_factor > 1 and not cheat
                 self.inputs.append((time.time(), move[0], move[1]))
-                next_target += RETARGET_S
+                next_target += RETARGET_S + PHASE_STEP * TICK_S
+                next_input = now
             if now >= next_input:
                 f = self.speed_factor if cheat else 1.0
                 self.c.send_input(move[0] * f, move[1] * f)
@@ -330,8 +334,7 @@ def run_client_server(out, seconds, cheat=False, players=PLAYERS, link=None):
                     "--summary", out / "clients_summary.json", "--truth-every", 1,
                     *(["--link", link] if link else [])],
                    out / "client_stub.log", env)
-    actors = [ScriptedClient(c, seconds, seed=1000 + i, phase_s=TICK_S * i / len(py))
-              for i, c in enumerate(py)]
+    actors = [ScriptedClient(c, seconds, seed=1000 + i) for i, c in enumerate(py)]
     for a in actors:
         a.watch = {c.avatar_id for c in py if c is not a.c} | ({cheater.avatar_id} if cheater else set())
     cheat_thread, forged = None, 0
