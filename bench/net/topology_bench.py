@@ -5,7 +5,7 @@ real processes over loopback UDP (tests/integration/topology_runs.py). Per topol
 per player (UDP payload bytes a second, up and down), the latency from an input to its first
 effect seen at each other player, and the distance between where two players show the same
 third player at the same tick (p50/p99). Then the cheating runs of tests/integration/
-topologies.py, with what each judge caught of each cheater.
+topologies.py, with what each judge caught of each cheater and whom the peers' vote excluded.
 
 With --link PRESET every player's access link, both ways, is that wire/link_profile.h preset
 (client_stub --link, topology_node --link, and bench/net/link_relay in front of the Python
@@ -33,6 +33,11 @@ if "--link" in ARGS:
 SECONDS = float(ARGS[0]) if len(ARGS) > 0 else 20
 OUT = Path(ARGS[1]) if len(ARGS) > 1 else ROOT / "runs" / ("topology_bench" + (f"_{LINK}" if LINK else ""))
 CHEATERS = {13: "teleport", 14: "speed", 15: "hit"}
+# Peer to peer with voting, as tests/integration/topologies.py runs it: a liar, a teleporter that
+# stops after 2.5 s, an equivocator, a speed hacker and a hit cheater, 7 s.
+P2P_CHEATERS = {11: "vote", 12: "teleport", 13: "equivocate", 14: "speed", 15: "hit"}
+P2P_CHEAT_SECONDS = {12: 2.5}
+P2P_SECONDS = 7
 COLUMNS = ["topology", "up_bytes_per_s", "down_bytes_per_s", "latency_ms_p50", "latency_ms_p99",
            "latency_samples", "consistency_m_p50", "consistency_m_p99", "consistency_pairs",
            "truth_error_m_p50", "truth_error_m_p99",
@@ -43,14 +48,32 @@ COLUMNS = ["topology", "up_bytes_per_s", "down_bytes_per_s", "latency_ms_p50", "
 def cheat_rows(tmp):
     """(run, judge, what it caught) for the cheating runs."""
     rows = []
-    s = tr.run_nodes(tmp / "p2p_cheat", "p2p", 4, cheats=CHEATERS)
-    honest = [p for p in s if p not in CHEATERS]
-    for c, what in CHEATERS.items():
+    s = tr.run_nodes(tmp / "p2p_cheat", "p2p", P2P_SECONDS, cheats=P2P_CHEATERS,
+                     cheat_seconds=P2P_CHEAT_SECONDS)
+    honest = [p for p in s if p not in P2P_CHEATERS]
+    for c, what in P2P_CHEATERS.items():
+        if c in P2P_CHEAT_SECONDS:
+            what += f" for {P2P_CHEAT_SECONDS[c]} s"
         judges = [p for p in honest if s[p]["detected_by_player"].get(str(c), 0) > 0]
-        rows.append(("p2p", f"peer {c} ({what})", f"{len(judges)} of {len(honest)} honest peers",
+        excluders = [p for p in honest if str(c) in s[p]["excluded_since_tick"]]
+        at_end = [p for p in honest if c in s[p]["excluded_at_end"]]
+        since = sorted(s[p]["excluded_since_tick"][str(c)] for p in excluders)
+        back = sorted(s[p]["readmitted_at_tick"][str(c)] for p in honest
+                      if str(c) in s[p]["readmitted_at_tick"])
+        rows.append(("p2p", f"peer {c} ({what})",
+                     f"caught by {len(judges)}, excluded by {len(excluders)} (from tick "
+                     f"{since[0] if since else '-'}-{since[-1] if since else '-'}), at the end by "
+                     f"{len(at_end)} of {len(honest)} honest peers; re-admitted by {len(back)}"
+                     + (f" (at tick {back[0]}-{back[-1]})" if back else ""),
                      sum(s[p]["detected_by_player"].get(str(c), 0) for p in honest)))
     false = sum(n for p in honest for k, n in s[p]["detected_by_player"].items() if int(k) in honest)
-    rows.append(("p2p", "honest peers", "rejections of honest peers", false))
+    wrongly = sum(1 for p in honest for k in s[p]["excluded_since_tick"] if int(k) in honest)
+    rows.append(("p2p", "honest peers", "rejections of honest peers, exclusions of honest peers",
+                 f"{false}, {wrongly}"))
+    rows.append(("p2p", "peer 0's drops and violations", json.dumps(s[0]["drops"]),
+                 json.dumps(s[0]["violations"])))
+    rows.append(("p2p", "votes peer 0 sent, took in, per voter against anyone", s[0]["votes_sent"],
+                 f"{s[0]['votes_in']} {json.dumps(s[0]['votes_against_by_voter'])}"))
     s = tr.run_nodes(tmp / "hosted_cheat", "client_hosted", 4, cheats=CHEATERS)
     for c, what in CHEATERS.items():
         rows.append(("client_hosted", f"client {c} ({what})", "the host",
@@ -105,7 +128,7 @@ def main():
             print(f"{'  host':15} {r['host_up_bytes_per_s']:8.0f} {r['host_down_bytes_per_s']:9.0f}")
             print(f"{'  clients':15} {r['client_up_bytes_per_s']:8.0f} {r['client_down_bytes_per_s']:9.0f}")
     if cheats:
-        print("\ncheating runs (4 s each):")
+        print(f"\ncheating runs (4 s each; peer to peer with votes {P2P_SECONDS} s):")
     for row in cheats:
         print("  " + " | ".join(str(x) for x in row))
     print(f"\nwrote {OUT / 'topologies.json'} and {OUT / 'topologies.csv'}")
