@@ -32,6 +32,7 @@ struct Options {
   bool realtime = false;
   std::string metrics_dir;
   std::string dump_state;
+  std::uint64_t dump_state_at = 0;  ///< 0: at the end of the run
   std::string restart;
   std::uint32_t truth_every = 0;
   std::string time_dilation = "scene";  ///< on, off, or as the scene says
@@ -135,6 +136,9 @@ int run(const Options& o, MPI_Comm comm) {
     }
     report.recordTick(node, tick_seconds, metrics);
     truth.record(node.tickCount() - 1, node.store());  // the tick just published
+    // Runs stopped by a signal end on different ticks; a state compared between runs must not.
+    if (!o.dump_state.empty() && node.tickCount() == o.dump_state_at)
+      zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
     items.left(node.tickCount(), node.itemsLeftThisTick());
     if (recorder) recorder->record(node, tick_seconds);
     if (o.realtime) sleepUntil(next);
@@ -148,7 +152,7 @@ int run(const Options& o, MPI_Comm comm) {
   }
   std::printf("%s\n", summary.c_str());
   std::fflush(stdout);
-  if (!o.dump_state.empty())
+  if (!o.dump_state.empty() && o.dump_state_at == 0)
     zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
   const zone::ConservationTally& c = node.conservation();
   return c.failures == 0 && c.mail_failures == 0 ? 0 : 3;
@@ -174,6 +178,9 @@ int main(int argc, char** argv) {
                  "entity id each tick (for deploy/truth_error.py)");
   app.add_option("--dump-state", o.dump_state,
                  "write every entity's final state (JSON lines) here");
+  app.add_option("--dump-state-at", o.dump_state_at,
+                 "with --dump-state: write it at the end of this tick (counted from the scene's "
+                 "start) instead of at the end of the run; a run that stops earlier writes none");
   app.add_option("--dds-domain", o.zone.dds_domain, "DDS domain id");
   bool no_dds = false;
   app.add_flag("--no-dds", no_dds, "run without DDS (no gateway can attach)");
