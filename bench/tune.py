@@ -6,10 +6,13 @@
 It runs the scene on a local cluster (zone ranks, a gateway, a fleet of players) once with the
 scene's own settings, then once per candidate value of each knob the scene uses, knob after
 knob (those already swept at their choices, the rest at the scene's values), and measures each
-run: the error clients showed against the zones' truth,
-the download per player and the tick time. Per knob it picks the cheapest value (least download,
-then tick time; downloads within --tie of each other are noise, and the more accurate of them
-wins) whose run met every limit, and names the limit that stopped a cheaper one. The
+run: the error clients showed against the zones' truth, the download per player, the tick and
+physics time, and in a scene with rigid bodies the stack drift: how far the bodies resting at
+the end of a reference run (every physics knob at its most accurate, run first) end from where
+it ends them. Per knob it picks the cheapest value (least download for the wire's knobs, least
+physics time for the physics knobs; costs within --tie, or --time-tie for times, of each other
+are noise, and the more accurate of them wins) whose run met every limit, and names the limit
+that stopped a cheaper one. The
 choices together are confirmed by a longer run; if that run breaks a limit, the knob value that
 lowered that figure most in its sweep is taken and the run is repeated. It writes the result as an
 overlay of the scene (docs/scene-format.md, "Overlay files") that every program's --scene
@@ -45,6 +48,9 @@ def parse_args(argv):
     p.add_argument("--truth-every", type=int, default=8, help="sample every K-th entity id for the error")
     p.add_argument("--tie", type=float, default=0.03,
                    help="downloads this close (a fraction) count as equal: the more accurate wins (default 0.03)")
+    p.add_argument("--time-tie", type=float, default=0.25,
+                   help="physics times this close (a fraction) count as equal (default 0.25: times on a "
+                        "shared machine vary by 20 %% from run to run)")
     p.add_argument("--knobs", help="only these knobs (comma-separated names as printed), default all")
     p.add_argument("--bin", type=Path, default=ROOT / "build" / "bin", help="the built programs")
     a = p.parse_args(argv)
@@ -74,6 +80,8 @@ class Tuner:
         self.ranks = measure.ranks_of(scene)
         self.runs = []  # every measured run, for the JSON
         self.count = 0
+        self.scene = scene
+        self.rest = {}  # run length -> the bodies resting at the end of its reference run
 
     def measure(self, settings, label, seconds):
         """Runs the scene with these dotted-key settings; returns its figures."""
@@ -84,34 +92,44 @@ class Tuner:
         overlay.write_text(knob_defs.overlay_text(self.a.scene, settings, [f"tune candidate: {label}"]))
         started = time.monotonic()
         f = measure.run_once(overlay, folder, self.ranks, seconds, self.a.players, self.a.truth_every,
-                             self.a.bin)
+                             self.a.bin, measure.end_tick(self.scene, seconds), self.rest.get(seconds))
+        physics = f"  physics {f['physics_ms']:6.3f} ms" + \
+            (f"  stack drift {f['stack_drift'] * 1000:8.2f} mm" if "stack_drift" in f else "")
         print(f"  [{self.count:2d}] {label:<40} error p99 {f['shown_error_p99']:7.3f} m  "
-              f"{f['kbps_per_client']:7.1f} kbit/s  tick p99 {f['tick_ms_p99']:6.2f} ms  "
+              f"{f['kbps_per_client']:7.1f} kbit/s  tick p99 {f['tick_ms_p99']:6.2f} ms{physics}  "
               f"({time.monotonic() - started:.0f} s)", flush=True)
         self.runs.append({"label": label, "settings": settings, "seconds": seconds, "figures": f})
         return f
+
+    def reference(self, settings, seconds):
+        """Runs the reference (every physics knob at its most accurate) for `seconds` and keeps
+        the bodies resting at its end tick, which stack_drift compares later runs of that
+        length with. Returns how many rest."""
+        self.measure(settings, "reference: physics at its most accurate", seconds)
+        rest = measure.resting(measure.end_bodies(self.a.work / f"run-{self.count:02d}" / "run"))
+        self.runs[-1]["resting_bodies"] = len(rest)
+        print(f"       {len(rest)} bodies rest at tick {measure.end_tick(self.scene, seconds)} of the "
+              f"reference: stack_drift is measured on them", flush=True)
+        self.rest[seconds] = rest
+        return len(rest)
 
 
 def settings_of(knobs, values):
     return {key: v for k in knobs for key, v in zip(k.keys, values[k.name])}
 
 
-def cost(f):
-    return (f["kbps_per_client"], f["tick_ms_p99"])
-
-
 def choose(knob, limits, tie):
     """The cheapest value whose run met every limit (or None), and why nothing cheaper was.
-    Downloads within `tie` (a fraction) of the cheapest are run-to-run noise, not savings:
-    among those the most accurate wins."""
+    Costs (the knob's cost figure) within `tie` (a fraction) of the cheapest are run-to-run
+    noise, not savings: among those the most accurate (its accuracy figure) wins."""
     fine = [(v, f) for v, f in knob.sweep if not budget.broken(limits, f)]
     if not fine:
         return None, "no value met every limit: kept the scene's"
-    least = min(f["kbps_per_client"] for _, f in fine)
-    level = [(v, f) for v, f in fine if f["kbps_per_client"] <= least * (1 + tie)]
-    value, f = min(level, key=lambda vf: (vf[1]["shown_error_p99"], cost(vf[1])))
-    cheaper = [(v, g) for v, g in knob.sweep if g["kbps_per_client"] < least * (1 - tie)]
-    why = f"the most accurate within {tie * 100:g} % of the least download that met the budget"
+    least = min(f[knob.cost] for _, f in fine)
+    level = [(v, f) for v, f in fine if f[knob.cost] <= least * (1 + tie)]
+    value, f = min(level, key=lambda vf: (vf[1][knob.accuracy], vf[1][knob.cost], vf[1]["tick_ms_p99"]))
+    cheaper = [(v, g) for v, g in knob.sweep if g[knob.cost] < least * (1 - tie)]
+    why = f"the most accurate within {tie * 100:g} % of the least {knob.cost} that met the budget"
     held = sorted({l.describe() for _, g in cheaper for l in budget.broken(limits, g)})
     return value, why + ("; cheaper values broke " + "; ".join(held) if held else "")
 
@@ -129,16 +147,30 @@ def refuse_if_impossible(limits, knobs, baseline):
         sys.exit(2)
 
 
+def tie_of(knob, a):
+    return a.time_tie if knob.cost.endswith("_ms") else a.tie
+
+
 def print_frontier(knobs, chosen, reasons, limits):
     print("\nfrontier (each knob in turn, those before it at their choices, the rest at the scene's):")
-    print(f"  {'knob':<22} {'value':<16} {'error p99 m':>11} {'kbit/s':>8} {'tick p99 ms':>11}  ")
+    shown = [m for m in ("shown_error_p99", "kbps_per_client", "tick_ms_p99", "physics_ms", "stack_drift")
+             if any(m in f for k in knobs for _, f in k.sweep)]
+    print(f"  {'knob':<22} {'value':<16} " + " ".join(f"{m:>15}" for m in shown))
     for k in knobs:
-        for v, f in sorted(k.sweep, key=lambda vf: -vf[1]["kbps_per_client"]):
+        for v, f in sorted(k.sweep, key=lambda vf: -vf[1][k.cost]):
             mark = ("chosen" if v == chosen[k.name] else "") + (" (scene's)" if v == k.scene_value else "")
             bad = ", ".join(l.metric for l in budget.broken(limits, f))
-            print(f"  {k.name:<22} {k.label(v):<16} {f['shown_error_p99']:>11.3f} {f['kbps_per_client']:>8.1f} "
-                  f"{f['tick_ms_p99']:>11.2f}  {mark}{'  breaks ' + bad if bad else ''}")
+            print(f"  {k.name:<22} {k.label(v):<16} " + " ".join(f"{f[m]:>15.4g}" for m in shown) +
+                  f"  {mark}{'  breaks ' + bad if bad else ''}")
         print(f"  {'':<22} -> {k.label(chosen[k.name])}: {reasons[k.name]}")
+
+
+def figures_text(f):
+    """The confirmed figures, as the overlay's header and the last line print them."""
+    text = (f"error p99 {f['shown_error_p99']:.3f} m, {f['kbps_per_client']:.1f} kbit/s per player, "
+            f"tick p99 {f['tick_ms_p99']:.2f} ms, physics {f['physics_ms']:.3f} ms")
+    return text + (f", stack drift {f['stack_drift'] * 1000:.2f} mm over {f['resting_bodies']} resting bodies"
+                   if "stack_drift" in f else "")
 
 
 def main(argv):
@@ -152,15 +184,27 @@ def main(argv):
             sys.exit(f"tune.py: --knobs: {', '.join(unknown)} not among this scene's "
                      f"({', '.join(k.name for k in knobs)})")
         knobs = [k for k in knobs if k.name in wanted]
+    physics = [k for k in knobs if k.accuracy == "stack_drift"]
+    wants_drift = bool(physics) or any(l.metric in budget.PHYSICS_METRICS for l in a.limits)
+    if wants_drift and not knob_defs.scene_uses(scene)["rigid_body"]:
+        print(f"refused: {', '.join(budget.PHYSICS_METRICS)} needs rigid bodies, and "
+              f"{a.scene.name} has none", file=sys.stderr)
+        sys.exit(2)
     a.work.mkdir(parents=True, exist_ok=True)
-    runs = 1 + sum(len(k.values) - 1 for k in knobs)
+    runs = 1 + wants_drift + sum(len(k.values) - 1 for k in knobs)
     print(f"tuning {a.scene.name} against {', '.join(l.describe() for l in a.limits)}: "
-          f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and one of {a.confirm_seconds:g} s, "
+          f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and {1 + wants_drift} of {a.confirm_seconds:g} s, "
           f"{a.players} players, {measure.ranks_of(scene)} zone ranks; runs in {a.work}")
     t = Tuner(a, scene)
     chosen = {k.name: k.scene_value for k in knobs}
     reasons = {}
     try:
+        if wants_drift:
+            reference = {**settings_of(knobs, chosen), **knob_defs.reference_settings(knob_defs.physics_knobs(scene))}
+            if not t.reference(reference, a.seconds):
+                print("refused: no body rests at the end of the reference run, so stack_drift measures "
+                      "nothing here", file=sys.stderr)
+                sys.exit(2)
         # Coordinate descent: each knob is swept with the knobs before it at their choices, so
         # a scene whose own settings break the budget still gets its later knobs judged.
         here = t.measure(settings_of(knobs, chosen), "the scene's own settings", a.seconds)
@@ -170,7 +214,7 @@ def main(argv):
                 f = here if v == chosen[k.name] else \
                     t.measure(settings_of(knobs, {**chosen, k.name: v}), f"{k.name} = {k.label(v)}", a.seconds)
                 k.sweep.append((v, f))
-            value, reasons[k.name] = choose(k, a.limits, a.tie)
+            value, reasons[k.name] = choose(k, a.limits, tie_of(k, a))
             if value is not None:
                 chosen[k.name] = value
             here = dict(k.sweep)[chosen[k.name]]
@@ -182,6 +226,8 @@ def main(argv):
     # The choices were measured in short runs; a full-length run of them must hold too.
     for attempt in range(4):
         try:
+            if wants_drift and a.confirm_seconds not in t.rest:  # the full-length run's own reference
+                t.reference(reference, a.confirm_seconds)
             confirmed = t.measure(settings_of(knobs, chosen), "all chosen together", a.confirm_seconds)
         except measure.RunError as e:
             sys.exit(f"tune.py: {e}")
@@ -206,9 +252,7 @@ def main(argv):
     header = [f"Written by bench/tune.py on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}:",
               f"  /usr/bin/python3 bench/tune.py {shlex.join(argv)}",
               "budget: " + ", ".join(l.describe() for l in a.limits),
-              f"confirmed over {a.confirm_seconds:g} s with {a.players} players: error p99 "
-              f"{confirmed['shown_error_p99']:.3f} m, {confirmed['kbps_per_client']:.1f} kbit/s per player, "
-              f"tick p99 {confirmed['tick_ms_p99']:.2f} ms",
+              f"confirmed over {a.confirm_seconds:g} s with {a.players} players: {figures_text(confirmed)}",
               f"the binding limit: {binds.describe()} ({binds.slack(confirmed) * 100:.0f} % left)"]
     a.out.parent.mkdir(parents=True, exist_ok=True)
     base = Path(os.path.relpath(a.scene, a.out.parent))
@@ -224,9 +268,7 @@ def main(argv):
         plot_note = f", plot {a.work / 'frontier.png'}"
     except ImportError:
         plot_note = " (no matplotlib: no plot)"
-    print(f"\nconfirmed over {a.confirm_seconds:g} s: error p99 {confirmed['shown_error_p99']:.3f} m, "
-          f"{confirmed['kbps_per_client']:.1f} kbit/s per player, tick p99 {confirmed['tick_ms_p99']:.2f} ms; "
-          f"binding limit {binds.describe()}")
+    print(f"\nconfirmed over {a.confirm_seconds:g} s: {figures_text(confirmed)}; binding limit {binds.describe()}")
     print(f"overlay {a.out}{plot_note}, every run in {a.work / 'tune.json'}")
 
 

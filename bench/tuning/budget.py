@@ -11,7 +11,13 @@ METRICS = {
                              "the zones had them (deploy/truth_error.py)"),
     "kbps_per_client": ("kbit/s", "mean download per player"),
     "tick_ms_p99": ("ms", "slowest zone's p99 tick time"),
+    "stack_drift": ("m", "the largest distance any body resting at the end of the reference run "
+                         "(the physics knobs at their most accurate) ends from where that run ends it"),
+    "physics_ms": ("ms", "mean physics phase time per tick, summed over the zone ranks"),
 }
+
+# The metrics that only a scene with rigid bodies measures (tuning/measure.py's reference run).
+PHYSICS_METRICS = ("stack_drift",)
 
 
 class BudgetError(ValueError):

@@ -2,6 +2,10 @@
 
 Each knob is a dotted scene key (docs/scene-format.md) with candidate values ordered from the
 most accurate to the cheapest guess; the measured sweep decides what is actually cheapest.
+A knob says which figure it trades against which (tuning/budget.py's metrics): the wire's
+knobs trade download against the error players are shown, the physics knobs physics time
+against how far resting bodies end from the reference run (each physics knob at its first,
+most accurate, value).
 """
 from dataclasses import dataclass, field
 
@@ -15,6 +19,8 @@ class Knob:
     values: list              # candidate values, each a tuple with one entry per key
     scene_value: tuple = None  # what the scene itself says (or the loader's default)
     why: str = ""
+    cost: str = "kbps_per_client"       # the figure a cheaper value lowers
+    accuracy: str = "shown_error_p99"   # the figure it costs, and which wins a tie
     sweep: list = field(default_factory=list)  # (value, figures) once measured
 
     def label(self, value):
@@ -82,10 +88,44 @@ def knobs_for(scene):
     pairs = sorted({(1 / 2048, 12), (1 / 512, 10), (1 / 128, 8), (1 / 32, 6), own}, key=lambda p: p[0])
     knobs.append(Knob("quantisation m/bits", (res_key, bits_key), pairs, own,
                       "the wire's position step and orientation bits"))
+    if uses["rigid_body"]:
+        knobs += physics_knobs(scene)
     for k in knobs:  # the scene's own value is always a candidate (its run is the baseline)
         if k.scene_value not in k.values:
             k.values.append(k.scene_value)
     return knobs
+
+
+def physics_knobs(scene):
+    """The solver's knobs (docs/scene-format.md, `physics`), and the physics level of detail
+    where the scene has a `lod` section (setting lod.physics_every without one would switch on
+    the crowds' level of detail too). Values most accurate first: the first of each is the
+    reference run's."""
+    ph = "physics."
+
+    def knob(name, key, values, default, why):
+        own = get(scene, key, default)
+        return Knob(name, (key,), [(v,) for v in values], (own,), why,
+                    cost="physics_ms", accuracy="stack_drift")
+
+    # No solver kind is the more accurate as such: the reference keeps the scene's own.
+    own_solver = get(scene, ph + "solver", "gauss_seidel")
+    solvers = [own_solver] + [s for s in ("gauss_seidel", "soft_step", "soft_step_wide") if s != own_solver]
+
+    knobs = [knob("velocity iterations", ph + "velocity_iterations", [40, 20, 10, 5, 2], 10,
+                  "sequential-impulse iterations per substep"),
+             knob("substeps", ph + "substeps", [4, 2, 1], 1, "engine steps per tick"),
+             knob("solver", ph + "solver", solvers, "gauss_seidel", "the contact solver")]
+    if isinstance(scene.get("lod"), dict):
+        knobs.append(knob("physics lod period", "lod.physics_every", [1, 2, 4], 1,
+                          "ticks between steps of islands no player is near"))
+    return knobs
+
+
+def reference_settings(knobs):
+    """The dotted-key settings of the reference run: every physics knob at its most accurate
+    value, so that the tuner measures stack_drift against the best the engine does."""
+    return {key: v for k in knobs if k.accuracy == "stack_drift" for key, v in zip(k.keys, k.values[0])}
 
 
 def overlay_text(base_path, settings, header_lines):

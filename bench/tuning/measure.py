@@ -1,7 +1,9 @@
 """One measured run: the scene with a candidate overlay on a local cluster (deploy/cluster.sh:
 zone ranks, a gateway, a fleet of players), read back as the budget's figures."""
 import json
+import math
 import os
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -15,6 +17,7 @@ CLUSTER_FILE = """# Written by bench/tune.py for one measured run.
 scene = {scene}
 duration = {seconds}
 truth_every = {truth_every}
+zone_args = --dump-state {end_state} --dump-state-at {end_tick}
 record = no
 
 [host local]
@@ -31,10 +34,25 @@ players = {players}
 
 
 WARMUP_S = 2  # seconds of a run left out of its bandwidth
+# A body of the reference run moving slower than this at its end rests there (the engine's
+# sleep threshold, docs/physics.md): where it rests does not depend on the tick the run stopped.
+REST_SPEED = 0.05
+END_STATE = "end_state.jsonl"  # zone_node --dump-state: every entity at the end tick (below)
+# Zones start this long at least before the players (gateway and fleet start-up), and run until
+# the players are done: a run of S seconds of players reaches tick (S + LEAD_S) x rate.
+LEAD_S = 2
 
 
 class RunError(RuntimeError):
     pass
+
+
+def end_tick(scene, seconds):
+    """The tick a run of `seconds` of players compares its bodies at: every run of that length
+    reaches it, and runs stopped on different ticks are compared on one."""
+    tick = scene.get("tick", {}) or {}
+    rate = float(tick.get("rate_hz") or 1 / float(tick.get("dt", 1 / 30)))
+    return int(round((seconds + LEAD_S) * rate))
 
 
 def ranks_of(scene):
@@ -57,8 +75,43 @@ def steady_kbps(run):
     return sum(s["bytes_in_per_s"] / s["players"] for s in steady) / len(steady) * 8 / 1000
 
 
-def figures_of(run):
-    """The budget's metrics (tuning/budget.py) from a finished run folder."""
+def end_bodies(run):
+    """id -> (position, speed) of every rigid body at the end tick of a finished run."""
+    if not (run / END_STATE).exists():
+        raise RunError(f"{run}: the zones stopped before the end tick (no {END_STATE}; "
+                       f"did they fall behind real time?)")
+    bodies = {}
+    for line in (run / END_STATE).read_text().splitlines():
+        e = json.loads(line)
+        if e.get("kind") == "rigid_body":
+            bodies[e["id"]] = (e["pos"], math.hypot(*e["vel"]))
+    return bodies
+
+
+def resting(reference):
+    """The bodies (id -> end position) that rest at the end of the reference run."""
+    return {i: pos for i, (pos, speed) in reference.items() if speed < REST_SPEED}
+
+
+def stack_drift(run, rest):
+    """The largest distance any body resting at the end of the reference run (`rest`, from
+    resting()) ends in this run from where the reference ends it, and which body."""
+    here = end_bodies(run)
+    missing = [i for i in rest if i not in here]
+    if missing:
+        raise RunError(f"{run}: {len(missing)} resting bodies of the reference are not in its end state")
+    return max(((math.dist(here[i][0], pos), i) for i, pos in rest.items()), default=(0.0, None))
+
+
+def physics_ms(run):
+    """Mean physics phase time per tick, summed over the zone ranks (their summaries)."""
+    zones = [json.loads(p.read_text()) for p in run.glob("zone_*_summary.json")]
+    return sum(z["physics_ms_mean"] for z in zones)
+
+
+def figures_of(run, rest=None):
+    """The budget's metrics (tuning/budget.py) from a finished run folder; stack_drift only
+    with the resting bodies of a reference run."""
     report = json.loads((run / "report.json").read_text())
     clients = report["clients"]
     if not clients:
@@ -67,20 +120,28 @@ def figures_of(run):
     shown = [e for per_order in errors.values() for e in per_order]
     if not shown:
         raise RunError(f"{run}: no shown sample met a truth sample (truth_every too sparse?)")
-    return {"shown_error_p99": percentile(shown, 99),
-            "kbps_per_client": steady_kbps(run) or
-            sum(c["bytes_in_per_s"] for c in clients) * 8 / 1000 / len(clients),
-            "tick_ms_p99": max(z["tick_ms_p99"] for z in report["zones"]),
-            "samples": len(shown)}
+    f = {"shown_error_p99": percentile(shown, 99),
+         "kbps_per_client": steady_kbps(run) or
+         sum(c["bytes_in_per_s"] for c in clients) * 8 / 1000 / len(clients),
+         "tick_ms_p99": max(z["tick_ms_p99"] for z in report["zones"]),
+         "physics_ms": physics_ms(run),
+         "samples": len(shown)}
+    if rest:
+        f["stack_drift"], f["stack_drift_body"] = stack_drift(run, rest)
+        f["resting_bodies"] = len(rest)
+    return f
 
 
-def run_once(overlay, folder, ranks, seconds, players, truth_every, bin_dir):
-    """Runs the overlay's scene; returns its figures. Raises RunError with the cluster's words."""
+def run_once(overlay, folder, ranks, seconds, players, truth_every, bin_dir, tick, rest=None):
+    """Runs the overlay's scene, its bodies written at `tick` (end_tick()); returns its figures
+    (stack_drift against `rest`, the bodies resting at that tick of a reference run of the same
+    length, when given). Raises RunError with the cluster's words."""
     folder.mkdir(parents=True, exist_ok=True)
     cluster = folder / "tune.cluster"
-    cluster.write_text(CLUSTER_FILE.format(scene=overlay, seconds=seconds, truth_every=truth_every,
-                                           ranks=ranks, players=players))
     run = folder / "run"
+    cluster.write_text(CLUSTER_FILE.format(scene=overlay, seconds=seconds, truth_every=truth_every,
+                                           ranks=ranks, players=players,
+                                           end_state=shlex.quote(str(run / END_STATE)), end_tick=tick))
     env = dict(os.environ, ZONESIM_BIN=str(bin_dir))
     with open(folder / "cluster.log", "w") as out:
         p = subprocess.run(["bash", ROOT / "deploy" / "cluster.sh", cluster, run], stdout=out,
@@ -89,4 +150,4 @@ def run_once(overlay, folder, ranks, seconds, players, truth_every, bin_dir):
         tail = (folder / "cluster.log").read_text(errors="replace").strip().splitlines()[-6:]
         raise RunError(f"the run of {overlay} failed (exit {p.returncode}; {folder / 'cluster.log'}):\n    "
                        + "\n    ".join(tail))
-    return figures_of(run)
+    return figures_of(run, rest)
