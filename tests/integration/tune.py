@@ -2,8 +2,12 @@
 the limit and the best measured, and nothing is written; a budget that can be met gives an
 overlay of the scene (read back by zone_node), chosen from measured runs and confirmed, with the
 binding limit named; a malformed budget is refused before any run. Runs one knob with two
-values and 3-second runs to stay short."""
+values and 3-second runs to stay short. The physics limit: stack_drift on a scene without
+rigid bodies is refused before any run; on scenes/stacks.yaml (116 boxes in stacks) a drift
+no substep count reaches is refused naming the limit and the best measured drift, after a
+reference run and one run per substep count that each measured it."""
 import json
+import re
 import subprocess
 import tempfile
 from pathlib import Path
@@ -14,11 +18,11 @@ TUNE = h.SOURCE_DIR / "bench" / "tune.py"
 SCENE = h.SOURCE_DIR / "scenes" / "test_e2e.yaml"
 
 
-def tune(work, budget, *extra):
+def tune(work, budget, *extra, scene=SCENE, knobs="avatar order", players=8):
     env = h.base_env(h.free_dds_domain())
-    return subprocess.run(["/usr/bin/python3", TUNE, SCENE, "--budget", budget, "--work", work,
-                           "--knobs", "avatar order", "--seconds", "3", "--confirm-seconds", "3",
-                           "--players", "8", "--bin", h.bin_dir(), *extra],
+    return subprocess.run(["/usr/bin/python3", TUNE, scene, "--budget", budget, "--work", work,
+                           "--knobs", knobs, "--seconds", "3", "--confirm-seconds", "3",
+                           "--players", str(players), "--bin", h.bin_dir(), *extra],
                           capture_output=True, text=True, env=env, timeout=400)
 
 
@@ -57,4 +61,27 @@ with tempfile.TemporaryDirectory(prefix="zs_tune_") as tmp:
     h.run(h.mpirun(4, h.bin_dir() / "zone_node", "--scene", out, "--ticks", 5, "--no-dds", "--dump-state", dump),
           tmp / "ok" / "zone.log", h.base_env(), timeout=120)
     h.check(dump.exists() and dump.read_text().count("\n") > 0, "zone_node runs the written overlay")
+
+    # The physics limit.
+    skirmish = h.SOURCE_DIR / "scenes" / "skirmish.yaml"
+    bodiless = tune(tmp / "bodiless", "stack_drift<=0.01", scene=skirmish, knobs="npc order")
+    h.check(bodiless.returncode == 2 and "stack_drift needs rigid bodies, and skirmish.yaml has none"
+            in bodiless.stderr and not (tmp / "bodiless").exists(),
+            f"a drift limit on a scene without bodies is refused before any run: {bodiless.stderr.strip()[-300:]}")
+
+    stacks = h.SOURCE_DIR / "scenes" / "stacks.yaml"
+    drift = tune(tmp / "drift", "stack_drift<=0.000001", scene=stacks, knobs="substeps", players=4)
+    h.check(drift.returncode == 2, f"an impossible drift budget exits 2 ({drift.returncode}): "
+            f"{drift.stdout[-800:]} {drift.stderr[-600:]}")
+    refusal = re.search(r"refused: no setting meets stack_drift <= 1e-06 m: the best measured is "
+                        r"(\S+) m \(substeps = (\d)\)", drift.stderr)
+    h.check(refusal is not None, f"the refusal names the drift limit, the best drift and where: {drift.stderr.strip()}")
+    h.check("116 bodies rest at tick" in drift.stdout, f"the reference run's resting bodies are counted: {drift.stdout[-800:]}")
+    measured = [float(m) for m in re.findall(r"stack drift +([0-9.]+) mm", drift.stdout)]
+    h.check(len(measured) == 3, f"the scene's own run and substeps 4 and 2 each measured a drift: {measured}")
+    h.check(min(measured) > 0 and abs(float(refusal.group(1)) * 1000 - min(measured)) <= 0.01,
+            f"the best measured drift is the least of the runs', a real distance: {refusal.group(1)} m, {measured} mm")
+    h.check(max(measured) > 2 * min(measured), f"the substep count moves the drift: {measured} mm")
+    h.check(not list((tmp / "drift").glob("*.tuned.yaml")) and not (tmp / "drift" / "tune.json").exists(),
+            "nothing is written for a refused drift budget")
 print("tune passed")
