@@ -193,7 +193,8 @@ def main(argv):
     a.work.mkdir(parents=True, exist_ok=True)
     runs = 1 + wants_drift + sum(len(k.values) - 1 for k in knobs)
     print(f"tuning {a.scene.name} against {', '.join(l.describe() for l in a.limits)}: "
-          f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and {1 + wants_drift} of {a.confirm_seconds:g} s, "
+          f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and "
+          f"{1 + (wants_drift and a.confirm_seconds != a.seconds)} of {a.confirm_seconds:g} s, "
           f"{a.players} players, {measure.ranks_of(scene)} zone ranks; runs in {a.work}")
     t = Tuner(a, scene)
     chosen = {k.name: k.scene_value for k in knobs}
