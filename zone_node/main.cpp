@@ -154,6 +154,12 @@ int run(const Options& o, MPI_Comm comm) {
   std::fflush(stdout);
   if (!o.dump_state.empty() && o.dump_state_at == 0)
     zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
+  if (o.dump_state_at > node.tickCount() && node.rank() == 0)
+    std::fprintf(stderr,
+                 "zone_node: --dump-state-at %llu: the run stopped at tick %llu, so %s was "
+                 "not written\n",
+                 (unsigned long long)o.dump_state_at, (unsigned long long)node.tickCount(),
+                 o.dump_state.c_str());
   const zone::ConservationTally& c = node.conservation();
   return c.failures == 0 && c.mail_failures == 0 ? 0 : 3;
 }
@@ -176,11 +182,12 @@ int main(int argc, char** argv) {
   app.add_option("--truth-every", o.truth_every,
                  "with --metrics: write truth_<rank>.csv, the true position of every K-th "
                  "entity id each tick (for deploy/truth_error.py)");
-  app.add_option("--dump-state", o.dump_state,
-                 "write every entity's final state (JSON lines) here");
+  CLI::Option* dump_state = app.add_option("--dump-state", o.dump_state,
+                                           "write every entity's final state (JSON lines) here");
   app.add_option("--dump-state-at", o.dump_state_at,
                  "with --dump-state: write it at the end of this tick (counted from the scene's "
-                 "start) instead of at the end of the run; a run that stops earlier writes none");
+                 "start) instead of at the end of the run; a run that stops earlier writes none")
+      ->needs(dump_state);
   app.add_option("--dds-domain", o.zone.dds_domain, "DDS domain id");
   bool no_dds = false;
   app.add_flag("--no-dds", no_dds, "run without DDS (no gateway can attach)");
