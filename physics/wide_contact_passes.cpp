@@ -192,8 +192,40 @@ ZONESIM_WIDE_INLINE void warmStartLanes(const BlockLanes& b, int o, SolverBodies
 }
 
 template <int W>
-ZONESIM_WIDE_INLINE void solveLanes(BlockLanes& b, int o, SolverBodies& bodies,
-                                    const SoftPass& pass) {
+ZONESIM_WIDE_INLINE void frictionLanes(BlockLanes& b, int o, SolverBodies& bodies) {
+  using F = typename Simd<W>::F;
+  Pair<W> v(b, o, bodies);
+  // Friction: both tangents from the same velocities, then the pair clamped to the Coulomb
+  // disc (as Jolt does), one application per point.
+  const V3<F> t0 = load3<F>(b.tangent[0], o), t1 = load3<F>(b.tangent[1], o);
+  const F friction = load<F>(b.friction + o);
+  for (int i = 0; i < b.points; ++i) {
+    PointLanes& p = b.point[i];
+    const V3<F> ra = load3<F>(p.ra, o), rb = load3<F>(p.rb, o);
+    const F limit = friction * load<F>(p.normal_impulse + o);
+    const V3<F> dv = (v.vb + cross(v.wb, rb)) - (v.va + cross(v.wa, ra));
+    const F old0 = load<F>(p.tangent_impulse[0] + o), old1 = load<F>(p.tangent_impulse[1] + o);
+    F j0 = old0 - load<F>(p.tangent_mass[0] + o) * dot(dv, t0);
+    F j1 = old1 - load<F>(p.tangent_mass[1] + o) * dot(dv, t1);
+    // Square roots one lane at a time: the same IEEE result in every width.
+    alignas(32) float size2[W], bound[W], scale[W];
+    store(size2, j0 * j0 + j1 * j1);
+    store(bound, limit);
+    for (int l = 0; l < W; ++l) {
+      scale[l] = size2[l] > bound[l] * bound[l] ? bound[l] / std::sqrt(size2[l]) : 1.0f;
+    }
+    j0 = j0 * load<F>(scale);
+    j1 = j1 * load<F>(scale);
+    store(p.tangent_impulse[0] + o, j0);
+    store(p.tangent_impulse[1] + o, j1);
+    v.apply(ra, rb, (j0 - old0) * t0 + (j1 - old1) * t1);
+  }
+  v.write(b, o, bodies);
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, int o, SolverBodies& bodies,
+                                     const SoftPass& pass) {
   using F = typename Simd<W>::F;
   Pair<W> v(b, o, bodies);
   V3<F> pa, qa, pb, qb;
@@ -232,31 +264,6 @@ ZONESIM_WIDE_INLINE void solveLanes(BlockLanes& b, int o, SolverBodies& bodies,
     store(p.max_normal_impulse + o, vmax(load<F>(p.max_normal_impulse + o), impulse));
     v.applyNormal(n, load3<F>(p.ia_ca, o), load3<F>(p.ib_cb, o), impulse - old);
   }
-  // Friction: both tangents from the same velocities, then the pair clamped to the Coulomb
-  // disc (as Jolt does), one application per point.
-  const V3<F> t0 = load3<F>(b.tangent[0], o), t1 = load3<F>(b.tangent[1], o);
-  const F friction = load<F>(b.friction + o);
-  for (int i = 0; i < b.points; ++i) {
-    PointLanes& p = b.point[i];
-    const V3<F> ra = load3<F>(p.ra, o), rb = load3<F>(p.rb, o);
-    const F limit = friction * load<F>(p.normal_impulse + o);
-    const V3<F> dv = (v.vb + cross(v.wb, rb)) - (v.va + cross(v.wa, ra));
-    const F old0 = load<F>(p.tangent_impulse[0] + o), old1 = load<F>(p.tangent_impulse[1] + o);
-    F j0 = old0 - load<F>(p.tangent_mass[0] + o) * dot(dv, t0);
-    F j1 = old1 - load<F>(p.tangent_mass[1] + o) * dot(dv, t1);
-    // Square roots one lane at a time: the same IEEE result in every width.
-    alignas(32) float size2[W], bound[W], scale[W];
-    store(size2, j0 * j0 + j1 * j1);
-    store(bound, limit);
-    for (int l = 0; l < W; ++l) {
-      scale[l] = size2[l] > bound[l] * bound[l] ? bound[l] / std::sqrt(size2[l]) : 1.0f;
-    }
-    j0 = j0 * load<F>(scale);
-    j1 = j1 * load<F>(scale);
-    store(p.tangent_impulse[0] + o, j0);
-    store(p.tangent_impulse[1] + o, j1);
-    v.apply(ra, rb, (j0 - old0) * t0 + (j1 - old1) * t1);
-  }
   v.write(b, o, bodies);
 }
 
@@ -294,8 +301,12 @@ ZONESIM_WIDE_INLINE void warmStartAll(std::span<const BlockLanes> blocks, Solver
 template <int W>
 ZONESIM_WIDE_INLINE void solveAll(std::span<BlockLanes> blocks, SolverBodies& bodies,
                                   const SoftPass& pass) {
+  // Friction for every contact first, then the normals (as the scalar soft step does, and
+  // why: physics/contact_solver_soft.cpp).
   for (BlockLanes& b : blocks)
-    for (int o = 0; o < kBlockLanes; o += W) solveLanes<W>(b, o, bodies, pass);
+    for (int o = 0; o < kBlockLanes; o += W) frictionLanes<W>(b, o, bodies);
+  for (BlockLanes& b : blocks)
+    for (int o = 0; o < kBlockLanes; o += W) normalLanes<W>(b, o, bodies, pass);
 }
 
 template <int W>

@@ -14,6 +14,8 @@
 //   physics_vs_bullet spheres [steps]: 5,000 spheres in a box.
 //   physics_vs_bullet sleeping [steps]: zonesim only, the pyramid after it settles, with
 //   sleeping on and off (the cost of a scene at rest against awake).
+//   physics_vs_bullet creep [steps] [base]: zonesim only, how a large_pyramid of that base
+//     (default 10) drifts as it stands, at every tenth of the run, per axis.
 
 #include <btBulletDynamicsCommon.h>
 
@@ -22,6 +24,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -99,7 +102,8 @@ struct Stages {
 
 std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timing,
                           const OurSettings& ours = {}, std::size_t* asleep = nullptr,
-                          Stages* stages = nullptr) {
+                          Stages* stages = nullptr,
+                          const std::function<void(int, const zp::World&)>& observe = {}) {
   zp::WorldSettings settings;
   settings.solver.kind = ours.kind;
   settings.sleep.enabled = ours.sleeping;
@@ -124,6 +128,7 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
   for (int s = 0; s < steps; ++s) {
     ms.push_back(timeMs([&] { world.step(kDt); }));
     if (stages) stages->add(world.profile());
+    if (observe) observe(s + 1, world);
   }
   timing = summarise(ms);
   if (asleep) *asleep = world.sleepingCount();
@@ -207,16 +212,23 @@ void reportHeld(const char* engine, const char* name, const zp::bench::Scene& sc
 // Box3D's scenes: ours as Box3D sets its solver (soft step, 4 sub-steps of one solve and one
 // relax pass), ours with Gauss-Seidel as the Jolt pyramid sets it (10 + 2 iterations), then
 // Bullet at 10 iterations, in one run; the ratios of mean step times are printed last.
+// The solvers of the Box3D scenes: the soft step as Box3D sets it (scalar and wide) and
+// Gauss-Seidel as the Jolt pyramid sets it.
+struct Box3dSolvers {
+  OurSettings soft, pgs, wide;
+  Box3dSolvers() {
+    soft.velocity_iterations = 8;
+    soft.position_iterations = 1;
+    pgs.kind = zp::SolverKind::GaussSeidel;
+    wide = soft;
+    wide.kind = zp::SolverKind::SoftStepWide;
+  }
+};
+
 int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
   std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off\n", name, scene.bodies.size(),
               steps);
-  OurSettings soft;
-  soft.velocity_iterations = 8;
-  soft.position_iterations = 1;
-  OurSettings pgs;
-  pgs.kind = zp::SolverKind::GaussSeidel;
-  OurSettings wide = soft;
-  wide.kind = zp::SolverKind::SoftStepWide;
+  const auto [soft, pgs, wide] = Box3dSolvers();
   OurSettings wide4 = wide;
   wide4.wide_lanes = 4;
   Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t;
@@ -235,6 +247,39 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
       "(8 lanes where AVX2, else 4), %.2f (4 lanes)\n",
       bullet_t.mean_ms / soft_t.mean_ms, bullet_t.mean_ms / pgs_t.mean_ms,
       bullet_t.mean_ms / wide_t.mean_ms, bullet_t.mean_ms / wide4_t.mean_ms);
+  return 0;
+}
+
+// Box3D's large_pyramid at `base`, watched as it stands: at every tenth of the run, the largest
+// displacement of any box along each axis and the outermost boxes of the bottom row's sideways
+// move, for the soft step as Box3D sets it (scalar and wide) and Gauss-Seidel. The pyramid lies
+// in the x-y plane and is symmetric in z, so motion along z is drift the solver made up.
+int runCreep(int base, int steps) {
+  const zp::bench::Scene scene = zp::bench::largePyramidScene(base);
+  std::printf("creep: large_pyramid of base %d (%zu boxes), %d steps of 1/60 s, sleeping off\n",
+              base, scene.bodies.size() - 1, steps);
+  std::printf(
+      "| solver | step | max abs dx m | max abs dy m | max abs dz m | bottom row: left dx, "
+      "right dx m |\n|---|---|---|---|---|---|\n");
+  const auto [soft, pgs, wide] = Box3dSolvers();
+  for (const auto& [name, settings] :
+       {std::pair{"soft step (4 sub-steps)", soft}, std::pair{"Gauss-Seidel (10 + 2)", pgs},
+        std::pair{"wide soft step (4 sub-steps)", wide}}) {
+    const auto observe = [&, name = name](int step, const zp::World& world) {
+      if (step % std::max(1, steps / 10) != 0 && step != steps) return;
+      const auto& p = world.bodies().position;
+      Vec3 most = Vec3::Zero();
+      for (std::size_t i = 1; i < p.size(); ++i)
+        most = most.cwiseMax((p[i] - scene.bodies[i].position).cwiseAbs());
+      // Body 0 is the ground; the bottom row is bodies 1 .. base.
+      const double left = p[1].x() - scene.bodies[1].position.x();
+      const double right = p[std::size_t(base)].x() - scene.bodies[std::size_t(base)].position.x();
+      std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f |\n", name, step, most.x(), most.y(),
+                  most.z(), left, right);
+    };
+    Timing t;
+    runOurs(scene, steps, t, settings, nullptr, nullptr, observe);
+  }
   return 0;
 }
 
@@ -300,6 +345,14 @@ int main(int argc, char** argv) {
     }
     return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps);
   }
+  if (which == "creep") {
+    const int base = argc > 3 ? std::atoi(argv[3]) : 10;
+    if (base < 1 || steps < 1) {
+      std::fprintf(stderr, "creep: steps and base must be positive\n");
+      return 2;
+    }
+    return runCreep(base, steps);
+  }
   if (which == "many_pyramids") {
     const int rows = argc > 3 ? std::atoi(argv[3]) : 14;
     if (rows < 1 || steps < 1) {
@@ -311,7 +364,7 @@ int main(int argc, char** argv) {
   if (which != "pyramid" && which != "spheres") {
     std::fprintf(stderr,
                  "physics_vs_bullet: unknown scene '%s' (pyramid, large_pyramid, many_pyramids, "
-                 "spheres, sleeping)\n",
+                 "spheres, sleeping, creep)\n",
                  which.c_str());
     return 2;
   }
