@@ -103,7 +103,8 @@ Vec2 KeepApart::solve(Vec2 wish) const {
 
 Vec2 KeepApart::move(Vec2 wish) const {
   const Vec2 x = solve(wish);
-  if (x == wish) return x;
+  // Free: no gap held it back (a wish a few ulp past the reach is only clamped, not sidestepped).
+  if (x == wish || x == clampLength(wish, reach_)) return x;
   // With a sidestep only as far as ahead, and only when less than half the move was left,
   // 132 of the courtyard's 400 flow NPCs never got through its doors (docs/benchmarks.md).
   constexpr double kSidestep = 3.0;

@@ -29,6 +29,15 @@ TEST(KeepApart, AFreeMoveIsKeptExactly) {
   EXPECT_NEAR(k.queryRadius(), 0.8, 1e-15);
 }
 
+TEST(KeepApart, ALoneAgentJustPastItsReachIsClampedNotSentSideways) {
+  KeepApart k;
+  k.begin(0.3, 0.1);
+  const Vec2 wish{0.1 * (1 + 1e-15), 0.0};  // the speed clamp's rounding can leave this
+  const Vec2 x = k.move(wish);
+  EXPECT_NEAR(x.x, 0.1, 1e-15);
+  EXPECT_EQ(x.y, 0.0);
+}
+
 TEST(KeepApart, AMoveTowardANeighbourStopsHalfTheGapShortAndSlidesAlongIt) {
   KeepApart k;
   k.begin(0.25, 0.5);
