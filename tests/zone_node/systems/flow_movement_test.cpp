@@ -28,12 +28,23 @@ std::string source(const std::string& relative) {
   return std::string(ZONESIM_SOURCE_DIR) + "/" + relative;
 }
 
-TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
-  Scene scene = loadScene(source("scenes/courtyard_flow.yaml"));
-  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
-  ASSERT_NE(map, nullptr);
+// A shipped scene, its map and its initial entities (kept in place: the map reads the scene).
+struct ShippedScene {
+  Scene scene;
+  std::unique_ptr<ZoneMap> map;
   EntityStore store;
-  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  explicit ShippedScene(const std::string& relative)
+      : scene(loadScene(source(relative))), map(ZoneMap::load(scene)) {
+    forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  }
+};
+
+TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
+  ShippedScene courtyard("scenes/courtyard_flow.yaml");
+  const Scene& scene = courtyard.scene;
+  const std::unique_ptr<ZoneMap>& map = courtyard.map;
+  ASSERT_NE(map, nullptr);
+  EntityStore& store = courtyard.store;
   ASSERT_EQ(store.size(), 400u);
   FlowMovement flows(scene, map.get());
   ASSERT_TRUE(flows.active());
@@ -66,11 +77,11 @@ TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
 }
 
 TEST(FlowMovement, BodiesKeptApartMakeNoNewOverlapAndMostStillArrive) {
-  Scene scene = loadScene(source("scenes/courtyard_flow_bodies.yaml"));
-  std::unique_ptr<ZoneMap> map = ZoneMap::load(scene);
+  ShippedScene courtyard("scenes/courtyard_flow_bodies.yaml");
+  const Scene& scene = courtyard.scene;
+  const std::unique_ptr<ZoneMap>& map = courtyard.map;
   ASSERT_NE(map, nullptr);
-  EntityStore store;
-  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  EntityStore& store = courtyard.store;
   FlowMovement flows(scene, map.get());
   const NpcFlow& f = scene.npcs[0].flow;
   ASSERT_EQ(f.body_radius, 0.3);
