@@ -16,6 +16,7 @@
 
 #include "physics/body_storage.h"
 #include "physics/contact.h"
+#include "physics/contact_recycling.h"
 #include "physics/softness.h"
 #include "physics/union_find.h"
 
@@ -105,6 +106,11 @@ struct BodyContact {
   double rolling = 0.0;
   /// Angular impulses against rolling about the contact's two tangents, from the last solve.
   std::array<double, 2> rolling_impulse{};
+  /// Where the manifold was computed (kept only while the world recycles contacts).
+  ManifoldOrigin origin;
+  /// True when this step carried the manifold along instead of computing it (its impulses are
+  /// then already last step's).
+  bool recycled = false;
 
   /// The order of a step's contacts: by body pair, then piece pair.
   friend bool operator<(const BodyContact& x, const BodyContact& y) {

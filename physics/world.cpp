@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,6 +20,9 @@ namespace zonesim::physics {
 namespace {
 // A contact point within this distance (m) of last step's point inherits its impulses.
 constexpr double kPreserveDistance = 0.02;
+// A recycled pair's bodies turn at most this far (cosine of the angle: 11.5 degrees, as Box2D)
+// since its manifold was computed: the kept normal is fixed in the world.
+constexpr double kRecycleTurnCos = 0.98;
 // Newton steps of the gyroscopic midpoint rule: the residual falls quadratically, and from the
 // last step's spin 3 reach round-off at the spins a game sees (|w| dt < 1).
 constexpr int kGyroscopicNewtonSteps = 3;
@@ -58,6 +62,7 @@ BodyIndex World::addBody(const BodyDesc& desc) {
     }
   }
   const BodyIndex i = bodies_.add(desc);
+  bounding_radius_.push_back(boundingRadius(desc.shape));
   islands_.resize(bodies_.size());
   lod_.resize(bodies_.size());
   return i;
@@ -65,11 +70,13 @@ BodyIndex World::addBody(const BodyDesc& desc) {
 
 void World::step(double dt) {
   profile_ = {};
+  recycled_ = computed_ = 0;
   if (lod_.idle()) {
     stepAll(dt);
   } else {
     stepLevels(dt);
   }
+  events_.update(contacts_, sleeping_contacts_);
   ++steps_;
 }
 
@@ -382,6 +389,7 @@ void World::contactsOfPairs(double dt) {
   // Last step's contacts become the warm-start source; both buffers keep their capacity.
   previous_.swap(contacts_);
   contacts_.clear();
+  recycle_cursor_ = 0;
   carrySleepingContacts();
   for (const ProxyPair& pair : pairs_) {
     const BodyIndex a = proxy_body_[pair.first], b = proxy_body_[pair.second];
@@ -413,6 +421,10 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   if (bodies_.inv_mass[a] == 0.0 && bodies_.inv_mass[b] == 0.0) return;
   const Pose pa{bodies_.position[a], bodies_.orientation[a]};
   const Pose pb{bodies_.position[b], bodies_.orientation[b]};
+  const bool compound =
+      bodies_.shape[a].type == ShapeType::Compound || bodies_.shape[b].type == ShapeType::Compound;
+  const bool recycling = settings_.contact_recycle_distance > 0.0 && !compound;
+  if (recycling && recycleContact(a, b, pa, pb, margin)) return;
   const double friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
   const double restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
   const double rolling = std::max(bodies_.rolling_resistance[a], bodies_.rolling_resistance[b]);
@@ -420,8 +432,6 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   // piece order: the contact list stays sorted by (a, b, piece a, piece b). The broadphase
   // paired the whole bodies; a compound's pieces whose bounds lie farther apart than the
   // margin cannot touch and skip the narrowphase.
-  const bool compound =
-      bodies_.shape[a].type == ShapeType::Compound || bodies_.shape[b].type == ShapeType::Compound;
   forEachPiece(bodies_.shape[a], pa, [&](unsigned ka, const Shape& sa, const Pose& qa) {
     forEachPiece(bodies_.shape[b], pb, [&](unsigned kb, const Shape& sb, const Pose& qb) {
       if (compound && sa.type != ShapeType::Plane && sb.type != ShapeType::Plane &&
@@ -439,9 +449,45 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
       contact.friction = friction;
       contact.restitution = restitution;
       contact.rolling = rolling * std::max(rollingRadius(sa), rollingRadius(sb));
+      if (recycling) contact.origin = originOf(contact.manifold, pa, pb);
+      ++computed_;
       contacts_.push_back(contact);
     });
   });
+}
+
+bool World::recycleContact(BodyIndex a, BodyIndex b, const Pose& pa, const Pose& pb,
+                           double margin) {
+  const auto before = [](const BodyContact& c, std::pair<BodyIndex, BodyIndex> key) {
+    return c.a < key.first || (c.a == key.first && c.b < key.second);
+  };
+  // Pairs come in order, so the cursor (past the last match) is usually the pair's place;
+  // else search.
+  const std::pair key{a, b};
+  auto old = previous_.begin() + std::min(recycle_cursor_, previous_.size());
+  const bool in_place = (old == previous_.end() || !before(*old, key)) &&
+                        (old == previous_.begin() || before(*(old - 1), key));
+  if (!in_place) old = std::lower_bound(previous_.begin(), previous_.end(), key, before);
+  recycle_cursor_ = static_cast<std::size_t>(old - previous_.begin());
+  if (old != previous_.end() && old->a == a && old->b == b) ++recycle_cursor_;
+  if (old == previous_.end() || old->a != a || old->b != b || !old->origin.valid) return false;
+  const ManifoldOrigin& origin = old->origin;
+  if (!turnedLittle(origin, pa, pb, kRecycleTurnCos)) return false;
+  const double moved = relativeMotionBound(origin, pa, pb, bounding_radius_[a], bounding_radius_[b],
+                                           settings_.contact_recycle_distance);
+  if (moved >= settings_.contact_recycle_distance) return false;
+  // Each manifold point pairs a point of each surface, so the shapes were at most the
+  // shallowest gap apart, and are now at most that plus `moved`: still within the margin, so
+  // the narrowphase too would have found the pair.
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < old->manifold.count; ++i) deepest = std::max(deepest, origin.depth[i]);
+  if (moved - deepest >= margin) return false;
+  contacts_.push_back(*old);
+  BodyContact& c = contacts_.back();
+  carryManifold(origin, c.manifold.normal, c.manifold.count, pa, pb, c.manifold);
+  c.recycled = true;
+  ++recycled_;
+  return true;
 }
 
 void World::wakeTouched() {
@@ -490,6 +536,7 @@ void World::warmStartFromPrevious() {
   // point inherits them when its feature id matches.
   std::size_t j = 0;
   for (BodyContact& c : contacts_) {
+    if (c.recycled) continue;  // its impulses came with it
     while (j < previous_.size() && previous_[j] < c) ++j;
     if (j == previous_.size() || !samePieces(previous_[j], c)) continue;
     const BodyContact& old = previous_[j];

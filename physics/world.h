@@ -9,6 +9,7 @@
 
 #include "physics/body_storage.h"
 #include "physics/broadphase.h"
+#include "physics/contact_events.h"
 #include "physics/contact_solver.h"
 #include "physics/distance_joints.h"
 #include "physics/forces.h"
@@ -45,6 +46,13 @@ struct WorldSettings {
   /// long steps (a 10-level pyramid drifts 6 cm at 1/15 s per step and flies apart at 2/15 s;
   /// docs/benchmarks.md). 0: no limit.
   double lod_longest_step = 0.0;
+  /// Contact recycling (m; 0: off): a touching pair whose bodies moved less than this relative
+  /// to each other since its manifold was computed, and neither turned more than about 11.5
+  /// degrees, keeps the manifold, carried along with the bodies, instead of running the
+  /// narrowphase (physics/contact_recycling.h). A pair is recycled only while it certainly
+  /// stays within the contact margin, so contactEvents() are the narrowphase's own. Compound
+  /// pairs are always computed. Off by default: the shipped scenes were measured without it.
+  double contact_recycle_distance = 0.0;
 };
 
 /// A set of bodies stepped together.
@@ -150,6 +158,12 @@ class World {
   std::span<const BodyIndex> quarantined() const { return quarantined_; }
   /// Time of each stage of the last step().
   const StepProfile& profile() const { return profile_; }
+  /// Pairs that began and ended touching (a contact within the margin, awake or asleep) in the
+  /// last step().
+  const ContactEvents& contactEvents() const { return events_; }
+  /// Contacts the last step() recycled (carried along) and computed with the narrowphase.
+  std::size_t recycledContacts() const { return recycled_; }
+  std::size_t computedContacts() const { return computed_; }
 
  private:
   /// Every awake body advances by dt.
@@ -172,6 +186,9 @@ class World {
   void findPairs(double dt);
   void contactsOfPairs(double dt);
   void addContact(BodyIndex a, BodyIndex b, double margin);
+  /// Carries the pair's last manifold into contacts_ when contact recycling allows; false
+  /// when the narrowphase must run.
+  bool recycleContact(BodyIndex a, BodyIndex b, const Pose& pa, const Pose& pb, double margin);
   bool contactIgnored(BodyIndex a, BodyIndex b) const;
   void wakeTouched();
   /// previous_ += the sleeping islands' contacts; keeps those whose bodies still rest.
@@ -227,6 +244,11 @@ class World {
   std::vector<BodyContact> sleeping_contacts_, warm_source_;
   std::vector<BodyIndex> quarantined_;
   StepProfile profile_;
+  ContactEvents events_;
+  // Each body's bounding radius about its origin, for contact recycling.
+  std::vector<double> bounding_radius_;
+  std::size_t recycled_ = 0, computed_ = 0;
+  std::size_t recycle_cursor_ = 0;  // where in previous_ the next pair is looked for first
 
   // Level of detail in time (step_lod.h) and what holding a body still set aside.
   StepLod lod_;

@@ -16,6 +16,9 @@
 //   sleeping on and off (the cost of a scene at rest against awake).
 //   physics_vs_bullet creep [steps] [base]: zonesim only, how a large_pyramid of that base
 //     (default 10) drifts as it stands, at every tenth of the run, per axis.
+//   --recycle D (anywhere, pyramid and the Box3D scenes): also runs each of our solvers with
+//     contact recycling at distance D m (WorldSettings::contact_recycle_distance), labelled -rc,
+//     and prints how many contacts a step recycled and computed.
 
 #include <btBulletDynamicsCommon.h>
 
@@ -73,8 +76,12 @@ struct OurSettings {
   int wide_lanes = 8;            ///< Wide soft step: the widest the CPU allows.
   int position_iterations = 2;   ///< Soft step: relax passes per sub-step.
   bool sleeping = false;
-  int settle = 0;  ///< Untimed steps before the timed ones.
+  int settle = 0;        ///< Untimed steps before the timed ones.
+  double recycle = 0.0;  ///< Contact recycling distance (m); 0: off.
 };
+
+// --recycle D, if given (0 otherwise).
+double g_recycle = 0.0;
 
 /// Where our steps went, summed over the timed steps (ms).
 struct Stages {
@@ -110,6 +117,7 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
   settings.solver.velocity_iterations = ours.velocity_iterations;
   settings.solver.position_iterations = ours.position_iterations;
   settings.solver.wide_lanes = ours.wide_lanes;
+  settings.contact_recycle_distance = ours.recycle;
   zp::World world(settings);
   for (const auto& b : scene.bodies) {
     zp::BodyDesc d;
@@ -125,10 +133,17 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
   }
   for (int s = 0; s < ours.settle; ++s) world.step(kDt);
   std::vector<double> ms;
+  std::size_t recycled = 0, computed = 0;
   for (int s = 0; s < steps; ++s) {
     ms.push_back(timeMs([&] { world.step(kDt); }));
     if (stages) stages->add(world.profile());
     if (observe) observe(s + 1, world);
+    recycled += world.recycledContacts();
+    computed += world.computedContacts();
+  }
+  if (ours.recycle > 0.0) {
+    std::printf("contacts per step: %.0f recycled, %.0f computed (recycling at %g m)\n",
+                double(recycled) / steps, double(computed) / steps, ours.recycle);
   }
   timing = summarise(ms);
   if (asleep) *asleep = world.sleepingCount();
@@ -231,10 +246,18 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
   const auto [soft, pgs, wide] = Box3dSolvers();
   OurSettings wide4 = wide;
   wide4.wide_lanes = 4;
-  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t;
-  for (auto [label, settings, timing] :
-       {std::tuple{"zs-soft", soft, &soft_t}, std::tuple{"zs-pgs", pgs, &pgs_t},
-        std::tuple{"zs-wide8", wide, &wide_t}, std::tuple{"zs-wide4", wide4, &wide4_t}}) {
+  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t;
+  std::vector<std::tuple<const char*, OurSettings, Timing*>> runs{{"zs-soft", soft, &soft_t},
+                                                                  {"zs-pgs", pgs, &pgs_t},
+                                                                  {"zs-wide8", wide, &wide_t},
+                                                                  {"zs-wide4", wide4, &wide4_t}};
+  if (g_recycle > 0.0) {
+    OurSettings soft_rc = soft, wide_rc = wide;
+    soft_rc.recycle = wide_rc.recycle = g_recycle;
+    runs.emplace_back("zs-soft-rc", soft_rc, &soft_rc_t);
+    runs.emplace_back("zs-wide8-rc", wide_rc, &wide_rc_t);
+  }
+  for (auto [label, settings, timing] : runs) {
     Stages stages;
     const auto p = runOurs(scene, steps, *timing, settings, nullptr, &stages);
     reportHeld(label, name, scene, p, *timing);
@@ -247,6 +270,11 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
       "(8 lanes where AVX2, else 4), %.2f (4 lanes)\n",
       bullet_t.mean_ms / soft_t.mean_ms, bullet_t.mean_ms / pgs_t.mean_ms,
       bullet_t.mean_ms / wide_t.mean_ms, bullet_t.mean_ms / wide4_t.mean_ms);
+  if (g_recycle > 0.0) {
+    std::printf(
+        "speed with recycling, Bullet mean / ours mean: soft step %.2f, wide soft step %.2f\n",
+        bullet_t.mean_ms / soft_rc_t.mean_ms, bullet_t.mean_ms / wide_rc_t.mean_ms);
+  }
   return 0;
 }
 
@@ -317,7 +345,24 @@ void reportSpheres(const char* engine, const zp::bench::Scene& scene, const std:
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int raw_argc, char** raw_argv) {
+  // --recycle D may stand anywhere; the rest are positional.
+  std::vector<char*> args;
+  for (int i = 0; i < raw_argc; ++i) {
+    if (std::strcmp(raw_argv[i], "--recycle") == 0) {
+      char* end = nullptr;
+      g_recycle = i + 1 < raw_argc ? std::strtod(raw_argv[i + 1], &end) : 0.0;
+      if (i + 1 >= raw_argc || *end != '\0' || !(g_recycle > 0.0) || !std::isfinite(g_recycle)) {
+        std::fprintf(stderr, "physics_vs_bullet: --recycle needs a positive distance in m\n");
+        return 2;
+      }
+      ++i;
+      continue;
+    }
+    args.push_back(raw_argv[i]);
+  }
+  const int argc = static_cast<int>(args.size());
+  char** argv = args.data();
   const std::string which = argc > 1 ? argv[1] : "pyramid";
   const bool box3d = which == "large_pyramid" || which == "many_pyramids";
   const int steps = argc > 2 ? std::atoi(argv[2]) : (box3d ? 200 : 500);
@@ -380,10 +425,17 @@ int main(int argc, char** argv) {
   if (all || both || solvers == "pgs") kinds.emplace_back("zs-pgs", zp::SolverKind::GaussSeidel);
   if (all || solvers == "wide") kinds.emplace_back("zs-wide", zp::SolverKind::SoftStepWide);
   double wide_mean = 0.0;
+  std::vector<std::tuple<std::string, zp::SolverKind, double>> runs;
   for (const auto& [name, kind] : kinds) {
+    runs.emplace_back(name, kind, 0.0);
+    if (g_recycle > 0.0) runs.emplace_back(std::string(name) + "-rc", kind, g_recycle);
+  }
+  for (const auto& [label, kind, recycle] : runs) {
+    const char* name = label.c_str();
     Timing t;
     OurSettings settings;
     settings.kind = kind;
+    settings.recycle = recycle;
     Stages stages;
     const auto ours = runOurs(scene, steps, t, settings, nullptr, &stages);
     stages.print(name, steps);
@@ -392,7 +444,7 @@ int main(int argc, char** argv) {
     } else {
       reportSpheres(name, scene, ours, t);
     }
-    if (kind == zp::SolverKind::SoftStepWide) wide_mean = t.mean_ms;
+    if (kind == zp::SolverKind::SoftStepWide && recycle == 0.0) wide_mean = t.mean_ms;
   }
   Timing bullet_t;
   const auto bullet = runBullet(scene, steps, bullet_t);
