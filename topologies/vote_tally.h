@@ -40,8 +40,11 @@ class VoteTally {
   bool record(const Vote& vote);
   /// Voters other than player whose vote counts at now and names player.
   std::uint32_t votesAgainst(std::uint32_t player, std::uint64_t now) const;
-  /// Votes needed to exclude a player: a majority of the others, (players - 1) / 2 + 1.
-  std::uint32_t needed() const { return (players_ - 1) / 2 + 1; }
+  /// Votes needed to exclude a player: a majority of the others, (players - 1) / 2 + 1. With
+  /// fewer than three players the one other's vote cannot tell a liar from its accuser, so no
+  /// count excludes anyone (players: more votes than there are others); each peer still drops
+  /// the states its own checker rejects.
+  std::uint32_t needed() const { return players_ < 3 ? players_ : (players_ - 1) / 2 + 1; }
   /// Whether the others' votes at now exclude player.
   bool excluded(std::uint32_t player, std::uint64_t now) const {
     return votesAgainst(player, now) >= needed();

@@ -56,6 +56,20 @@ TEST(VoteTally, APlayerCannotVoteForOrAgainstItselfInTheCount) {
   EXPECT_TRUE(tally.excluded(1, 1));
 }
 
+TEST(VoteTally, TwoPlayersCannotExcludeEachOther) {
+  // The other's vote is one accuser against one accused: no majority to trust either way.
+  VoteTally pair(2, kTtl);
+  EXPECT_EQ(pair.needed(), 2u);
+  pair.record({0, 5, suspectBit(1)});
+  pair.record({1, 5, suspectBit(0)});
+  EXPECT_EQ(pair.votesAgainst(1, 5), 1u);
+  EXPECT_FALSE(pair.excluded(0, 5));
+  EXPECT_FALSE(pair.excluded(1, 5));
+  VoteTally alone(1, kTtl);
+  alone.record({0, 5, suspectBit(0)});
+  EXPECT_FALSE(alone.excluded(0, 5));
+}
+
 TEST(VoteTally, VotesLapseAndNewerOnesReplaceOlder) {
   VoteTally tally(kPlayers, kTtl);
   for (std::uint32_t voter = 0; voter < 8; ++voter) tally.record({voter, 100, suspectBit(15)});
