@@ -13,6 +13,56 @@ constexpr std::int64_t kMaxCellsPerProxy = 64;
 bool wanted(std::span<const std::uint8_t> moving, std::uint32_t i, std::uint32_t j) {
   return moving[i] || moving[j];
 }
+
+// Sorts v by less with insertion sort, giving up (false, v a permutation of what it was) once
+// more than `budget` elements have been moved.
+template <class Less>
+bool insertionSort(std::vector<std::uint32_t>& v, const Less& less, std::size_t budget) {
+  std::size_t moves = 0;
+  for (std::size_t k = 1; k < v.size(); ++k) {
+    const std::uint32_t x = v[k];
+    std::size_t at = k;
+    while (at > 0 && less(x, v[at - 1])) {
+      v[at] = v[at - 1];
+      --at;
+      if (++moves > budget) {
+        v[at] = x;
+        return false;
+      }
+    }
+    v[at] = x;
+  }
+  return true;
+}
+
+// Sorts pairs by (first, second) with a counting sort on the first index (proxies < n) and
+// insertion sort within each first index's few pairs: about linear where std::sort is n log n.
+void sortPairs(std::vector<ProxyPair>& pairs, std::size_t n, std::vector<std::uint32_t>& start,
+               std::vector<ProxyPair>& scratch) {
+  start.assign(n + 1, 0);
+  for (const ProxyPair& p : pairs) ++start[p.first + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  scratch.resize(pairs.size());
+  for (const ProxyPair& p : pairs) scratch[start[p.first]++] = p;
+  // start[i] is now the end of first index i's run, and the run begins at start[i - 1].
+  for (std::size_t i = 0, begin = 0; i < n; begin = start[i], ++i) {
+    // A big run (a floor paired with everything on it) is sorted the usual way.
+    if (start[i] - begin > 32) {
+      std::sort(scratch.begin() + begin, scratch.begin() + start[i]);
+      continue;
+    }
+    for (std::size_t k = begin + 1; k < start[i]; ++k) {
+      const ProxyPair x = scratch[k];
+      std::size_t at = k;
+      while (at > begin && x.second < scratch[at - 1].second) {
+        scratch[at] = scratch[at - 1];
+        --at;
+      }
+      scratch[at] = x;
+    }
+  }
+  pairs.swap(scratch);
+}
 }  // namespace
 
 Broadphase::Broadphase(BroadphaseKind kind, double grid_cell) : kind_(kind), cell_(grid_cell) {}
@@ -36,7 +86,7 @@ void Broadphase::findPairs(std::span<const Aabb> boxes, std::span<const std::uin
       break;
   }
   // One canonical order for every algorithm: the solver's result depends on pair order.
-  std::sort(out.begin(), out.end());
+  sortPairs(out, boxes.size(), pair_start_, pair_scratch_);
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
@@ -53,23 +103,34 @@ void Broadphase::bruteForce(std::span<const Aabb> boxes, std::span<const std::ui
 void Broadphase::sweepAndPrune(std::span<const Aabb> boxes, std::span<const std::uint8_t> moving,
                                std::vector<ProxyPair>& out) {
   const auto n = static_cast<std::uint32_t>(boxes.size());
-  // The previous order is nearly sorted after a small step; insertion-friendly std::sort is
-  // still O(n log n) but the comparison is cheap.
+  // Sorted by (lower x, index), a strict order: the sweep order is the same however it is
+  // reached. Last step's order is nearly sorted after a small step, so insertion sort from it
+  // costs about n; a budget of moves falls back to std::sort when much has changed.
+  const auto before = [&](std::uint32_t a, std::uint32_t b) {
+    return boxes[a].lo.x() != boxes[b].lo.x() ? boxes[a].lo.x() < boxes[b].lo.x() : a < b;
+  };
   if (order_.size() != n) {
     order_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) order_[i] = i;
+    std::sort(order_.begin(), order_.end(), before);
+  } else if (!insertionSort(order_, before, 8 * std::size_t(n))) {
+    std::sort(order_.begin(), order_.end(), before);
   }
-  std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return boxes[a].lo.x() != boxes[b].lo.x() ? boxes[a].lo.x() < boxes[b].lo.x() : a < b;
-  });
+  // The sweep reads the boxes in sweep order from one contiguous copy.
+  swept_.resize(n);
   for (std::uint32_t k = 0; k < n; ++k) {
     const std::uint32_t i = order_[k];
-    const double hi_x = boxes[i].hi.x();
+    swept_[k] = {boxes[i], i, moving[i] != 0};
+  }
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const Swept& a = swept_[k];
+    const double hi_x = a.box.hi.x();
     for (std::uint32_t m = k + 1; m < n; ++m) {
-      const std::uint32_t j = order_[m];
-      if (boxes[j].lo.x() > hi_x) break;
-      if (wanted(moving, i, j) && boxes[i].overlaps(boxes[j])) {
-        out.push_back(i < j ? ProxyPair{i, j} : ProxyPair{j, i});
+      const Swept& b = swept_[m];
+      if (b.box.lo.x() > hi_x) break;
+      if ((a.moving || b.moving) && a.box.overlaps(b.box)) {
+        out.push_back(a.index < b.index ? ProxyPair{a.index, b.index}
+                                        : ProxyPair{b.index, a.index});
       }
     }
   }

@@ -39,6 +39,14 @@ class Broadphase {
   BroadphaseKind kind_;
   double cell_;
   std::vector<std::uint32_t> order_;  // Sweep order by lower x bound.
+  struct Swept {
+    Aabb box;
+    std::uint32_t index;
+    bool moving;
+  };
+  std::vector<Swept> swept_;  // The boxes in sweep order.
+  std::vector<std::uint32_t> pair_start_;
+  std::vector<ProxyPair> pair_scratch_;
   std::vector<std::uint64_t> cells_;  // Grid: (cell hash << 32 | proxy), sorted.
   std::vector<std::uint32_t> oversized_;
   AabbTree tree_;
