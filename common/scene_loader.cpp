@@ -304,11 +304,11 @@ void readTick(const SceneMap& root, Scene& scene) {
 }
 
 void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
-  SceneMap m =
-      root.section("physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
-                               "position_iterations", "sleep", "gyroscopic", "solver", "sor_omega",
-                               "joint_hertz", "joint_damping_ratio", "linear_drag",
-                               "quadratic_drag", "bodies", "joints", "cloths", "explosions"});
+  SceneMap m = root.section(
+      "physics", {"integrator", "broadphase", "substeps", "velocity_iterations",
+                  "position_iterations", "sleep", "gyroscopic", "solver", "sor_omega",
+                  "joint_hertz", "joint_damping_ratio", "linear_drag", "quadratic_drag",
+                  "contact_recycle_distance", "bodies", "joints", "cloths", "explosions"});
   ps.integrator = PhysicsSettings::Integrator(
       m.choice("integrator",
                {"explicit_euler", "semi_implicit_euler", "position_verlet", "velocity_verlet",
@@ -332,6 +332,7 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("joint_damping_ratio", ps.joint_damping_ratio, Limit::between(0, 100));
   m.read("linear_drag", ps.linear_drag, Limit::atLeast(0));
   m.read("quadratic_drag", ps.quadratic_drag, Limit::atLeast(0));
+  m.read("contact_recycle_distance", ps.contact_recycle_distance, Limit::between(0, 1));
 }
 
 void readDeadReckoningModel(const SceneMap& models, std::string_view kind,

@@ -153,6 +153,9 @@ struct PhysicsSettings {
   double joint_damping_ratio = 2;          ///< soft_step: joint spring damping ratio
   double linear_drag = 0;     ///< N s/m: F = -k v on every dynamic body (physics::ForceModel)
   double quadratic_drag = 0;  ///< N s^2/m^2: F = -c |v| v on every dynamic body
+  /// m; 0: off. Contacts whose bodies moved less than this relative to each other keep their
+  /// manifold instead of the narrowphase (physics::WorldSettings::contact_recycle_distance).
+  double contact_recycle_distance = 0;
   std::vector<SceneBody> bodies;           ///< named bodies (entities after the populations)
   std::vector<SceneJoint> joints;          ///< between named bodies
   std::vector<SceneCloth> cloths;          ///< zone-local, not sent to clients

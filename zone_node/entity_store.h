@@ -106,6 +106,28 @@ struct CachedContactPoint {
   bool operator==(const CachedContactPoint&) const = default;
 };
 
+/// Where a contact's manifold was computed, for contact recycling (physics/contact_recycling.h):
+/// the normal, the poses of the contact's first and second body then, each point and its depth
+/// then, and the pair's materials. Carried so that a world rebuilt on any rank recycles as the
+/// old one would have.
+struct CachedContactOrigin {
+  Vec3 normal = Vec3::UnitY();
+  Vec3 first_position = Vec3::Zero(), second_position = Vec3::Zero();
+  Quat first_orientation = Quat::Identity(), second_orientation = Quat::Identity();
+  std::vector<Vec3> points;  ///< as many as the contact's points
+  std::vector<double> depths;
+  double friction = 0, restitution = 0, rolling = 0;
+
+  bool operator==(const CachedContactOrigin& o) const {
+    return normal == o.normal && first_position == o.first_position &&
+           second_position == o.second_position &&
+           first_orientation.coeffs() == o.first_orientation.coeffs() &&
+           second_orientation.coeffs() == o.second_orientation.coeffs() && points == o.points &&
+           depths == o.depths && friction == o.friction && restitution == o.restitution &&
+           rolling == o.rolling;
+  }
+};
+
 /// A contact's impulses, kept for the next step's warm start. A body keeps those of its contacts
 /// with bodies of higher id and with the world's static bodies, so they migrate with it and
 /// reach whichever rank solves its island next (zone_node/systems/body_islands.h).
@@ -115,6 +137,7 @@ struct CachedContact {
   std::uint16_t piece_self = 0, piece_other = 0;  ///< the pieces touching (compound parts)
   std::vector<CachedContactPoint> points;         ///< 1 to 4
   std::array<double, 2> rolling_impulse{};
+  std::optional<CachedContactOrigin> origin;  ///< while the scene recycles contacts
 
   bool operator==(const CachedContact&) const = default;
 };

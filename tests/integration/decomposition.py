@@ -54,7 +54,8 @@ SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flo
           "agents_hpa": 600,
           "courtyard_formation": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
           "flock_lod": 300, "roads": 1200, "skirmish": 300,
-          "duel_adaptive": 1200, "border_pile": 600, "physics_objects": 600}
+          "duel_adaptive": 1200, "border_pile": 600, "border_pile_recycled": 600,
+          "physics_objects": 600}
 FILES = {"crowd_flock_gpu": "crowd_flock"}  # a case that runs another case's scene
 EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float device rounding
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],

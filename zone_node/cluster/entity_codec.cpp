@@ -136,6 +136,41 @@ void decodeAvatar(const fb::AvatarState& s, AvatarData& a) {
        s.last_transaction_seq()};
 }
 
+flatbuffers::Offset<fb::ContactOrigin> encodeContactOrigin(Builder& b,
+                                                           const CachedContactOrigin& o) {
+  std::vector<fb::Vec3d> points;
+  for (const Vec3& p : o.points) points.push_back(toFb(p));
+  const auto points_at = b.CreateVectorOfStructs(points);
+  const auto depths_at = b.CreateVector(o.depths);
+  const fb::Vec3d normal = toFb(o.normal), first = toFb(o.first_position),
+                  second = toFb(o.second_position);
+  const fb::Quatd first_q = toFb(o.first_orientation), second_q = toFb(o.second_orientation);
+  return fb::CreateContactOrigin(b, &normal, &first, &first_q, &second, &second_q, points_at,
+                                 depths_at, o.friction, o.restitution, o.rolling);
+}
+
+CachedContactOrigin decodeContactOrigin(const fb::ContactOrigin& o, std::size_t points) {
+  if (!o.normal() || !o.first_position() || !o.first_orientation() || !o.second_position() ||
+      !o.second_orientation() || !o.points() || !o.depths())
+    throw CodecError("cached contact origin with a missing field");
+  if (o.points()->size() != points || o.depths()->size() != points)
+    throw CodecError("cached contact origin with " + std::to_string(o.points()->size()) +
+                     " points and " + std::to_string(o.depths()->size()) + " depths for a " +
+                     std::to_string(points) + "-point contact");
+  CachedContactOrigin out;
+  out.normal = fromFb(o.normal());
+  out.first_position = fromFb(o.first_position());
+  out.first_orientation = fromFb(o.first_orientation());
+  out.second_position = fromFb(o.second_position());
+  out.second_orientation = fromFb(o.second_orientation());
+  for (const fb::Vec3d* p : *o.points()) out.points.push_back(fromFb(p));
+  out.depths.assign(o.depths()->begin(), o.depths()->end());
+  out.friction = o.friction();
+  out.restitution = o.restitution();
+  out.rolling = o.rolling();
+  return out;
+}
+
 flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, EntityKind kind) {
   if (kind != EntityKind::RigidBody) return {};
   flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::CachedContact>>> contacts;
@@ -148,9 +183,12 @@ flatbuffers::Offset<fb::BodyState> encodeBody(Builder& b, const BodyData& s, Ent
         points.emplace_back(toFb(p.position), fb::Vec3d(p.impulse[0], p.impulse[1], p.impulse[2]),
                             p.feature);
       }
+      const auto points_at = b.CreateVectorOfStructs(points);
+      flatbuffers::Offset<fb::ContactOrigin> origin;
+      if (c.origin) origin = encodeContactOrigin(b, *c.origin);
       list.push_back(fb::CreateCachedContact(b, c.other.value, c.world_body, c.piece_self,
-                                             c.piece_other, b.CreateVectorOfStructs(points),
-                                             c.rolling_impulse[0], c.rolling_impulse[1]));
+                                             c.piece_other, points_at, c.rolling_impulse[0],
+                                             c.rolling_impulse[1], origin));
     }
     contacts = b.CreateVector(list);
   }
@@ -212,6 +250,7 @@ void decodeBody(const fb::BodyState& s, BodyData& d) {
                             p->feature(),
                             {p->impulse().x(), p->impulse().y(), p->impulse().z()}});
     }
+    if (c->origin()) out.origin = decodeContactOrigin(*c->origin(), n);
     d.contacts.push_back(std::move(out));
   }
 }

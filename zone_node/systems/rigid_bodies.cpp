@@ -35,6 +35,7 @@ physics::WorldSettings settingsFor(const PhysicsSettings& p, const CrowdLod& lod
   w.solver.sor_omega = p.sor_omega;
   w.solver.joint_hertz = p.joint_hertz;
   w.solver.joint_damping_ratio = p.joint_damping_ratio;
+  w.contact_recycle_distance = p.contact_recycle_distance;
   return w;
 }
 

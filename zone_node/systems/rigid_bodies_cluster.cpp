@@ -21,6 +21,38 @@ namespace zonesim::zone {
 
 namespace {
 
+// A recycled contact's origin and materials as the entity store carries them, in the
+// contact's own body order (the lower index first, as in every world built from the store).
+CachedContactOrigin originOf(const physics::BodyContact& c) {
+  CachedContactOrigin o;
+  o.normal = c.manifold.normal;
+  o.first_position = c.origin.a.position;
+  o.first_orientation = c.origin.a.orientation;
+  o.second_position = c.origin.b.position;
+  o.second_orientation = c.origin.b.orientation;
+  o.points.assign(c.origin.point.begin(), c.origin.point.begin() + c.manifold.count);
+  o.depths.assign(c.origin.depth.begin(), c.origin.depth.begin() + c.manifold.count);
+  o.friction = c.friction;
+  o.restitution = c.restitution;
+  o.rolling = c.rolling;
+  return o;
+}
+
+// Puts a carried origin back, so the rebuilt world may recycle the contact as the old one would.
+void restoreOrigin(const CachedContactOrigin& o, physics::BodyContact& c) {
+  c.manifold.normal = o.normal;
+  c.origin.a = {o.first_position, o.first_orientation};
+  c.origin.b = {o.second_position, o.second_orientation};
+  for (int p = 0; p < c.manifold.count && p < int(o.points.size()); ++p) {
+    c.origin.point[p] = o.points[p];
+    c.origin.depth[p] = o.depths[p];
+  }
+  c.origin.valid = int(o.points.size()) == c.manifold.count;
+  c.friction = o.friction;
+  c.restitution = o.restitution;
+  c.rolling = o.rolling;
+}
+
 // Added to every reach box (m): covers velocity changes within the tick that the twice-the-
 // travel margin does not (contacts, explosions, kinematic pushes of a few m/s).
 constexpr double kReachSlack = 0.05;
@@ -259,6 +291,7 @@ void RigidBodySystem::importCarried(const std::vector<BodyRef>& bodies) {
         contact.impulse[p] = c.points[p].impulse;
       }
       contact.rolling_impulse = c.rolling_impulse;
+      if (c.origin) restoreOrigin(*c.origin, contact);
       warm.push_back(contact);
     }
   }
@@ -338,6 +371,7 @@ void RigidBodySystem::exportCarried(const std::vector<BodyRef>& bodies) {
           {c.manifold.points[p].position, c.manifold.points[p].feature, c.impulse[p]});
     }
     cached.rolling_impulse = c.rolling_impulse;
+    if (c.origin.valid) cached.origin = originOf(c);
     bodyOf(with_static ? c.b : c.a).contacts.push_back(std::move(cached));
   }
 }
