@@ -421,9 +421,12 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
   if (bodies_.inv_mass[a] == 0.0 && bodies_.inv_mass[b] == 0.0) return;
   const Pose pa{bodies_.position[a], bodies_.orientation[a]};
   const Pose pb{bodies_.position[b], bodies_.orientation[b]};
-  const bool compound =
-      bodies_.shape[a].type == ShapeType::Compound || bodies_.shape[b].type == ShapeType::Compound;
-  const bool recycling = settings_.contact_recycle_distance > 0.0 && !compound;
+  const ShapeType ta = bodies_.shape[a].type, tb = bodies_.shape[b].type;
+  const bool compound = ta == ShapeType::Compound || tb == ShapeType::Compound;
+  // Only pairs with a box pay for their narrowphase (clipping); spheres, capsules and planes
+  // collide in fewer operations than the recycling test takes.
+  const bool recycling = settings_.contact_recycle_distance > 0.0 && !compound &&
+                         (ta == ShapeType::Box || tb == ShapeType::Box);
   if (recycling && recycleContact(a, b, pa, pb, margin)) return;
   const double friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
   const double restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
