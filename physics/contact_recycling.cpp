@@ -54,7 +54,7 @@ bool turnedLittle(const ManifoldOrigin& then, const Pose& a, const Pose& b, doub
 
 void carryManifold(const ManifoldOrigin& then, const Vec3& normal, int count, const Pose& a,
                    const Pose& b, Manifold& out) {
-  // As matrices: four points are turned by each, and a matrix turns a vector in half the work.
+  // One rotation per body, made a matrix once for all the points.
   const Eigen::Matrix3d turn_a =
       (a.orientation * then.a.orientation.conjugate()).toRotationMatrix();
   const Eigen::Matrix3d turn_b =

@@ -76,7 +76,7 @@ void World::step(double dt) {
   } else {
     stepLevels(dt);
   }
-  events_.update(contacts_, sleeping_contacts_);
+  if (settings_.contact_events) events_.update(contacts_, sleeping_contacts_);
   ++steps_;
 }
 

@@ -54,6 +54,9 @@ struct WorldSettings {
   /// with a box are recycled (others collide in fewer operations than the test takes), and
   /// compound pairs never. Off by default: the shipped scenes were measured without it.
   double contact_recycle_distance = 0.0;
+  /// Keep contactEvents(): the pairs that began and ended touching each step (a merge of the
+  /// contact list per step, so off unless asked for).
+  bool contact_events = false;
 };
 
 /// A set of bodies stepped together.
@@ -160,7 +163,7 @@ class World {
   /// Time of each stage of the last step().
   const StepProfile& profile() const { return profile_; }
   /// Pairs that began and ended touching (a contact within the margin, awake or asleep) in the
-  /// last step().
+  /// last step(); empty unless WorldSettings::contact_events.
   const ContactEvents& contactEvents() const { return events_; }
   /// Contacts the last step() recycled (carried along) and computed with the narrowphase.
   std::size_t recycledContacts() const { return recycled_; }

@@ -112,6 +112,7 @@ std::set<std::pair<BodyIndex, BodyIndex>> pairsOf(const World& w) {
 /// Steps the pile with recycling, and at every step the same state without it: both must find
 /// the same touching pairs, and the events must be their changes.
 void expectExactPairs(WorldSettings settings) {
+  settings.contact_events = true;
   WorldSettings fresh_settings = settings;
   settings.contact_recycle_distance = 0.01;
   World recycling(settings), fresh(fresh_settings);
