@@ -23,7 +23,7 @@ namespace {
 
 // A recycled contact's origin and materials as the entity store carries them, in the
 // contact's own body order (the lower index first, as in every world built from the store).
-CachedContactOrigin originOf(const physics::BodyContact& c) {
+CachedContactOrigin carriedOrigin(const physics::BodyContact& c) {
   CachedContactOrigin o;
   o.normal = c.manifold.normal;
   o.first_position = c.origin.a.position;
@@ -371,7 +371,7 @@ void RigidBodySystem::exportCarried(const std::vector<BodyRef>& bodies) {
           {c.manifold.points[p].position, c.manifold.points[p].feature, c.impulse[p]});
     }
     cached.rolling_impulse = c.rolling_impulse;
-    if (c.origin.valid) cached.origin = originOf(c);
+    if (c.origin.valid) cached.origin = carriedOrigin(c);
     bodyOf(with_static ? c.b : c.a).contacts.push_back(std::move(cached));
   }
 }
