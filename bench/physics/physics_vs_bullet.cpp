@@ -80,9 +80,6 @@ struct OurSettings {
   double recycle = 0.0;  ///< Contact recycling distance (m); 0: off.
 };
 
-// --recycle D, if given (0 otherwise).
-double g_recycle = 0.0;
-
 /// Where our steps went, summed over the timed steps (ms).
 struct Stages {
   double integrate = 0, broadphase = 0, narrowphase = 0, prepare = 0, solve = 0, islands = 0;
@@ -240,7 +237,8 @@ struct Box3dSolvers {
   }
 };
 
-int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
+// recycle: also each soft step with contact recycling at that distance (m; 0: not).
+int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, double recycle) {
   std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off\n", name, scene.bodies.size(),
               steps);
   const auto [soft, pgs, wide] = Box3dSolvers();
@@ -251,9 +249,9 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
                                                                   {"zs-pgs", pgs, &pgs_t},
                                                                   {"zs-wide8", wide, &wide_t},
                                                                   {"zs-wide4", wide4, &wide4_t}};
-  if (g_recycle > 0.0) {
+  if (recycle > 0.0) {
     OurSettings soft_rc = soft, wide_rc = wide;
-    soft_rc.recycle = wide_rc.recycle = g_recycle;
+    soft_rc.recycle = wide_rc.recycle = recycle;
     runs.emplace_back("zs-soft-rc", soft_rc, &soft_rc_t);
     runs.emplace_back("zs-wide8-rc", wide_rc, &wide_rc_t);
   }
@@ -270,7 +268,7 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps) {
       "(8 lanes where AVX2, else 4), %.2f (4 lanes)\n",
       bullet_t.mean_ms / soft_t.mean_ms, bullet_t.mean_ms / pgs_t.mean_ms,
       bullet_t.mean_ms / wide_t.mean_ms, bullet_t.mean_ms / wide4_t.mean_ms);
-  if (g_recycle > 0.0) {
+  if (recycle > 0.0) {
     std::printf(
         "speed with recycling, Bullet mean / ours mean: soft step %.2f, wide soft step %.2f\n",
         bullet_t.mean_ms / soft_rc_t.mean_ms, bullet_t.mean_ms / wide_rc_t.mean_ms);
@@ -348,11 +346,12 @@ void reportSpheres(const char* engine, const zp::bench::Scene& scene, const std:
 int main(int raw_argc, char** raw_argv) {
   // --recycle D may stand anywhere; the rest are positional.
   std::vector<char*> args;
+  double recycle = 0.0;
   for (int i = 0; i < raw_argc; ++i) {
     if (std::strcmp(raw_argv[i], "--recycle") == 0) {
       char* end = nullptr;
-      g_recycle = i + 1 < raw_argc ? std::strtod(raw_argv[i + 1], &end) : 0.0;
-      if (i + 1 >= raw_argc || *end != '\0' || !(g_recycle > 0.0) || !std::isfinite(g_recycle)) {
+      recycle = i + 1 < raw_argc ? std::strtod(raw_argv[i + 1], &end) : 0.0;
+      if (i + 1 >= raw_argc || *end != '\0' || !(recycle > 0.0) || !std::isfinite(recycle)) {
         std::fprintf(stderr, "physics_vs_bullet: --recycle needs a positive distance in m\n");
         return 2;
       }
@@ -388,7 +387,7 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "large_pyramid: steps and base must be positive\n");
       return 2;
     }
-    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps);
+    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps, recycle);
   }
   if (which == "creep") {
     const int base = argc > 3 ? std::atoi(argv[3]) : 10;
@@ -404,7 +403,7 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "many_pyramids: steps and rows must be positive\n");
       return 2;
     }
-    return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps);
+    return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps, recycle);
   }
   if (which != "pyramid" && which != "spheres") {
     std::fprintf(stderr,
@@ -428,14 +427,14 @@ int main(int raw_argc, char** raw_argv) {
   std::vector<std::tuple<std::string, zp::SolverKind, double>> runs;
   for (const auto& [name, kind] : kinds) {
     runs.emplace_back(name, kind, 0.0);
-    if (g_recycle > 0.0) runs.emplace_back(std::string(name) + "-rc", kind, g_recycle);
+    if (recycle > 0.0) runs.emplace_back(std::string(name) + "-rc", kind, recycle);
   }
-  for (const auto& [label, kind, recycle] : runs) {
+  for (const auto& [label, kind, distance] : runs) {
     const char* name = label.c_str();
     Timing t;
     OurSettings settings;
     settings.kind = kind;
-    settings.recycle = recycle;
+    settings.recycle = distance;
     Stages stages;
     const auto ours = runOurs(scene, steps, t, settings, nullptr, &stages);
     stages.print(name, steps);
@@ -444,7 +443,7 @@ int main(int raw_argc, char** raw_argv) {
     } else {
       reportSpheres(name, scene, ours, t);
     }
-    if (kind == zp::SolverKind::SoftStepWide && recycle == 0.0) wide_mean = t.mean_ms;
+    if (kind == zp::SolverKind::SoftStepWide && distance == 0.0) wide_mean = t.mean_ms;
   }
   Timing bullet_t;
   const auto bullet = runBullet(scene, steps, bullet_t);
