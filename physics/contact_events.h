@@ -24,8 +24,6 @@ class ContactEvents {
   std::span<const BodyPair> begun() const { return begun_; }
   /// Pairs that touched at the last update and do not now, in pair order.
   std::span<const BodyPair> ended() const { return ended_; }
-  /// Pairs touching now, in pair order.
-  std::span<const BodyPair> touching() const { return touching_; }
 
  private:
   std::vector<BodyPair> touching_, before_, begun_, ended_;
