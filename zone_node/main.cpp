@@ -15,6 +15,7 @@
 #include "common/metrics.h"
 #include "common/scene.h"
 #include "common/stop_signal.h"
+#include "zone_node/arrival_log.h"
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/item_log.h"
 #include "zone_node/state_dump.h"
@@ -33,6 +34,7 @@ struct Options {
   std::string metrics_dir;
   std::string dump_state;
   std::uint64_t dump_state_at = 0;  ///< 0: at the end of the run
+  std::string arrivals;             ///< empty: no arrival file
   std::string restart;
   std::uint32_t truth_every = 0;
   std::string time_dilation = "scene";  ///< on, off, or as the scene says
@@ -106,6 +108,7 @@ int run(const Options& o, MPI_Comm comm) {
                           ? ""
                           : o.metrics_dir + "/zone_" + std::to_string(node.rank()) + "_items.csv");
   if (!o.restart.empty()) items.restored(node.tickCount(), node.store());
+  zone::ArrivalLog arrivals(!o.arrivals.empty());
   std::unique_ptr<zone::ZoneRecorder> recorder;
   if (!o.record_dir.empty()) {
     std::filesystem::create_directories(o.record_dir);
@@ -136,6 +139,7 @@ int run(const Options& o, MPI_Comm comm) {
     }
     report.recordTick(node, tick_seconds, metrics);
     truth.record(node.tickCount() - 1, node.store());  // the tick just published
+    arrivals.record(node.tickCount() - 1, node.flowArrivalsThisTick());
     // Runs stopped by a signal end on different ticks; a state compared between runs must not.
     if (!o.dump_state.empty() && node.tickCount() == o.dump_state_at)
       zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
@@ -154,6 +158,7 @@ int run(const Options& o, MPI_Comm comm) {
   std::fflush(stdout);
   if (!o.dump_state.empty() && o.dump_state_at == 0)
     zone::dumpState(comm, node.store(), node.liveParticles(), o.dump_state);
+  if (!o.arrivals.empty()) arrivals.write(comm, o.arrivals);
   if (o.dump_state_at > node.tickCount() && node.rank() == 0)
     std::fprintf(stderr,
                  "zone_node: --dump-state-at %llu: the run stopped at tick %llu, so %s was "
@@ -188,6 +193,9 @@ int main(int argc, char** argv) {
                  "with --dump-state: write it at the end of this tick (counted from the scene's "
                  "start) instead of at the end of the run; a run that stops earlier writes none")
       ->needs(dump_state);
+  app.add_option("--arrivals", o.arrivals,
+                 "write the tick each flow-field NPC reached its destination during this run here "
+                 "(CSV id,tick in id order, at the end of the run)");
   app.add_option("--dds-domain", o.zone.dds_domain, "DDS domain id");
   bool no_dds = false;
   app.add_flag("--no-dds", no_dds, "run without DDS (no gateway can attach)");

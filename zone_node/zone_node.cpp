@@ -186,6 +186,10 @@ std::string ZoneNode::flockBackend() const {
   return flocks_->backendName();
 }
 
+const std::vector<std::uint64_t>& ZoneNode::flowArrivalsThisTick() const {
+  return flows_->arrivedLastStep();
+}
+
 std::vector<DuelFigures> ZoneNode::duelFigures() const {
   return duels_->figures();
 }

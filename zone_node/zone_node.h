@@ -137,6 +137,8 @@ class ZoneNode {
   const WorldMap* worldMap() const;
   /// Which backend the flocking populations use ("cpu", "opencl" or "none").
   std::string flockBackend() const;
+  /// Ids of the flow-field NPCs of this zone that reached their destination this tick.
+  const std::vector<std::uint64_t>& flowArrivalsThisTick() const;
   /// The duels against adaptive NPCs this zone runs (scene key `adaptation`), in scene order.
   std::vector<DuelFigures> duelFigures() const;
 

@@ -142,6 +142,7 @@ std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, 
                                   std::span<const crowd::Vec2> players, std::int64_t tick) {
   std::size_t walking = 0;
   updates_ = 0;
+  arrived_now_.clear();
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
     const int count = g.crowd.destinationCount();
@@ -171,7 +172,10 @@ std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, 
       }
       plan = g.lod.plan(g.view.ids, g.view.pos, players, tick, dt, {}, g.crowding);
     }
+    arrived_before_.assign(g.arrived.begin(), g.arrived.end());
     g.crowd.step(g.view.agents(), g.dest, g.arrived, g.view.ghostSpan(), dt, plan);
+    for (std::size_t a = 0; a < g.arrived.size(); ++a)
+      if (g.arrived[a] && !arrived_before_[a]) arrived_now_.push_back(g.view.ids[a]);
     for (std::size_t a = 0; a < g.view.ids.size(); ++a)
       updates_ += (plan.empty() || plan.dt[a] > 0) && !g.arrived[a] ? 1 : 0;
     g.view.writeBack(store);

@@ -64,6 +64,10 @@ class FlowMovement : public ZoneSystem {
   /// NPC updates (agent steps) done by the last step() (all NPCs on the way without LOD).
   std::size_t updates() const { return updates_; }
 
+  /// Ids of the NPCs (owned by this zone) that reached their destination in the last step(), in
+  /// the order the crowds hold them: each NPC once in its life, as an arrived NPC stands still.
+  const std::vector<std::uint64_t>& arrivedLastStep() const { return arrived_now_; }
+
   /// Whether the NPC at `store` index `i` (a flow NPC) stands at its destination.
   bool arrived(const EntityStore& store, std::size_t i) const;
 
@@ -83,6 +87,8 @@ class FlowMovement : public ZoneSystem {
   std::size_t walking_ = 0;
   bool lod_ = false;  // the scene's lod key: plan updates by distance to the players
   std::size_t updates_ = 0;
+  std::vector<std::uint64_t> arrived_now_;
+  std::vector<std::uint8_t> arrived_before_;  // per agent of one group, before its step
 };
 
 }  // namespace zonesim::zone

@@ -1,7 +1,8 @@
 // Flow-field crowds in a zone (zone_node/systems/flow_movement.h) on the shipped courtyard
 // scene: every NPC reaches its destination without ever standing on a wall, destinations spread
 // over the NPCs, and a destination on a wall is a scene error. With bodies kept apart no tick
-// makes a new overlap or deepens one, and most NPCs still arrive.
+// makes a new overlap or deepens one, and most NPCs still arrive. Each NPC's arrival is
+// reported once, in the step that took it there (zone_node --arrivals).
 
 #include "zone_node/systems/flow_movement.h"
 
@@ -74,6 +75,34 @@ TEST(FlowMovement, EveryNpcOfTheCourtyardReachesItsDestination) {
     EXPECT_LE(std::hypot(store.pos[i].x() - cx, store.pos[i].z() - cz), f.arrive_radius);
     EXPECT_EQ(store.vel[i].norm(), 0.0);
   }
+}
+
+TEST(FlowMovement, EachArrivalIsReportedOnceInTheStepThatTookTheNpcThere) {
+  ShippedScene courtyard("scenes/courtyard_flow.yaml");
+  EntityStore& store = courtyard.store;
+  FlowMovement flows(courtyard.scene, courtyard.map.get());
+  LoneZone lone{courtyard.scene.dt};
+  std::map<std::uint64_t, int> reported;  // id -> times reported
+  std::size_t arrived_before = 0;
+  // 300 ticks (15 s): the nearest NPCs have arrived, most are still walking.
+  for (int tick = 0; tick < 300; ++tick) {
+    std::vector<std::uint8_t> was(store.size());
+    for (std::size_t i = 0; i < store.size(); ++i) was[i] = flows.arrived(store, i) ? 1 : 0;
+    lone.step(flows, store, std::uint64_t(tick));
+    std::map<std::uint64_t, int> now;
+    for (std::size_t i = 0; i < store.size(); ++i)
+      if (flows.arrived(store, i) && !was[i]) now[store.id[i].value] = 1;
+    std::map<std::uint64_t, int> said;
+    for (std::uint64_t id : flows.arrivedLastStep()) ++said[id];
+    ASSERT_EQ(said, now) << "tick " << tick;
+    for (const auto& [id, n] : said) reported[id] += n;
+    arrived_before = store.size() - flows.walking();
+  }
+  std::printf("%zu of %zu NPCs arrived in 300 ticks\n", reported.size(), store.size());
+  EXPECT_GT(reported.size(), 20u);
+  EXPECT_LT(reported.size(), store.size());
+  EXPECT_EQ(reported.size(), arrived_before);  // none of the courtyard's NPCs starts arrived
+  for (const auto& [id, n] : reported) EXPECT_EQ(n, 1) << id;
 }
 
 TEST(FlowMovement, BodiesKeptApartMakeNoNewOverlapAndMostStillArrive) {
