@@ -18,8 +18,16 @@ lowered that figure most in its sweep is taken and the run is repeated. It write
 overlay of the scene (docs/scene-format.md, "Overlay files") that every program's --scene
 reads, a JSON of every run, and a work-precision plot per knob.
 
-A budget no measured setting meets is refused (exit 2), naming the limit and the best reached;
-a choice the confirmation cannot hold fails with exit 3. Nothing is written in either case.
+A budget that limits the crowd (arrival_drift, arrival_drift_mean) is measured on runs of the
+zone ranks alone, without players, as fast as they go: the scene's flow-field NPCs arrive at
+their destinations, and each run's arrival ticks (zone_node --arrivals) are compared with a
+reference run's, the crowd level of detail at full detail; its knobs are the lod section's
+periods, steering, crowding and bands, judged by AI time per tick.
+
+A sweep run that fails or stops short of its end tick is reported and its value skipped; the
+sweep goes on. A budget no measured setting meets is refused (exit 2), naming the limit and
+the best reached; a choice the confirmation cannot hold fails with exit 3. Nothing is written
+in either case.
 """
 import argparse
 import json
@@ -51,6 +59,9 @@ def parse_args(argv):
     p.add_argument("--time-tie", type=float, default=0.25,
                    help="physics times this close (a fraction) count as equal (default 0.25: times on a "
                         "shared machine vary by 20 %% from run to run)")
+    p.add_argument("--repeat", type=int, default=3,
+                   help="runs of each setting where runs are of the zones alone (crowd budgets): the least "
+                        "time of them counts (default 3)")
     p.add_argument("--knobs", help="only these knobs (comma-separated names as printed), default all")
     p.add_argument("--bin", type=Path, default=ROOT / "build" / "bin", help="the built programs")
     a = p.parse_args(argv)
@@ -61,8 +72,8 @@ def parse_args(argv):
     for name in ("seconds", "confirm_seconds"):
         if not getattr(a, name) >= 1:
             p.error(f"--{name.replace('_', '-')} must be at least 1")
-    if a.players < 1 or a.truth_every < 1:
-        p.error("--players and --truth-every must be at least 1")
+    if a.players < 1 or a.truth_every < 1 or a.repeat < 1:
+        p.error("--players, --truth-every and --repeat must be at least 1")
     try:
         a.limits = budget.parse(a.budget)
     except budget.BudgetError as e:
@@ -75,43 +86,91 @@ def parse_args(argv):
 
 
 class Tuner:
-    def __init__(self, args, scene):
+    def __init__(self, args, scene, zones_only=False):
         self.a = args
         self.ranks = measure.ranks_of(scene)
         self.runs = []  # every measured run, for the JSON
         self.count = 0
         self.scene = scene
-        self.rest = {}  # run length -> the bodies resting at the end of its reference run
+        self.zones_only = zones_only  # crowd budgets: the zones alone, no players
+        self.refs = {}  # run length -> what its reference run left: resting bodies, arrivals
 
     def measure(self, settings, label, seconds):
-        """Runs the scene with these dotted-key settings; returns its figures."""
+        """Runs the scene with these dotted-key settings; returns its figures. Raises
+        measure.RunError (the run is counted and kept in the JSON as failed) when it fails or
+        stops short."""
         self.count += 1
         folder = self.a.work / f"run-{self.count:02d}"
         folder.mkdir(parents=True, exist_ok=True)
         overlay = folder / "candidate.yaml"
         overlay.write_text(knob_defs.overlay_text(self.a.scene, settings, [f"tune candidate: {label}"]))
         started = time.monotonic()
-        f = measure.run_once(overlay, folder, self.ranks, seconds, self.a.players, self.a.truth_every,
-                             self.a.bin, measure.end_tick(self.scene, seconds), self.rest.get(seconds))
-        physics = f"  physics {f['physics_ms']:6.3f} ms" + \
-            (f"  stack drift {f['stack_drift'] * 1000:8.2f} mm" if "stack_drift" in f else "")
-        print(f"  [{self.count:2d}] {label:<40} error p99 {f['shown_error_p99']:7.3f} m  "
-              f"{f['kbps_per_client']:7.1f} kbit/s  tick p99 {f['tick_ms_p99']:6.2f} ms{physics}  "
-              f"({time.monotonic() - started:.0f} s)", flush=True)
+        ref = self.refs.get(seconds, {})
+        try:
+            if self.zones_only:
+                f = self.zone_runs(overlay, folder, seconds, ref)
+            else:
+                f = measure.run_once(overlay, folder, self.ranks, seconds, self.a.players, self.a.truth_every,
+                                     self.a.bin, measure.end_tick(self.scene, seconds), ref.get("rest"))
+        except measure.RunError as e:
+            print(f"  [{self.count:2d}] {label:<40} failed, skipped: {e}", flush=True)
+            self.runs.append({"label": label, "settings": settings, "seconds": seconds, "failed": str(e)})
+            raise
+        print(f"  [{self.count:2d}] {label:<40} {figures_line(f)}  ({time.monotonic() - started:.0f} s)", flush=True)
         self.runs.append({"label": label, "settings": settings, "seconds": seconds, "figures": f})
         return f
 
-    def reference(self, settings, seconds):
-        """Runs the reference (every physics knob at its most accurate) for `seconds` and keeps
-        the bodies resting at its end tick, which stack_drift compares later runs of that
-        length with. Returns how many rest."""
-        self.measure(settings, "reference: physics at its most accurate", seconds)
-        rest = measure.resting(measure.end_bodies(self.a.work / f"run-{self.count:02d}" / "run"))
-        self.runs[-1]["resting_bodies"] = len(rest)
-        print(f"       {len(rest)} bodies rest at tick {measure.end_tick(self.scene, seconds)} of the "
-              f"reference: stack_drift is measured on them", flush=True)
-        self.rest[seconds] = rest
-        return len(rest)
+    def zone_runs(self, overlay, folder, seconds, ref):
+        """--repeat zone-only runs of one setting (the last one's files stay in folder/run):
+        their times are the least measured, the figure of a run least disturbed by other load
+        on the machine; their errors, which a run without players repeats exactly, the largest."""
+        runs = [measure.run_zones(overlay, folder, self.ranks, measure.zone_ticks(self.scene, seconds),
+                                  measure.tick_seconds(self.scene), self.a.bin, ref) for _ in range(self.a.repeat)]
+        f = dict(runs[0])
+        for key in f:
+            pick = min if key.endswith("_ms") or key.startswith("tick_ms") else max
+            f[key] = pick(r[key] for r in runs)
+        return f
+
+    def reference(self, settings, seconds, bodies, crowd):
+        """Runs the reference (every physics knob at its most accurate, the crowd level of detail
+        at full detail) for `seconds` and keeps what later runs of that length are compared
+        with: the bodies resting at its end tick (stack_drift) and every flow NPC's arrival tick
+        (arrival_drift). Returns how many bodies rest and how many NPCs arrived."""
+        what = " and ".join(w for w, on in (("physics", bodies), ("crowds", crowd)) if on)
+        self.measure(settings, f"reference: {what} at their most accurate", seconds)
+        run = self.a.work / f"run-{self.count:02d}" / "run"
+        ref = {}
+        if bodies:
+            ref["rest"] = measure.resting(measure.end_bodies(run))
+            self.runs[-1]["resting_bodies"] = len(ref["rest"])
+            tick = measure.zone_ticks(self.scene, seconds) if self.zones_only else measure.end_tick(self.scene, seconds)
+            print(f"       {len(ref['rest'])} bodies rest at tick {tick} of the reference: stack_drift is "
+                  "measured on them", flush=True)
+        if crowd:
+            ref["arrivals"] = measure.run_arrivals(run)
+            self.runs[-1]["arrived"] = len(ref["arrivals"])
+            print(f"       {len(ref['arrivals'])} flow NPCs arrive within the reference's "
+                  f"{measure.zone_ticks(self.scene, seconds)} ticks: arrival_drift is measured against them",
+                  flush=True)
+        self.refs[seconds] = ref
+        return len(ref.get("rest", {})), len(ref.get("arrivals", {}))
+
+
+def figures_line(f):
+    """One run's figures, as the sweep prints them."""
+    parts = []
+    if "shown_error_p99" in f:
+        parts.append(f"error p99 {f['shown_error_p99']:7.3f} m  {f['kbps_per_client']:7.1f} kbit/s")
+    parts.append(f"tick p99 {f['tick_ms_p99']:6.2f} ms  physics {f['physics_ms']:6.3f} ms")
+    if "ai_ms" in f:
+        parts.append(f"ai {f['ai_ms']:6.3f} ms")
+    if "stack_drift" in f:
+        parts.append(f"stack drift {f['stack_drift'] * 1000:8.2f} mm")
+    if "arrival_drift" in f:
+        parts.append(f"arrival drift p99 {f['arrival_drift']:5.2f} s mean {f['arrival_drift_mean']:5.2f} s "
+                     f"({f['arrived']} arrived)")
+    return "  ".join(parts)
 
 
 def settings_of(knobs, values):
@@ -136,8 +195,11 @@ def choose(knob, limits, tie):
 
 def refuse_if_impossible(limits, knobs, baseline):
     """Exit 2 naming each limit that no measured run met."""
-    points = [("the scene's own settings", baseline)] + \
+    points = ([("the scene's own settings", baseline)] if baseline else []) + \
         [(f"{k.name} = {k.label(v)}", f) for k in knobs for v, f in k.sweep]
+    if not points:
+        print("refused: no run of the sweep finished (see the failures above)", file=sys.stderr)
+        sys.exit(2)
     unmet = [l for l in limits if not any(l.met(f) for _, f in points)]
     for l in unmet:
         where, f = min(points, key=lambda p: p[1][l.metric])
@@ -153,7 +215,8 @@ def tie_of(knob, a):
 
 def print_frontier(knobs, chosen, reasons, limits):
     print("\nfrontier (each knob in turn, those before it at their choices, the rest at the scene's):")
-    shown = [m for m in ("shown_error_p99", "kbps_per_client", "tick_ms_p99", "physics_ms", "stack_drift")
+    shown = [m for m in ("shown_error_p99", "kbps_per_client", "tick_ms_p99", "physics_ms", "stack_drift",
+                         "ai_ms", "arrival_drift", "arrival_drift_mean")
              if any(m in f for k in knobs for _, f in k.sweep)]
     print(f"  {'knob':<22} {'value':<16} " + " ".join(f"{m:>15}" for m in shown))
     for k in knobs:
@@ -162,15 +225,63 @@ def print_frontier(knobs, chosen, reasons, limits):
             bad = ", ".join(l.metric for l in budget.broken(limits, f))
             print(f"  {k.name:<22} {k.label(v):<16} " + " ".join(f"{f[m]:>15.4g}" for m in shown) +
                   f"  {mark}{'  breaks ' + bad if bad else ''}")
+        for v, why in k.failed:
+            print(f"  {k.name:<22} {k.label(v):<16} failed, skipped: {why.splitlines()[0]}")
         print(f"  {'':<22} -> {k.label(chosen[k.name])}: {reasons[k.name]}")
 
 
 def figures_text(f):
     """The confirmed figures, as the overlay's header and the last line print them."""
-    text = (f"error p99 {f['shown_error_p99']:.3f} m, {f['kbps_per_client']:.1f} kbit/s per player, "
-            f"tick p99 {f['tick_ms_p99']:.2f} ms, physics {f['physics_ms']:.3f} ms")
-    return text + (f", stack drift {f['stack_drift'] * 1000:.2f} mm over {f['resting_bodies']} resting bodies"
-                   if "stack_drift" in f else "")
+    parts = []
+    if "shown_error_p99" in f:
+        parts.append(f"error p99 {f['shown_error_p99']:.3f} m, {f['kbps_per_client']:.1f} kbit/s per player")
+    parts.append(f"tick p99 {f['tick_ms_p99']:.2f} ms, physics {f['physics_ms']:.3f} ms")
+    if "ai_ms" in f:
+        parts.append(f"ai {f['ai_ms']:.4f} ms")
+    if "stack_drift" in f:
+        parts.append(f"stack drift {f['stack_drift'] * 1000:.2f} mm over {f['resting_bodies']} resting bodies")
+    if "arrival_drift" in f:
+        parts.append(f"arrival drift p99 {f['arrival_drift']:.2f} s, mean {f['arrival_drift_mean']:.3f} s, "
+                     f"max {f['arrival_drift_max']:.2f} s over {f['arrivals_compared']} NPCs "
+                     f"({f['arrived']} arrived)")
+    return ", ".join(parts)
+
+
+def sweep(t, knobs, chosen, limits, a):
+    """Coordinate descent: each knob is swept with the knobs before it at their choices, so a
+    scene whose own settings break the budget still gets its later knobs judged. A run that
+    fails or stops short is reported and its value skipped; the sweep goes on. Fills each
+    knob's sweep and failures and `chosen`; returns the reasons per knob and the scene's own
+    settings' figures (None when that run failed)."""
+    reasons = {}
+    try:
+        here = t.measure(settings_of(knobs, chosen), "the scene's own settings", a.seconds)
+    except measure.RunError as e:
+        here, here_failed = None, str(e)
+    baseline = here
+    for k in knobs:
+        for v in k.values:
+            if v == chosen[k.name] and here is None:
+                k.failed.append((v, here_failed))
+                continue
+            if v == chosen[k.name]:
+                k.sweep.append((v, here))
+                continue
+            try:
+                k.sweep.append((v, t.measure(settings_of(knobs, {**chosen, k.name: v}),
+                                             f"{k.name} = {k.label(v)}", a.seconds)))
+            except measure.RunError as e:
+                k.failed.append((v, str(e)))
+        value, reasons[k.name] = choose(k, limits, tie_of(k, a))
+        if value is not None:
+            chosen[k.name] = value
+        measured = dict(k.sweep)
+        if chosen[k.name] in measured:
+            here = measured[chosen[k.name]]
+        else:
+            here_failed = f"the run of {k.name} = {k.label(chosen[k.name])} failed"
+            here = None
+    return reasons, baseline
 
 
 def main(argv):
@@ -184,54 +295,80 @@ def main(argv):
             sys.exit(f"tune.py: --knobs: {', '.join(unknown)} not among this scene's "
                      f"({', '.join(k.name for k in knobs)})")
         knobs = [k for k in knobs if k.name in wanted]
+    limited = {l.metric for l in a.limits}
+    crowd_limits = sorted(limited & set(budget.CROWD_METRICS))
+    zones_only = bool(crowd_limits)
+    if zones_only:
+        players = sorted(limited & set(budget.PLAYER_METRICS))
+        if players:
+            print(f"refused: {', '.join(crowd_limits)} is measured on runs of the zones alone and "
+                  f"{', '.join(players)} needs players: tune them in two runs of the tuner", file=sys.stderr)
+            sys.exit(2)
+        if not knob_defs.scene_uses(scene)["flow"]:
+            print(f"refused: {', '.join(crowd_limits)} needs a flow-field crowd (populations[].flow), and "
+                  f"{a.scene.name} has none", file=sys.stderr)
+            sys.exit(2)
+        # Without players the wire's knobs change nothing a zone run measures.
+        knobs = [k for k in knobs if k.cost not in budget.PLAYER_METRICS]
+        if not knobs:
+            print(f"refused: no knob of {a.scene.name} is measured on zone-only runs (the crowd's level of "
+                  "detail needs the scene's lod section)", file=sys.stderr)
+            sys.exit(2)
+    else:
+        crowd = [k.name for k in knobs if k.accuracy in budget.CROWD_METRICS]
+        if a.knobs and crowd:
+            sys.exit(f"tune.py: --knobs: {', '.join(crowd)} trade against arrival_drift, which only a budget "
+                     "that limits it measures (e.g. 'arrival_drift<=0.5')")
+        knobs = [k for k in knobs if k.accuracy not in budget.CROWD_METRICS]
     physics = [k for k in knobs if k.accuracy == "stack_drift"]
     wants_drift = bool(physics) or any(l.metric in budget.PHYSICS_METRICS for l in a.limits)
     if wants_drift and not knob_defs.scene_uses(scene)["rigid_body"]:
         print(f"refused: {', '.join(budget.PHYSICS_METRICS)} needs rigid bodies, and "
               f"{a.scene.name} has none", file=sys.stderr)
         sys.exit(2)
+    wants_crowd = zones_only
+    wants_reference = wants_drift or wants_crowd
     a.work.mkdir(parents=True, exist_ok=True)
-    runs = 1 + wants_drift + sum(len(k.values) - 1 for k in knobs)
+    runs = 1 + wants_reference + sum(len(k.values) - 1 for k in knobs)
+    how = "the zones alone, as fast as they go" if zones_only else f"{a.players} players"
     print(f"tuning {a.scene.name} against {', '.join(l.describe() for l in a.limits)}: "
           f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and "
-          f"{1 + (wants_drift and a.confirm_seconds != a.seconds)} of {a.confirm_seconds:g} s, "
-          f"{a.players} players, {measure.ranks_of(scene)} zone ranks; runs in {a.work}")
-    t = Tuner(a, scene)
+          f"{1 + (wants_reference and a.confirm_seconds != a.seconds)} of {a.confirm_seconds:g} s, "
+          f"{how}, {measure.ranks_of(scene)} zone ranks; runs in {a.work}")
+    t = Tuner(a, scene, zones_only)
     chosen = {k.name: k.scene_value for k in knobs}
-    reasons = {}
-    try:
-        if wants_drift:
-            reference = {**settings_of(knobs, chosen), **knob_defs.reference_settings(knob_defs.physics_knobs(scene))}
-            if not t.reference(reference, a.seconds):
-                print("refused: no body rests at the end of the reference run, so stack_drift measures "
-                      "nothing here", file=sys.stderr)
-                sys.exit(2)
-        # Coordinate descent: each knob is swept with the knobs before it at their choices, so
-        # a scene whose own settings break the budget still gets its later knobs judged.
-        here = t.measure(settings_of(knobs, chosen), "the scene's own settings", a.seconds)
-        baseline = here
-        for k in knobs:
-            for v in k.values:
-                f = here if v == chosen[k.name] else \
-                    t.measure(settings_of(knobs, {**chosen, k.name: v}), f"{k.name} = {k.label(v)}", a.seconds)
-                k.sweep.append((v, f))
-            value, reasons[k.name] = choose(k, a.limits, tie_of(k, a))
-            if value is not None:
-                chosen[k.name] = value
-            here = dict(k.sweep)[chosen[k.name]]
-    except measure.RunError as e:
-        sys.exit(f"tune.py: {e}")
+    reference_knobs = knob_defs.physics_knobs(scene) if wants_drift else []
+    reference_knobs += knob_defs.crowd_knobs(scene) if wants_crowd else []
+
+    def reference_run(seconds):
+        reference = {**settings_of(knobs, chosen), **knob_defs.reference_settings(reference_knobs)}
+        try:
+            rest, arrived = t.reference(reference, seconds, wants_drift, wants_crowd)
+        except measure.RunError as e:
+            sys.exit(f"tune.py: the reference run failed, so nothing can be compared with it: {e}")
+        if wants_drift and not rest:
+            print("refused: no body rests at the end of the reference run, so stack_drift measures "
+                  "nothing here", file=sys.stderr)
+            sys.exit(2)
+        if wants_crowd and not arrived:
+            print(f"refused: no flow NPC arrives within the reference run's {seconds:g} s, so "
+                  "arrival_drift measures nothing here (lengthen --seconds)", file=sys.stderr)
+            sys.exit(2)
+
+    if wants_reference:
+        reference_run(a.seconds)
+    reasons, baseline = sweep(t, knobs, chosen, a.limits, a)
     refuse_if_impossible(a.limits, knobs, baseline)
     print_frontier(knobs, chosen, reasons, a.limits)
 
     # The choices were measured in short runs; a full-length run of them must hold too.
     for attempt in range(4):
+        if wants_reference and a.confirm_seconds not in t.refs:  # the full-length run's own reference
+            reference_run(a.confirm_seconds)
         try:
-            if wants_drift and a.confirm_seconds not in t.rest:  # the full-length run's own reference
-                t.reference(reference, a.confirm_seconds)
             confirmed = t.measure(settings_of(knobs, chosen), "all chosen together", a.confirm_seconds)
         except measure.RunError as e:
-            sys.exit(f"tune.py: {e}")
+            sys.exit(f"tune.py: the confirming run failed, nothing written: {e}")
         broken = budget.broken(a.limits, confirmed)
         if not broken:
             break
@@ -253,7 +390,8 @@ def main(argv):
     header = [f"Written by bench/tune.py on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}:",
               f"  /usr/bin/python3 bench/tune.py {shlex.join(argv)}",
               "budget: " + ", ".join(l.describe() for l in a.limits),
-              f"confirmed over {a.confirm_seconds:g} s with {a.players} players: {figures_text(confirmed)}",
+              f"confirmed over {a.confirm_seconds:g} s with "
+              f"{'the zones alone' if zones_only else f'{a.players} players'}: {figures_text(confirmed)}",
               f"the binding limit: {binds.describe()} ({binds.slack(confirmed) * 100:.0f} % left)"]
     a.out.parent.mkdir(parents=True, exist_ok=True)
     base = Path(os.path.relpath(a.scene, a.out.parent))
@@ -261,10 +399,11 @@ def main(argv):
     (a.work / "tune.json").write_text(json.dumps({
         "scene": str(a.scene), "budget": [l.describe() for l in a.limits],
         "chosen": {k.name: k.label(chosen[k.name]) for k in knobs}, "reasons": reasons,
+        "failed": {k.name: [k.label(v) for v, _ in k.failed] for k in knobs if k.failed},
         "confirmed": confirmed, "binding": binds.describe(), "runs": t.runs}, indent=2))
     try:
         from tuning import frontier_plot
-        frontier_plot.plot(knobs, chosen, a.limits, confirmed, f"{a.scene.name} tuned",
+        frontier_plot.plot(knobs, chosen, a.limits, figures_text(confirmed), f"{a.scene.name} tuned",
                            a.work / "frontier.png")
         plot_note = f", plot {a.work / 'frontier.png'}"
     except ImportError:

@@ -14,10 +14,21 @@ METRICS = {
     "stack_drift": ("m", "the largest distance any body resting at the end of the reference run "
                          "(the physics knobs at their most accurate) ends from where that run ends it"),
     "physics_ms": ("ms", "mean physics phase time per tick, summed over the zone ranks"),
+    "arrival_drift": ("s", "p99 over the flow-field NPCs of how much earlier or later each reaches its "
+                           "destination than in the reference run (the crowd level of detail at full "
+                           "detail everywhere)"),
+    "arrival_drift_mean": ("s", "the same, the mean over the NPCs"),
+    "ai_ms": ("ms", "mean AI phase time per tick (crowds, their level of detail, agents, planners), "
+                    "summed over the zone ranks"),
 }
 
 # The metrics that only a scene with rigid bodies measures (tuning/measure.py's reference run).
 PHYSICS_METRICS = ("stack_drift",)
+# The metrics of a scene's flow-field crowds, measured on runs of the zones alone (no players:
+# the crowd's level of detail then follows the scene's lod.observers), against a reference run.
+CROWD_METRICS = ("arrival_drift", "arrival_drift_mean")
+# The metrics that need players (a gateway and a fleet), which zone-only runs do not measure.
+PLAYER_METRICS = ("shown_error_p99", "kbps_per_client")
 
 
 class BudgetError(ValueError):

@@ -1,16 +1,18 @@
 """The work-precision plot of a tuning: per knob, its accuracy figure against its cost figure
 (the wire's knobs: shown error against download per player; the physics knobs: stack drift
-against physics time per tick)."""
+against physics time per tick; the crowd's: arrival drift against AI time per tick)."""
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 AXES = {"shown_error_p99": ("shown error p99, m", 1), "kbps_per_client": ("download per player, kbit/s", 1),
-        "stack_drift": ("stack drift, mm", 1000), "physics_ms": ("physics per tick, ms", 1)}
+        "stack_drift": ("stack drift, mm", 1000), "physics_ms": ("physics per tick, ms", 1),
+        "arrival_drift": ("arrival drift p99, s", 1), "ai_ms": ("AI per tick, ms", 1)}
 
 
-def plot(knobs, chosen, limits, confirmed, title, path):
+def plot(knobs, chosen, limits, together, title, path):
+    """One panel per knob; `together` is the confirmed figures as text, for the title."""
     n = len(knobs)
     fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 3.8), squeeze=False)
     limit_of = {l.metric: l.most for l in limits}
@@ -20,6 +22,9 @@ def plot(knobs, chosen, limits, confirmed, title, path):
         def at(f):
             return f[knob.cost] * xs_scale, f[knob.accuracy] * ys_scale
 
+        if not knob.sweep:  # every value's run failed
+            ax.set_title(f"{knob.name}: no run finished", fontsize=10)
+            continue
         ax.plot(*zip(*(at(f) for _, f in sorted(knob.sweep, key=lambda vf: vf[1][knob.cost]))),
                 "o-", color="tab:blue", zorder=2)
         for (value, f) in knob.sweep:
@@ -40,9 +45,6 @@ def plot(knobs, chosen, limits, confirmed, title, path):
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="upper right")
-    together = f"{confirmed['shown_error_p99']:.3f} m, {confirmed['kbps_per_client']:.1f} kbit/s"
-    if "stack_drift" in confirmed:
-        together += f", stack drift {confirmed['stack_drift'] * 1000:.2f} mm, physics {confirmed['physics_ms']:.2f} ms"
     fig.suptitle(f"{title}; all chosen together:\n{together}", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=90)

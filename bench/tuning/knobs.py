@@ -7,6 +7,7 @@ knobs trade download against the error players are shown, the physics knobs phys
 against how far resting bodies end from the reference run (each physics knob at its first,
 most accurate, value).
 """
+import math
 from dataclasses import dataclass, field
 
 import yaml
@@ -22,6 +23,7 @@ class Knob:
     cost: str = "kbps_per_client"       # the figure a cheaper value lowers
     accuracy: str = "shown_error_p99"   # the figure it costs, and which wins a tie
     sweep: list = field(default_factory=list)  # (value, figures) once measured
+    failed: list = field(default_factory=list)  # (value, why) of the runs that did not finish
 
     def label(self, value):
         return "/".join(fmt(v) for v in value)
@@ -63,9 +65,11 @@ def get(scene, dotted, default):
 
 def scene_uses(scene):
     """Which entity types move in this scene (the dead-reckoning models that matter)."""
-    kinds = {p.get("kind") for p in scene.get("populations", []) or []}
+    populations = scene.get("populations", []) or []
+    kinds = {p.get("kind") for p in populations}
     return {"npc": "npc" in kinds or bool(get(scene, "agents.populations", None)),
             "rigid_body": "rigid_body" in kinds or bool(get(scene, "physics.bodies", None)),
+            "flow": any(isinstance(p, dict) and isinstance(p.get("flow"), dict) for p in populations),
             "avatar": True}  # the tuner's runs always have players
 
 
@@ -90,6 +94,8 @@ def knobs_for(scene):
                       "the wire's position step and orientation bits"))
     if uses["rigid_body"]:
         knobs += physics_knobs(scene)
+    if uses["flow"] and isinstance(scene.get("lod"), dict):
+        knobs += crowd_knobs(scene)
     for k in knobs:  # the scene's own value is always a candidate (its run is the baseline)
         if k.scene_value not in k.values:
             k.values.append(k.scene_value)
@@ -122,10 +128,52 @@ def physics_knobs(scene):
     return knobs
 
 
+# The crowd level of detail at full detail everywhere: every band steps every tick with its
+# neighbour terms. On scenes/courtyard_flow_lod.yaml this ends bitwise equal to the scene without
+# its lod section (docs/tuning.md), so it is the reference that arrival_drift is measured against.
+CROWD_FULL_DETAIL = {"lod.mid_every": 1, "lod.far_every": 1, "lod.mid_steers": True, "lod.far_steers": True}
+
+
+def crowd_knobs(scene):
+    """The crowd level of detail's knobs (docs/scene-format.md, `lod`) of a scene with flow-field
+    populations and a `lod` section, judged by AI time against arrival drift; values most
+    accurate first. The bands are scaled to the world: the first puts every NPC within the near
+    band of a player or observer."""
+    world = scene.get("world", {}) or {}
+    lo, hi = world.get("min", [0, 0, 0]), world.get("max", [0, 0, 0])
+    side = float(max(hi[0] - lo[0], hi[2] - lo[2]))
+    diagonal = float(math.ceil(math.hypot(hi[0] - lo[0], hi[2] - lo[2])))
+
+    def knob(name, keys, values, own, why):
+        values = [v if isinstance(v, tuple) else (v,) for v in values]
+        return Knob(name, keys, values, own, why, cost="ai_ms", accuracy="arrival_drift")
+
+    own_bands = (float(get(scene, "lod.near_radius", 40)), float(get(scene, "lod.far_radius", 120)))
+    bands = [(diagonal, diagonal)] + sorted({(side / 2, side), (side / 4, side / 2), (side / 8, side / 4),
+                                             own_bands}, reverse=True)
+    # Periods and steering first, the bands last: with the bands at full detail first, every NPC
+    # would be near and the later knobs would change nothing.
+    return [knob("lod far period", ("lod.far_every",), [1, 2, 4, 8, 16], (int(get(scene, "lod.far_every", 8)),),
+                 "ticks between steps of the far band"),
+            knob("lod mid period", ("lod.mid_every",), [1, 2, 4, 8], (int(get(scene, "lod.mid_every", 2)),),
+                 "ticks between steps of the middle band"),
+            knob("lod far steers", ("lod.far_steers",), [True, False], (bool(get(scene, "lod.far_steers", False)),),
+                 "the far band keeps its neighbour terms"),
+            knob("lod crowded count", ("lod.crowded_count",), [2, 4, 8, 16, 0],
+                 (int(get(scene, "lod.crowded_count", 0)),),
+                 "NPCs in a cell that bring it to full detail (0: off)"),
+            knob("lod bands m", ("lod.near_radius", "lod.far_radius"), bands, own_bands,
+                 "near and far radius around players and observers")]
+
+
 def reference_settings(knobs):
     """The dotted-key settings of the reference run: every physics knob at its most accurate
-    value, so that the tuner measures stack_drift against the best the engine does."""
-    return {key: v for k in knobs if k.accuracy == "stack_drift" for key, v in zip(k.keys, k.values[0])}
+    value, so that the tuner measures stack_drift against the best the engine does, and, where
+    crowd knobs are turned, the crowd level of detail at full detail (CROWD_FULL_DETAIL)."""
+    settings = {key: v for k in knobs if k.accuracy == "stack_drift" for key, v in zip(k.keys, k.values[0])}
+    if any(k.accuracy == "arrival_drift" for k in knobs):
+        settings.update(CROWD_FULL_DETAIL)
+    return settings
 
 
 def overlay_text(base_path, settings, header_lines):

@@ -1,9 +1,12 @@
 """One measured run: the scene with a candidate overlay on a local cluster (deploy/cluster.sh:
-zone ranks, a gateway, a fleet of players), read back as the budget's figures."""
+zone ranks, a gateway, a fleet of players), or on its zone ranks alone (mpirun, no DDS, no
+players, as fast as they go, to a fixed tick: for the crowd's figures), read back as the
+budget's figures."""
 import json
 import math
 import os
 import shlex
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -11,6 +14,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "deploy"))
 import truth_error  # noqa: E402  (deploy/truth_error.py)
+from tuning import arrivals  # noqa: E402
 
 CLUSTER_FILE = """# Written by bench/tune.py for one measured run.
 [cluster]
@@ -38,6 +42,7 @@ WARMUP_S = 2  # seconds of a run left out of its bandwidth
 # sleep threshold, docs/physics.md): where it rests does not depend on the tick the run stopped.
 REST_SPEED = 0.05
 END_STATE = "end_state.jsonl"  # zone_node --dump-state: every entity at the end tick (below)
+ARRIVALS = "arrivals.csv"  # zone_node --arrivals: the tick each flow-field NPC arrived
 # Zones start this long at least before the players (gateway and fleet start-up), and run until
 # the players are done: a run of S seconds of players reaches tick (S + LEAD_S) x rate.
 LEAD_S = 2
@@ -109,6 +114,64 @@ def physics_ms(run):
     return sum(z["physics_ms_mean"] for z in zones)
 
 
+def tick_seconds(scene):
+    tick = scene.get("tick", {}) or {}
+    return 1 / float(tick["rate_hz"]) if tick.get("rate_hz") else float(tick.get("dt", 1 / 30))
+
+
+def zone_ticks(scene, seconds):
+    """The ticks of a zone-only run of `seconds` of simulated time."""
+    return int(round(seconds / tick_seconds(scene)))
+
+
+def run_arrivals(run):
+    """id -> arrival tick of a finished zone-only run; RunError when its file is malformed."""
+    try:
+        return arrivals.read(run / ARRIVALS)
+    except (OSError, arrivals.ArrivalsError) as e:
+        raise RunError(str(e)) from None
+
+
+def run_zones(overlay, folder, ranks, ticks, dt, bin_dir, reference=None):
+    """Runs the overlay's scene on `ranks` zone ranks alone (no DDS, no players, as fast as
+    they go) for `ticks` ticks of `dt` s; returns its figures: the slowest rank's p99 tick
+    time, the physics and AI time per tick summed over the ranks, how many flow NPCs arrived,
+    and against `reference` (a dict that may hold `arrivals`, id -> tick, and `rest`, the
+    bodies resting at the end of a reference run of the same length) the arrival drift and
+    stack drift. Raises RunError when a rank fails or the run stops short of `ticks` (naming
+    the tick it reached)."""
+    run = folder / "run"
+    if run.exists():  # a repetition: the zones must not read an earlier run's files
+        shutil.rmtree(run)
+    run.mkdir(parents=True)
+    cmd = ["mpirun", "-np", str(ranks), "--oversubscribe", "--bind-to", "none", str(bin_dir / "zone_node"),
+           "--scene", str(overlay), "--ticks", str(ticks), "--no-dds", "--gpu", "off", "--metrics", str(run),
+           "--arrivals", str(run / ARRIVALS), "--dump-state", str(run / END_STATE)]
+    with open(folder / "zones.log", "w") as out:
+        p = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, cwd=ROOT)
+    if p.returncode != 0:
+        tail = (folder / "zones.log").read_text(errors="replace").strip().splitlines()[-6:]
+        raise RunError(f"the zone run of {overlay} failed (exit {p.returncode}; {folder / 'zones.log'}):\n    "
+                       + "\n    ".join(tail))
+    zones = [json.loads(s.read_text()) for s in sorted(run.glob("zone_*_summary.json"))]
+    if len(zones) != ranks:
+        raise RunError(f"{run}: {len(zones)} zone summaries, expected {ranks}")
+    reached = min(z["ticks"] for z in zones)
+    if reached < ticks or not (run / ARRIVALS).exists():
+        raise RunError(f"{run}: the zones stopped at tick {reached} of {ticks}")
+    f = {"tick_ms_p99": max(z["tick_ms_p99"] for z in zones),
+         "physics_ms": sum(z["physics_ms_mean"] for z in zones),
+         "ai_ms": sum(z["ai_ms_mean"] for z in zones),
+         "arrived": len(run_arrivals(run))}
+    reference = reference or {}
+    if "arrivals" in reference:
+        f.update(arrivals.drift(run_arrivals(run), reference["arrivals"], ticks, dt))
+    if reference.get("rest"):
+        f["stack_drift"], f["stack_drift_body"] = stack_drift(run, reference["rest"])
+        f["resting_bodies"] = len(reference["rest"])
+    return f
+
+
 def figures_of(run, rest=None):
     """The budget's metrics (tuning/budget.py) from a finished run folder; stack_drift only
     with the resting bodies of a reference run."""
@@ -125,6 +188,7 @@ def figures_of(run, rest=None):
          sum(c["bytes_in_per_s"] for c in clients) * 8 / 1000 / len(clients),
          "tick_ms_p99": max(z["tick_ms_p99"] for z in report["zones"]),
          "physics_ms": physics_ms(run),
+         "ai_ms": sum(json.loads(p.read_text())["ai_ms_mean"] for p in run.glob("zone_*_summary.json")),
          "samples": len(shown)}
     if rest:
         f["stack_drift"], f["stack_drift_body"] = stack_drift(run, rest)

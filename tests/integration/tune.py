@@ -5,7 +5,11 @@ binding limit named; a malformed budget is refused before any run. Runs one knob
 values and 3-second runs to stay short. The physics limit: stack_drift on a scene without
 rigid bodies is refused before any run; on scenes/stacks.yaml (116 boxes in stacks) a drift
 no substep count reaches is refused naming the limit and the best measured drift, after a
-reference run and one run per substep count that each measured it."""
+reference run and one run per substep count that each measured it. The crowd limit, on
+scenes/courtyard_flow_lod.yaml's 400 flow NPCs with runs of the zones alone: a budget mixing it
+with a player limit, or on a scene without a flow crowd, is refused before any run; a drift no
+far-band steering setting reaches is refused naming the limit and the best measured drift; a
+mean drift the bands can meet gives an overlay with the chosen bands, confirmed."""
 import json
 import re
 import subprocess
@@ -18,10 +22,10 @@ TUNE = h.SOURCE_DIR / "bench" / "tune.py"
 SCENE = h.SOURCE_DIR / "scenes" / "test_e2e.yaml"
 
 
-def tune(work, budget, *extra, scene=SCENE, knobs="avatar order", players=8):
+def tune(work, budget, *extra, scene=SCENE, knobs="avatar order", players=8, seconds=3):
     env = h.base_env(h.free_dds_domain())
     return subprocess.run(["/usr/bin/python3", TUNE, scene, "--budget", budget, "--work", work,
-                           "--knobs", knobs, "--seconds", "3", "--confirm-seconds", "3",
+                           "--knobs", knobs, "--seconds", str(seconds), "--confirm-seconds", str(seconds),
                            "--players", str(players), "--bin", h.bin_dir(), *extra],
                           capture_output=True, text=True, env=env, timeout=400)
 
@@ -84,4 +88,48 @@ with tempfile.TemporaryDirectory(prefix="zs_tune_") as tmp:
     h.check(max(measured) > 2 * min(measured), f"the substep count moves the drift: {measured} mm")
     h.check(not list((tmp / "drift").glob("*.tuned.yaml")) and not (tmp / "drift" / "tune.json").exists(),
             "nothing is written for a refused drift budget")
+
+    # The crowd limit: runs of the zones alone, 40 s of the courtyard (every NPC arrives in 39 s).
+    courtyard = h.SOURCE_DIR / "scenes" / "courtyard_flow_lod.yaml"
+    mixed = tune(tmp / "mixed", "arrival_drift<=0.5,shown_error_p99<=1", scene=courtyard, knobs="lod bands m")
+    h.check(mixed.returncode == 2 and "arrival_drift is measured on runs of the zones alone and shown_error_p99 "
+            "needs players" in mixed.stderr and not (tmp / "mixed").exists(),
+            f"a crowd limit beside a player limit is refused before any run: {mixed.stderr.strip()[-300:]}")
+    flowless = tune(tmp / "flowless", "arrival_drift<=0.5", scene=skirmish, knobs="npc order")
+    h.check(flowless.returncode == 2 and "arrival_drift needs a flow-field crowd (populations[].flow), and "
+            "skirmish.yaml has none" in flowless.stderr and not (tmp / "flowless").exists(),
+            f"a crowd limit on a scene without a flow crowd is refused: {flowless.stderr.strip()[-300:]}")
+
+    steers = tune(tmp / "steers", "arrival_drift<=0.5", "--repeat", "1", scene=courtyard, knobs="lod far steers",
+                  seconds=40)
+    h.check(steers.returncode == 2, f"an impossible crowd budget exits 2 ({steers.returncode}): "
+            f"{steers.stdout[-800:]} {steers.stderr[-600:]}")
+    refusal = re.search(r"refused: no setting meets arrival_drift <= 0.5 s: the best measured is (\S+) s",
+                        steers.stderr)
+    h.check(refusal is not None and float(refusal.group(1)) > 0.5,
+            f"the refusal names the crowd limit and the best drift: {steers.stderr.strip()}")
+    h.check("400 flow NPCs arrive within the reference's 800 ticks" in steers.stdout,
+            f"the reference run's arrivals are counted: {steers.stdout[-800:]}")
+    measured = re.findall(r"arrival drift p99 +([0-9.]+) s mean +([0-9.]+) s \((\d+) arrived\)", steers.stdout)
+    h.check(len(measured) == 2 and all(390 <= int(n) <= 400 for _, _, n in measured),
+            f"the scene's own run and the other steering each measured a drift over their arrivals: {measured}")
+    h.check(not list((tmp / "steers").glob("*.tuned.yaml")) and not (tmp / "steers" / "tune.json").exists(),
+            "nothing is written for a refused crowd budget")
+
+    out = tmp / "bands" / "courtyard.tuned.yaml"
+    bands = tune(tmp / "bands", "arrival_drift_mean<=0.5", "--repeat", "1", "--out", out, scene=courtyard,
+                 knobs="lod bands m", seconds=40)
+    h.check(bands.returncode == 0 and out.exists(), f"a crowd budget the bands meet writes the overlay: "
+            f"{bands.stdout[-800:]} {bands.stderr[-600:]}")
+    report = json.loads((tmp / "bands" / "tune.json").read_text())
+    h.check(len(report["runs"]) == 7, f"the reference, the scene's own, four more bands and the confirmation "
+            f"({len(report['runs'])} runs)")
+    confirmed = report["confirmed"]
+    h.check(confirmed["arrival_drift_mean"] <= 0.5 and confirmed["arrivals_compared"] == 400 and
+            confirmed["arrived"] == 400 and report["binding"] == "arrival_drift_mean <= 0.5 s",
+            f"the confirming run met the crowd budget over every NPC: {confirmed}")
+    near, far = (float(x) for x in report["chosen"]["lod bands m"].split("/"))
+    text = out.read_text()
+    h.check(f"near_radius: {near}" in text and f"far_radius: {far}" in text and "the zones alone" in text,
+            f"the overlay sets the chosen bands: {text}")
 print("tune passed")

@@ -3,15 +3,21 @@ limits (stack_drift, physics_ms) beside the wire's and refuses what is malformed
 part; a scene with rigid bodies gets the solver's knobs (and the physics level of detail only
 where it has a `lod` section), judged by physics time against stack drift, with a reference
 at the most accurate values; choose() picks the cheapest physics value that meets the budget
-and names the limit that stopped a cheaper one. Figures here are hand-made inputs to the
-choice, not measurements."""
+and names the limit that stopped a cheaper one. The crowd's limits: arrival_drift parses, is computed
+from arrival files as the p99, mean and max of per-NPC differences (an NPC arrived in one run
+only counting up to the run's end), a malformed arrival file is an error naming file and line,
+and a courtyard with a flow crowd and a lod section gets the crowd's level-of-detail knobs with
+a full-detail reference. A sweep run that fails is reported and skipped, and the sweep goes on.
+Figures here are hand-made inputs to the choice, not measurements."""
 import importlib.util
 import sys
+import tempfile
+from pathlib import Path
 
 import harness as h
 
 sys.path.insert(0, str(h.SOURCE_DIR / "bench"))
-from tuning import budget, knobs  # noqa: E402
+from tuning import arrivals, budget, knobs, measure  # noqa: E402
 
 limits = budget.parse("stack_drift<=0.01, physics_ms<=2,shown_error_p99<=0.3")
 h.check([(l.metric, l.most) for l in limits] == [("stack_drift", 0.01), ("physics_ms", 2.0),
@@ -22,7 +28,8 @@ h.check(limits[0].describe() == "stack_drift <= 0.01 m" and limits[1].describe()
 for text, words in (("stack_drift<=-1", "finite number >= 0"), ("stack_drift<=x", "'x' is not a number"),
                     ("stack_drift<=1,stack_drift<=2", "stack_drift is limited twice"),
                     ("stack_wobble<=1", "unknown limit 'stack_wobble' (known: shown_error_p99, kbps_per_client, "
-                                        "tick_ms_p99, stack_drift, physics_ms)")):
+                                        "tick_ms_p99, stack_drift, physics_ms, arrival_drift, "
+                                        "arrival_drift_mean, ai_ms)")):
     try:
         budget.parse(text)
         h.check(False, f"'{text}' is refused")
@@ -62,4 +69,101 @@ h.check(value == (2,) and "cheaper values broke stack_drift <= 0.01 m" in why,
 k.sweep[0][1]["physics_ms"] = 1.1  # within the 25 % tie of 2 substeps: the more accurate wins
 value, _ = tune.choose(k, budget.parse("stack_drift<=0.01"), 0.25)
 h.check(value == (4,), f"physics times within the tie count as equal, the smaller drift wins: {value}")
+
+# The crowd's limits.
+crowd = budget.parse("arrival_drift<=0.5,arrival_drift_mean<=0.2,ai_ms<=1")
+h.check([l.describe() for l in crowd] == ["arrival_drift <= 0.5 s", "arrival_drift_mean <= 0.2 s", "ai_ms <= 1 ms"],
+        f"the crowd's limits parse with their units: {[l.describe() for l in crowd]}")
+with tempfile.TemporaryDirectory(prefix="zs_arrivals_") as tmp:
+    tmp = Path(tmp)
+    (tmp / "ref.csv").write_text("id,tick\n1,100\n2,200\n3,300\n4,390\n")
+    (tmp / "here.csv").write_text("id,tick\n1,100\n2,220\n3,290\n5,350\n")
+    ref, here = arrivals.read(tmp / "ref.csv"), arrivals.read(tmp / "here.csv")
+    h.check(ref == {1: 100, 2: 200, 3: 300, 4: 390} and here[5] == 350, f"arrival files read: {ref} {here}")
+    # 400 ticks of 0.05 s: NPC 1 on time, 2 1 s late, 3 0.5 s early, 4 arrived only in the
+    # reference (0.5 s before the end: at least 0.5 s late), 5 only here (2.5 s before the end).
+    d = arrivals.drift(here, ref, 400, 0.05)
+    gaps = [0.0, 1.0, 0.5, 0.5, 2.5]
+    h.check(d["arrivals_compared"] == 5 and d["arrived_here_only"] == 1 and d["arrived_reference_only"] == 1,
+            f"five NPCs compared, one arrived only in each run: {d}")
+    h.check(abs(d["arrival_drift"] - 2.5) < 1e-9 and abs(d["arrival_drift_max"] - 2.5) < 1e-9 and
+            abs(d["arrival_drift_mean"] - sum(gaps) / 5) < 1e-9,
+            f"p99 and max 2.5 s, mean {sum(gaps) / 5} s: {d}")
+    hundred = {i: 10 for i in range(100)}
+    late = {**hundred, 0: 30, 1: 50}  # 1 s and 2 s late at 0.05 s a tick
+    h.check(abs(arrivals.drift(late, hundred, 100, 0.05)["arrival_drift"] - 1.0) < 1e-9,
+            "the p99 of 100 NPCs is the second largest difference")
+    h.check(arrivals.drift({}, {}, 10, 0.05)["arrivals_compared"] == 0, "no arrival in either run: nothing compared")
+    for text, words in (("id;tick\n", "bad.csv:1: expected the header 'id,tick'"),
+                        ("id,tick\n1,2\n3\n", "bad.csv:3: expected 'id,tick' (two integers), got '3'"),
+                        ("id,tick\n1,2\n1,5\n", "bad.csv:3: NPC 1 is listed twice")):
+        (tmp / "bad.csv").write_text(text)
+        try:
+            arrivals.read(tmp / "bad.csv")
+            h.check(False, f"{text!r} is refused")
+        except arrivals.ArrivalsError as e:
+            h.check(words in str(e), f"a malformed arrival file is refused naming the line: {e}")
+    (tmp / "run").mkdir()
+    (tmp / "run" / measure.ARRIVALS).write_text("id,tick\nx,1\n")
+    try:
+        measure.run_arrivals(tmp / "run")
+        h.check(False, "a malformed arrival file of a run fails the run")
+    except measure.RunError as e:
+        h.check("arrivals.csv:2" in str(e), f"a malformed arrival file of a run fails the run: {e}")
+
+courtyard = knobs.merged_scene(h.SOURCE_DIR / "scenes" / "courtyard_flow_lod.yaml")
+crowd_knobs = [k for k in knobs.knobs_for(courtyard) if k.accuracy == "arrival_drift"]
+h.check([k.name for k in crowd_knobs] == ["lod far period", "lod mid period", "lod far steers", "lod crowded count",
+                                          "lod bands m"] and all(k.cost == "ai_ms" for k in crowd_knobs),
+        f"a flow crowd with a lod section gets the crowd's knobs, judged by AI time: {[k.name for k in crowd_knobs]}")
+bands = crowd_knobs[-1]
+h.check(bands.scene_value == (8.0, 20.0) and bands.values[0] == (91.0, 91.0),
+        f"the bands from the scene's, the first wider than the courtyard's diagonal: {bands.values}")
+h.check(knobs.reference_settings(knobs.crowd_knobs(courtyard)) == knobs.CROWD_FULL_DETAIL,
+        "the crowd reference is the level of detail at full detail")
+plain = knobs.merged_scene(h.SOURCE_DIR / "scenes" / "courtyard_flow.yaml")
+h.check(not any(k.accuracy == "arrival_drift" for k in knobs.knobs_for(plain)),
+        "without a lod section the crowd's level of detail is not turned")
+
+# A run that fails or stops short is reported and skipped; the sweep goes on.
+
+
+class ShortTuner:
+    """Stands in for tune.Tuner: hand-made figures, and one setting whose run stops short."""
+
+    def __init__(self, short):
+        self.short, self.labels = short, []
+
+    def measure(self, settings, label, seconds):
+        self.labels.append(label)
+        if settings["lod.far_every"] == self.short:
+            raise measure.RunError("run-03/run: the zones stopped at tick 412 of 800")
+        drift = {1: 0.0, 2: 0.3, 4: 0.4, 8: 0.9, 16: 2.0}[settings["lod.far_every"]]
+        return {"ai_ms": 0.1 / settings["lod.far_every"], "arrival_drift": drift, "tick_ms_p99": 1.0}
+
+
+class Args:
+    seconds, tie, time_tie = 40, 0.03, 0.25
+
+
+far = knobs.crowd_knobs(courtyard)[0]
+short = ShortTuner(short=4)
+reasons, baseline = tune.sweep(short, [far], {far.name: far.scene_value}, budget.parse("arrival_drift<=0.5"), Args)
+h.check(len(short.labels) == 5, f"every value of the knob was run, the one that stopped short too: {short.labels}")
+h.check([v for v, _ in far.failed] == [(4,)] and "stopped at tick 412 of 800" in far.failed[0][1],
+        f"the run that stopped short is reported as failed: {far.failed}")
+h.check(sorted(v for v, _ in far.sweep) == [(1,), (2,), (8,), (16,)] and baseline["arrival_drift"] == 0.9,
+        f"the other values were measured: {[v for v, _ in far.sweep]}")
+h.check(reasons[far.name].startswith("the most accurate within") and
+        "cheaper values broke arrival_drift <= 0.5 s" in reasons[far.name],
+        f"the choice skips the failed value and names the binding limit: {reasons[far.name]}")
+h.check(tune.choose(far, budget.parse("arrival_drift<=0.5"), 0.25)[0] == (2,),
+        "the cheapest value that met the budget among those measured is chosen (4 stopped short)")
+
+far = knobs.crowd_knobs(courtyard)[0]
+own = ShortTuner(short=8)  # the scene's own settings stop short
+chosen = {far.name: far.scene_value}
+reasons, baseline = tune.sweep(own, [far], chosen, budget.parse("arrival_drift<=0.5"), Args)
+h.check(baseline is None and [v for v, _ in far.failed] == [(8,)] and len(far.sweep) == 4 and chosen[far.name] == (4,),
+        f"the scene's own run stopping short leaves the sweep going: {far.failed} {chosen}")
 print("tune_budget passed")
