@@ -115,10 +115,12 @@ void readFlockGoal(const SceneMap& flock, const Scene& scene, NpcFlock& f) {
 void readCrowdLod(const SceneMap& root, Scene& scene) {
   if (!root.optional("lod")) return;
   CrowdLod& l = scene.lod;
-  l.enabled = true;
-  SceneMap m = root.section(
-      "lod", {"near_radius", "far_radius", "mid_every", "far_every", "mid_steers", "far_steers",
-              "observers", "crowded_count", "crowded_cell", "physics_every", "physics_max_step"});
+  l.enabled = true;  // a section that is there means on, unless it says enabled: false
+  SceneMap m =
+      root.section("lod", {"enabled", "near_radius", "far_radius", "mid_every", "far_every",
+                           "mid_steers", "far_steers", "observers", "crowded_count", "crowded_cell",
+                           "physics_every", "physics_max_step"});
+  m.read("enabled", l.enabled);
   m.read("near_radius", l.near_radius, Limit::atLeast(0));
   m.read("far_radius", l.far_radius, Limit::atLeast(l.near_radius));
   m.read("mid_every", l.mid_every, Limit::between(1, 64));

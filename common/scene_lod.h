@@ -10,7 +10,7 @@ namespace zonesim {
 /// less often, the farthest without steering, and far rigid bodies too (`lod:` key; absent:
 /// every NPC and body every tick).
 struct CrowdLod {
-  bool enabled = false;     ///< the scene has a `lod` key
+  bool enabled = false;     ///< the scene has a `lod` key, and it does not say enabled: false
   double near_radius = 40;  ///< m from the nearest player: every tick, full steering
   double far_radius = 120;  ///< m: between near and far, every `mid_every` ticks
   int mid_every = 2;        ///< ticks between updates of the middle band

@@ -245,6 +245,15 @@ TEST(SceneLod, AbsentMeansOffAndValuesComeThrough) {
             kSceneName + ":5: lod.physics_every: must be in [1, 64], got 65");
 }
 
+TEST(SceneLod, EnabledFalseTurnsAPresentSectionOff) {
+  // An overlay cannot remove its base's lod section; it can switch it off (bench/tune.py).
+  EXPECT_FALSE(
+      parseScene(sceneWith("lod: {enabled: false, far_every: 4}\n"), kSceneName).lod.enabled);
+  EXPECT_TRUE(parseScene(sceneWith("lod: {enabled: true}\n"), kSceneName).lod.enabled);
+  EXPECT_EQ(sceneError([] { parseScene(sceneWith("lod: {enabled: sometimes}\n"), kSceneName); }),
+            kSceneName + ":5: lod.enabled: expected true or false, got 'sometimes'");
+}
+
 TEST(SceneLod, ObserversComeThroughAndMustLieInTheWorld) {
   EXPECT_TRUE(parseScene(sceneWith("lod: {}\n"), kSceneName).lod.observers.empty());
   Scene s = parseScene(sceneWith("lod:\n  observers: [[1, 0, 2], [30, 5, -4]]\n"), kSceneName);
