@@ -21,8 +21,9 @@ reads, a JSON of every run, and a work-precision plot per knob.
 A budget that limits the crowd (arrival_drift, arrival_drift_mean) is measured on runs of the
 zone ranks alone, without players, as fast as they go: the scene's flow-field NPCs arrive at
 their destinations, and each run's arrival ticks (zone_node --arrivals) are compared with a
-reference run's, the crowd level of detail at full detail; its knobs are the lod section's
-periods, steering, crowding and bands, judged by AI time per tick.
+reference run's, the level of detail off (lod.enabled: false); its knobs are the lod section's
+periods, steering, crowding and bands, and last whether it is on at all, judged by AI time per
+tick.
 
 A sweep run that fails or stops short of its end tick is reported and its value skipped; the
 sweep goes on. A budget no measured setting meets is refused (exit 2), naming the limit and
@@ -134,7 +135,7 @@ class Tuner:
 
     def reference(self, settings, seconds, bodies, crowd):
         """Runs the reference (every physics knob at its most accurate, the crowd level of detail
-        at full detail) for `seconds` and keeps what later runs of that length are compared
+        off) for `seconds` and keeps what later runs of that length are compared
         with: the bodies resting at its end tick (stack_drift) and every flow NPC's arrival tick
         (arrival_drift). Returns how many bodies rest and how many NPCs arrived."""
         what = " and ".join(w for w, on in (("physics", bodies), ("crowds", crowd)) if on)

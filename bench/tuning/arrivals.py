@@ -1,6 +1,6 @@
 """The crowd's error in user terms: when each flow-field NPC reaches its destination in a run
 (zone_node --arrivals: `id,tick` lines) against when it does in the reference run, the crowd's
-level of detail at full detail everywhere (tuning/knobs.py's crowd reference)."""
+level of detail off (tuning/knobs.py's crowd reference)."""
 import math
 from pathlib import Path
 

@@ -128,17 +128,18 @@ def physics_knobs(scene):
     return knobs
 
 
-# The crowd level of detail at full detail everywhere: every band steps every tick with its
-# neighbour terms. On scenes/courtyard_flow_lod.yaml this ends bitwise equal to the scene without
-# its lod section (docs/tuning.md), so it is the reference that arrival_drift is measured against.
-CROWD_FULL_DETAIL = {"lod.mid_every": 1, "lod.far_every": 1, "lod.mid_steers": True, "lod.far_steers": True}
+# The reference that arrival_drift is measured against: the level of detail off (lod.enabled,
+# docs/scene-format.md), every NPC every tick with its neighbour terms. On
+# scenes/courtyard_flow_lod.yaml it ends bitwise equal to the scene without its lod section.
+CROWD_FULL_DETAIL = {"lod.enabled": False}
 
 
 def crowd_knobs(scene):
     """The crowd level of detail's knobs (docs/scene-format.md, `lod`) of a scene with flow-field
     populations and a `lod` section, judged by AI time against arrival drift; values most
     accurate first. The bands are scaled to the world: the first puts every NPC within the near
-    band of a player or observer."""
+    band of a player or observer. The last knob switches the whole section off (`lod.enabled`;
+    with it the physics level of detail, which a scene tuned for its crowd should then check)."""
     world = scene.get("world", {}) or {}
     lo, hi = world.get("min", [0, 0, 0]), world.get("max", [0, 0, 0])
     side = float(max(hi[0] - lo[0], hi[2] - lo[2]))
@@ -163,13 +164,17 @@ def crowd_knobs(scene):
                  (int(get(scene, "lod.crowded_count", 0)),),
                  "NPCs in a cell that bring it to full detail (0: off)"),
             knob("lod bands m", ("lod.near_radius", "lod.far_radius"), bands, own_bands,
-                 "near and far radius around players and observers")]
+                 "near and far radius around players and observers"),
+            # Last: whether the level of detail, as the knobs before left it, pays for its own
+            # planning (each NPC's band, each tick) at all.
+            knob("lod on", ("lod.enabled",), [False, True], (bool(get(scene, "lod.enabled", True)),),
+                 "the crowd level of detail at all (false: every NPC every tick)")]
 
 
 def reference_settings(knobs):
     """The dotted-key settings of the reference run: every physics knob at its most accurate
     value, so that the tuner measures stack_drift against the best the engine does, and, where
-    crowd knobs are turned, the crowd level of detail at full detail (CROWD_FULL_DETAIL)."""
+    crowd knobs are turned, the crowd level of detail off (CROWD_FULL_DETAIL)."""
     settings = {key: v for k in knobs if k.accuracy == "stack_drift" for key, v in zip(k.keys, k.values[0])}
     if any(k.accuracy == "arrival_drift" for k in knobs):
         settings.update(CROWD_FULL_DETAIL)

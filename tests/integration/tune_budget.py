@@ -114,13 +114,15 @@ with tempfile.TemporaryDirectory(prefix="zs_arrivals_") as tmp:
 courtyard = knobs.merged_scene(h.SOURCE_DIR / "scenes" / "courtyard_flow_lod.yaml")
 crowd_knobs = [k for k in knobs.knobs_for(courtyard) if k.accuracy == "arrival_drift"]
 h.check([k.name for k in crowd_knobs] == ["lod far period", "lod mid period", "lod far steers", "lod crowded count",
-                                          "lod bands m"] and all(k.cost == "ai_ms" for k in crowd_knobs),
+                                          "lod bands m", "lod on"] and all(k.cost == "ai_ms" for k in crowd_knobs),
         f"a flow crowd with a lod section gets the crowd's knobs, judged by AI time: {[k.name for k in crowd_knobs]}")
-bands = crowd_knobs[-1]
+bands = crowd_knobs[-2]
+h.check(crowd_knobs[-1].values == [(False,), (True,)] and crowd_knobs[-1].scene_value == (True,),
+        "the last knob switches the level of detail off or leaves it on (the scene's)")
 h.check(bands.scene_value == (8.0, 20.0) and bands.values[0] == (91.0, 91.0),
         f"the bands from the scene's, the first wider than the courtyard's diagonal: {bands.values}")
 h.check(knobs.reference_settings(knobs.crowd_knobs(courtyard)) == knobs.CROWD_FULL_DETAIL,
-        "the crowd reference is the level of detail at full detail")
+        "the crowd reference is the level of detail switched off")
 plain = knobs.merged_scene(h.SOURCE_DIR / "scenes" / "courtyard_flow.yaml")
 h.check(not any(k.accuracy == "arrival_drift" for k in knobs.knobs_for(plain)),
         "without a lod section the crowd's level of detail is not turned")
