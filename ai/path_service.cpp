@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "ai/segment_cells.h"
+#include "common/timer.h"
 
 namespace zonesim::ai {
 
@@ -76,9 +77,29 @@ bool PathService::solveBetween(Vec2 from, Vec2 to, GridPath& out, int& expanded)
                  Cell{int(std::floor(to.x)), int(std::floor(to.y))}, out, expanded);
   }
   ++stats_.planned;
+  const std::int64_t started = nowNs();
   const bool found = planOnMesh(from, to, out, expanded);
+  stats_.plan_ns += nowNs() - started;
   stats_.expanded += std::uint64_t(expanded);
+  // Between exact points the grid optimum runs between the end cells' centres, which can be
+  // shorter than the straight line between the points themselves (neighbouring cells, points
+  // at their far sides): the path is then measured against that line.
+  if (found && config_.audit)
+    audit(Cell{int(std::floor(from.x)), int(std::floor(from.y))},
+          Cell{int(std::floor(to.x)), int(std::floor(to.y))}, out.length,
+          std::hypot(to.x - from.x, to.y - from.y));
   return found;
+}
+
+void PathService::audit(Cell start, Cell goal, double length, double straight) {
+  if (!audit_search_) audit_search_ = std::make_unique<GridSearch>(map_);
+  if (!audit_search_->findPath(start, goal, audit_path_)) return;
+  const double optimum = std::max(audit_path_.length, straight);
+  if (!(optimum > 0)) return;
+  const double overhead = std::max(0.0, length / optimum - 1.0);
+  ++stats_.audited;
+  stats_.overhead_sum += overhead;
+  stats_.overhead_max = std::max(stats_.overhead_max, overhead);
 }
 
 PathRequestId PathService::request(Cell start, Cell goal) {
@@ -117,6 +138,7 @@ const PathService::Request* PathService::find(PathRequestId id) const {
 
 bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
   ++stats_.planned;
+  const std::int64_t started = nowNs();
   bool found;
   if (landmarks_ && !landmarks_->validFor(map_)) {
     // Rebuilt here rather than on each change: a tick's doors cost one rebuild, and the
@@ -141,7 +163,9 @@ bool PathService::plan(Cell start, Cell goal, GridPath& out, int& expanded) {
     found = hpa_->findPath(start, goal, out);
     expanded = hpa_->stats().expanded + hpa_->stats().grid_expanded;
   }
+  stats_.plan_ns += nowNs() - started;
   stats_.expanded += std::uint64_t(expanded);
+  if (found && config_.audit) audit(start, goal, out.length, 0.0);
   return found;
 }
 

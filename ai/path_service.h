@@ -44,6 +44,11 @@ struct PathServiceConfig {
   /// map may pick another path of the same length; set this where a hit must equal a fresh plan
   /// (zones, whose caches differ from rank to rank).
   bool clear_cache_on_close = false;
+  /// Also plans every planned path again with plain A* (octile estimate) on the same map and
+  /// keeps how much longer the planner's path is than that optimum (stats: audited,
+  /// overhead_*): a measurement for tuning, which costs an A* search per plan and changes no
+  /// path. The planner's own time (stats: plan_ns) leaves the audit out.
+  bool audit = false;
 };
 
 /// State of a request.
@@ -62,6 +67,14 @@ struct PathServiceStats {
   std::uint64_t replans = 0;     ///< requests re-queued because the map cut their path
   std::uint64_t expanded = 0;    ///< nodes expanded by all planner calls
   std::uint64_t landmark_builds = 0;  ///< landmark tables rebuilt after map changes
+  std::int64_t plan_ns = 0;           ///< wall time in planner calls (audits left out)
+  /// With config.audit: paths compared with the A* optimum between their end cells (for a
+  /// navmesh path between exact points, with the straight line between them where that is
+  /// longer), the sum and the largest of their overheads (length over the optimum, minus 1; 0
+  /// for a path no longer than it, as an any-angle path can be).
+  std::uint64_t audited = 0;
+  double overhead_sum = 0.0;
+  double overhead_max = 0.0;
 };
 
 /// Budgeted, cached path finding over one map that the service owns changes to.
@@ -114,6 +127,9 @@ class PathService {
   bool planOnMesh(Vec2 from, Vec2 to, GridPath& out, int& expanded);
   void rebuildMesh();
   void lendLandmarks(const LandmarkHeuristic* landmarks);  // to the grid planner in use
+  // With config_.audit, after a found plan: `length` against the A* optimum from start to goal,
+  // or against `straight` (the line between exact end points) where that is longer.
+  void audit(Cell start, Cell goal, double length, double straight);
 
   GridMap& map_;
   PathServiceConfig config_;
@@ -131,6 +147,8 @@ class PathService {
   std::deque<PathRequestId> queue_;
   PathServiceStats stats_;
   GridPath empty_;
+  std::unique_ptr<GridSearch> audit_search_;  // plain A*, no landmarks: the optimum
+  GridPath audit_path_;
 };
 
 }  // namespace zonesim::ai

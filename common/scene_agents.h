@@ -109,6 +109,9 @@ struct AgentPathSettings {
   int expansions_per_tick = 0;  ///< node expansions per tick and zone (0: no limit)
   int cache = 1024;             ///< cached paths per zone (0: none; a hit equals a fresh plan)
   int landmarks = 0;  ///< landmark cells for the grid and jps planners (0: octile estimate)
+  /// Measure each planned path against the A* optimum (ai::PathServiceConfig::audit): for
+  /// tuning; costs a search per plan, changes no path.
+  bool audit = false;
 };
 
 /// Everything under the scene's `agents` key.

@@ -255,7 +255,7 @@ void readPopulation(const SceneNode& node, Scene& scene) {
 // existing scenes load unchanged. Both may be given only when they agree.
 void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings& p) {
   SceneMap m = agents.section("paths", {"planner", "cluster_size", "paths_per_tick",
-                                        "expansions_per_tick", "cache", "landmarks"});
+                                        "expansions_per_tick", "cache", "landmarks", "audit"});
   const int planner = m.choice("planner", {"astar", "hpa", "jps"}, -1);
   const AgentPlanner by_map[] = {AgentPlanner::AStar, AgentPlanner::Hpa, AgentPlanner::NavMesh,
                                  AgentPlanner::Jps};
@@ -277,6 +277,7 @@ void readPaths(const SceneMap& agents, const ObstacleMap& map, AgentPathSettings
   m.read("landmarks", p.landmarks, Limit::between(0, 32));
   if (p.landmarks > 0 && p.planner == AgentPlanner::NavMesh)
     m.failAt("landmarks", "serve the grid, hpa and jps planners only (map.navigation)");
+  m.read("audit", p.audit);
 }
 
 }  // namespace

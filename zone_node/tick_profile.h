@@ -116,6 +116,12 @@ struct TickCounters {
   std::uint64_t paths_planned = 0;      ///< path planner calls (at most the per-tick budget)
   std::uint64_t paths_queued = 0;       ///< path requests left waiting for a later tick
   std::uint64_t path_replans = 0;       ///< agents whose path a closing door cut
+  std::uint64_t path_plan_ns = 0;       ///< time in the path planner (audits left out)
+  /// agents.paths.audit: plans compared with the A* optimum, their overheads summed (in
+  /// millionths), and the largest overhead so far (millionths; a gauge: the run's is its last)
+  std::uint64_t paths_audited = 0;
+  std::uint64_t path_overhead_ppm = 0;
+  std::uint64_t path_overhead_max_ppm = 0;
   std::uint64_t quarantined = 0;        ///< entities frozen for a non-finite state (quarantine.h)
   // Messages between entities (cluster/entity_mail.h) and what the interactions made of them.
   std::uint64_t mail_posted = 0;      ///< messages and replies posted on this rank
@@ -185,6 +191,10 @@ inline constexpr CounterField kCounterFields[] = {
     {"paths_planned", &TickCounters::paths_planned, false},
     {"paths_queued", &TickCounters::paths_queued, true},
     {"path_replans", &TickCounters::path_replans, false},
+    {"path_plan_ns", &TickCounters::path_plan_ns, false},
+    {"paths_audited", &TickCounters::paths_audited, false},
+    {"path_overhead_ppm", &TickCounters::path_overhead_ppm, false},
+    {"path_overhead_max_ppm", &TickCounters::path_overhead_max_ppm, true},
     {"quarantined", &TickCounters::quarantined, false},
     {"mail_posted", &TickCounters::mail_posted, false},
     {"mail_applied", &TickCounters::mail_applied, false},

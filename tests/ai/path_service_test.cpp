@@ -226,6 +226,51 @@ TEST_P(PathServiceTest, ReleasedHandlesGoStale) {
   EXPECT_EQ(service.stats().planned, 1u);
 }
 
+TEST_P(PathServiceTest, AuditMeasuresEveryPlanAgainstTheAStarOptimum) {
+  GridMap m = test::randomMap(64, 64, 0.2, 5);
+  PathServiceConfig config;
+  config.planner = GetParam();
+  config.paths_per_tick = 100;
+  config.audit = true;
+  PathService service(m, config);
+  PathServiceConfig plain = config;
+  plain.audit = false;
+  PathService unaudited(m, plain);
+  Pcg32 rng(5, 11);
+  std::vector<PathRequestId> ids, plain_ids;
+  for (int i = 0; i < 40; ++i) {
+    const Cell a = test::randomFreeCell(m, rng), b = test::randomFreeCell(m, rng);
+    ids.push_back(service.request(a, b));
+    plain_ids.push_back(unaudited.request(a, b));
+  }
+  service.tick();
+  unaudited.tick();
+  std::uint64_t found = 0;
+  double sum = 0, most = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (service.status(ids[i]) != PathStatus::Ready) continue;
+    const GridPath& p = service.path(ids[i]);
+    // The audit changes no path.
+    EXPECT_EQ(p.cells, unaudited.path(plain_ids[i]).cells) << i;
+    const double optimum = test::referenceDistance(m, p.cells.front(), p.cells.back());
+    if (!(optimum > 0)) continue;
+    ++found;
+    const double overhead = std::max(0.0, p.length / optimum - 1.0);
+    sum += overhead;
+    most = std::max(most, overhead);
+  }
+  const PathServiceStats s = service.stats();
+  EXPECT_GT(found, 20u);
+  EXPECT_EQ(s.audited, found);
+  EXPECT_NEAR(s.overhead_sum, sum, 1e-9);
+  EXPECT_NEAR(s.overhead_max, most, 1e-12);
+  if (GetParam() == PlannerKind::AStar || GetParam() == PlannerKind::Jps) {
+    EXPECT_EQ(s.overhead_max, 0.0) << "an optimal planner has no overhead";
+  }
+  EXPECT_EQ(unaudited.stats().audited, 0u);
+  EXPECT_EQ(unaudited.stats().overhead_sum, 0.0);
+}
+
 class GridPlannerTest : public ::testing::TestWithParam<PlannerKind> {};
 
 TEST_P(GridPlannerTest, WithLandmarksStaysOptimalAndRebuildsThemOnceTheMapChanged) {

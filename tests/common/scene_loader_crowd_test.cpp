@@ -115,6 +115,18 @@ TEST(SceneMap, NavigationChoosesThePlannerAndTheOlderKeyStillWorks) {
   EXPECT_EQ(planner(", navigation: hpa", "  paths: {planner: hpa}\n"), AgentPlanner::Hpa);
 }
 
+TEST(SceneMap, PathAuditIsOffUnlessAsked) {
+  const std::string agents =
+      "map: {file: maps/courtyard.map}\n"
+      "agents:\n  types:\n    - {name: c, behaviour: travel, navigate: true, goals: [[20, 22]]}\n";
+  EXPECT_FALSE(parseScene(sceneWith(agents), kSceneName).agents.paths.audit);
+  EXPECT_TRUE(
+      parseScene(sceneWith(agents + "  paths: {audit: true}\n"), kSceneName).agents.paths.audit);
+  EXPECT_EQ(
+      sceneError([&] { parseScene(sceneWith(agents + "  paths: {audit: 1.5}\n"), kSceneName); }),
+      kSceneName + ":9: agents.paths.audit: expected true or false, got '1.5'");
+}
+
 TEST(SceneMap, DoorsComeThroughInTimeOrderWithTheirLines) {
   Scene s = parseScene(sceneWith("map:\n"
                                  "  file: maps/courtyard.map\n"

@@ -57,6 +57,7 @@ AgentNavigation::AgentNavigation(const Scene& scene, ZoneMap* map)
   // planners are deterministic for a given map (A* and HPA* break every tie by a fixed order),
   // and any door, closing or opening, clears the cache.
   c.clear_cache_on_close = true;
+  c.audit = p.audit;
   service_ = std::make_unique<ai::PathService>(map->serviceGrid(), c);
 }
 
@@ -349,6 +350,15 @@ AgentPathStats AgentNavigation::takeStats() {
   s.queued = waiting_.size() - std::min(waiting_.size(), std::size_t(s.planned));
   s.replans = replans_;
   replans_ = 0;
+  if (service_) {
+    // The service counts from its start; the tick's share is what it added since the last call.
+    const ai::PathServiceStats now = service_->stats();
+    s.audited = now.audited - seen_.audited;
+    s.overhead_ppm = std::uint64_t(std::llround((now.overhead_sum - seen_.overhead_sum) * 1e6));
+    s.overhead_max_ppm = std::uint64_t(std::llround(now.overhead_max * 1e6));
+    s.plan_ns = std::uint64_t(now.plan_ns - seen_.plan_ns);
+    seen_ = now;
+  }
   return s;
 }
 

@@ -45,6 +45,12 @@ struct AgentPathStats {
   std::uint64_t planned = 0;  ///< requests served this tick (planned or from the cache)
   std::uint64_t queued = 0;   ///< requests still waiting after the tick
   std::uint64_t replans = 0;  ///< agents whose path a door cut this tick
+  std::uint64_t plan_ns = 0;  ///< time in the planner this tick (agents.paths.audit left out)
+  /// With agents.paths.audit: plans compared with the A* optimum this tick, the sum of their
+  /// overheads in millionths, and the largest overhead of the run so far in millionths.
+  std::uint64_t audited = 0;
+  std::uint64_t overhead_ppm = 0;
+  std::uint64_t overhead_max_ppm = 0;
 };
 
 /// Paths, doors and path following for a zone's agents.
@@ -114,6 +120,7 @@ class AgentNavigation {
   };
   std::unordered_map<std::uint64_t, Spline> splines_;  // looked up by agent id, never iterated
   std::uint64_t replans_ = 0;
+  ai::PathServiceStats seen_;  // the service's counters at the last takeStats()
 };
 
 }  // namespace zonesim::zone

@@ -101,6 +101,10 @@ void AgentSystem::step(StepContext& ctx) {
   ctx.counters.paths_planned = stats.paths.planned;
   ctx.counters.paths_queued = stats.paths.queued;
   ctx.counters.path_replans = stats.paths.replans;
+  ctx.counters.path_plan_ns = stats.paths.plan_ns;
+  ctx.counters.paths_audited = stats.paths.audited;
+  ctx.counters.path_overhead_ppm = stats.paths.overhead_ppm;
+  ctx.counters.path_overhead_max_ppm = stats.paths.overhead_max_ppm;
   last_ = stats;
 }
 

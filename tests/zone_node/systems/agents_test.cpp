@@ -319,6 +319,48 @@ TEST(Agents, ABindingPathBudgetIsNeverExceededAndServesEveryone) {
   EXPECT_GE(e.min_arrivals, 1);
 }
 
+// agents.paths.audit on the courtyard's couriers (HPA* with 8 landmarks, no cache): every plan
+// is compared with the A* optimum, the largest overhead is kept, and no path changes.
+TEST(Agents, ThePathAuditMeasuresEveryPlanAndChangesNoOutcome) {
+  struct Audited {
+    std::vector<double> end;
+    std::uint64_t planned = 0, audited = 0, overhead_ppm = 0, max_ppm = 0;
+  };
+  const auto run = [](const char* scene, bool audit) {
+    Scene s = loadScene(source(scene));
+    s.agents.paths.cache = 0;
+    s.agents.paths.audit = audit;
+    ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
+    Audited a;
+    for (int tick = 0; tick < 300; ++tick) {  // 15 s: the door closes at 4 s, couriers replan
+      node.tick();
+      const TickCounters& c = node.counters();
+      a.planned += c.paths_planned;
+      a.audited += c.paths_audited;
+      a.overhead_ppm += c.path_overhead_ppm;
+      EXPECT_GE(c.path_overhead_max_ppm, a.max_ppm) << "the largest so far never falls";
+      a.max_ppm = c.path_overhead_max_ppm;
+    }
+    for (std::size_t i = 0; i < node.store().size(); ++i)
+      a.end.insert(a.end.end(), {node.store().pos[i].x(), node.store().pos[i].z()});
+    return a;
+  };
+  const Audited on = run("scenes/agents_hpa.yaml", true),
+                off = run("scenes/agents_hpa.yaml", false);
+  std::printf("HPA*: %llu plans audited of %llu, mean overhead %.4f %%, largest %.4f %%\n",
+              (unsigned long long)on.audited, (unsigned long long)on.planned,
+              on.audited ? 1e-4 * double(on.overhead_ppm) / double(on.audited) : 0.0,
+              1e-4 * double(on.max_ppm));
+  EXPECT_GT(on.planned, 60u);
+  EXPECT_EQ(on.audited, on.planned);  // no cache, and every courier's goal is reachable
+  EXPECT_LE(on.overhead_ppm, on.audited * on.max_ppm);
+  EXPECT_EQ(on.end, off.end);
+  EXPECT_EQ(off.audited, 0u);
+  const Audited astar = run("scenes/agents_paths.yaml", true);
+  EXPECT_EQ(astar.audited, astar.planned);
+  EXPECT_EQ(astar.max_ppm, 0u) << "A* is the optimum";
+}
+
 TEST(Agents, ThePathCacheChangesNoOutcomeUnderABindingBudget) {
   // A hit is charged the expansions of the plan it stands for and the cache empties when the
   // door closes, so with or without it the same requests are served in the same ticks.
