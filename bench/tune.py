@@ -23,7 +23,10 @@ zone ranks alone, without players, as fast as they go: the scene's flow-field NP
 their destinations, and each run's arrival ticks (zone_node --arrivals) are compared with a
 reference run's, the level of detail off (lod.enabled: false); its knobs are the lod section's
 periods, steering, crowding and bands, and last whether it is on at all, judged by AI time per
-tick.
+tick. A budget that limits path_overhead is measured the same way, with agents.paths.audit on:
+every plan of the scene's agents is also planned by A*, and the largest excess over that
+optimum is the figure; its knobs are the planner (map.navigation), landmarks and the HPA*
+cluster size, judged by the time in the planner per tick.
 
 A sweep run that fails or stops short of its end tick is reported and its value skipped; the
 sweep goes on. A budget no measured setting meets is refused (exit 2), naming the limit and
@@ -61,7 +64,7 @@ def parse_args(argv):
                    help="physics times this close (a fraction) count as equal (default 0.25: times on a "
                         "shared machine vary by 20 %% from run to run)")
     p.add_argument("--repeat", type=int, default=3,
-                   help="runs of each setting where runs are of the zones alone (crowd budgets): the least "
+                   help="runs of each setting where runs are of the zones alone (crowd, path budgets): the least "
                         "time of them counts (default 3)")
     p.add_argument("--knobs", help="only these knobs (comma-separated names as printed), default all")
     p.add_argument("--bin", type=Path, default=ROOT / "build" / "bin", help="the built programs")
@@ -87,13 +90,14 @@ def parse_args(argv):
 
 
 class Tuner:
-    def __init__(self, args, scene, zones_only=False):
+    def __init__(self, args, scene, zones_only=False, audit_paths=False):
         self.a = args
         self.ranks = measure.ranks_of(scene)
         self.runs = []  # every measured run, for the JSON
         self.count = 0
         self.scene = scene
-        self.zones_only = zones_only  # crowd budgets: the zones alone, no players
+        self.zones_only = zones_only  # crowd and path budgets: the zones alone, no players
+        self.audit_paths = audit_paths  # path budgets: every plan against the A* optimum
         self.refs = {}  # run length -> what its reference run left: resting bodies, arrivals
 
     def measure(self, settings, label, seconds):
@@ -104,6 +108,8 @@ class Tuner:
         folder = self.a.work / f"run-{self.count:02d}"
         folder.mkdir(parents=True, exist_ok=True)
         overlay = folder / "candidate.yaml"
+        if self.audit_paths:  # a measurement: changes no path, costs an A* search per plan
+            settings = {**settings, "agents.paths.audit": True}
         overlay.write_text(knob_defs.overlay_text(self.a.scene, settings, [f"tune candidate: {label}"]))
         started = time.monotonic()
         ref = self.refs.get(seconds, {})
@@ -171,6 +177,9 @@ def figures_line(f):
     if "arrival_drift" in f:
         parts.append(f"arrival drift p99 {f['arrival_drift']:5.2f} s mean {f['arrival_drift_mean']:5.2f} s "
                      f"({f['arrived']} arrived)")
+    if f.get("paths_audited"):
+        parts.append(f"planner {f['planner_ms']:7.4f} ms  path overhead max {f['path_overhead'] * 100:6.3f} % "
+                     f"mean {f['path_overhead_mean'] * 100:6.4f} % ({f['paths_audited']} paths)")
     return "  ".join(parts)
 
 
@@ -217,8 +226,10 @@ def tie_of(knob, a):
 def print_frontier(knobs, chosen, reasons, limits):
     print("\nfrontier (each knob in turn, those before it at their choices, the rest at the scene's):")
     shown = [m for m in ("shown_error_p99", "kbps_per_client", "tick_ms_p99", "physics_ms", "stack_drift",
-                         "ai_ms", "arrival_drift", "arrival_drift_mean")
-             if any(m in f for k in knobs for _, f in k.sweep)]
+                         "ai_ms", "arrival_drift", "arrival_drift_mean", "planner_ms", "path_overhead",
+                         "path_overhead_mean")
+             if any(m in f for k in knobs for _, f in k.sweep)
+             and (not m.startswith(("planner", "path")) or any(f.get("paths_audited") for k in knobs for _, f in k.sweep))]
     print(f"  {'knob':<22} {'value':<16} " + " ".join(f"{m:>15}" for m in shown))
     for k in knobs:
         for v, f in sorted(k.sweep, key=lambda vf: -vf[1][k.cost]):
@@ -245,6 +256,9 @@ def figures_text(f):
         parts.append(f"arrival drift p99 {f['arrival_drift']:.2f} s, mean {f['arrival_drift_mean']:.3f} s, "
                      f"max {f['arrival_drift_max']:.2f} s over {f['arrivals_compared']} NPCs "
                      f"({f['arrived']} arrived)")
+    if f.get("paths_audited"):
+        parts.append(f"planner {f['planner_ms']:.4f} ms, path overhead max {f['path_overhead'] * 100:.3f} %, "
+                     f"mean {f['path_overhead_mean'] * 100:.4f} % over {f['paths_audited']} paths")
     return ", ".join(parts)
 
 
@@ -298,36 +312,49 @@ def main(argv):
         knobs = [k for k in knobs if k.name in wanted]
     limited = {l.metric for l in a.limits}
     crowd_limits = sorted(limited & set(budget.CROWD_METRICS))
-    zones_only = bool(crowd_limits)
+    path_limits = sorted(limited & set(budget.PATH_METRICS))
+    zones_only = bool(crowd_limits or path_limits)
+    uses = knob_defs.scene_uses(scene)
     if zones_only:
         players = sorted(limited & set(budget.PLAYER_METRICS))
         if players:
-            print(f"refused: {', '.join(crowd_limits)} is measured on runs of the zones alone and "
-                  f"{', '.join(players)} needs players: tune them in two runs of the tuner", file=sys.stderr)
+            print(f"refused: {', '.join(crowd_limits + path_limits)} is measured on runs of the zones alone "
+                  f"and {', '.join(players)} needs players: tune them in two runs of the tuner", file=sys.stderr)
             sys.exit(2)
-        if not knob_defs.scene_uses(scene)["flow"]:
+        if crowd_limits and not uses["flow"]:
             print(f"refused: {', '.join(crowd_limits)} needs a flow-field crowd (populations[].flow), and "
                   f"{a.scene.name} has none", file=sys.stderr)
             sys.exit(2)
-        # Without players the wire's knobs change nothing a zone run measures.
-        knobs = [k for k in knobs if k.cost not in budget.PLAYER_METRICS]
-        if not knobs:
-            print(f"refused: no knob of {a.scene.name} is measured on zone-only runs (the crowd's level of "
-                  "detail needs the scene's lod section)", file=sys.stderr)
+        if path_limits and not uses["paths"]:
+            print(f"refused: {', '.join(path_limits)} needs agents that plan paths on a map (a type with "
+                  f"navigate: true, and map:), and {a.scene.name} has none", file=sys.stderr)
             sys.exit(2)
-    else:
-        crowd = [k.name for k in knobs if k.accuracy in budget.CROWD_METRICS]
-        if a.knobs and crowd:
-            sys.exit(f"tune.py: --knobs: {', '.join(crowd)} trade against arrival_drift, which only a budget "
-                     "that limits it measures (e.g. 'arrival_drift<=0.5')")
-        knobs = [k for k in knobs if k.accuracy not in budget.CROWD_METRICS]
+
+    def unmeasured(k):
+        """Why this budget's runs cannot judge knob k, or None."""
+        if k.accuracy in budget.CROWD_METRICS and not crowd_limits:
+            return "trades against arrival_drift, which only a budget that limits it measures"
+        if k.accuracy in budget.PATH_METRICS and not path_limits:
+            return "trades against path_overhead, which only a budget that limits it measures"
+        if zones_only and k.cost in budget.PLAYER_METRICS:
+            return "needs players, and a crowd or path budget runs the zones alone"
+        return None
+
+    dropped = [(k.name, unmeasured(k)) for k in knobs if unmeasured(k)]
+    if a.knobs and dropped:
+        sys.exit("tune.py: --knobs: " + "; ".join(f"{name} {why}" for name, why in dropped))
+    knobs = [k for k in knobs if not unmeasured(k)]
+    if not knobs:
+        print(f"refused: no knob of {a.scene.name} is judged by this budget (the crowd's level of detail "
+              "needs the scene's lod section)", file=sys.stderr)
+        sys.exit(2)
     physics = [k for k in knobs if k.accuracy == "stack_drift"]
     wants_drift = bool(physics) or any(l.metric in budget.PHYSICS_METRICS for l in a.limits)
     if wants_drift and not knob_defs.scene_uses(scene)["rigid_body"]:
         print(f"refused: {', '.join(budget.PHYSICS_METRICS)} needs rigid bodies, and "
               f"{a.scene.name} has none", file=sys.stderr)
         sys.exit(2)
-    wants_crowd = zones_only
+    wants_crowd = bool(crowd_limits)
     wants_reference = wants_drift or wants_crowd
     a.work.mkdir(parents=True, exist_ok=True)
     runs = 1 + wants_reference + sum(len(k.values) - 1 for k in knobs)
@@ -336,7 +363,7 @@ def main(argv):
           f"{len(knobs)} knobs, {runs} runs of {a.seconds:g} s and "
           f"{1 + (wants_reference and a.confirm_seconds != a.seconds)} of {a.confirm_seconds:g} s, "
           f"{how}, {measure.ranks_of(scene)} zone ranks; runs in {a.work}")
-    t = Tuner(a, scene, zones_only)
+    t = Tuner(a, scene, zones_only, bool(path_limits))
     chosen = {k.name: k.scene_value for k in knobs}
     reference_knobs = knob_defs.physics_knobs(scene) if wants_drift else []
     reference_knobs += knob_defs.crowd_knobs(scene) if wants_crowd else []

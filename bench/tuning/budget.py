@@ -20,6 +20,10 @@ METRICS = {
     "arrival_drift_mean": ("s", "the same, the mean over the NPCs"),
     "ai_ms": ("ms", "mean AI phase time per tick (crowds, their level of detail, agents, planners), "
                     "summed over the zone ranks"),
+    "path_overhead": ("", "the largest length over the A* optimum, minus 1, of any path the agents' planner "
+                          "planned (agents.paths.audit; 0.01: 1 % longer)"),
+    "path_overhead_mean": ("", "the same, the mean over the planned paths"),
+    "planner_ms": ("ms", "mean time in the path planner per tick (the audit left out), summed over the zone ranks"),
 }
 
 # The metrics that only a scene with rigid bodies measures (tuning/measure.py's reference run).
@@ -27,6 +31,9 @@ PHYSICS_METRICS = ("stack_drift",)
 # The metrics of a scene's flow-field crowds, measured on runs of the zones alone (no players:
 # the crowd's level of detail then follows the scene's lod.observers), against a reference run.
 CROWD_METRICS = ("arrival_drift", "arrival_drift_mean")
+# The metrics of the agents' path planner, measured on runs of the zones alone with
+# agents.paths.audit on.
+PATH_METRICS = ("path_overhead", "path_overhead_mean")
 # The metrics that need players (a gateway and a fleet), which zone-only runs do not measure.
 PLAYER_METRICS = ("shown_error_p99", "kbps_per_client")
 
@@ -48,7 +55,8 @@ class Limit:
         return 1.0 - figures[self.metric] / self.most if self.most > 0 else -figures[self.metric]
 
     def describe(self):
-        return f"{self.metric} <= {self.most:g} {METRICS[self.metric][0]}"
+        unit = METRICS[self.metric][0]
+        return f"{self.metric} <= {self.most:g}" + (f" {unit}" if unit else "")
 
 
 def parse(text):

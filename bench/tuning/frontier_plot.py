@@ -8,7 +8,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 AXES = {"shown_error_p99": ("shown error p99, m", 1), "kbps_per_client": ("download per player, kbit/s", 1),
         "stack_drift": ("stack drift, mm", 1000), "physics_ms": ("physics per tick, ms", 1),
-        "arrival_drift": ("arrival drift p99, s", 1), "ai_ms": ("AI per tick, ms", 1)}
+        "arrival_drift": ("arrival drift p99, s", 1), "ai_ms": ("AI per tick, ms", 1),
+        "path_overhead": ("path overhead max, %", 100), "planner_ms": ("planner per tick, ms", 1)}
 
 
 def plot(knobs, chosen, limits, together, title, path):

@@ -70,6 +70,8 @@ def scene_uses(scene):
     return {"npc": "npc" in kinds or bool(get(scene, "agents.populations", None)),
             "rigid_body": "rigid_body" in kinds or bool(get(scene, "physics.bodies", None)),
             "flow": any(isinstance(p, dict) and isinstance(p.get("flow"), dict) for p in populations),
+            "paths": isinstance(scene.get("map"), dict) and bool(get(scene, "agents.populations", None)) and
+            any(isinstance(t, dict) and t.get("navigate") for t in get(scene, "agents.types", []) or []),
             "avatar": True}  # the tuner's runs always have players
 
 
@@ -96,6 +98,8 @@ def knobs_for(scene):
         knobs += physics_knobs(scene)
     if uses["flow"] and isinstance(scene.get("lod"), dict):
         knobs += crowd_knobs(scene)
+    if uses["paths"]:
+        knobs += path_knobs(scene)
     for k in knobs:  # the scene's own value is always a candidate (its run is the baseline)
         if k.scene_value not in k.values:
             k.values.append(k.scene_value)
@@ -169,6 +173,30 @@ def crowd_knobs(scene):
             # planning (each NPC's band, each tick) at all.
             knob("lod on", ("lod.enabled",), [False, True], (bool(get(scene, "lod.enabled", True)),),
                  "the crowd level of detail at all (false: every NPC every tick)")]
+
+
+def path_knobs(scene):
+    """The agents' path planner's knobs (docs/scene-format.md, `map.navigation` and
+    `agents.paths`), judged by the time in the planner against path overhead; values most
+    accurate first. The planner is set with the key the scene names it by (`agents.paths.planner`,
+    the older spelling, takes no navmesh); landmarks with a navmesh are refused by the loader, so
+    such a run fails and is skipped; the HPA* cluster size only where the scene plans with HPA*."""
+    def knob(name, keys, values, own, why):
+        return Knob(name, keys, [(v,) for v in values], (own,), why, cost="planner_ms", accuracy="path_overhead")
+
+    if get(scene, "agents.paths.planner", None) is not None:
+        planner = knob("planner", ("agents.paths.planner",), ["astar", "jps", "hpa"],
+                       get(scene, "agents.paths.planner", "astar"), "the path planner (agents.paths.planner)")
+    else:
+        planner = knob("planner", ("map.navigation",), ["grid", "jps", "hpa", "navmesh"],
+                       get(scene, "map.navigation", "grid"), "the path planner (map.navigation)")
+    knobs = [planner,
+             knob("landmarks", ("agents.paths.landmarks",), [0, 4, 8, 16], int(get(scene, "agents.paths.landmarks", 0)),
+                  "landmark cells that sharpen the grid planners' estimate")]
+    if planner.scene_value[0] == "hpa":
+        knobs.append(knob("hpa cluster size", ("agents.paths.cluster_size",), [8, 16, 32],
+                          int(get(scene, "agents.paths.cluster_size", 16)), "the side of HPA*'s clusters, cells"))
+    return knobs
 
 
 def reference_settings(knobs):

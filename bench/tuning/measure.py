@@ -124,6 +124,17 @@ def zone_ticks(scene, seconds):
     return int(round(seconds / tick_seconds(scene)))
 
 
+def path_figures(zones, ticks):
+    """The path planner's figures from the zone summaries of a run of `ticks` ticks: time in the
+    planner per tick (summed over the ranks) and, with agents.paths.audit, the largest and the
+    mean overhead over the A* optimum of the paths planned (0 when none was)."""
+    audited = sum(z.get("paths_audited", 0) for z in zones)
+    return {"planner_ms": sum(z.get("path_plan_ns", 0) for z in zones) / ticks / 1e6,
+            "paths_audited": audited,
+            "path_overhead": max((z.get("path_overhead_max_ppm", 0) for z in zones), default=0) / 1e6,
+            "path_overhead_mean": sum(z.get("path_overhead_ppm", 0) for z in zones) / audited / 1e6 if audited else 0.0}
+
+
 def run_arrivals(run):
     """id -> arrival tick of a finished zone-only run; RunError when its file is malformed."""
     try:
@@ -162,7 +173,8 @@ def run_zones(overlay, folder, ranks, ticks, dt, bin_dir, reference=None):
     f = {"tick_ms_p99": max(z["tick_ms_p99"] for z in zones),
          "physics_ms": sum(z["physics_ms_mean"] for z in zones),
          "ai_ms": sum(z["ai_ms_mean"] for z in zones),
-         "arrived": len(run_arrivals(run))}
+         "arrived": len(run_arrivals(run)),
+         **path_figures(zones, ticks)}
     reference = reference or {}
     if "arrivals" in reference:
         f.update(arrivals.drift(run_arrivals(run), reference["arrivals"], ticks, dt))

@@ -9,7 +9,10 @@ reference run and one run per substep count that each measured it. The crowd lim
 scenes/courtyard_flow_lod.yaml's 400 flow NPCs with runs of the zones alone: a budget mixing it
 with a player limit, or on a scene without a flow crowd, is refused before any run; a drift no
 far-band steering setting reaches is refused naming the limit and the best measured drift; a
-mean drift the bands can meet gives an overlay with the chosen bands, confirmed."""
+mean drift the bands can meet gives an overlay with the chosen bands, confirmed. The planner
+limit on scenes/agents_navmesh.yaml: landmarks, which the loader refuses with a navmesh, make
+their runs fail, reported and skipped while the tune goes on to refuse an overhead below the
+mesh's; on a scene without planning agents it is refused before any run."""
 import json
 import re
 import subprocess
@@ -132,4 +135,22 @@ with tempfile.TemporaryDirectory(prefix="zs_tune_") as tmp:
     text = out.read_text()
     h.check(f"near_radius: {near}" in text and f"far_radius: {far}" in text and "the zones alone" in text,
             f"the overlay sets the chosen bands: {text}")
+
+    # The planner limit, on scenes/agents_navmesh.yaml's 60 couriers: the landmarks the loader
+    # refuses with a navigation mesh make three runs fail, which are skipped, and an overhead
+    # below the mesh's is refused naming the limit and the mesh's overhead.
+    navmesh = h.SOURCE_DIR / "scenes" / "agents_navmesh.yaml"
+    tight = tune(tmp / "tight", "path_overhead<=0.0001", "--repeat", "1", scene=navmesh, knobs="landmarks",
+                 seconds=10)
+    h.check(tight.returncode == 2, f"an impossible path budget exits 2 ({tight.returncode}): "
+            f"{tight.stdout[-800:]} {tight.stderr[-600:]}")
+    h.check(len(re.findall(r"landmarks = \d+ +failed, skipped: the zone run of", tight.stdout)) == 3 and
+            "serve the grid, hpa and jps planners only" in tight.stdout,
+            f"the three runs the loader refuses are reported and skipped: {tight.stdout[-1500:]}")
+    refusal = re.search(r"refused: no setting meets path_overhead <= 0.0001: the best measured is (\S+)", tight.stderr)
+    h.check(refusal is not None and float(refusal.group(1)) > 0.0001,
+            f"the refusal names the planner limit and the best overhead: {tight.stderr.strip()}")
+    nowhere = tune(tmp / "nowhere", "path_overhead<=0.01", scene=courtyard, knobs="lod on")
+    h.check(nowhere.returncode == 2 and "path_overhead needs agents that plan paths on a map" in nowhere.stderr,
+            f"a planner limit on a scene without planning agents is refused: {nowhere.stderr.strip()[-300:]}")
 print("tune passed")

@@ -29,7 +29,8 @@ for text, words in (("stack_drift<=-1", "finite number >= 0"), ("stack_drift<=x"
                     ("stack_drift<=1,stack_drift<=2", "stack_drift is limited twice"),
                     ("stack_wobble<=1", "unknown limit 'stack_wobble' (known: shown_error_p99, kbps_per_client, "
                                         "tick_ms_p99, stack_drift, physics_ms, arrival_drift, "
-                                        "arrival_drift_mean, ai_ms)")):
+                                        "arrival_drift_mean, ai_ms, path_overhead, path_overhead_mean, "
+                                        "planner_ms)")):
     try:
         budget.parse(text)
         h.check(False, f"'{text}' is refused")
@@ -126,6 +127,32 @@ h.check(knobs.reference_settings(knobs.crowd_knobs(courtyard)) == knobs.CROWD_FU
 plain = knobs.merged_scene(h.SOURCE_DIR / "scenes" / "courtyard_flow.yaml")
 h.check(not any(k.accuracy == "arrival_drift" for k in knobs.knobs_for(plain)),
         "without a lod section the crowd's level of detail is not turned")
+
+# The planner's limit.
+paths = budget.parse("path_overhead<=0.01,planner_ms<=0.5")
+h.check([l.describe() for l in paths] == ["path_overhead <= 0.01", "planner_ms <= 0.5 ms"],
+        f"the planner's limits parse (the overhead a fraction, no unit): {[l.describe() for l in paths]}")
+zones = [{"paths_audited": 30, "path_overhead_ppm": 12000, "path_overhead_max_ppm": 4000, "path_plan_ns": 600000},
+         {"paths_audited": 10, "path_overhead_ppm": 8000, "path_overhead_max_ppm": 2500, "path_plan_ns": 200000}]
+f = measure.path_figures(zones, 100)
+h.check(f == {"planner_ms": 0.008, "paths_audited": 40, "path_overhead": 0.004, "path_overhead_mean": 0.0005},
+        f"path figures from the zone summaries: the largest overhead of any rank, the mean over every path, "
+        f"the planner's time per tick summed over the ranks: {f}")
+h.check(measure.path_figures([{"paths_audited": 0}], 10)["path_overhead_mean"] == 0.0,
+        "no path planned: no overhead")
+for name, keys, values in (("agents_paths", ("agents.paths.planner",), ["astar", "jps", "hpa"]),
+                           ("agents_navmesh", ("map.navigation",), ["grid", "jps", "hpa", "navmesh"])):
+    planner_knobs = [k for k in knobs.knobs_for(knobs.merged_scene(h.SOURCE_DIR / "scenes" / f"{name}.yaml"))
+                     if k.accuracy == "path_overhead"]
+    h.check([k.name for k in planner_knobs] == ["planner", "landmarks"] and planner_knobs[0].keys == keys and
+            [v for (v,) in planner_knobs[0].values] == values and all(k.cost == "planner_ms" for k in planner_knobs),
+            f"{name}: the planner, by the key the scene names it with, and landmarks: "
+            f"{[(k.name, k.keys, k.values) for k in planner_knobs]}")
+hpa = [k.name for k in knobs.knobs_for(knobs.merged_scene(h.SOURCE_DIR / "scenes" / "agents_hpa.yaml"))
+       if k.accuracy == "path_overhead"]
+h.check(hpa == ["planner", "landmarks", "hpa cluster size"], f"HPA* scenes also turn the cluster size: {hpa}")
+h.check(not any(k.accuracy == "path_overhead" for k in knobs.knobs_for(courtyard)),
+        "a scene without planning agents gets no planner knob")
 
 # A run that fails or stops short is reported and skipped; the sweep goes on.
 
