@@ -92,8 +92,11 @@ bool PathService::solveBetween(Vec2 from, Vec2 to, GridPath& out, int& expanded)
 }
 
 void PathService::audit(Cell start, Cell goal, double length, double straight) {
+  const std::int64_t started = nowNs();
   if (!audit_search_) audit_search_ = std::make_unique<GridSearch>(map_);
-  if (!audit_search_->findPath(start, goal, audit_path_)) return;
+  const bool found = audit_search_->findPath(start, goal, audit_path_);
+  stats_.audit_ns += nowNs() - started;
+  if (!found) return;
   const double optimum = std::max(audit_path_.length, straight);
   if (!(optimum > 0)) return;
   const double overhead = std::max(0.0, length / optimum - 1.0);

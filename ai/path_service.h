@@ -75,6 +75,7 @@ struct PathServiceStats {
   std::uint64_t audited = 0;
   double overhead_sum = 0.0;
   double overhead_max = 0.0;
+  std::int64_t audit_ns = 0;  ///< wall time in those A* searches (what the audit adds to a tick)
 };
 
 /// Budgeted, cached path finding over one map that the service owns changes to.

@@ -26,7 +26,8 @@ periods, steering, crowding and bands, and last whether it is on at all, judged 
 tick. A budget that limits path_overhead is measured the same way, with agents.paths.audit on:
 every plan of the scene's agents is also planned by A*, and the largest excess over that
 optimum is the figure; its knobs are the planner (map.navigation), landmarks and the HPA*
-cluster size, judged by the time in the planner per tick.
+cluster size, judged by AI time per tick (planning and following paths; the audit's own
+searches left out).
 
 A sweep run that fails or stops short of its end tick is reported and its value skipped; the
 sweep goes on. A budget no measured setting meets is refused (exit 2), naming the limit and
@@ -238,7 +239,7 @@ def print_frontier(knobs, chosen, reasons, limits):
             print(f"  {k.name:<22} {k.label(v):<16} " + " ".join(f"{f[m]:>15.4g}" for m in shown) +
                   f"  {mark}{'  breaks ' + bad if bad else ''}")
         for v, why in k.failed:
-            print(f"  {k.name:<22} {k.label(v):<16} failed, skipped: {why.splitlines()[0]}")
+            print(f"  {k.name:<22} {k.label(v):<16} failed, skipped: {why.splitlines()[-1].strip()}")
         print(f"  {'':<22} -> {k.label(chosen[k.name])}: {reasons[k.name]}")
 
 

@@ -122,6 +122,7 @@ struct TickCounters {
   std::uint64_t paths_audited = 0;
   std::uint64_t path_overhead_ppm = 0;
   std::uint64_t path_overhead_max_ppm = 0;
+  std::uint64_t path_audit_ns = 0;      ///< time in the audit's A* searches (inside the ai phase)
   std::uint64_t quarantined = 0;        ///< entities frozen for a non-finite state (quarantine.h)
   // Messages between entities (cluster/entity_mail.h) and what the interactions made of them.
   std::uint64_t mail_posted = 0;      ///< messages and replies posted on this rank
@@ -195,6 +196,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"paths_audited", &TickCounters::paths_audited, false},
     {"path_overhead_ppm", &TickCounters::path_overhead_ppm, false},
     {"path_overhead_max_ppm", &TickCounters::path_overhead_max_ppm, true},
+    {"path_audit_ns", &TickCounters::path_audit_ns, false},
     {"quarantined", &TickCounters::quarantined, false},
     {"mail_posted", &TickCounters::mail_posted, false},
     {"mail_applied", &TickCounters::mail_applied, false},

@@ -177,12 +177,13 @@ def crowd_knobs(scene):
 
 def path_knobs(scene):
     """The agents' path planner's knobs (docs/scene-format.md, `map.navigation` and
-    `agents.paths`), judged by the time in the planner against path overhead; values most
-    accurate first. The planner is set with the key the scene names it by (`agents.paths.planner`,
+    `agents.paths`), judged by AI time (planning and following the paths: a grid path is
+    followed along a spline, a navmesh path along its segments, and the planner's own time is
+    the smaller part) against path overhead; values most accurate first. The planner is set with the key the scene names it by (`agents.paths.planner`,
     the older spelling, takes no navmesh); landmarks with a navmesh are refused by the loader, so
     such a run fails and is skipped; the HPA* cluster size only where the scene plans with HPA*."""
     def knob(name, keys, values, own, why):
-        return Knob(name, keys, [(v,) for v in values], (own,), why, cost="planner_ms", accuracy="path_overhead")
+        return Knob(name, keys, [(v,) for v in values], (own,), why, cost="ai_ms", accuracy="path_overhead")
 
     if get(scene, "agents.paths.planner", None) is not None:
         planner = knob("planner", ("agents.paths.planner",), ["astar", "jps", "hpa"],

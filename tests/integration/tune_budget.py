@@ -145,7 +145,7 @@ for name, keys, values in (("agents_paths", ("agents.paths.planner",), ["astar",
     planner_knobs = [k for k in knobs.knobs_for(knobs.merged_scene(h.SOURCE_DIR / "scenes" / f"{name}.yaml"))
                      if k.accuracy == "path_overhead"]
     h.check([k.name for k in planner_knobs] == ["planner", "landmarks"] and planner_knobs[0].keys == keys and
-            [v for (v,) in planner_knobs[0].values] == values and all(k.cost == "planner_ms" for k in planner_knobs),
+            [v for (v,) in planner_knobs[0].values] == values and all(k.cost == "ai_ms" for k in planner_knobs),
             f"{name}: the planner, by the key the scene names it with, and landmarks: "
             f"{[(k.name, k.keys, k.values) for k in planner_knobs]}")
 hpa = [k.name for k in knobs.knobs_for(knobs.merged_scene(h.SOURCE_DIR / "scenes" / "agents_hpa.yaml"))

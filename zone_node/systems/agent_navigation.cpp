@@ -357,6 +357,7 @@ AgentPathStats AgentNavigation::takeStats() {
     s.overhead_ppm = std::uint64_t(std::llround((now.overhead_sum - seen_.overhead_sum) * 1e6));
     s.overhead_max_ppm = std::uint64_t(std::llround(now.overhead_max * 1e6));
     s.plan_ns = std::uint64_t(now.plan_ns - seen_.plan_ns);
+    s.audit_ns = std::uint64_t(now.audit_ns - seen_.audit_ns);
     seen_ = now;
   }
   return s;

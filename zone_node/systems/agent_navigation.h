@@ -51,6 +51,7 @@ struct AgentPathStats {
   std::uint64_t audited = 0;
   std::uint64_t overhead_ppm = 0;
   std::uint64_t overhead_max_ppm = 0;
+  std::uint64_t audit_ns = 0;  ///< time the audit's A* searches took this tick
 };
 
 /// Paths, doors and path following for a zone's agents.

@@ -105,6 +105,7 @@ void AgentSystem::step(StepContext& ctx) {
   ctx.counters.paths_audited = stats.paths.audited;
   ctx.counters.path_overhead_ppm = stats.paths.overhead_ppm;
   ctx.counters.path_overhead_max_ppm = stats.paths.overhead_max_ppm;
+  ctx.counters.path_audit_ns = stats.paths.audit_ns;
   last_ = stats;
 }
 
