@@ -131,8 +131,11 @@ TEST(ShippedOverlays, TheTunedScenesLoadAsTheScenesTheyChange) {
   for (const std::string& stem : tuned) {
     Scene s = loadScene(sourcePath("scenes/tuned/" + stem + ".yaml"));
     EXPECT_EQ(s.name + ".tuned", stem);
-    // Something to simulate: NPCs, or bodies (the stacks the physics limit is tuned on).
-    EXPECT_TRUE(!s.npcs.empty() || !s.rigid_bodies.empty() || !s.physics.bodies.empty()) << stem;
+    // Something to simulate: NPCs, bodies (the stacks the physics limit is tuned on), or
+    // agents (the couriers the path limit is tuned on).
+    EXPECT_TRUE(!s.npcs.empty() || !s.rigid_bodies.empty() || !s.physics.bodies.empty() ||
+                !s.agents.populations.empty())
+        << stem;
   }
 }
 
