@@ -216,7 +216,8 @@ def figures_of(run, rest=None):
 def run_once(overlay, folder, ranks, seconds, players, truth_every, bin_dir, tick, rest=None):
     """Runs the overlay's scene, its bodies written at `tick` (end_tick()); returns its figures
     (stack_drift against `rest`, the bodies resting at that tick of a reference run of the same
-    length, when given). Raises RunError with the cluster's words."""
+    length, when given). Raises RunError with the cluster's words, or when a zone stopped before
+    `tick` (the tuner then skips the setting)."""
     folder.mkdir(parents=True, exist_ok=True)
     cluster = folder / "tune.cluster"
     run = folder / "run"
@@ -231,4 +232,8 @@ def run_once(overlay, folder, ranks, seconds, players, truth_every, bin_dir, tic
         tail = (folder / "cluster.log").read_text(errors="replace").strip().splitlines()[-6:]
         raise RunError(f"the run of {overlay} failed (exit {p.returncode}; {folder / 'cluster.log'}):\n    "
                        + "\n    ".join(tail))
+    reached = [json.loads(z.read_text())["ticks"] for z in run.glob("zone_*_summary.json")]
+    if not reached or min(reached) < tick:
+        raise RunError(f"{run}: the zones stopped at tick {min(reached, default=0)}, before the end tick {tick} "
+                       "(did they fall behind real time?)")
     return figures_of(run, rest)
