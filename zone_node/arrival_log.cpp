@@ -6,10 +6,9 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace zonesim::zone {
+#include "zone_node/cluster/value_gather.h"
 
-static_assert(sizeof(FlowArrival) == 2 * sizeof(std::uint64_t),
-              "gathered as pairs of MPI_UINT64_T: no padding");
+namespace zonesim::zone {
 
 void ArrivalLog::record(std::uint64_t tick, std::span<const std::uint64_t> ids) {
   if (!enabled_) return;
@@ -17,24 +16,15 @@ void ArrivalLog::record(std::uint64_t tick, std::span<const std::uint64_t> ids) 
 }
 
 void ArrivalLog::write(MPI_Comm comm, const std::string& path) const {
-  int rank = 0, size = 1;
+  std::vector<std::uint64_t> mine;  // sent as a flat list of id, tick pairs
+  mine.reserve(arrivals_.size() * 2);
+  for (const FlowArrival& a : arrivals_) mine.insert(mine.end(), {a.id, a.tick});
+  const std::vector<std::uint64_t> flat = gatherValuesToRoot(comm, mine);
+  int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  int n = int(arrivals_.size() * 2);
-  std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
-  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  std::vector<FlowArrival> all;
-  if (rank == 0) {
-    int total = 0;
-    for (int r = 0; r < size; ++r) {
-      displs[std::size_t(r)] = total;
-      total += counts[std::size_t(r)];
-    }
-    all.resize(std::size_t(total) / 2);
-  }
-  MPI_Gatherv(arrivals_.data(), n, MPI_UINT64_T, all.data(), counts.data(), displs.data(),
-              MPI_UINT64_T, 0, comm);
   if (rank != 0) return;
+  std::vector<FlowArrival> all(flat.size() / 2);
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = {flat[2 * i], flat[2 * i + 1]};
   std::sort(all.begin(), all.end(), [](const FlowArrival& a, const FlowArrival& b) {
     return a.id != b.id ? a.id < b.id : a.tick < b.tick;
   });

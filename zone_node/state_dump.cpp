@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "zone_node/cluster/entity_codec.h"
+#include "zone_node/cluster/value_gather.h"
 
 namespace zonesim::zone {
 
@@ -109,21 +110,12 @@ void dumpState(MPI_Comm comm, const EntityStore& store,
   }
   MPI_Gatherv(bytes.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0,
               comm);
-  // Particles: six doubles each, gathered the same way.
-  int np = int(particles.size() * 6);
-  std::vector<int> pcounts(static_cast<std::size_t>(size)), pdispls(static_cast<std::size_t>(size));
-  MPI_Gather(&np, 1, MPI_INT, pcounts.data(), 1, MPI_INT, 0, comm);
-  std::vector<std::array<double, 6>> all_particles;
-  if (rank == 0) {
-    int total = 0;
-    for (int r = 0; r < size; ++r) {
-      pdispls[std::size_t(r)] = total;
-      total += pcounts[std::size_t(r)];
-    }
-    all_particles.resize(std::size_t(total) / 6);
-  }
-  MPI_Gatherv(particles.data(), np, MPI_DOUBLE, all_particles.data(), pcounts.data(),
-              pdispls.data(), MPI_DOUBLE, 0, comm);
+  // Particles: six doubles each, sent as one flat list.
+  const std::vector<double> flat_particles = gatherValuesToRoot(
+      comm, {particles.empty() ? nullptr : particles.front().data(), particles.size() * 6});
+  std::vector<std::array<double, 6>> all_particles(flat_particles.size() / 6);
+  for (std::size_t i = 0; i < all_particles.size(); ++i)
+    std::copy_n(flat_particles.begin() + std::ptrdiff_t(6 * i), 6, all_particles[i].begin());
   if (rank != 0) return;
 
   std::vector<EntityRecordData> entities;
