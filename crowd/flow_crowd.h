@@ -86,6 +86,8 @@ class FlowCrowd {
   // self: the agent's index in grid_.entries(); `gaps` (if any) gathers the neighbours whose
   // gaps may bind it.
   Vec2 separation(std::int32_t self, KeepApart* gaps) const;
+  // desiredVelocity, defined inline for the step; `cell` is set to the cell of `pos`.
+  Vec2 desiredVelocityAt(Vec2 pos, int d, ai::Cell& cell) const;
   bool leaveClosedCell(const FlowField& f, ai::Cell c, ai::Cell& next) const;
   // Where an agent at `from` ends when it keeps the gaps gathered in keep_apart_, given where
   // its steering took it (`to`, velocity `vel`, updated to the move it makes).
