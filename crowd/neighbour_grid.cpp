@@ -65,7 +65,13 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   order_.resize(n);
   sort_ids_.resize(n);
   // Scatter with a moving cursor per cell; starts_ is restored afterwards by shifting.
+  constexpr std::size_t kScatterAhead = 16;  // the agents' cells are in storage order: prefetch
   for (std::size_t i = 0; i < total; ++i) {
+    if (i + kScatterAhead < total && cell_of_[i + kScatterAhead] >= 0) {
+      const std::int32_t ahead = starts_[cell_of_[i + kScatterAhead]];
+      __builtin_prefetch(&order_[ahead], 1);
+      __builtin_prefetch(&sort_ids_[ahead], 1);
+    }
     if (cell_of_[i] < 0) continue;
     std::int32_t k = starts_[cell_of_[i]]++;
     order_[k] = static_cast<std::int32_t>(i);
@@ -98,7 +104,11 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   vxs_.resize(n);
   vys_.resize(n);
   constexpr std::size_t kAhead = 16;  // gathers from storage order miss the cache: prefetch
+  // The cell of entry k is the one whose range holds k: a cursor over starts_ finds it
+  // without reading cell_of_ in storage order (a cache miss per entry).
+  std::int32_t cell = 0;
   for (std::size_t k = 0; k < n; ++k) {
+    while (static_cast<std::size_t>(starts_[cell + 1]) <= k) ++cell;
     if (k + kAhead < n) {
       const std::size_t a = static_cast<std::size_t>(order_[k + kAhead]);
       __builtin_prefetch(a < owned ? &pos[a] : &ghosts.pos[a - owned]);
@@ -110,7 +120,7 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     const Vec2 v = own ? vel[i] : ghosts.vel[i - owned];
     const std::int32_t src =
         own ? static_cast<std::int32_t>(i) : -1 - static_cast<std::int32_t>(i - owned);
-    entries_[k] = GridEntry{p, v, sort_ids_[k], src, cell_of_[i]};
+    entries_[k] = GridEntry{p, v, sort_ids_[k], src, cell};
     xs_[k] = p.x;
     ys_[k] = p.y;
     vxs_[k] = v.x;
