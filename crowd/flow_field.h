@@ -41,6 +41,12 @@ class FlowField {
     out = gridStep(c, k);
     return true;
   }
+  /// Starts loading the whole direction field into the cache (a prefetch per line).
+  void prefetchDirections() const {
+    for (std::size_t i = 0; i < dir_.size(); i += kCacheLine) __builtin_prefetch(dir_.data() + i);
+  }
+  /// Cache lines that prefetchDirections() loads.
+  std::size_t directionLines() const { return (dir_.size() + kCacheLine - 1) / kCacheLine; }
   /// For a cell with a next cell: a lower bound on distance(c) that reads no field memory,
   /// the Chebyshev distance to the goal (no 8-connected path is shorter); 0 for a loaded field
   /// that breaks it. A crowd asks it first and reads the distance only near the goal.
@@ -58,6 +64,7 @@ class FlowField {
   const std::vector<std::int8_t>& directions() const { return dir_; }
 
  private:
+  static constexpr std::size_t kCacheLine = 64;
   int width_ = 0, height_ = 0;
   ai::Cell goal_;
   std::uint64_t map_version_ = 0;
