@@ -150,7 +150,8 @@ void FlowCrowd::step(const AgentSpan& agents, std::span<const std::uint16_t> des
     if (d >= fields_.size()) throw std::out_of_range("FlowCrowd::step: unknown destination");
   // Arrived agents have left the crowd: they are neither moved nor seen.
   grid_.build(agents.ids, agents.pos, agents.vel, ghosts,
-              std::max(settings_.grid_cell, settings_.separation_radius), arrived);
+              std::max(settings_.grid_cell, settings_.separation_radius), arrived,
+              NeighbourGrid::Columns::kPositions);
   const std::span<const GridEntry> entries = grid_.entries();
   // Each agent reads its field's direction at its cell, a cache miss per line: the step
   // evicts the fields between one step and the next (about 17 MB touched at 100k agents), and

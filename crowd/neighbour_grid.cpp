@@ -13,7 +13,7 @@ constexpr long long kMaxCells = 1LL << 24;
 
 void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Vec2> pos,
                           std::span<const Vec2> vel, const GhostSpan& ghosts, double cell_size,
-                          std::span<const std::uint8_t> skip) {
+                          std::span<const std::uint8_t> skip, Columns columns) {
   if (!(cell_size > 0.0)) throw std::invalid_argument("NeighbourGrid: cell size must be > 0");
   cell_size_ = cell_size;
   inv_cell_ = 1.0 / cell_size;
@@ -101,8 +101,9 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   entries_.resize(n);
   xs_.resize(n);
   ys_.resize(n);
-  vxs_.resize(n);
-  vys_.resize(n);
+  const bool velocities = columns == Columns::kPositionsAndVelocities;
+  vxs_.resize(velocities ? n : 0);
+  vys_.resize(velocities ? n : 0);
   constexpr std::size_t kAhead = 16;  // gathers from storage order miss the cache: prefetch
   // The cell of entry k is the one whose range holds k: a cursor over starts_ finds it
   // without reading cell_of_ in storage order (a cache miss per entry).
@@ -123,8 +124,10 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     entries_[k] = GridEntry{p, v, sort_ids_[k], src, cell};
     xs_[k] = p.x;
     ys_[k] = p.y;
-    vxs_[k] = v.x;
-    vys_[k] = v.y;
+    if (velocities) {
+      vxs_[k] = v.x;
+      vys_[k] = v.y;
+    }
   }
 }
 
