@@ -49,6 +49,27 @@ TEST(KeepApart, AMoveTowardANeighbourStopsHalfTheGapShortAndSlidesAlongIt) {
   EXPECT_FALSE(k.keeps({0.25, 0.0}));
 }
 
+TEST(KeepApart, AHeldBackMoveStepsAsideThoughThePlainMoveIsNearerTheWish) {
+  // Head-on: the plain solution stops half the gap short on the line between the two, and is
+  // by construction the nearest move to the wish that keeps the gap. The sidestep ends
+  // farther from the wish on purpose: it is what lets two agents pass instead of pressing on
+  // that line for ever. Keeping the nearer of the two would never sidestep (measured, 5
+  // December: 242 instead of 357 of the courtyard's 400 NPCs arrive in 130 s).
+  KeepApart k;
+  k.begin(0.25, 0.25);
+  k.neighbour({0.75, 0.0}, true);  // gap 0.25: this agent may take 0.125 of it
+  const Vec2 wish{0.25, 0.0};
+  const Vec2 plain = k.solve(wish);
+  EXPECT_DOUBLE_EQ(plain.x, 0.125);  // the whole half gap, and nothing sideways
+  EXPECT_EQ(plain.y, 0.0);
+  const Vec2 x = k.move(wish);
+  EXPECT_EQ(x, k.solve(wish + Vec2{wish.y, -wish.x} * 3.0));
+  EXPECT_LT(x.y, 0.0);  // to its right
+  EXPECT_GT(x.x, 0.0);  // still forward
+  EXPECT_TRUE(k.keeps(x));
+  EXPECT_GT(lengthSq(x - wish), lengthSq(plain - wish));
+}
+
 TEST(KeepApart, AnOverlapIsBackedOffByHalfItsDepth) {
   KeepApart k;
   k.begin(0.25, 0.5);
