@@ -16,6 +16,8 @@
 //   sleeping on and off (the cost of a scene at rest against awake).
 //   physics_vs_bullet creep [steps] [base]: zonesim only, how a large_pyramid of that base
 //     (default 10) drifts as it stands, at every tenth of the run, per axis.
+//   Each of our runs ends with a digest of every body's final state, so that two builds can be
+//   shown to step a scene bitwise alike.
 //   --recycle D (anywhere, pyramid and the Box3D scenes): also runs each of our solvers with
 //     contact recycling at distance D m (WorldSettings::contact_recycle_distance), labelled -rc,
 //     and prints how many contacts a step recycled and computed.
@@ -25,6 +27,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -79,6 +82,23 @@ struct OurSettings {
   int settle = 0;        ///< Untimed steps before the timed ones.
   double recycle = 0.0;  ///< Contact recycling distance (m); 0: off.
 };
+
+// FNV-1a over the bytes of every body's position, orientation and velocities, in body order:
+// equal digests mean bitwise equal states (up to hash collisions).
+std::uint64_t stateDigest(const zp::BodyStorage& bodies) {
+  std::uint64_t h = 1469598103934665603ULL;
+  const auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+  };
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    mix(bodies.position[i].data(), 3 * sizeof(double));
+    mix(bodies.orientation[i].coeffs().data(), 4 * sizeof(double));
+    mix(bodies.linear_velocity[i].data(), 3 * sizeof(double));
+    mix(bodies.angular_velocity[i].data(), 3 * sizeof(double));
+  }
+  return h;
+}
 
 /// Where our steps went, summed over the timed steps (ms).
 struct Stages {
@@ -142,6 +162,8 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
     std::printf("contacts per step: %.0f recycled, %.0f computed (recycling at %g m)\n",
                 double(recycled) / steps, double(computed) / steps, ours.recycle);
   }
+  std::printf("state digest %016llx\n",
+              static_cast<unsigned long long>(stateDigest(world.bodies())));
   timing = summarise(ms);
   if (asleep) *asleep = world.sleepingCount();
   return world.bodies().position;
