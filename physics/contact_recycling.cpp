@@ -75,7 +75,6 @@ ManifoldOrigin originOf(const Manifold& m, const Pose& a, const Pose& b) {
     o.point[i] = m.points[i].position;
     o.depth[i] = m.points[i].depth;
   }
-  o.valid = true;
   return o;
 }
 

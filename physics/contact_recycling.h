@@ -9,6 +9,7 @@
 // set of touching pairs, and so every contact's begin and end, is what the narrowphase finds.
 
 #include <array>
+#include <cstdint>
 
 #include "common/math.h"
 #include "physics/contact.h"
@@ -17,13 +18,15 @@
 namespace zonesim::physics {
 
 /// Where a manifold came from: both bodies' poses when the narrowphase ran, and each point's
-/// position and depth then. Kept with the contact, so later steps can carry the points along.
+/// position and depth then. Kept for the contact, so later steps can carry the points along.
 struct ManifoldOrigin {
   Pose a, b;
   std::array<Vec3, 4> point{};
   std::array<double, 4> depth{};
-  bool valid = false;
 };
+
+/// BodyContact::origin of a contact without one (recycling off, or not a recycled shape).
+constexpr std::uint32_t kNoOrigin = 0xffffffffu;
 
 /// The farthest any point of the shape lies from its body's origin (m); infinite for a plane.
 double boundingRadius(const Shape& shape);

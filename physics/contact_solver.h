@@ -106,8 +106,11 @@ struct BodyContact {
   double rolling = 0.0;
   /// Angular impulses against rolling about the contact's two tangents, from the last solve.
   std::array<double, 2> rolling_impulse{};
-  /// Where the manifold was computed (kept only while the world recycles contacts).
-  ManifoldOrigin origin;
+  /// Where the manifold was computed: an index into the origins kept with the contact list
+  /// (World's, or WarmStarts::origins), or kNoOrigin. Out of line because an origin is 256
+  /// bytes, which every copy, sort and merge of the contacts and prepare's scattered reads
+  /// would carry even with recycling off (the contact is 352 bytes without it, 640 with).
+  std::uint32_t origin = kNoOrigin;
   /// True when this step carried the manifold along instead of computing it (its impulses are
   /// then already last step's).
   bool recycled = false;

@@ -173,6 +173,7 @@ void World::releaseHeld() {
              std::back_inserter(merged_contacts_),
              [](const BodyContact& x, const BodyContact& y) { return x < y; });
   contacts_.swap(merged_contacts_);
+  held_contacts_.clear();  // their origins are no longer kept apart
 }
 
 void World::stepAll(double dt) {
@@ -389,6 +390,8 @@ void World::contactsOfPairs(double dt) {
   // Last step's contacts become the warm-start source; both buffers keep their capacity.
   previous_.swap(contacts_);
   contacts_.clear();
+  previous_origins_.swap(origins_);
+  origins_.clear();
   recycle_cursor_ = 0;
   carrySleepingContacts();
   for (const ProxyPair& pair : pairs_) {
@@ -409,10 +412,21 @@ void World::contactsOfPairs(double dt) {
   }
   // Pair order decides the Gauss-Seidel order: sort for determinism and warm-start lookup.
   // The broadphase's pairs come sorted (and proxies are in body order), so without planes the
-  // list is already in order; checking is linear, moving ~250-byte contacts is not.
+  // list is already in order; checking is linear, moving ~350-byte contacts is not.
   const auto byPair = [](const BodyContact& x, const BodyContact& y) { return x < y; };
   if (!std::is_sorted(contacts_.begin(), contacts_.end(), byPair)) {
     std::sort(contacts_.begin(), contacts_.end(), byPair);
+  }
+  keepOrigins(sleeping_contacts_);
+  keepOrigins(held_contacts_);
+}
+
+void World::keepOrigins(std::vector<BodyContact>& kept) {
+  for (BodyContact& c : kept) {
+    if (c.origin == kNoOrigin) continue;
+    const ManifoldOrigin& origin = previous_origins_[c.origin];
+    c.origin = static_cast<std::uint32_t>(origins_.size());
+    origins_.push_back(origin);
   }
 }
 
@@ -452,7 +466,10 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
       contact.friction = friction;
       contact.restitution = restitution;
       contact.rolling = rolling * std::max(rollingRadius(sa), rollingRadius(sb));
-      if (recycling) contact.origin = originOf(contact.manifold, pa, pb);
+      if (recycling) {
+        contact.origin = static_cast<std::uint32_t>(origins_.size());
+        origins_.push_back(originOf(contact.manifold, pa, pb));
+      }
       ++computed_;
       contacts_.push_back(contact);
     });
@@ -473,8 +490,9 @@ bool World::recycleContact(BodyIndex a, BodyIndex b, const Pose& pa, const Pose&
   if (!in_place) old = std::lower_bound(previous_.begin(), previous_.end(), key, before);
   recycle_cursor_ = static_cast<std::size_t>(old - previous_.begin());
   if (old != previous_.end() && old->a == a && old->b == b) ++recycle_cursor_;
-  if (old == previous_.end() || old->a != a || old->b != b || !old->origin.valid) return false;
-  const ManifoldOrigin& origin = old->origin;
+  if (old == previous_.end() || old->a != a || old->b != b || old->origin == kNoOrigin)
+    return false;
+  const ManifoldOrigin& origin = previous_origins_[old->origin];
   if (!turnedLittle(origin, pa, pb, kRecycleTurnCos)) return false;
   const double moved = relativeMotionBound(origin, pa, pb, bounding_radius_[a], bounding_radius_[b],
                                            settings_.contact_recycle_distance);
@@ -488,6 +506,8 @@ bool World::recycleContact(BodyIndex a, BodyIndex b, const Pose& pa, const Pose&
   contacts_.push_back(*old);
   BodyContact& c = contacts_.back();
   carryManifold(origin, c.manifold.normal, c.manifold.count, pa, pb, c.manifold);
+  c.origin = static_cast<std::uint32_t>(origins_.size());
+  origins_.push_back(origin);
   c.recycled = true;
   ++recycled_;
   return true;
@@ -522,15 +542,20 @@ void World::carrySleepingContacts() {
     if (resting(c.a) && resting(c.b)) sleeping_contacts_.push_back(c);
 }
 
-void World::warmStarts(std::vector<BodyContact>& out) const {
-  out.clear();
+void World::warmStarts(WarmStarts& out) const {
+  out.contacts.clear();
   std::merge(contacts_.begin(), contacts_.end(), sleeping_contacts_.begin(),
-             sleeping_contacts_.end(), std::back_inserter(out),
+             sleeping_contacts_.end(), std::back_inserter(out.contacts),
              [](const BodyContact& x, const BodyContact& y) { return x < y; });
+  // Both lists index origins_ (held contacts exist only inside a step).
+  out.origins = origins_;
 }
 
-void World::setWarmStarts(std::span<const BodyContact> contacts) {
-  contacts_.assign(contacts.begin(), contacts.end());
+void World::setWarmStarts(const WarmStarts& warm) {
+  contacts_.assign(warm.contacts.begin(), warm.contacts.end());
+  origins_ = warm.origins;
+  for (BodyContact& c : contacts_)
+    if (c.origin >= origins_.size()) c.origin = kNoOrigin;
   sleeping_contacts_.clear();
 }
 

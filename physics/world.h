@@ -59,6 +59,12 @@ struct WorldSettings {
   bool contact_events = false;
 };
 
+/// A world's contacts as warm starts, to carry into another world (World::warmStarts).
+struct WarmStarts {
+  std::vector<BodyContact> contacts;    ///< Sorted by body pair.
+  std::vector<ManifoldOrigin> origins;  ///< What the contacts' origin fields index.
+};
+
 /// A set of bodies stepped together.
 class World {
  public:
@@ -140,11 +146,12 @@ class World {
 
   /// What the next step warm-starts from, sorted by body pair: the last substep's contacts and
   /// those of sleeping islands (kept while they sleep, so that an island wakes warm).
-  void warmStarts(std::vector<BodyContact>& out) const;
-  /// Makes `contacts` (sorted by body pair, indices of this world) what the next step
+  void warmStarts(WarmStarts& out) const;
+  /// Makes `warm` (contacts sorted by body pair, indices of this world) what the next step
   /// warm-starts from, as if a step had found them: a world rebuilt with the same bodies in the
   /// same order then steps as the old one would have. contacts() returns them until that step.
-  void setWarmStarts(std::span<const BodyContact> contacts);
+  /// A contact whose origin is not an index of warm.origins is kept without one.
+  void setWarmStarts(const WarmStarts& warm);
 
   /// Body state (read and write between steps).
   BodyStorage& bodies() { return bodies_; }
@@ -158,6 +165,8 @@ class World {
   const WorldSettings& settings() const { return settings_; }
   /// The contacts found and solved in the last substep, sorted by body pair.
   std::span<const BodyContact> contacts() const { return contacts_; }
+  /// The manifold origins that contacts()' origin fields index (contact recycling).
+  std::span<const ManifoldOrigin> contactOrigins() const { return origins_; }
   /// Bodies frozen because their state became non-finite, in the order found.
   std::span<const BodyIndex> quarantined() const { return quarantined_; }
   /// Time of each stage of the last step().
@@ -197,6 +206,9 @@ class World {
   void wakeTouched();
   /// previous_ += the sleeping islands' contacts; keeps those whose bodies still rest.
   void carrySleepingContacts();
+  /// Moves the origins of the contacts kept aside (asleep, held) from previous_origins_ to
+  /// origins_, where the new contacts' are.
+  void keepOrigins(std::vector<BodyContact>& kept);
   void warmStartFromPrevious();
   void integratePositions(double dt);
   /// The soft step's springs and sub-steps for a step of dt (SoftStep and SoftStepWide).
@@ -244,6 +256,9 @@ class World {
   std::vector<ProxyPair> pairs_;
   std::vector<std::uint64_t> ignored_pairs_;  // sorted keys (lower index << 32 | higher index)
   std::vector<BodyContact> contacts_, previous_;
+  // The origins of contacts_, sleeping_contacts_ and held_contacts_ (their origin fields index
+  // origins_), and of previous_ while contactsOfPairs builds the next ones.
+  std::vector<ManifoldOrigin> origins_, previous_origins_;
   // Contacts of sleeping islands (not found while they sleep), kept for their warm start.
   std::vector<BodyContact> sleeping_contacts_, warm_source_;
   std::vector<BodyIndex> quarantined_;

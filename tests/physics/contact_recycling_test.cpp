@@ -123,7 +123,7 @@ void expectExactPairs(WorldSettings settings) {
   std::size_t recycled = 0, computed = 0, begun = 0, ended = 0;
   double worst_depth_gap = 0.0;
   std::set<std::pair<BodyIndex, BodyIndex>> before;
-  std::vector<BodyContact> warm;
+  WarmStarts warm;
   for (int step = 0; step < 600; ++step) {
     // The same state stepped without recycling finds the pairs the narrowphase finds.
     fresh.bodies() = recycling.bodies();
@@ -140,7 +140,7 @@ void expectExactPairs(WorldSettings settings) {
     // The events are the changes of the touching pairs, awake or asleep.
     recycling.warmStarts(warm);
     std::set<std::pair<BodyIndex, BodyIndex>> touching, began, stopped;
-    for (const BodyContact& c : warm) touching.emplace(c.a, c.b);
+    for (const BodyContact& c : warm.contacts) touching.emplace(c.a, c.b);
     for (const auto& p : touching)
       if (!before.count(p)) began.insert(p);
     for (const auto& p : before)

@@ -94,9 +94,10 @@ TEST(WorldCarry, AWorldRebuiltMidRunWithItsSleepAndWarmStartsStepsOnBitForBit) {
     rebuilt.bodies().orientation[i] = first.bodies().orientation[i];  // exactly, not normalised
     rebuilt.setSleepState(i, first.sleepState(i));
   }
-  std::vector<BodyContact> warm;
+  WarmStarts warm;
   first.warmStarts(warm);
-  EXPECT_GE(warm.size(), 6u) << "the sleeping column's contacts are kept for its warm start";
+  EXPECT_GE(warm.contacts.size(), 6u)
+      << "the sleeping column's contacts are kept for its warm start";
   rebuilt.setWarmStarts(warm);
   std::size_t woke = 0;
   for (int s = 180; s < 450; ++s) {

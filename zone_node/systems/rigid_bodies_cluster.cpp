@@ -23,31 +23,37 @@ namespace {
 
 // A recycled contact's origin and materials as the entity store carries them, in the
 // contact's own body order (the lower index first, as in every world built from the store).
-CachedContactOrigin carriedOrigin(const physics::BodyContact& c) {
+CachedContactOrigin carriedOrigin(const physics::BodyContact& c,
+                                  const physics::ManifoldOrigin& origin) {
   CachedContactOrigin o;
   o.normal = c.manifold.normal;
-  o.first_position = c.origin.a.position;
-  o.first_orientation = c.origin.a.orientation;
-  o.second_position = c.origin.b.position;
-  o.second_orientation = c.origin.b.orientation;
-  o.points.assign(c.origin.point.begin(), c.origin.point.begin() + c.manifold.count);
-  o.depths.assign(c.origin.depth.begin(), c.origin.depth.begin() + c.manifold.count);
+  o.first_position = origin.a.position;
+  o.first_orientation = origin.a.orientation;
+  o.second_position = origin.b.position;
+  o.second_orientation = origin.b.orientation;
+  o.points.assign(origin.point.begin(), origin.point.begin() + c.manifold.count);
+  o.depths.assign(origin.depth.begin(), origin.depth.begin() + c.manifold.count);
   o.friction = c.friction;
   o.restitution = c.restitution;
   o.rolling = c.rolling;
   return o;
 }
 
-// Puts a carried origin back, so the rebuilt world may recycle the contact as the old one would.
-void restoreOrigin(const CachedContactOrigin& o, physics::BodyContact& c) {
+// Puts a carried origin back (into `origins`, when its points are the contact's), so the rebuilt
+// world may recycle the contact as the old one would.
+void restoreOrigin(const CachedContactOrigin& o, physics::BodyContact& c,
+                   std::vector<physics::ManifoldOrigin>& origins) {
   c.manifold.normal = o.normal;
-  c.origin.a = {o.first_position, o.first_orientation};
-  c.origin.b = {o.second_position, o.second_orientation};
-  for (int p = 0; p < c.manifold.count && p < int(o.points.size()); ++p) {
-    c.origin.point[p] = o.points[p];
-    c.origin.depth[p] = o.depths[p];
+  if (int(o.points.size()) == c.manifold.count && o.depths.size() == o.points.size()) {
+    physics::ManifoldOrigin& origin = origins.emplace_back();
+    origin.a = {o.first_position, o.first_orientation};
+    origin.b = {o.second_position, o.second_orientation};
+    for (int p = 0; p < c.manifold.count; ++p) {
+      origin.point[p] = o.points[p];
+      origin.depth[p] = o.depths[p];
+    }
+    c.origin = std::uint32_t(origins.size() - 1);
   }
-  c.origin.valid = int(o.points.size()) == c.manifold.count;
   c.friction = o.friction;
   c.restitution = o.restitution;
   c.rolling = o.rolling;
@@ -254,7 +260,7 @@ void RigidBodySystem::importCarried(const std::vector<BodyRef>& bodies) {
     index_of[bodies[n].id().value] = physics::BodyIndex(first_dynamic_ + n);
   // Sleep: a group is named by its lowest body here (its root, when the root is here too).
   std::unordered_map<std::uint64_t, std::uint32_t> group_index;
-  std::vector<physics::BodyContact> warm;
+  physics::WarmStarts warm;
   for (std::size_t n = 0; n < bodies.size(); ++n) {
     const BodyData& b = bodies[n].store->body[bodies[n].index];
     const auto self = physics::BodyIndex(first_dynamic_ + n);
@@ -291,11 +297,11 @@ void RigidBodySystem::importCarried(const std::vector<BodyRef>& bodies) {
         contact.impulse[p] = c.points[p].impulse;
       }
       contact.rolling_impulse = c.rolling_impulse;
-      if (c.origin) restoreOrigin(*c.origin, contact);
-      warm.push_back(contact);
+      if (c.origin) restoreOrigin(*c.origin, contact, warm.origins);
+      warm.contacts.push_back(contact);
     }
   }
-  std::sort(warm.begin(), warm.end());
+  std::sort(warm.contacts.begin(), warm.contacts.end());
   world_->setWarmStarts(warm);
   for (const JointSlot& slot : joint_slots_) {
     const BodyRef& r = bodies[slot.holder - first_dynamic_];
@@ -350,9 +356,9 @@ void RigidBodySystem::exportCarried(const std::vector<BodyRef>& bodies) {
   }
   for (const JointSlot& slot : joint_slots_)
     bodyOf(slot.holder).joints.push_back({slot.scene, jointWarmStart(slot)});
-  std::vector<physics::BodyContact> warm;
+  physics::WarmStarts warm;
   world_->warmStarts(warm);
-  for (const physics::BodyContact& c : warm) {
+  for (const physics::BodyContact& c : warm.contacts) {
     // The lower-id body keeps it; a static body (ground, walls, set pieces) comes first.
     const bool with_static = c.a < first_dynamic_;
     if (c.b < first_dynamic_ || c.b >= last || (!with_static && c.a >= last)) continue;
@@ -371,7 +377,7 @@ void RigidBodySystem::exportCarried(const std::vector<BodyRef>& bodies) {
           {c.manifold.points[p].position, c.manifold.points[p].feature, c.impulse[p]});
     }
     cached.rolling_impulse = c.rolling_impulse;
-    if (c.origin.valid) cached.origin = carriedOrigin(c);
+    if (c.origin != physics::kNoOrigin) cached.origin = carriedOrigin(c, warm.origins[c.origin]);
     bodyOf(with_static ? c.b : c.a).contacts.push_back(std::move(cached));
   }
 }
