@@ -6,7 +6,12 @@
 // With the width-independent layout of constraint_colouring.h, every width ends bitwise equal.
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "physics/wide_contact_block.h"
 
@@ -31,6 +36,9 @@ struct Simd<8> {
   typedef float F __attribute__((vector_size(32)));
 };
 static_assert(sizeof(Simd<8>::F) == 8 * sizeof(float));
+// gather and scatter move whole records: linear xyz, angular xyz, 2 unused floats.
+static_assert(sizeof(SolverMotion) == 8 * sizeof(float) &&
+              offsetof(SolverMotion, angular) == 3 * sizeof(float));
 
 template <class F>
 struct V3 {
@@ -97,38 +105,146 @@ ZONESIM_WIDE_INLINE V3<F> symmetricTimes(const F* m, const V3<F>& v) {
           m[4] * v.x + m[5] * v.y + m[2] * v.z};
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ZONESIM_WIDE_AVX2 1
+#define ZONESIM_WIDE_TARGET_AVX2 __attribute__((target("avx2")))
+
+// 8 lanes: loads the 8 records (linear xyz, angular xyz, 2 unused) whole and transposes them in
+// registers (unpack pairs, shuffle quads, swap halves, as Box2D's b2GatherBodies), instead of
+// 48 scalar stores and 6 vector loads of the same bytes, which the CPU cannot forward. Not
+// always_inline: GCC refuses that into the generic templates, but inlines it into the AVX2
+// functions that end up calling it.
+ZONESIM_WIDE_TARGET_AVX2 inline void gather8(const SolverMotion* m, const std::uint32_t* slot,
+                                             __m256* columns) {
+  __m256 r[8];
+  for (int l = 0; l < 8; ++l) r[l] = _mm256_load_ps(m[slot[l]].linear);
+  const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]), t1 = _mm256_unpackhi_ps(r[0], r[1]);
+  const __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]), t3 = _mm256_unpackhi_ps(r[2], r[3]);
+  const __m256 t4 = _mm256_unpacklo_ps(r[4], r[5]), t5 = _mm256_unpackhi_ps(r[4], r[5]);
+  const __m256 t6 = _mm256_unpacklo_ps(r[6], r[7]), t7 = _mm256_unpackhi_ps(r[6], r[7]);
+  const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+  const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+  const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+  const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+  columns[0] = _mm256_permute2f128_ps(u0, u4, 0x20);  // linear x
+  columns[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+  columns[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+  columns[3] = _mm256_permute2f128_ps(u3, u7, 0x20);  // angular x
+  columns[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+  columns[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+}
+
+// The inverse: 6 columns back into 8 whole records (the unused floats written zero, as they
+// are). Lanes write distinct bodies but for the sink, which nothing reads.
+ZONESIM_WIDE_TARGET_AVX2 inline void scatter8(SolverMotion* m, const std::uint32_t* slot,
+                                              const __m256* c) {
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 t0 = _mm256_unpacklo_ps(c[0], c[1]), t1 = _mm256_unpackhi_ps(c[0], c[1]);
+  const __m256 t2 = _mm256_unpacklo_ps(c[2], c[3]), t3 = _mm256_unpackhi_ps(c[2], c[3]);
+  const __m256 t4 = _mm256_unpacklo_ps(c[4], c[5]), t5 = _mm256_unpackhi_ps(c[4], c[5]);
+  const __m256 t6 = _mm256_unpacklo_ps(zero, zero), t7 = t6;
+  const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xee);
+  const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xee);
+  const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xee);
+  const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xee);
+  const __m256 r[8] = {_mm256_permute2f128_ps(u0, u4, 0x20), _mm256_permute2f128_ps(u1, u5, 0x20),
+                       _mm256_permute2f128_ps(u2, u6, 0x20), _mm256_permute2f128_ps(u3, u7, 0x20),
+                       _mm256_permute2f128_ps(u0, u4, 0x31), _mm256_permute2f128_ps(u1, u5, 0x31),
+                       _mm256_permute2f128_ps(u2, u6, 0x31), _mm256_permute2f128_ps(u3, u7, 0x31)};
+  for (int l = 0; l < 8; ++l) _mm256_store_ps(m[slot[l]].linear, r[l]);
+}
+#endif
+
+// The lanes' bodies' motions as vectors: 8 and 4 lanes move whole records through registers
+// (pure data movement, so every width still sees the same bits), 1 lane goes through memory.
 template <int W>
 ZONESIM_WIDE_INLINE void gather(const SolverMotion* m, const std::uint32_t* slot,
                                 V3<typename Simd<W>::F>& lin, V3<typename Simd<W>::F>& ang) {
   using F = typename Simd<W>::F;
-  alignas(32) float part[6][W];
-  for (int l = 0; l < W; ++l) {
-    const SolverMotion& s = m[slot[l]];
-    for (int k = 0; k < 3; ++k) {
-      part[k][l] = s.linear[k];
-      part[3 + k][l] = s.angular[k];
-    }
+#if defined(ZONESIM_WIDE_AVX2)
+  if constexpr (W == 8) {
+    __m256 c[6];
+    gather8(m, slot, c);
+    F f[6];
+    std::memcpy(f, c, sizeof f);
+    lin = {f[0], f[1], f[2]};
+    ang = {f[3], f[4], f[5]};
+    return;
   }
-  lin = {load<F>(part[0]), load<F>(part[1]), load<F>(part[2])};
-  ang = {load<F>(part[3]), load<F>(part[4]), load<F>(part[5])};
+#endif
+#if defined(__SSE2__)
+  if constexpr (W == 4) {
+    // Each record as two quads: (linear xyz, angular x) and (angular yz, unused).
+    __m128 a0 = _mm_load_ps(m[slot[0]].linear), a1 = _mm_load_ps(m[slot[1]].linear);
+    __m128 a2 = _mm_load_ps(m[slot[2]].linear), a3 = _mm_load_ps(m[slot[3]].linear);
+    __m128 b0 = _mm_load_ps(m[slot[0]].linear + 4), b1 = _mm_load_ps(m[slot[1]].linear + 4);
+    __m128 b2 = _mm_load_ps(m[slot[2]].linear + 4), b3 = _mm_load_ps(m[slot[3]].linear + 4);
+    _MM_TRANSPOSE4_PS(a0, a1, a2, a3);
+    _MM_TRANSPOSE4_PS(b0, b1, b2, b3);
+    const __m128 c[6] = {a0, a1, a2, a3, b0, b1};
+    F f[6];
+    std::memcpy(f, c, sizeof f);
+    lin = {f[0], f[1], f[2]};
+    ang = {f[3], f[4], f[5]};
+    return;
+  }
+#endif
+  {
+    alignas(32) float part[6][W];
+    for (int l = 0; l < W; ++l) {
+      const SolverMotion& s = m[slot[l]];
+      for (int k = 0; k < 3; ++k) {
+        part[k][l] = s.linear[k];
+        part[3 + k][l] = s.angular[k];
+      }
+    }
+    lin = {load<F>(part[0]), load<F>(part[1]), load<F>(part[2])};
+    ang = {load<F>(part[3]), load<F>(part[4]), load<F>(part[5])};
+  }
 }
 
 template <int W>
 ZONESIM_WIDE_INLINE void scatter(SolverMotion* m, const std::uint32_t* slot,
                                  const V3<typename Simd<W>::F>& lin,
                                  const V3<typename Simd<W>::F>& ang) {
-  alignas(32) float part[6][W];
-  store(part[0], lin.x);
-  store(part[1], lin.y);
-  store(part[2], lin.z);
-  store(part[3], ang.x);
-  store(part[4], ang.y);
-  store(part[5], ang.z);
-  for (int l = 0; l < W; ++l) {
-    SolverMotion& s = m[slot[l]];
-    for (int k = 0; k < 3; ++k) {
-      s.linear[k] = part[k][l];
-      s.angular[k] = part[3 + k][l];
+  using F = typename Simd<W>::F;
+  const F f[6] = {lin.x, lin.y, lin.z, ang.x, ang.y, ang.z};
+#if defined(ZONESIM_WIDE_AVX2)
+  if constexpr (W == 8) {
+    __m256 c[6];
+    std::memcpy(c, f, sizeof c);
+    scatter8(m, slot, c);
+    return;
+  }
+#endif
+#if defined(__SSE2__)
+  if constexpr (W == 4) {
+    __m128 c[6];
+    std::memcpy(c, f, sizeof c);
+    __m128 a0 = c[0], a1 = c[1], a2 = c[2], a3 = c[3];
+    __m128 b0 = c[4], b1 = c[5], b2 = _mm_setzero_ps(), b3 = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(a0, a1, a2, a3);
+    _MM_TRANSPOSE4_PS(b0, b1, b2, b3);
+    _mm_store_ps(m[slot[0]].linear, a0);
+    _mm_store_ps(m[slot[0]].linear + 4, b0);
+    _mm_store_ps(m[slot[1]].linear, a1);
+    _mm_store_ps(m[slot[1]].linear + 4, b1);
+    _mm_store_ps(m[slot[2]].linear, a2);
+    _mm_store_ps(m[slot[2]].linear + 4, b2);
+    _mm_store_ps(m[slot[3]].linear, a3);
+    _mm_store_ps(m[slot[3]].linear + 4, b3);
+    return;
+  }
+#endif
+  {
+    alignas(32) float part[6][W];
+    for (int k = 0; k < 6; ++k) store(part[k], f[k]);
+    for (int l = 0; l < W; ++l) {
+      SolverMotion& s = m[slot[l]];
+      for (int k = 0; k < 3; ++k) {
+        s.linear[k] = part[k][l];
+        s.angular[k] = part[3 + k][l];
+      }
     }
   }
 }
@@ -318,9 +434,7 @@ ZONESIM_WIDE_INLINE void restituteAll(std::span<BlockLanes> blocks, SolverBodies
 
 // One function per width; the 8-lane ones alone are compiled for AVX2 (the rest of the library
 // stays baseline x86-64, so it runs where AVX2 is missing).
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ZONESIM_WIDE_AVX2 1
-#define ZONESIM_WIDE_TARGET_AVX2 __attribute__((target("avx2")))
+#if defined(ZONESIM_WIDE_AVX2)
 
 ZONESIM_WIDE_TARGET_AVX2 void warmStart8(std::span<const BlockLanes> blocks, SolverBodies& bodies) {
   warmStartAll<8>(blocks, bodies);
