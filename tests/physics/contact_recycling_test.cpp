@@ -5,10 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <set>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -186,6 +189,52 @@ TEST(ContactRecycling, ExactWithSleepingIslands) {
   WorldSettings settings;
   settings.sleep.enabled = true;
   expectExactPairs(settings);
+}
+
+/// Each contact of `contacts` with an origin names one of `origins`, and a contact computed by
+/// the narrowphase (not carried) names the origin made from its own points.
+void expectOwnOrigins(std::span<const BodyContact> contacts,
+                      std::span<const ManifoldOrigin> origins, std::size_t& checked) {
+  for (const BodyContact& c : contacts) {
+    if (c.origin == kNoOrigin) continue;
+    ASSERT_LT(c.origin, origins.size());
+    if (c.recycled) continue;
+    const ManifoldOrigin& o = origins[c.origin];
+    for (int i = 0; i < c.manifold.count; ++i) {
+      ASSERT_EQ(o.point[i], c.manifold.points[i].position);
+      ASSERT_EQ(o.depth[i], c.manifold.points[i].depth);
+    }
+    ++checked;
+  }
+}
+
+TEST(ContactRecycling, OriginsFollowTheirContactsAsleepAndHeld) {
+  // The origins live beside the contacts: contacts set aside while their island sleeps, or
+  // while the level of detail holds their bodies, must find theirs again when they come back.
+  WorldSettings settings;
+  settings.sleep.enabled = true;
+  settings.contact_recycle_distance = 0.01;
+  World world(settings);
+  for (const BodyDesc& d : tumblingPile()) {
+    const BodyIndex i = world.addBody(d);
+    if (i % 2 == 1 && d.type != BodyType::Static) world.setStepPeriod(i, 3);
+  }
+  std::size_t checked = 0, recycled = 0, asleep = 0;
+  WarmStarts warm;
+  for (int step = 0; step < 600; ++step) {
+    world.step(kDt);
+    recycled += world.recycledContacts();
+    asleep = std::max(asleep, world.sleepingCount());
+    expectOwnOrigins(world.contacts(), world.contactOrigins(), checked);
+    world.warmStarts(warm);
+    expectOwnOrigins(warm.contacts, warm.origins, checked);
+    if (HasFatalFailure()) return;
+  }
+  std::printf("%zu contacts checked, %zu recycled, at most %zu bodies asleep\n", checked, recycled,
+              asleep);
+  EXPECT_GT(checked, 0u);
+  EXPECT_GT(recycled, 0u);
+  EXPECT_GT(asleep, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Solvers, RecyclingWorld,
