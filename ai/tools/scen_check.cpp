@@ -10,7 +10,9 @@
 // every optimum; jps also checks that each path is a valid
 // sequence of moves (its cells are filled in between jump points). --landmarks K gives A*, jump
 // point search or HPA* K landmarks (ai/landmark_heuristic.h), built before the clock starts: the
-// line then ends `landmarks K landmarks_ms B landmarks_mb M`.
+// line then ends `landmarks K landmarks_ms B landmarks_mb M`. --max-overhead F and
+// --max-mean-overhead F (grid planners) hold the worst and the mean overhead to those bounds:
+// a run over either exits 1, naming the file, the figure and the bound.
 //
 // --planner navmesh (radius 0, so the mesh covers every passable cell, as the optima assume)
 // compares any-angle lengths with the 8-connected optima instead: it ends with
@@ -50,10 +52,12 @@ int usage() {
   std::fprintf(
       stderr,
       "usage: scen_check MAP SCEN [--planner astar|jps|jps+|hpa|navmesh] "
-      "[--direct-distance D] [--landmarks K]\n"
+      "[--direct-distance D] [--landmarks K] [--max-overhead F] [--max-mean-overhead F]\n"
       "  --direct-distance: hpa hands queries whose ends are at most D cells apart to\n"
       "  the optimal jump point search (default %g; negative: never)\n"
-      "  --landmarks: astar, jps, jps+ and hpa estimate costs with K landmarks as well (1 to %d)\n",
+      "  --landmarks: astar, jps, jps+ and hpa estimate costs with K landmarks as well (1 to %d)\n"
+      "  --max-overhead, --max-mean-overhead: exit 1 when the worst or the mean overhead (a\n"
+      "  path's length over the listed optimum, minus 1) is over F (not for navmesh)\n",
       zonesim::ai::HpaConfig{}.direct_distance, zonesim::ai::LandmarkHeuristic::kMaxLandmarks);
   return 2;
 }
@@ -126,6 +130,8 @@ int main(int argc, char** argv) {
   std::string map_path, scenPath, planner = "astar";
   double direct_distance = HpaConfig{}.direct_distance;
   int landmark_count = 0;
+  // Bounds on the overheads; negative: none given.
+  double max_overhead = -1.0, max_mean_overhead = -1.0;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--planner" && i + 1 < argc) {
@@ -145,6 +151,14 @@ int main(int argc, char** argv) {
         return 2;
       }
       landmark_count = int(k);
+    } else if ((a == "--max-overhead" || a == "--max-mean-overhead") && i + 1 < argc) {
+      char* end = nullptr;
+      const double bound = std::strtod(argv[++i], &end);
+      if (end == argv[i] || *end != '\0' || !(bound >= 0.0) || std::isinf(bound)) {
+        std::fprintf(stderr, "scen_check: %s %s: not a finite number >= 0\n", a.c_str(), argv[i]);
+        return 2;
+      }
+      (a == "--max-overhead" ? max_overhead : max_mean_overhead) = bound;
     } else if (!a.empty() && a[0] == '-') {
       return usage();
     } else if (map_path.empty()) {
@@ -164,6 +178,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "scen_check: --landmarks is for --planner astar, jps, jps+ or hpa, not %s\n",
                  planner.c_str());
+    return 2;
+  }
+  if (planner == "navmesh" && (max_overhead >= 0.0 || max_mean_overhead >= 0.0)) {
+    std::fprintf(stderr,
+                 "scen_check: --max-overhead and --max-mean-overhead are for the grid planners, "
+                 "not navmesh (its any-angle paths may be shorter than the optima)\n");
     return 2;
   }
   const bool optimal = planner != "hpa";
@@ -259,7 +279,17 @@ int main(int argc, char** argv) {
       std::printf(" landmarks %zu landmarks_ms %.1f landmarks_mb %.1f",
                   landmarks->landmarks().size(), landmarks_ms, double(landmarks->bytes()) / 1e6);
     std::printf("\n");
-    return mismatches > 0 ? 1 : 0;
+    // The bounds, after the figures they judge.
+    bool over = false;
+    const auto holds = [&](const char* figure, double value, const char* flag, double bound) {
+      if (bound < 0.0 || value <= bound) return;
+      std::fprintf(stderr, "scen_check: %s: %s %.6f is over %s %g\n", scenPath.c_str(), figure,
+                   value, flag, bound);
+      over = true;
+    };
+    holds("max_overhead", rank(1.0), "--max-overhead", max_overhead);
+    holds("mean_overhead", mean, "--max-mean-overhead", max_mean_overhead);
+    return mismatches > 0 || over ? 1 : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "scen_check: %s\n", e.what());
     return 2;
