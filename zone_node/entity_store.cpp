@@ -12,6 +12,7 @@ std::size_t EntityStore::add(const EntityRecordData& r) {
   index_of_[r.id.value] = i;
   if (r.kind == EntityKind::Avatar) avatar_of_player_[r.avatar.player_id] = i;
   ++kind_count_[std::size_t(r.kind)];
+  ++membership_;
   return i;
 }
 
@@ -26,6 +27,7 @@ void swapPop(std::vector<T>& v, std::size_t i) {
 void EntityStore::removeAt(std::size_t i) {
   assert(i < size());
   --kind_count_[std::size_t(kind[i])];
+  ++membership_;
   index_of_.erase(id[i].value);
   if (kind[i] == EntityKind::Avatar) avatar_of_player_.erase(avatar[i].player_id);
   std::size_t last = size() - 1;

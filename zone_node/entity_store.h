@@ -268,6 +268,9 @@ class EntityStore {
  public:
   std::size_t size() const { return id.size(); }
   std::size_t count(EntityKind k) const { return kind_count_[std::size_t(k)]; }
+  /// Changes whenever an entity is added or removed (a system that found nothing to do can
+  /// tell that its entities are still the ones it looked at without looking again).
+  std::uint64_t membership() const { return membership_; }
 
   /// Appends an entity; the id must not be present.
   std::size_t add(const EntityRecordData& r);
@@ -298,6 +301,7 @@ class EntityStore {
   std::unordered_map<std::uint64_t, std::size_t> index_of_;  // lookups only, never iterated
   std::unordered_map<std::uint64_t, std::size_t> avatar_of_player_;
   std::size_t kind_count_[kEntityKindCount] = {};
+  std::uint64_t membership_ = 0;
 };
 
 /// One per-entity column: the store's array and the record's field it holds. The two members

@@ -111,6 +111,7 @@ struct TickCounters {
   std::uint64_t island_exchanges = 0;   ///< 1 when islands were found and bodies traded
   std::uint64_t physics_steps = 0;      ///< engine world steps (0 while every body sleeps)
   std::uint64_t agents = 0;             ///< AI agents stepped
+  std::uint64_t flow_npcs_visited = 0;  ///< flow-field NPCs gathered (0 while their crowds sleep)
   std::uint64_t agent_transitions = 0;  ///< their state machine transitions
   std::uint64_t agent_decisions = 0;    ///< agents that sensed and decided (agents.decide_every)
   std::uint64_t paths_planned = 0;      ///< path planner calls (at most the per-tick budget)
@@ -187,6 +188,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"island_exchanges", &TickCounters::island_exchanges, false},
     {"physics_steps", &TickCounters::physics_steps, false},
     {"agents", &TickCounters::agents, true},
+    {"flow_npcs_visited", &TickCounters::flow_npcs_visited, false},
     {"agent_transitions", &TickCounters::agent_transitions, false},
     {"agent_decisions", &TickCounters::agent_decisions, false},
     {"paths_planned", &TickCounters::paths_planned, false},

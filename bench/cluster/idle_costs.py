@@ -8,7 +8,9 @@ system did nothing. A stage's cost includes its timer (two clock reads, about 40
 
 Means are over the per-tick lines (zone_0.jsonl) of the measured ticks: all TICKS for most
 cases; for sleeping bodies the TICKS after SETTLE, by which every body sleeps (checked), so that
-settling does not count. Counters are summed over the same ticks.
+settling does not count, and likewise for the courtyard's flow crowd (scenes/courtyard_flow.yaml,
+every NPC arrived by 38.7 s, tick 774: checked by its visits). Counters are summed over the
+same ticks.
 
 Usage: bench/cluster/idle_costs.py [TICKS]   (default 4000; ZONESIM_BIN=build/bin)
 """
@@ -44,17 +46,20 @@ populations:
      region: {min: [20, 0, 20], max: [180, 0, 180]}}
 """,
 }
+# A flow crowd whose NPCs have all arrived (the shipped scene: it names its map file).
+ARRIVED_CROWD = ROOT / "scenes" / "courtyard_flow.yaml"
 STAGES = ("input", "ai.doors", "ai.neighbours", "ai.lod", "ai.interactions", "ai.agents",
           "ai.wander", "ai.flock", "ai.flow", "ai.formations", "ai.roads", "ai.ants", "avatars",
           "physics", "gpu", "migrate", "halo", "publish", "checks")
-COUNTERS = ("physics_steps", "bodies_awake", "particles_alive", "paths_planned", "agents", "ghosts",
-            "published_states", "published_updates")
+COUNTERS = ("physics_steps", "bodies_awake", "particles_alive", "paths_planned", "agents",
+            "flow_npcs_visited", "ghosts", "published_states", "published_updates")
 
 
-def run(scene_text, ticks, tmp, tag, dds=False):
-    """Per-tick metric lines of one zone_node run."""
-    scene = Path(tmp) / f"{tag}.yaml"
-    scene.write_text(scene_text)
+def run(scene_text, ticks, tmp, tag, dds=False, scene_file=None):
+    """Per-tick metric lines of one zone_node run (of scene_text, or of a shipped scene_file)."""
+    scene = scene_file or Path(tmp) / f"{tag}.yaml"
+    if scene_file is None:
+        scene.write_text(scene_text)
     metrics = Path(tmp) / f"m_{tag}_{ticks}"
     cmd = [str(BIN / "zone_node"), "--scene", str(scene), "--ticks", str(ticks), "--metrics",
            str(metrics), "--gpu", "off", "--log-level", "warn"]
@@ -88,6 +93,12 @@ def main():
             costs, counters = measured(lines, first)
             rows.append((name, costs, counters))
             print(f"  {name}: done", file=sys.stderr, flush=True)
+        # A flow crowd asleep: every NPC arrived (measured after SETTLE, like the bodies).
+        lines = run(None, SETTLE + TICKS, tmp, "arrived_crowd", scene_file=ARRIVED_CROWD)
+        if any(r["flow_npcs_visited"] for r in lines if r["tick"] > SETTLE):
+            sys.exit(f"flow crowd: NPCs still on the way after tick {SETTLE}")
+        rows.append(("flow crowd, all arrived", *measured(lines, SETTLE + 1)))
+        print("  flow crowd, all arrived: done", file=sys.stderr, flush=True)
         # Cells nobody subscribes to: the walkers published over DDS with no gateway attached.
         lines = run(SCENES["walkers only"], TICKS, tmp, "unsubscribed", dds=True)
         rows.append(("walkers, DDS, no subscriber", *measured(lines, 1)))

@@ -14,6 +14,7 @@
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"
 #include "zone_node/systems/planar_crowd.h"
+#include "zone_node/tick_profile.h"
 #include "zone_node/world_map.h"
 #include "zone_node/zone_map.h"
 
@@ -31,6 +32,20 @@ struct FlowMovement::Group {
   std::vector<std::uint8_t> arrived;
   std::vector<std::uint8_t> walking;    // per agent: counts toward crowding
   std::vector<std::uint32_t> crowding;  // per agent: its cell's count (empty: not used)
+  // Asleep: no NPC of the population in this zone walked at the end of a step, and `store` had
+  // this membership then. Arrived NPCs stand still, so until an entity comes or goes the
+  // step would find the same and change nothing.
+  bool asleep = false;
+  const EntityStore* slept_in = nullptr;
+  std::uint64_t slept_at = 0;
+  bool sleepsIn(const EntityStore& store) const {
+    return asleep && slept_in == &store && slept_at == store.membership();
+  }
+  void fallAsleepIn(const EntityStore& store) {
+    asleep = true;
+    slept_in = &store;
+    slept_at = store.membership();
+  }
 };
 
 int flowDestination(std::uint64_t id, int count) {
@@ -136,17 +151,24 @@ bool FlowMovement::arrived(const EntityStore& store, std::size_t i) const {
 void FlowMovement::step(StepContext& ctx) {
   fields_rebuilt_ = followDoors();
   walking_ = advance(ctx.store, ctx.ghosts, ctx.dt, ctx.players, std::int64_t(ctx.tick));
+  ctx.counters.flow_npcs_visited = visited_;
 }
 
 std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, double dt,
                                   std::span<const crowd::Vec2> players, std::int64_t tick) {
   std::size_t walking = 0;
-  updates_ = 0;
+  updates_ = visited_ = sleeping_ = 0;
   arrived_now_.clear();
   for (const std::unique_ptr<Group>& gp : groups_) {
     Group& g = *gp;
+    if (g.sleepsIn(store)) {
+      ++sleeping_;
+      continue;
+    }
+    g.asleep = false;
     const int count = g.crowd.destinationCount();
     g.view.gatherAgents(store);
+    visited_ += g.view.ids.size();
     g.dest.clear();
     g.arrived.clear();
     for (std::size_t a = 0; a < g.view.ids.size(); ++a) {
@@ -158,7 +180,10 @@ std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, 
     g.view.gatherGhosts(ghosts, [&](std::uint64_t id, crowd::Vec2 p) {
       return !g.crowd.hasArrived(p, flowDestination(id, count));
     });
-    if (g.view.ids.empty()) continue;
+    if (g.view.ids.empty()) {
+      g.fallAsleepIn(store);
+      continue;
+    }
     // Far from every player an NPC steps less often (by the time it skipped), the farthest
     // along its field only; the plan depends on ids, positions and the tick alone.
     crowd::StepPlan plan;
@@ -179,7 +204,10 @@ std::size_t FlowMovement::advance(EntityStore& store, const GhostStore* ghosts, 
     for (std::size_t a = 0; a < g.view.ids.size(); ++a)
       updates_ += (plan.empty() || plan.dt[a] > 0) && !g.arrived[a] ? 1 : 0;
     g.view.writeBack(store);
-    for (std::uint8_t done : g.arrived) walking += done ? 0 : 1;
+    std::size_t on_the_way = 0;
+    for (std::uint8_t done : g.arrived) on_the_way += done ? 0 : 1;
+    walking += on_the_way;
+    if (on_the_way == 0) g.fallAsleepIn(store);
   }
   return walking;
 }

@@ -8,7 +8,9 @@
 // nor seen), which every rank decides from the position alone. The separation sums run in the
 // crowd library's canonical order over owned NPCs and ghosts, so a zone run ends bitwise equal
 // on any number of ranks. The scene's doors (map.doors) open and close the crowds' copy of the
-// map at their time; the fields they change are rebuilt then, alike on every rank.
+// map at their time; the fields they change are rebuilt then, alike on every rank. A crowd
+// whose NPCs in the zone have all arrived sleeps, costing nothing per NPC, until an entity
+// comes to or leaves the zone (EntityStore::membership).
 
 #include <cstdint>
 #include <memory>
@@ -63,6 +65,13 @@ class FlowMovement : public ZoneSystem {
   std::size_t walking() const { return walking_; }
   /// NPC updates (agent steps) done by the last step() (all NPCs on the way without LOD).
   std::size_t updates() const { return updates_; }
+  /// NPCs the last step() gathered and looked at, arrived ones included: 0 when every crowd
+  /// sleeps (below).
+  std::size_t visited() const { return visited_; }
+  /// Populations whose crowd slept through the last step(): none of its NPCs in this zone was
+  /// on the way, and no entity has come or gone in the zone since it found that, so the step
+  /// left it alone (an arrived NPC stands still; a new NPC or one that left wakes it).
+  std::size_t sleeping() const { return sleeping_; }
 
   /// Ids of the NPCs (owned by this zone) that reached their destination in the last step(), in
   /// the order the crowds hold them: each NPC once in its life, as an arrived NPC stands still.
@@ -87,6 +96,8 @@ class FlowMovement : public ZoneSystem {
   std::size_t walking_ = 0;
   bool lod_ = false;  // the scene's lod key: plan updates by distance to the players
   std::size_t updates_ = 0;
+  std::size_t visited_ = 0;
+  std::size_t sleeping_ = 0;
   std::vector<std::uint64_t> arrived_now_;
   std::vector<std::uint8_t> arrived_before_;  // per agent of one group, before its step
 };

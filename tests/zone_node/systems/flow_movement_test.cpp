@@ -280,5 +280,49 @@ TEST(FlowMovement, LevelOfDetailReachesTheSameOutcome) {
   EXPECT_LT(sum / full.size(), 0.1 * mean_full);
 }
 
+// Issue 19's idle work: once every NPC has arrived the crowd sleeps and a step looks at none of
+// them (nor moves any), until an entity comes to the zone; a walking newcomer wakes the crowd,
+// which then takes it to its destination and sleeps again.
+TEST(FlowMovement, AnArrivedCrowdSleepsUntilANewcomerWakesIt) {
+  ShippedScene courtyard("scenes/courtyard_flow.yaml");
+  EntityStore& store = courtyard.store;
+  const EntityRecordData first = store.record(0);  // where it starts: far from its goal
+  FlowMovement flows(courtyard.scene, courtyard.map.get());
+  LoneZone lone{courtyard.scene.dt};
+  std::uint64_t tick = 0;
+  for (; tick < 3000 && (tick == 0 || flows.walking() > 0); ++tick) {
+    lone.step(flows, store, tick);
+    EXPECT_EQ(lone.counters.flow_npcs_visited, flows.visited());
+  }
+  ASSERT_EQ(flows.walking(), 0u) << "the courtyard did not arrive in 3000 ticks";
+  // The step that found the last arrival looked at everyone; from the next one on, nobody.
+  EXPECT_EQ(flows.visited(), store.size());
+  const std::vector<Vec3> rest = store.pos;
+  for (int k = 0; k < 100; ++k, ++tick) {
+    lone.step(flows, store, tick);
+    ASSERT_EQ(flows.visited(), 0u) << "tick " << tick;
+    ASSERT_EQ(lone.counters.flow_npcs_visited, 0u);
+    ASSERT_EQ(flows.sleeping(), 1u);
+    ASSERT_EQ(flows.updates(), 0u);
+  }
+  EXPECT_EQ(store.pos, rest);
+  // A newcomer of the same population, where the first NPC started.
+  EntityRecordData newcomer = first;
+  newcomer.id = EntityId{1'000'000};
+  store.add(newcomer);
+  lone.step(flows, store, tick++);
+  EXPECT_EQ(flows.sleeping(), 0u);
+  EXPECT_EQ(flows.visited(), store.size());
+  EXPECT_EQ(flows.walking(), 1u);
+  EXPECT_EQ(flows.updates(), 1u);
+  const std::size_t at = *store.indexOf(newcomer.id);
+  EXPECT_NE(store.pos[at], newcomer.pos);
+  for (int k = 0; k < 3000 && flows.walking() > 0; ++k) lone.step(flows, store, tick++);
+  EXPECT_TRUE(flows.arrived(store, at));
+  lone.step(flows, store, tick++);
+  EXPECT_EQ(flows.visited(), 0u);
+  for (std::size_t i = 0; i < rest.size(); ++i) EXPECT_EQ(store.pos[i], rest[i]) << i;
+}
+
 }  // namespace
 }  // namespace zonesim::zone
