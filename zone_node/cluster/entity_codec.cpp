@@ -244,7 +244,8 @@ void decodeBody(const fb::BodyState& s, BodyData& d) {
                       c->piece_self(),
                       c->piece_other(),
                       {},
-                      {c->rolling_impulse_1(), c->rolling_impulse_2()}};
+                      {c->rolling_impulse_1(), c->rolling_impulse_2()},
+                      std::nullopt};
     for (const fb::CachedContactPoint* p : *c->points()) {
       out.points.push_back({fromFb(&p->position()),
                             p->feature(),

@@ -76,7 +76,10 @@ EntityRecordData everyColumnSet() {
                                                   .friction = 0.4,
                                                   .restitution = 0.1,
                                                   .rolling = 0.03}},
-                   {.world_body = 0, .points = {{Vec3(4, 0, 5), 3, {9.81, 0, 0}}}}},
+                   {.other = EntityId{},
+                    .world_body = 0,
+                    .points = {{Vec3(4, 0, 5), 3, {9.81, 0, 0}}},
+                    .origin = std::nullopt}},
       .joints = {{.joint = 2, .impulses = {0.5}},
                  {.joint = 0, .impulses = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}}},
       .step_lag = 3};
