@@ -25,7 +25,7 @@ struct alignas(32) PointLanes {
   Lanes tangent_mass[2];
   Lanes separation;  // -depth at prepare; the soft passes move it with the bodies.
   Lanes normal_impulse, tangent_impulse[2];
-  Lanes max_normal_impulse;  // Restitution applies only where the solve pushed.
+  Lanes max_normal_impulse;  // Restitution applies only where the solve pushed (kept only then).
   Lanes approach;            // Relative normal velocity at prepare (restitution).
 };
 
@@ -53,6 +53,7 @@ struct SoftPass {
   bool use_bias;   // Soft spring pass; else the rigid relax pass.
   float inv_h;     // 1 / sub-step
   float max_push;  // m/s
+  bool track_pushes;  // keep max_normal_impulse (read only by restitution)
 };
 
 /// Applies the accumulated impulses (warm start), `lanes` at a time (1, 4 or 8).

@@ -134,6 +134,12 @@ ZONESIM_WIDE_TARGET_AVX2 inline void gather8(const SolverMotion* m, const std::u
   columns[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
 }
 
+// Square roots of 8 lanes: IEEE square roots are correctly rounded, so every lane gets the bits
+// std::sqrt gives it at any width. Not always_inline, as gather8.
+ZONESIM_WIDE_TARGET_AVX2 inline __m256 sqrt8(__m256 x) {
+  return _mm256_sqrt_ps(x);
+}
+
 // The inverse: 6 columns back into 8 whole records (the unused floats written zero, as they
 // are). Lanes write distinct bodies but for the sink, which nothing reads.
 ZONESIM_WIDE_TARGET_AVX2 inline void scatter8(SolverMotion* m, const std::uint32_t* slot,
@@ -249,6 +255,35 @@ ZONESIM_WIDE_INLINE void scatter(SolverMotion* m, const std::uint32_t* slot,
   }
 }
 
+// Lane-wise square root, the same bits at every width (see sqrt8).
+template <int W>
+ZONESIM_WIDE_INLINE typename Simd<W>::F vsqrt(typename Simd<W>::F x) {
+  using F = typename Simd<W>::F;
+#if defined(ZONESIM_WIDE_AVX2)
+  if constexpr (W == 8) {
+    __m256 v;
+    std::memcpy(&v, &x, sizeof v);
+    v = sqrt8(v);
+    F r;
+    std::memcpy(&r, &v, sizeof r);
+    return r;
+  }
+#endif
+#if defined(__SSE2__)
+  if constexpr (W == 4) {
+    __m128 v;
+    std::memcpy(&v, &x, sizeof v);
+    v = _mm_sqrt_ps(v);
+    F r;
+    std::memcpy(&r, &v, sizeof r);
+    return r;
+  }
+#endif
+  F r;
+  for (int l = 0; l < W; ++l) r[l] = std::sqrt(x[l]);
+  return r;
+}
+
 // The velocities of one block's lanes o .. o+W, with the bodies' masses.
 template <int W>
 struct Pair {
@@ -323,15 +358,12 @@ ZONESIM_WIDE_INLINE void frictionLanes(BlockLanes& b, int o, SolverBodies& bodie
     const F old0 = load<F>(p.tangent_impulse[0] + o), old1 = load<F>(p.tangent_impulse[1] + o);
     F j0 = old0 - load<F>(p.tangent_mass[0] + o) * dot(dv, t0);
     F j1 = old1 - load<F>(p.tangent_mass[1] + o) * dot(dv, t1);
-    // Square roots one lane at a time: the same IEEE result in every width.
-    alignas(32) float size2[W], bound[W], scale[W];
-    store(size2, j0 * j0 + j1 * j1);
-    store(bound, limit);
-    for (int l = 0; l < W; ++l) {
-      scale[l] = size2[l] > bound[l] * bound[l] ? bound[l] / std::sqrt(size2[l]) : 1.0f;
-    }
-    j0 = j0 * load<F>(scale);
-    j1 = j1 * load<F>(scale);
+    // Clamped to the disc: scaled by limit / |j| where |j| is over it (lanes under it, or at
+    // |j| = 0, keep a scale of 1; their quotient is discarded).
+    const F size2 = j0 * j0 + j1 * j1;
+    const F scale = size2 > limit * limit ? limit / vsqrt<W>(size2) : splat<F>(1.0f);
+    j0 = j0 * scale;
+    j1 = j1 * scale;
     store(p.tangent_impulse[0] + o, j0);
     store(p.tangent_impulse[1] + o, j1);
     v.apply(ra, rb, (j0 - old0) * t0 + (j1 - old1) * t1);
@@ -377,7 +409,8 @@ ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, int o, SolverBodies& bodies,
     const F delta = -(load<F>(p.normal_mass + o) * ms) * (vn + bias) - is * old;
     const F impulse = vmax(zero, old + delta);
     store(p.normal_impulse + o, impulse);
-    store(p.max_normal_impulse + o, vmax(load<F>(p.max_normal_impulse + o), impulse));
+    if (pass.track_pushes)
+      store(p.max_normal_impulse + o, vmax(load<F>(p.max_normal_impulse + o), impulse));
     v.applyNormal(n, load3<F>(p.ia_ca, o), load3<F>(p.ib_cb, o), impulse - old);
   }
   v.write(b, o, bodies);

@@ -129,8 +129,12 @@ void WideContactSolver::warmStart(SolverBodies& state) {
 
 void WideContactSolver::solve(SolverBodies& state, const Softness& soft, const Softness& soft_fixed,
                               bool use_bias, double inv_h) {
-  const wide::SoftPass pass{lanesOf(soft), lanesOf(soft_fixed), use_bias, static_cast<float>(inv_h),
-                            static_cast<float>(settings_.max_push_velocity)};
+  const wide::SoftPass pass{lanesOf(soft),
+                            lanesOf(soft_fixed),
+                            use_bias,
+                            static_cast<float>(inv_h),
+                            static_cast<float>(settings_.max_push_velocity),
+                            any_restitution_};
   wide::solve(lanes_, blocks_, state, pass);
 }
 
