@@ -36,7 +36,7 @@ void PathService::lendLandmarks(const LandmarkHeuristic* landmarks) {
 
 void PathService::rebuildMesh() {
   mesh_search_.reset();
-  mesh_ = std::make_unique<NavMesh>(map_, config_.navmesh);
+  mesh_ = std::make_unique<NavMesh>(map_, config_.navmesh_boxes, config_.navmesh);
   mesh_search_ = std::make_unique<NavMeshSearch>(*mesh_);
 }
 

@@ -33,6 +33,7 @@ struct PathServiceConfig {
   PlannerKind planner = PlannerKind::Hpa;
   HpaConfig hpa;                           ///< abstraction settings when planner is Hpa
   NavMeshConfig navmesh;                   ///< mesh settings when planner is NavMesh
+  std::vector<NavBox> navmesh_boxes;       ///< static obstacles the mesh also closes
   int paths_per_tick = 8;                  ///< planner calls allowed per tick
   int expansions_per_tick = 0;             ///< node expansions allowed per tick (0: no limit)
   std::size_t cache_capacity = 1024;       ///< cached paths (0: no cache)

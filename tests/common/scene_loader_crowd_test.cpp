@@ -92,7 +92,7 @@ TEST(SceneMap, ErrorsNameLineAndField) {
             }),
             kSceneName +
                 ":5: map.size: unknown key (allowed: file, origin, cell_size, doors, fields, "
-                "navigation)");
+                "navigation, agent_radius, static_bodies)");
 }
 
 TEST(SceneMap, NavigationChoosesThePlannerAndTheOlderKeyStillWorks) {

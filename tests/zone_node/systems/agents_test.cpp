@@ -3,7 +3,9 @@
 // trees and fuzzy machines act on what agents see, and scene mistakes name their line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <set>
@@ -305,6 +307,92 @@ TEST(Agents, NavMeshCouriersReachTheirGoalsAndReplanAroundAClosedDoor) {
   EXPECT_GT(r.replans, 5);
   EXPECT_EQ(r.door_crossings_after_close, 0);
   EXPECT_EQ(r.ticks_on_blocked_cells, 0);  // straight segments between corners stay off walls
+}
+
+// The navmesh couriers of scenes/agents_navmesh.yaml with map.agent_radius and/or a static
+// 8 x 16 m block in the yard (x 70-78, z 14-30) across their straight way from the hall's door
+// to the yard's goal, named by map.static_bodies or not. Per run: the least clearance from a
+// wall cell (or the block, where the mesh closes it) of any courier once it walked, how often a
+// courier stood inside the block, and the fewest goals reached by a courier that found paths.
+struct ShapedMeshRun {
+  double closest = 1e9;
+  int inside_block = 0, no_path = 0, min_arrivals = 1 << 30;
+};
+ShapedMeshRun runShapedMesh(double radius, bool block, bool block_named, bool doors) {
+  Scene s = loadScene(source("scenes/agents_navmesh.yaml"));
+  s.map.agent_radius = radius;
+  s.map.static_bodies = block_named;
+  if (block) {
+    SceneBody b;
+    b.name = "block";
+    b.shape = SceneBody::Shape::Box;
+    b.motion = SceneBody::Motion::Static;
+    b.position = {74, 2, 22};
+    b.size = {8, 4, 16};
+    s.physics.bodies.push_back(b);
+  }
+  if (!doors) s.map.doors.clear();
+  ZoneNode node(s, MPI_COMM_WORLD, testing::localZone(0));
+  const WorldMap& map = *node.worldMap();
+  const double cs = map.frame.cell_size;
+  const auto toBox = [](double x, double z, double x0, double z0, double x1, double z1) {
+    return std::hypot(std::max({x0 - x, 0.0, x - x1}), std::max({z0 - z, 0.0, z - z1}));
+  };
+  // Distance from (x, z) to the nearest wall cell's square (and the block where it is closed).
+  const auto clearance = [&](double x, double z) {
+    double nearest = block && block_named ? toBox(x, z, 70, 14, 78, 30) : 1e9;
+    const ai::Cell at = map.frame.cellOf({x, z});
+    for (int cy = at.y - 2; cy <= at.y + 2; ++cy)
+      for (int cx = at.x - 2; cx <= at.x + 2; ++cx)
+        if (!map.grid.passable(cx, cy)) {
+          const double x0 = map.frame.origin.x + cx * cs, z0 = map.frame.origin.y + cy * cs;
+          nearest = std::min(nearest, toBox(x, z, x0, z0, x0 + cs, z0 + cs));
+        }
+    return nearest;
+  };
+  ShapedMeshRun r;
+  for (int tick = 0; tick < 1400; ++tick) {
+    node.tick();
+    for (std::size_t i = 0; i < node.store().size(); ++i) {
+      const double x = node.store().pos[i].x(), z = node.store().pos[i].z();
+      r.inside_block += x > 70 && x < 78 && z > 14 && z < 30;
+      const AgentData& a = node.store().agent[i];
+      if (a.nav == std::int32_t(AgentNav::Moving)) r.closest = std::min(r.closest, clearance(x, z));
+    }
+  }
+  for (std::size_t i = 0; i < node.store().size(); ++i) {
+    const AgentData& a = node.store().agent[i];
+    if (a.nav == std::int32_t(AgentNav::NoPath)) {
+      ++r.no_path;
+      continue;
+    }
+    r.min_arrivals = std::min(r.min_arrivals, int(a.arrivals));
+  }
+  std::printf(
+      "radius %.1f m, block %s: closest to a wall %.4f m, %d courier-ticks inside the block, "
+      "%d couriers without a path, fewest goals of the others %d\n",
+      radius, block ? (block_named ? "on the mesh" : "not on the mesh") : "none", r.closest,
+      r.inside_block, r.no_path, r.min_arrivals);
+  return r;
+}
+
+TEST(Agents, NavMeshCouriersKeepTheAgentRadiusFromWalls) {
+  // The north door stays open: eroded by the radius (a cell is kept only if its whole square
+  // has the clearance), the courtyard's other ways from the hall to the yard close.
+  ShapedMeshRun r = runShapedMesh(0.8, false, false, false);
+  EXPECT_GE(r.closest, 0.8 - 1e-9);
+  EXPECT_GE(r.min_arrivals, 2);
+  // Couriers placed within the clearance of a wall start off the mesh and find no path.
+  EXPECT_LT(r.no_path, 30);
+}
+
+TEST(Agents, NavMeshCouriersGoRoundTheSceneStaticBodies) {
+  ShapedMeshRun ignored = runShapedMesh(0, true, false, true);
+  EXPECT_GT(ignored.inside_block, 0);  // the block lies across their way
+  ShapedMeshRun r = runShapedMesh(0, true, true, true);
+  EXPECT_EQ(r.inside_block, 0);
+  EXPECT_EQ(r.no_path, 0);
+  EXPECT_GE(r.min_arrivals, 2);
 }
 
 TEST(Agents, ABindingPathBudgetIsNeverExceededAndServesEveryone) {
