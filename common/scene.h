@@ -6,6 +6,7 @@
 // to a section rebuilds only what reads that section.
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,20 +40,30 @@ struct Scene {
   double interest_cell_size = 50;  ///< metres; one DDS partition per cell
   int keyframe_every = 90;         ///< ticks between per-cell keyframes
   double halo_width = 10;
+  /// Slack past the width that lets halo send lists live for several ticks of motion;
+  /// absent: haloSkin()'s default.
+  std::optional<double> halo_skin;
   DeadReckoning dead_reckoning;
   PhysicsSettings physics;
   std::vector<NpcPopulation> npcs;
   std::vector<RigidBodyPopulation> rigid_bodies;
   std::vector<EmitterPopulation> emitters;
   ClientProfile clients;
-  AuraNimbus aura_nimbus;  ///< keys in the interest section
-  ObstacleMap map;         ///< walls and open ground for crowds and path finding
-  AgentSettings agents;    ///< AI agent types and populations (common/scene_agents.h)
-  CrowdLod lod;            ///< level of detail of the crowd systems
+  AuraNimbus aura_nimbus;              ///< keys in the interest section
+  ObstacleMap map;                     ///< walls and open ground for crowds and path finding
+  AgentSettings agents;                ///< AI agent types and populations (common/scene_agents.h)
+  CrowdLod lod;                        ///< level of detail of the crowd systems
   TimeDilationSettings time_dilation;  ///< slowing the clock under overload
   InteractionSettings interactions;    ///< hits and gifts between entities, by message
   AdaptationSettings adaptation;       ///< duels against NPCs that adapt to the player
 };
+
+/// The halo skin the zones use: `halo.skin`, or by default max(1 m, width / 5), enough that
+/// walkers keep their send lists for a few ticks without sending many more ghosts.
+inline double haloSkin(const Scene& scene) {
+  const double fifth = 0.2 * scene.halo_width;
+  return scene.halo_skin.value_or(fifth > 1.0 ? fifth : 1.0);
+}
 
 /// A scene file problem; what() is "file:line: field: what is wrong".
 class SceneError : public std::runtime_error {

@@ -285,8 +285,13 @@ void readInterest(const SceneMap& root, Scene& scene) {
 
 // Ghosts come only from neighbouring zones, so the halo may not reach past one zone.
 void readHalo(const SceneMap& root, Scene& scene) {
-  SceneMap halo = root.section("halo", {"width"});
+  SceneMap halo = root.section("halo", {"width", "skin"});
   halo.read("width", scene.halo_width, Limit::atLeast(0));
+  if (halo.optional("skin")) {
+    double skin = 0;
+    halo.read("skin", skin, Limit::atLeast(0));
+    scene.halo_skin = skin;
+  }
   double zone_x = (scene.world.max.x - scene.world.min.x) / scene.zones.columns;
   double zone_z = (scene.world.max.z - scene.world.min.z) / scene.zones.rows;
   if ((scene.zones.columns > 1 && scene.halo_width > zone_x) ||

@@ -59,7 +59,7 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
       migrator_(comm, rank_, size_),
       balancer_(comm, options.balance),
       // The skin lets send lists live for several ticks of motion (LAMMPS' neighbour skin).
-      halo_(comm, rank_, size_, scene.halo_width, std::max(1.0, 0.2 * scene.halo_width)),
+      halo_(comm, rank_, size_, scene.halo_width, haloSkin(scene)),
       mail_(comm, rank_, size_),
       system_bytes_(comm, size_),
       players_(scene, rank_, size_, options.orphan_grace_ticks),

@@ -70,6 +70,7 @@ std::string withBase(const char* extra) {
 
 const InlineCase kInlineCases[] = {
     {"negative_halo", withBase("halo:\n  width: -1\n"), "6: halo.width: must be >= 0, got -1"},
+    {"negative_skin", withBase("halo:\n  skin: -1\n"), "6: halo.skin: must be >= 0, got -1"},
     {"zero_cell", withBase("interest:\n  cell_size: 0\n"),
      "6: interest.cell_size: must be > 0, got 0"},
     {"too_many_cells", withBase("interest: {cell_size: 0.1}\n"),

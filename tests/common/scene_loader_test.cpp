@@ -57,6 +57,8 @@ TEST(DemoScene, ValuesComeThrough) {
   EXPECT_EQ(s.zones.rows, 2);
   EXPECT_DOUBLE_EQ(s.interest_cell_size, 50);
   EXPECT_DOUBLE_EQ(s.halo_width, 10);
+  EXPECT_FALSE(s.halo_skin.has_value());
+  EXPECT_DOUBLE_EQ(haloSkin(s), 2);  // width / 5
 
   ASSERT_EQ(s.npcs.size(), 1u);
   EXPECT_EQ(s.npcs[0].count, 4000);
@@ -171,7 +173,7 @@ TEST(SceneDefaults, ExplicitValuesOverrideThem) {
       "seed: 5\n"
       "zones: {layout: grid, columns: 1, rows: 1}\n"
       "interest: {cell_size: 2.5, keyframe_every: 1}\n"
-      "halo: {width: 0}\n"
+      "halo: {width: 0, skin: 0.25}\n"
       "dead_reckoning: {position_threshold: 0, heartbeat_s: 0.5}\n"
       "clients: {players: 0, speed: 0, input_hz: 1, nimbus: 4, retarget_s: 2, downlink_kbps: 20,\n"
       "          downlink_error_angle_deg: 1}\n",
@@ -181,6 +183,7 @@ TEST(SceneDefaults, ExplicitValuesOverrideThem) {
   EXPECT_DOUBLE_EQ(s.interest_cell_size, 2.5);
   EXPECT_EQ(s.keyframe_every, 1);
   EXPECT_DOUBLE_EQ(s.halo_width, 0);
+  EXPECT_DOUBLE_EQ(haloSkin(s), 0.25);
   EXPECT_DOUBLE_EQ(s.dead_reckoning.position_threshold, 0);
   EXPECT_DOUBLE_EQ(s.dead_reckoning.heartbeat_seconds, 0.5);
   EXPECT_EQ(s.clients.players, 0);
