@@ -8,8 +8,11 @@ off. Per width: ghosts held and sent per tick and halo bytes per tick (summed ov
 the halo stage's and the tick's mean ms (slowest rank), and whether the final state equals
 the 1-rank run's bit for bit.
 
-Usage: bench/cluster/halo_width.py [TICKS]   (default 300; ZONESIM_BIN=build/bin)
+Usage: bench/cluster/halo_width.py [TICKS] [--plot PNG]   (default 300; ZONESIM_BIN=build/bin)
+The plot (bench/sweep_figure.py) draws ghosts and bytes, and the stage times, against the
+width, each point marked by whether the run equals the 1-rank run.
 """
+import argparse
 import json
 import os
 import subprocess
@@ -19,27 +22,62 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(os.environ.get("ZONESIM_BIN", ROOT / "build" / "bin"))
-TICKS = int(sys.argv[1]) if len(sys.argv) > 1 else 300
 WIDTHS = (3, 4, 6, 10, 15, 20)
 SCENE = ROOT / "scenes/crowd_flock.yaml"
 
 
-def run(scene, ranks, tmp, tag):
+def run(scene, ranks, tmp, tag, ticks):
+    """Runs `scene` on `ranks` ranks; its final state (text) and each zone's summary."""
     dump = Path(tmp) / f"{tag}.jsonl"
     metrics = Path(tmp) / f"m_{tag}"
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     subprocess.run(["mpirun", "--oversubscribe", "-np", str(ranks), str(BIN / "zone_node"),
-                    "--scene", str(scene), "--ticks", str(TICKS), "--no-dds", "--gpu", "off",
+                    "--scene", str(scene), "--ticks", str(ticks), "--no-dds", "--gpu", "off",
                     "--dump-state", str(dump), "--metrics", str(metrics), "--log-level", "warn"],
                    check=True, env=env, stdout=subprocess.DEVNULL)
     zones = [json.loads(p.read_text()) for p in metrics.glob("zone_*_summary.json")]
     return dump.read_text(), zones
 
 
+def plot(rows, ticks, path):
+    sys.path.insert(0, str(ROOT / "bench"))
+    from sweep_figure import plt, save
+    widths = [r["width"] for r in rows]
+    fig, (work, time) = plt.subplots(1, 2, figsize=(10, 4))
+    work.plot(widths, [r["sent"] for r in rows], "o-", label="ghosts sent / tick")
+    work.plot(widths, [r["held"] for r in rows], "s--", label="ghosts held at the end")
+    work.set_ylabel("ghosts (sum over the 4 zones)")
+    kib = work.twinx()
+    kib.plot(widths, [r["kib"] for r in rows], "^:", color="tab:red", label="halo KiB / tick")
+    kib.set_ylabel("halo KiB per tick", color="tab:red")
+    work.legend(loc="upper left", fontsize=8)
+    time.plot(widths, [r["halo_ms"] for r in rows], "o-", label="halo stage, mean")
+    time.plot(widths, [r["tick_ms"] for r in rows], "s--", label="tick, median")
+    time.set_ylabel("ms (slowest of 4 ranks on 2 shared cores)")
+    time.legend(fontsize=8)
+    for ax in (work, time):
+        ax.set_xlabel("halo.width, m (the flock's reach is 3 m)")
+        ax.grid(alpha=0.3)
+        for r in rows:
+            if not r["same"]:
+                ax.axvline(r["width"], color="tab:red", alpha=0.3)
+    same = all(r["same"] for r in rows)
+    fig.suptitle(f"halo width on crowd_flock, 4 ranks, {ticks} ticks: final state equals the "
+                 f"1-rank run bit for bit at {'every width' if same else 'only unmarked widths'}",
+                 fontsize=10)
+    save(fig, path)
+
+
 def main():
+    args = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    args.add_argument("ticks", nargs="?", type=int, default=300)
+    args.add_argument("--plot", help="write the work-precision plot here (PNG)")
+    opts = args.parse_args()
+    ticks = opts.ticks
+    rows = []
     with tempfile.TemporaryDirectory(prefix="zs_halo_") as tmp:
-        reference, _ = run(SCENE, 1, tmp, "one_rank")
-        print(f"crowd_flock, 4 ranks, {TICKS} ticks; sums over the 4 zones, per tick")
+        reference, _ = run(SCENE, 1, tmp, "one_rank", ticks)
+        print(f"crowd_flock, 4 ranks, {ticks} ticks; sums over the 4 zones, per tick")
         print("| halo width m | ghosts held | ghosts sent | halo KiB | halo ms (slowest) | "
               "tick ms (slowest) | final state = 1 rank |")
         print("|---|---|---|---|---|---|---|")
@@ -47,14 +85,18 @@ def main():
             text = SCENE.read_text().replace("halo:\n  width: 3", f"halo:\n  width: {w}")
             scene = Path(tmp) / f"halo_{w}.yaml"
             scene.write_text(text)
-            dump, zones = run(scene, 4, tmp, f"w{w}")
+            dump, zones = run(scene, 4, tmp, f"w{w}", ticks)
             ghosts = sum(z["ghosts"] for z in zones) / 1  # held at the end (a level)
-            sent = sum(z["ghosts_sent"] for z in zones) / TICKS
-            kib = sum(z["halo_bytes"] for z in zones) / TICKS / 1024
+            sent = sum(z["ghosts_sent"] for z in zones) / ticks
+            kib = sum(z["halo_bytes"] for z in zones) / ticks / 1024
             halo_ms = max(z["halo_ms_mean"] for z in zones)
             tick_ms = max(z["tick_ms_p50"] for z in zones)
             print(f"| {w} | {ghosts:.0f} | {sent:.0f} | {kib:.1f} | {halo_ms:.3f} | "
                   f"{tick_ms:.2f} | {'yes' if dump == reference else 'NO'} |", flush=True)
+            rows.append(dict(width=w, held=ghosts, sent=sent, kib=kib, halo_ms=halo_ms,
+                             tick_ms=tick_ms, same=dump == reference))
+    if opts.plot:
+        plot(rows, ticks, opts.plot)
 
 
 if __name__ == "__main__":
