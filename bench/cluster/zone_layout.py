@@ -10,8 +10,11 @@ contacts cross a zone border are solved by each zone with pushed ghosts and move
 cross-zone error, docs/physics.md). 4 ranks on a 2-core machine are oversubscribed: their
 times are read as such; the counts and the outcome are not affected.
 
-Usage: bench/cluster/zone_layout.py [BUILD_DIR]
+Usage: bench/cluster/zone_layout.py [BUILD_DIR] [--plot PNG]
+The plot (bench/sweep_figure.py): per layout, the border traffic with the entities that end
+elsewhere than on one zone, and the wall time per tick.
 """
+import argparse
 import json
 import math
 import os
@@ -21,7 +24,11 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-BUILD = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "build"
+ARGS = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+ARGS.add_argument("build", nargs="?", default=str(ROOT / "build"))
+ARGS.add_argument("--plot", help="write the work-precision plot here (PNG)")
+OPTS = ARGS.parse_args()
+BUILD = Path(OPTS.build)
 TICKS = 300
 LAYOUTS = [(1, 1), (2, 1), (1, 2), (4, 1), (2, 2), (1, 4)]
 
@@ -83,6 +90,44 @@ def drift(base, other, kind):
     return (sum(d) / len(d) if d else 0.0), (max(d) if d else 0.0), moved, len(d)
 
 
+def plot(results, base, path):
+    sys.path.insert(0, str(ROOT / "bench"))
+    from sweep_figure import plt, save
+    fig, (border, cost) = plt.subplots(1, 2, figsize=(10, 4.2))
+    names = [f"{c}x{r}" for c, r in results]
+    xs = range(len(names))
+    kib = [r["halo_kib"] for r in results.values()]
+    border.bar(xs, kib, color="tab:blue", label="halo KiB / tick")
+    border.set_ylabel("halo KiB per tick (sum over the zones)")
+    mig = border.twinx()
+    mig.plot(xs, [r["migrations"] for r in results.values()], "o", color="tab:red")
+    mig.set_ylabel("migrations per tick", color="tab:red")
+    for i, r in enumerate(results.values()):  # the precision: what ends elsewhere than on 1x1
+        body_mean, _, bodies, _ = drift(base, r, "rigid_body")
+        walkers = drift(base, r, "npc")[2]
+        label = f"moved:\n{walkers} w, {bodies} b"
+        if body_mean > 0:
+            label += f"\n{body_mean:.2f} m"
+        border.annotate(label, (i, kib[i]), ha="center", fontsize=7, textcoords="offset points",
+                        xytext=(0, 2))
+    border.set_ylim(0, max(kib) * 1.3)
+    border.set_title("border traffic, and entities whose end state differs from 1x1\n(w: of "
+                     f"{sum(1 for e in base['states'].values() if e['kind'] == 'npc')} walkers, "
+                     f"b: of {sum(1 for e in base['states'].values() if e['kind'] == 'rigid_body')} "
+                     "bodies)", fontsize=9)
+    ms = [r["ms_per_tick"] for r in results.values()]
+    cost.bar(xs, ms, color=["tab:gray" if c * r > 2 else "tab:green" for c, r in results])
+    cost.set_ylim(0, max(ms) * 1.2)
+    cost.set_ylabel("wall ms per tick, slowest rank")
+    cost.set_title("tick time (grey: 4 ranks on 2 shared cores, oversubscribed)", fontsize=9)
+    for ax in (border, cost):
+        ax.set_xticks(list(xs), names)
+        ax.set_xlabel("zone layout (columns x rows), one rank per zone")
+        ax.grid(alpha=0.3, axis="y")
+    fig.suptitle(f"zone count and layout: 8,000 walkers + 400 spheres, {TICKS} ticks", fontsize=10)
+    save(fig, path)
+
+
 with tempfile.TemporaryDirectory() as tmp:
     tmp = Path(tmp)
     results = {}
@@ -106,3 +151,5 @@ with tempfile.TemporaryDirectory() as tmp:
               f"{r['migrations']:.2f} | {r['ghosts']:.1f} | {r['halo_kib']:.2f} | "
               f"{npc_moved} of {npcs} | {body_moved} of {bodies} | {body_mean:.4f} | "
               f"{body_max:.4f} |")
+    if OPTS.plot:
+        plot(results, base, OPTS.plot)
