@@ -6,6 +6,7 @@ import datetime
 import os
 import shlex
 import sys
+import textwrap
 
 import matplotlib
 
@@ -26,8 +27,10 @@ def save(fig, path, note=""):
     """Stamps the date, time and command under the axes, writes `path` and closes `fig`."""
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     footer = f"{now}: {command_line()}" + (f"  ({note})" if note else "")
-    fig.text(0.01, 0.01, footer, fontsize=7, color="0.35", ha="left", va="bottom")
-    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    width = int(fig.get_figwidth() * 17)  # characters of 7-point text across the figure
+    lines = textwrap.wrap(footer, width, break_on_hyphens=False)
+    fig.text(0.01, 0.01, "\n".join(lines), fontsize=7, color="0.35", ha="left", va="bottom")
+    fig.tight_layout(rect=(0, 0.02 + 0.03 * len(lines), 1, 1))
     fig.savefig(path, dpi=110)
     plt.close(fig)
     print(f"wrote {path}", file=sys.stderr)

@@ -6,7 +6,7 @@
 // positions are compared at the same server tick, which is what the report tool's join does.
 //
 // Usage: dr_bench [--seconds S] [--csv FILE] [--only SET]...   (SET: sweep, orient3, blend,
-// loss10, loss10r, hb1s, radius, gather, quant, pertype)
+// loss10, loss10r, hb1s, radius, gather, quant, pertype, pertype_body)
 
 #include <algorithm>
 #include <cmath>
@@ -30,12 +30,20 @@
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/systems/neighbourhood.h"
 #include "zone_node/systems/npc_movement.h"
+#include "zone_node/systems/rigid_bodies.h"
 
 using namespace zonesim;
 
 namespace {
 
 constexpr int kNpcs = 600, kAvatars = 150;
+// The pertype_body set adds debris: boxes in four piles, each thrown up every 2 s (one pile
+// every 0.5 s) by a blast far below it, so at any time some fly on ballistic arcs, tumble, slide
+// and settle, and some sleep. The blast's depth keeps the throws nearly vertical, so the piles
+// spread slowly and stay within its reach for the whole run.
+constexpr int kBodyPiles = 4, kBodiesPerPile = 60;
+constexpr double kBlastEvery = 0.5;  // s between blasts, taking the piles in turn
+constexpr double kBlastDepth = 50;   // m below the ground
 constexpr double kUdpIpHeaderBytes = 28;
 // Frames carry the server tick as LEB128: measured as for a server up an hour (3 bytes; 2 for
 // the bench's own ticks would flatter it). A day adds a byte.
@@ -47,6 +55,9 @@ struct Config {
   DeadReckoningModel::Order order = DeadReckoningModel::Order::First;
   /// The avatars' own order (the scene's dead_reckoning.models.avatar); `order` when unset.
   std::optional<DeadReckoningModel::Order> avatar_order;
+  /// The rigid bodies' order (dead_reckoning.models.rigid_body); unset: no bodies at all.
+  std::optional<DeadReckoningModel::Order> body_order;
+  bool body_rotating = true;  ///< orientation extrapolated with the angular velocity
   double threshold = 0.25;
   double heartbeat = 5;
   double orientation_deg = 3;
@@ -73,6 +84,8 @@ struct Result {
   double updates_per_entity_s = 0;
   /// The same by entity type: p99 shown error and updates per entity per second.
   double p99_npc = 0, p99_avatar = 0, updates_npc_s = 0, updates_avatar_s = 0;
+  double p99_body = 0, updates_body_s = 0;  ///< when the config has bodies
+  double body_moving = 0;                   ///< share of the bodies' ticks at over 0.1 m/s
 };
 
 Scene benchScene() {
@@ -91,6 +104,31 @@ Scene benchScene() {
   p.region = s.world;
   s.npcs.push_back(p);
   return s;
+}
+
+// The debris of the pertype_body set, added to the bench scene for `seconds`.
+void addDebris(Scene& s, double seconds) {
+  const double centres[kBodyPiles][2] = {{250, 250}, {750, 250}, {250, 750}, {750, 750}};
+  for (const auto& c : centres) {
+    RigidBodyPopulation p;
+    p.count = kBodiesPerPile;
+    p.shape = RigidBodyPopulation::Shape::Box;
+    p.size = {0.6, 0.6, 0.6};
+    p.drop_height = 0.5;
+    p.max_drop_height = 6;
+    p.region = {{c[0] - 8, 0, c[1] - 8}, {c[0] + 8, 0, c[1] + 8}};
+    s.rigid_bodies.push_back(p);
+  }
+  int k = 0;
+  for (double t = 2; t < seconds; t += kBlastEvery, ++k) {
+    SceneExplosion e;
+    e.time = t;
+    e.position = {centres[k % kBodyPiles][0], -kBlastDepth, centres[k % kBodyPiles][1]};
+    e.radius = kBlastDepth + 10;  // reaches bodies within 33 m of the pile's centre
+    e.falloff = SceneExplosion::Falloff::Constant;
+    e.impulse = 6;  // N s on 1 kg boxes: 6 m/s, about 1.2 s in the air
+    s.physics.explosions.push_back(e);
+  }
 }
 
 double percentile(std::vector<double>& v, double q) {
@@ -129,12 +167,14 @@ std::size_t framingBytes(const dr::StateCodec& codec, bool lean) {
 
 Result run(const Config& c, double seconds) {
   Scene scene = benchScene();
+  if (c.body_order) addDebris(scene, seconds);
   DeadReckoning& drc = scene.dead_reckoning;
   drc.position_threshold = c.threshold;
   drc.heartbeat_seconds = c.heartbeat;
   drc.orientation_threshold_deg = c.orientation_deg;
   drc.npc.order = drc.avatar.order = c.order;
   if (c.avatar_order) drc.avatar.order = *c.avatar_order;
+  if (c.body_order) drc.rigid_body = {*c.body_order, c.body_rotating};
   drc.quantisation.position_resolution = c.position_resolution;
   drc.quantisation.rotation_bits = c.rotation_bits;
   zone::EntityStore store;
@@ -157,9 +197,9 @@ Result run(const Config& c, double seconds) {
   Pcg32 loss(5, 6);
   const int ticks = int(seconds / scene.dt);
   const int warmup = int(5 / scene.dt);  // let the first full sends pass
-  std::vector<double> errors, errors_npc, errors_avatar;
+  std::vector<double> errors, errors_npc, errors_avatar, errors_body;
   errors.reserve(std::size_t(ticks) * store.size() / 2);
-  double updates_npc = 0, updates_avatar = 0;
+  double updates_npc = 0, updates_avatar = 0, updates_body = 0, body_moving = 0;
   double bits = 0, wire_bits = 0, flat_wire_bits = 0, visible_moving = 0, updates = 0;
   std::vector<int> observers;
   for (std::size_t i = 0; i < store.size(); ++i)
@@ -186,6 +226,8 @@ Result run(const Config& c, double seconds) {
   std::vector<std::vector<dr::WireEntity>> gathered(observers.size());
   zone::WanderMovement wander(scene);
   zone::LoneZone lone{scene.dt};
+  std::optional<zone::RigidBodySystem> bodies;
+  if (c.body_order) bodies.emplace(scene, 0);
   for (int tick = 0; tick < ticks; ++tick) {
     double t = tick * scene.dt;
     for (int a = 0; a < kAvatars; ++a) {
@@ -195,6 +237,7 @@ Result run(const Config& c, double seconds) {
       store.avatar[i].move_z = m.z;
     }
     lone.step(wander, store, std::uint64_t(tick));  // no separation
+    if (bodies) lone.step(*bodies, store, std::uint64_t(tick));
     zone::stepAvatars(scene.world, store, scene.dt);
     // The zone's publish decision, as CellPublisher makes it.
     sent.clear();
@@ -239,7 +282,9 @@ Result run(const Config& c, double seconds) {
     if (tick < warmup) continue;
     updates += double(sent.size());
     for (const dr::WireEntity& w : sent)
-      (w.kind == std::uint8_t(zone::EntityKind::Avatar) ? updates_avatar : updates_npc) += 1;
+      (w.kind == std::uint8_t(zone::EntityKind::Avatar)      ? updates_avatar
+       : w.kind == std::uint8_t(zone::EntityKind::RigidBody) ? updates_body
+                                                             : updates_npc) += 1;
     std::sort(sent.begin(), sent.end(), [](auto& a, auto& b) { return a.id < b.id; });
     // Each observer's batch: the updates of entities within its interest radius.
     double r2 = c.radius * c.radius;
@@ -292,7 +337,11 @@ Result run(const Config& c, double seconds) {
              dz = shown->z - store.pos[i].z();
       const double e = std::sqrt(dx * dx + dy * dy + dz * dz);
       errors.push_back(e);
-      (store.kind[i] == zone::EntityKind::Avatar ? errors_avatar : errors_npc).push_back(e);
+      (store.kind[i] == zone::EntityKind::Avatar      ? errors_avatar
+       : store.kind[i] == zone::EntityKind::RigidBody ? errors_body
+                                                      : errors_npc)
+          .push_back(e);
+      if (store.kind[i] == zone::EntityKind::RigidBody) body_moving += store.vel[i].norm() > 0.1;
     }
   }
   double measured_s = (ticks - warmup) * scene.dt;
@@ -310,6 +359,11 @@ Result run(const Config& c, double seconds) {
   r.p99_avatar = percentile(errors_avatar, 0.99);
   r.updates_npc_s = updates_npc / double(kNpcs) / measured_s;
   r.updates_avatar_s = updates_avatar / double(kAvatars) / measured_s;
+  if (c.body_order) {
+    r.p99_body = percentile(errors_body, 0.99);
+    r.updates_body_s = updates_body / double(kBodyPiles * kBodiesPerPile) / measured_s;
+    r.body_moving = errors_body.empty() ? 0 : body_moving / double(errors_body.size());
+  }
   return r;
 }
 
@@ -413,6 +467,19 @@ int main(int argc, char** argv) {
         c.avatar_order = avatar;
         configs.push_back(c);
       }
+  // Rigid bodies (blown-up debris: arcs under gravity, tumbling, sliding, sleep) with their own
+  // order at the same thresholds; NPCs and avatars stay at first order. The orientation
+  // threshold is off (as in every row from `base`), so the spin does not matter here.
+  for (double th : {0.1, 0.25, 0.5}) {
+    for (O body : {O::Static, O::First, O::Second}) {
+      c = base;
+      c.name = "pertype_body";
+      c.threshold = th;
+      c.avatar_order = O::First;
+      c.body_order = body;
+      configs.push_back(c);
+    }
+  }
   if (!only.empty())
     std::erase_if(configs, [&](const Config& c) {
       return std::find(only.begin(), only.end(), c.name) == only.end();
@@ -424,7 +491,8 @@ int main(int argc, char** argv) {
                  "bps_per_visible,p50_m,p99_m,max_m,updates_per_entity_s,ticks_per_datagram,"
                  "wire_bps_per_visible,flatbuffers_wire_bps_per_visible,position_resolution_m,"
                  "rotation_bits,avatar_order,p99_npc_m,p99_avatar_m,updates_per_npc_s,"
-                 "updates_per_avatar_s\n");
+                 "updates_per_avatar_s,body_order,body_rotating,p99_body_m,updates_per_body_s,body_"
+                 "moving\n");
   std::printf(
       "%d NPCs (1-2 m/s, waypoint paths) + %d wandering avatars (5 m/s) in 1 km^2, 30 Hz, "
       "%.0f s measured after 5 s; heartbeat 5 s unless hb1s\n",
@@ -461,17 +529,23 @@ int main(int argc, char** argv) {
           orderName(c.order), r.p99_npc, r.updates_npc_s, orderName(*c.avatar_order), r.p99_avatar,
           r.updates_avatar_s);
     }
+    if (c.body_order)
+      std::printf(
+          "        rigid bodies: %-6s p99 %.4f m, %.3f updates/s (moving %.1f %% of ticks)\n",
+          orderName(*c.body_order), r.p99_body, r.updates_body_s, 100 * r.body_moving);
     std::fflush(stdout);
     if (csv)
       std::fprintf(csv,
                    "%s,%s,%g,%d,%g,%g,%.1f,%.1f,%.2f,%.2f,%.5f,%.5f,%.4f,%.4f,%d,%.2f,%.2f,%g,%d,"
-                   "%s,%.5f,%.5f,%.4f,%.4f\n",
+                   "%s,%.5f,%.5f,%.4f,%.4f,%s,%d,%.5f,%.4f,%.4f\n",
                    c.name.c_str(), orderName(c.order), c.threshold, int(c.blend), c.loss, c.radius,
                    r.bits_per_client_s, r.wire_bits_per_client_s, r.visible_moving, per_visible,
                    r.p50, r.p99, r.max, r.updates_per_entity_s, c.ticks_per_datagram,
                    wire_per_visible, flat_per_visible, c.position_resolution, c.rotation_bits,
                    orderName(c.avatar_order.value_or(c.order)), r.p99_npc, r.p99_avatar,
-                   r.updates_npc_s, r.updates_avatar_s);
+                   r.updates_npc_s, r.updates_avatar_s,
+                   c.body_order ? orderName(*c.body_order) : "", int(c.body_rotating), r.p99_body,
+                   r.updates_body_s, r.body_moving);
   }
   if (csv) std::fclose(csv);
   return 0;
