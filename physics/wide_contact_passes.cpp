@@ -5,6 +5,7 @@
 // file is compiled with -ffp-contract=off (no fused multiply-adds in one width and not another).
 // With the width-independent layout of constraint_colouring.h, every width ends bitwise equal.
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -260,24 +261,10 @@ template <int W>
 ZONESIM_WIDE_INLINE typename Simd<W>::F vsqrt(typename Simd<W>::F x) {
   using F = typename Simd<W>::F;
 #if defined(ZONESIM_WIDE_AVX2)
-  if constexpr (W == 8) {
-    __m256 v;
-    std::memcpy(&v, &x, sizeof v);
-    v = sqrt8(v);
-    F r;
-    std::memcpy(&r, &v, sizeof r);
-    return r;
-  }
+  if constexpr (W == 8) return std::bit_cast<F>(sqrt8(std::bit_cast<__m256>(x)));
 #endif
 #if defined(__SSE2__)
-  if constexpr (W == 4) {
-    __m128 v;
-    std::memcpy(&v, &x, sizeof v);
-    v = _mm_sqrt_ps(v);
-    F r;
-    std::memcpy(&r, &v, sizeof r);
-    return r;
-  }
+  if constexpr (W == 4) return std::bit_cast<F>(_mm_sqrt_ps(std::bit_cast<__m128>(x)));
 #endif
   F r;
   for (int l = 0; l < W; ++l) r[l] = std::sqrt(x[l]);

@@ -22,14 +22,14 @@ import sys
 import tempfile
 from pathlib import Path
 
-from halo_width import ROOT, SCENE, run
+from halo_width import ROOT, SCENE, finish_plot, run
 
 SKINS = (0, 0.1, 0.25, 0.5, 1, 2, 4, 8)
 
 
 def plot(rows, ticks, path):
     sys.path.insert(0, str(ROOT / "bench"))
-    from sweep_figure import plt, save
+    from sweep_figure import plt
     skins = [r["skin"] for r in rows]
     fig, (work, time) = plt.subplots(1, 2, figsize=(10, 4))
     work.plot(skins, [r["rebuilt"] * 100 for r in rows], "o-", label="ticks that rebuilt lists, %")
@@ -38,22 +38,8 @@ def plot(rows, ticks, path):
     sent.plot(skins, [r["sent"] for r in rows], "s--", color="tab:red", label="ghosts sent / tick")
     sent.set_ylabel("ghosts sent per tick (sum over 4 zones)", color="tab:red")
     work.legend(loc="center right", fontsize=8)
-    time.plot(skins, [r["halo_ms"] for r in rows], "o-", label="halo stage, mean")
-    time.plot(skins, [r["tick_ms"] for r in rows], "s--", label="tick, median")
-    time.set_ylabel("ms (slowest of 4 ranks on 2 shared cores)")
-    time.legend(fontsize=8)
-    for ax in (work, time):
-        ax.set_xscale("symlog", linthresh=0.1)
-        ax.set_xlabel("halo.skin, m (width 3 m; default 1 m)")
-        ax.grid(alpha=0.3)
-        for r in rows:
-            if not r["same"]:
-                ax.axvline(r["skin"], color="tab:red", alpha=0.3)
-    same = all(r["same"] for r in rows)
-    fig.suptitle(f"halo skin on crowd_flock, 4 ranks, {ticks} ticks: final state equals the "
-                 f"1-rank run bit for bit at {'every skin' if same else 'only unmarked skins'}",
-                 fontsize=10)
-    save(fig, path)
+    finish_plot(fig, (work, time), rows, "skin", "halo.skin, m (width 3 m; default 1 m)", ticks,
+                path, symlog=True)
 
 
 def main():

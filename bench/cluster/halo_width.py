@@ -41,7 +41,7 @@ def run(scene, ranks, tmp, tag, ticks):
 
 def plot(rows, ticks, path):
     sys.path.insert(0, str(ROOT / "bench"))
-    from sweep_figure import plt, save
+    from sweep_figure import plt
     widths = [r["width"] for r in rows]
     fig, (work, time) = plt.subplots(1, 2, figsize=(10, 4))
     work.plot(widths, [r["sent"] for r in rows], "o-", label="ghosts sent / tick")
@@ -51,20 +51,32 @@ def plot(rows, ticks, path):
     kib.plot(widths, [r["kib"] for r in rows], "^:", color="tab:red", label="halo KiB / tick")
     kib.set_ylabel("halo KiB per tick", color="tab:red")
     work.legend(loc="upper left", fontsize=8)
-    time.plot(widths, [r["halo_ms"] for r in rows], "o-", label="halo stage, mean")
-    time.plot(widths, [r["tick_ms"] for r in rows], "s--", label="tick, median")
+    finish_plot(fig, (work, time), rows, "width", "halo.width, m (the flock's reach is 3 m)",
+                ticks, path)
+
+
+def finish_plot(fig, axes, rows, knob, xlabel, ticks, path, symlog=False):
+    """What the halo sweeps' figures share (halo_width.py, halo_skin.py): the right panel's
+    halo stage and tick times, the x axes, a red line at each setting whose final state is not
+    the 1-rank run's, the title; then writes the figure."""
+    from sweep_figure import save
+    work, time = axes
+    xs = [r[knob] for r in rows]
+    time.plot(xs, [r["halo_ms"] for r in rows], "o-", label="halo stage, mean")
+    time.plot(xs, [r["tick_ms"] for r in rows], "s--", label="tick, median")
     time.set_ylabel("ms (slowest of 4 ranks on 2 shared cores)")
     time.legend(fontsize=8)
     for ax in (work, time):
-        ax.set_xlabel("halo.width, m (the flock's reach is 3 m)")
+        if symlog:
+            ax.set_xscale("symlog", linthresh=0.1)
+        ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3)
         for r in rows:
             if not r["same"]:
-                ax.axvline(r["width"], color="tab:red", alpha=0.3)
-    same = all(r["same"] for r in rows)
-    fig.suptitle(f"halo width on crowd_flock, 4 ranks, {ticks} ticks: final state equals the "
-                 f"1-rank run bit for bit at {'every width' if same else 'only unmarked widths'}",
-                 fontsize=10)
+                ax.axvline(r[knob], color="tab:red", alpha=0.3)
+    every = f"every {knob}" if all(r["same"] for r in rows) else f"only unmarked {knob}s"
+    fig.suptitle(f"halo {knob} on crowd_flock, 4 ranks, {ticks} ticks: final state equals the "
+                 f"1-rank run bit for bit at {every}", fontsize=10)
     save(fig, path)
 
 
