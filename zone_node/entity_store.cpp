@@ -1,8 +1,17 @@
 #include "zone_node/entity_store.h"
 
+#include <atomic>
 #include <cassert>
 
 namespace zonesim::zone {
+
+namespace {
+// Membership stamps, unique across the stores of the process (0: an empty, untouched store).
+std::uint64_t nextMembership() {
+  static std::atomic<std::uint64_t> last{0};
+  return last.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+}  // namespace
 
 std::size_t EntityStore::add(const EntityRecordData& r) {
   assert(!index_of_.count(r.id.value) && "entity added twice");
@@ -12,7 +21,7 @@ std::size_t EntityStore::add(const EntityRecordData& r) {
   index_of_[r.id.value] = i;
   if (r.kind == EntityKind::Avatar) avatar_of_player_[r.avatar.player_id] = i;
   ++kind_count_[std::size_t(r.kind)];
-  ++membership_;
+  membership_ = nextMembership();
   return i;
 }
 
@@ -27,7 +36,7 @@ void swapPop(std::vector<T>& v, std::size_t i) {
 void EntityStore::removeAt(std::size_t i) {
   assert(i < size());
   --kind_count_[std::size_t(kind[i])];
-  ++membership_;
+  membership_ = nextMembership();
   index_of_.erase(id[i].value);
   if (kind[i] == EntityKind::Avatar) avatar_of_player_.erase(avatar[i].player_id);
   std::size_t last = size() - 1;

@@ -268,8 +268,9 @@ class EntityStore {
  public:
   std::size_t size() const { return id.size(); }
   std::size_t count(EntityKind k) const { return kind_count_[std::size_t(k)]; }
-  /// Changes whenever an entity is added or removed (a system that found nothing to do can
-  /// tell that its entities are still the ones it looked at without looking again).
+  /// Changes whenever an entity is added or removed, to a value no store of this process had
+  /// before (a system that found nothing to do can tell that its entities are still the ones
+  /// it looked at without looking again, even if its store was replaced).
   std::uint64_t membership() const { return membership_; }
 
   /// Appends an entity; the id must not be present.

@@ -32,18 +32,14 @@ struct FlowMovement::Group {
   std::vector<std::uint8_t> arrived;
   std::vector<std::uint8_t> walking;    // per agent: counts toward crowding
   std::vector<std::uint32_t> crowding;  // per agent: its cell's count (empty: not used)
-  // Asleep: no NPC of the population in this zone walked at the end of a step, and `store` had
-  // this membership then. Arrived NPCs stand still, so until an entity comes or goes the
-  // step would find the same and change nothing.
+  // Asleep: no NPC of the population in this zone walked at the end of a step, and the store
+  // had this membership then (a stamp no other store shares). Arrived NPCs stand still, so
+  // until an entity comes or goes the step would find the same and change nothing.
   bool asleep = false;
-  const EntityStore* slept_in = nullptr;
   std::uint64_t slept_at = 0;
-  bool sleepsIn(const EntityStore& store) const {
-    return asleep && slept_in == &store && slept_at == store.membership();
-  }
+  bool sleepsIn(const EntityStore& store) const { return asleep && slept_at == store.membership(); }
   void fallAsleepIn(const EntityStore& store) {
     asleep = true;
-    slept_in = &store;
     slept_at = store.membership();
   }
 };
