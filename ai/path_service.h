@@ -102,6 +102,8 @@ class PathService {
   /// (never cached: points do not repeat), the grid planners between the cells holding them.
   /// False, as for a blocked cell, when an end is off the mesh.
   bool solveBetween(Vec2 from, Vec2 to, GridPath& out, int& expanded);
+  /// Whether the navigation mesh covers the point (map units); false without a mesh.
+  bool onMesh(Vec2 p) const { return mesh_ && mesh_->polygonAt(p) >= 0; }
   /// State of a request (Unknown for a released or stale handle).
   PathStatus status(PathRequestId id) const;
   /// The path of a Ready request (empty otherwise).

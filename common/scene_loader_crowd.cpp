@@ -91,11 +91,6 @@ void readObstacleMap(const SceneMap& root, Scene& scene) {
   }
   m.read("agent_radius", map.agent_radius, Limit::atLeast(0));
   m.read("static_bodies", map.static_bodies);
-  // Both at once left the courtyard's couriers without paths in a zone although the mesh
-  // library finds them (docs/ai.md): refused until that is understood.
-  if (map.agent_radius > 0 && map.static_bodies) {
-    m.failAt("static_bodies", "cannot be combined with map.agent_radius yet (docs/ai.md)");
-  }
   readMapDoors(m, map);
 }
 

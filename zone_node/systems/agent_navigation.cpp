@@ -127,6 +127,33 @@ ai::Cell AgentNavigation::startCell(double x, double z) const {
   return best;
 }
 
+ai::Vec2 AgentNavigation::meshStart(ai::Vec2 p) const {
+  if (service_->onMesh(p)) return p;
+  // Off the mesh but on open ground: within the agent radius of a wall, where an agent stops
+  // that reached a goal on the mesh's edge within its arrival distance. Start from the nearest
+  // cell centre the mesh covers, in the nearest ring of cells that has one (the band the
+  // radius takes off is at most radius + 1 cells wide).
+  const ai::Cell c{int(std::floor(p.x)), int(std::floor(p.y))};
+  const int reach = int(std::ceil(scene_.map.agent_radius / frame_.cell_size)) + 1;
+  for (int ring = 1; ring <= reach; ++ring) {
+    ai::Vec2 best = p;
+    double best_d = 1e300;
+    for (int dy = -ring; dy <= ring; ++dy) {
+      for (int dx = -ring; dx <= ring; ++dx) {
+        if (std::max(std::abs(dx), std::abs(dy)) != ring) continue;
+        const ai::Vec2 m{c.x + dx + 0.5, c.y + dy + 0.5};
+        const double d = std::hypot(m.x - p.x, m.y - p.y);
+        if (d < best_d && service_->onMesh(m)) {
+          best_d = d;
+          best = m;
+        }
+      }
+    }
+    if (best_d < 1e300) return best;
+  }
+  return p;  // nothing near: the plan fails, as for any start off the mesh
+}
+
 void AgentNavigation::want(EntityStore& store, std::size_t i, double x, double z, bool navigate,
                            std::int64_t tick) {
   AgentData& a = store.agent[i];
@@ -195,6 +222,7 @@ void AgentNavigation::plan(EntityStore& store, const ClusterGather& gather) {
       // shut on the agent; to the exact target.
       ai::Vec2 start = toMap(a.origin_x, a.origin_z);
       if (!(frame_.cellOf({a.origin_x, a.origin_z}) == from)) start = {from.x + 0.5, from.y + 0.5};
+      start = meshStart(start);
       w.found = service_->solveBetween(start, toMap(a.target_x, a.target_z), w.path, w.expanded);
     } else {
       w.found = service_->solve(from, to, w.path, w.expanded);

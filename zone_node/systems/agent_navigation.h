@@ -94,6 +94,7 @@ class AgentNavigation {
 
  private:
   ai::Cell startCell(double x, double z) const;
+  ai::Vec2 meshStart(ai::Vec2 p) const;  // p, or the nearest cell centre on the mesh
   ai::Vec2 toMap(double x, double z) const;                       // world -> map units
   crowd::Vec2 cornerOf(std::int32_t x, std::int32_t y) const;     // lattice point -> world
   bool meshPathTouches(const AgentData& a, ai::Cell cell) const;  // a navmesh path's segments
