@@ -68,6 +68,11 @@ Vec3 openStart(Pcg32& rng, const NpcPopulation& p, const Scene& scene, const Wor
 
 }  // namespace
 
+bool wanders(const NpcPopulation& p) {
+  return !(p.flock.enabled || p.flow.enabled || p.colony.enabled || p.roads.enabled ||
+           p.formation.enabled);
+}
+
 void forEachInitialEntity(const Scene& scene,
                           const std::function<void(const EntityRecordData&)>& keep) {
   std::shared_ptr<const WorldMap> map = loadWorldMap(scene);

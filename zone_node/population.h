@@ -10,6 +10,7 @@
 
 namespace zonesim {
 struct Scene;
+struct NpcPopulation;
 }  // namespace zonesim
 
 namespace zonesim::zone {
@@ -21,6 +22,10 @@ constexpr std::uint32_t kSceneCreator = 0xFFFF;
 /// NPCs start on open cells (throws SceneError when a region has none).
 void forEachInitialEntity(const Scene& scene,
                           const std::function<void(const EntityRecordData&)>& keep);
+
+/// Whether the population's NPCs wander (WanderMovement): those of a flock, flow crowd, ant
+/// colony, road network or formation carry their population index and move with that system.
+bool wanders(const NpcPopulation& p);
 
 /// The id of scene.physics.bodies[k] (they follow every population's entities).
 EntityId namedBodyId(const Scene& scene, std::size_t k);

@@ -49,7 +49,8 @@ Vec3 wanderVelocity(const Scene& scene, EntityStore& store, std::size_t i, doubl
 }  // namespace
 
 WanderMovement::WanderMovement(const Scene& scene) : scene_(scene) {
-  for (const NpcPopulation& p : scene.npcs) active_ |= p.count > 0;
+  // Crowd populations' NPCs are skipped below: a scene of those alone has nothing to wander.
+  for (const NpcPopulation& p : scene.npcs) active_ |= p.count > 0 && wanders(p);
 }
 
 void WanderMovement::step(StepContext& ctx) {
