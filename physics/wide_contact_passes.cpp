@@ -162,6 +162,13 @@ ZONESIM_WIDE_TARGET_AVX2 inline void scatter8(SolverMotion* m, const std::uint32
 }
 #endif
 
+// Six register columns (linear xyz, angular xyz) as the lanes' motions: a bit cast, no lane moves.
+template <class F, class C>
+ZONESIM_WIDE_INLINE void fromColumns(const C (&c)[6], V3<F>& lin, V3<F>& ang) {
+  lin = {std::bit_cast<F>(c[0]), std::bit_cast<F>(c[1]), std::bit_cast<F>(c[2])};
+  ang = {std::bit_cast<F>(c[3]), std::bit_cast<F>(c[4]), std::bit_cast<F>(c[5])};
+}
+
 // The lanes' bodies' motions as vectors: 8 and 4 lanes move whole records through registers
 // (pure data movement, so every width still sees the same bits), 1 lane goes through memory.
 template <int W>
@@ -172,10 +179,7 @@ ZONESIM_WIDE_INLINE void gather(const SolverMotion* m, const std::uint32_t* slot
   if constexpr (W == 8) {
     __m256 c[6];
     gather8(m, slot, c);
-    F f[6];
-    std::memcpy(f, c, sizeof f);
-    lin = {f[0], f[1], f[2]};
-    ang = {f[3], f[4], f[5]};
+    fromColumns(c, lin, ang);
     return;
   }
 #endif
@@ -189,10 +193,7 @@ ZONESIM_WIDE_INLINE void gather(const SolverMotion* m, const std::uint32_t* slot
     _MM_TRANSPOSE4_PS(a0, a1, a2, a3);
     _MM_TRANSPOSE4_PS(b0, b1, b2, b3);
     const __m128 c[6] = {a0, a1, a2, a3, b0, b1};
-    F f[6];
-    std::memcpy(f, c, sizeof f);
-    lin = {f[0], f[1], f[2]};
-    ang = {f[3], f[4], f[5]};
+    fromColumns(c, lin, ang);
     return;
   }
 #endif
