@@ -110,6 +110,8 @@ struct TickCounters {
   std::uint64_t island_bodies_out = 0;  ///< this zone's bodies solved in other zones' islands
   std::uint64_t island_exchanges = 0;   ///< 1 when islands were found and bodies traded
   std::uint64_t physics_steps = 0;      ///< engine world steps (0 while every body sleeps)
+  /// Body rows the physics stage read (0 while every body sleeps and nothing can wake one)
+  std::uint64_t bodies_checked = 0;
   std::uint64_t agents = 0;             ///< AI agents stepped
   std::uint64_t flow_npcs_visited = 0;  ///< flow-field NPCs gathered (0 while their crowds sleep)
   std::uint64_t agent_transitions = 0;  ///< their state machine transitions
@@ -187,6 +189,7 @@ inline constexpr CounterField kCounterFields[] = {
     {"island_bodies_out", &TickCounters::island_bodies_out, false},
     {"island_exchanges", &TickCounters::island_exchanges, false},
     {"physics_steps", &TickCounters::physics_steps, false},
+    {"bodies_checked", &TickCounters::bodies_checked, false},
     {"agents", &TickCounters::agents, true},
     {"flow_npcs_visited", &TickCounters::flow_npcs_visited, false},
     {"agent_transitions", &TickCounters::agent_transitions, false},

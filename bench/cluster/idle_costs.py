@@ -51,7 +51,7 @@ ARRIVED_CROWD = ROOT / "scenes" / "courtyard_flow.yaml"
 STAGES = ("input", "ai.doors", "ai.neighbours", "ai.lod", "ai.interactions", "ai.agents",
           "ai.wander", "ai.flock", "ai.flow", "ai.formations", "ai.roads", "ai.ants", "avatars",
           "physics", "gpu", "migrate", "halo", "publish", "checks")
-COUNTERS = ("physics_steps", "bodies_awake", "particles_alive", "paths_planned", "agents",
+COUNTERS = ("physics_steps", "bodies_checked", "bodies_awake", "particles_alive", "paths_planned", "agents",
             "flow_npcs_visited", "ghosts", "published_states", "published_updates")
 
 

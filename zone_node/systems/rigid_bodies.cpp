@@ -353,15 +353,25 @@ std::vector<std::size_t> RigidBodySystem::bodiesById(const EntityStore& store) {
 }
 
 std::size_t RigidBodySystem::advanceAlone(StepContext& ctx) {
+  // The same bodies as on a tick that found them all asleep, and nothing that could wake one:
+  // that tick's answer holds without looking at the store again (issue 19's idle cost).
+  if (world_ && resting_membership_ == ctx.store.membership() && cloths_.empty() &&
+      !set_pieces_.moving() && !explosionDue(ctx.tick, ctx.dt))
+    return 0;
+  resting_membership_.reset();
   std::vector<BodyRef> bodies;
   for (std::size_t i : bodiesById(ctx.store)) bodies.push_back({&ctx.store, i});
+  ctx.counters.bodies_checked = bodies.size();
   if (bodies.empty() && cloths_.empty()) {
     world_.reset();
     members_ = {};
     return 0;
   }
   holdBodies(bodies, false);
-  if (!stepWorld(ctx) && !holdsCloths(ctx)) return 0;
+  if (!stepWorld(ctx) && !holdsCloths(ctx)) {
+    resting_membership_ = ctx.store.membership();
+    return 0;
+  }
   return writeBack(bodies, false);
 }
 

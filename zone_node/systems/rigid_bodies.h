@@ -170,6 +170,8 @@ class RigidBodySystem : public ZoneSystem {
   std::uint64_t rebuilds_ = 0;
   std::uint64_t world_steps_ = 0;  // times the engine's world stepped
   std::uint64_t bodies_held_ = 0;  // of this zone's bodies, held still in the last step (lod)
+  // The store's membership when advanceAlone last found every body asleep and did not step.
+  std::optional<std::uint64_t> resting_membership_;
   physics::StepProfile profile_;
   std::size_t joints_added_ = 0;
   std::vector<JointSlot> joint_slots_;

@@ -76,6 +76,7 @@ std::size_t RigidBodySystem::advanceInCluster(StepContext& ctx) {
   EntityStore& store = ctx.store;
   const Collectives& cluster = ctx.cluster;
   const std::vector<std::size_t> own = bodiesById(store);
+  ctx.counters.bodies_checked = own.size();
 
   // Reach boxes: the bounds each body may sweep, with the contact margin, this tick.
   const double margin = physics::WorldSettings{}.contact_margin;
