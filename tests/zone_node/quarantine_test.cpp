@@ -1,14 +1,16 @@
 // A walker whose state turns non-finite is frozen where it stood and counted once in the zone's
 // `quarantined` counter; its NaN reaches nobody: the others stay finite, none is counted, and
 // those that never came near it move exactly as in a run where it was healthy.
+#include "zone_node/quarantine.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <limits>
 
-#include "zone_node/zone_fixture.h"
 #include "zone_node/cluster/checkpoint.h"
 #include "zone_node/population.h"
+#include "zone_node/zone_fixture.h"
 
 namespace zonesim::zone {
 namespace {
@@ -78,6 +80,39 @@ TEST(Quarantine, ANonFiniteNpcIsFrozenCountedOnceAndSpreadsToNoOne) {
   }
   EXPECT_EQ(moved, 39);
   EXPECT_GT(far, 30);
+}
+
+// The guard's one-pass check over the columns finds every kind of non-finite value in every
+// column, in the first row, the last (the pass's tail) and one between.
+TEST(Quarantine, EveryNonFiniteValueInAnyColumnOfAnyRowIsFound) {
+  const double bad[] = {std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  for (std::size_t rows : {1u, 6u, 7u}) {
+    for (std::size_t row : {std::size_t(0), rows / 2, rows - 1}) {
+      for (int column = 0; column < 3; ++column) {
+        for (double value : bad) {
+          EntityStore store;
+          for (std::size_t k = 0; k < rows; ++k) {
+            EntityRecordData r;
+            r.id = EntityId{k + 1};
+            r.pos = Vec3(double(k), 0, 1);
+            store.add(r);
+          }
+          Quarantine guard;
+          guard.begin(store);
+          if (column == 0) store.pos[row].z() = value;
+          if (column == 1) store.vel[row].y() = value;
+          if (column == 2) store.rot[row].w() = value;
+          EXPECT_EQ(guard.apply(store), 1u)
+              << rows << " rows, row " << row << ", column " << column;
+          EXPECT_TRUE(guard.holds(EntityId{row + 1}));
+          EXPECT_EQ(store.pos[row], Vec3(double(row), 0, 1));
+          EXPECT_EQ(Quarantine().apply(store), 0u) << "the frozen row is finite again";
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
