@@ -30,9 +30,10 @@ struct OffloadThresholds {
   std::size_t of(Workload workload) const;
 };
 
-/// The thresholds when the probe fails on a device that exists: particles from
+/// The thresholds before a probe, or when it fails on a device that exists: particles from
 /// kAutoGpuThreshold (measured on a quiet machine, gpu/backend.h); flocks never, since on PoCL
-/// sharing two loaded cores with the CPU path they did not win reliably (docs/benchmarks.md).
+/// sharing two loaded cores with the CPU path they did not win reliably (docs/benchmarks.md);
+/// zone_node probes them under auto (zone_node/systems/offload_probe.h).
 OffloadThresholds defaultThresholds();
 
 /// One timed probe: seconds per step on each path at n items.

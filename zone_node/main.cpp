@@ -223,8 +223,9 @@ int main(int argc, char** argv) {
                  "before the zone removes it; 0: never")
       ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--gpu", o.zone.gpu,
-                 "particles and flocks on OpenCL: on, off, auto (measured default thresholds) or "
-                 "probe (auto with thresholds timed on rank 0 at start and broadcast)")
+                 "particles and flocks on OpenCL: on, off, auto (particles from a measured "
+                 "default, flocks of 1,000 or more from a threshold timed on rank 0 at start and "
+                 "broadcast) or probe (auto with both thresholds timed)")
       ->check(CLI::IsMember({"on", "off", "auto", "probe"}));
   app.add_option("--time-dilation", o.time_dilation,
                  "slow the cluster's clock under overload: on, off, or scene (its time_dilation "

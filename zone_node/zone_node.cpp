@@ -68,15 +68,16 @@ ZoneNode::ZoneNode(const Scene& scene, MPI_Comm comm, const ZoneOptions& options
     walker_reach_ = std::max(walker_reach_, p.separation_radius);
   for (const RigidBodyPopulation& p : scene.rigid_bodies) bodies_in_scene_ |= p.count > 0;
   bodies_in_scene_ |= !scene.physics.bodies.empty();
-  // --gpu probe: auto, with thresholds timed on rank 0 only and shared (collective), so that
-  // every rank puts particles and flocks on the same backend.
-  bool offloadable = false;
-  for (const EmitterPopulation& p : scene_.emitters) offloadable |= p.count > 0;
-  for (const NpcPopulation& p : scene_.npcs) offloadable |= p.flock.enabled && p.count > 0;
+  // Thresholds timed on rank 0 only and shared (collective), so that every rank puts particles
+  // and flocks on the same backend. --gpu probe times both workloads; auto times the flocks
+  // (no default fits them: their crossover moved from 2,000 to 7,400 agents with the load)
+  // when one is large enough that the device could win, and keeps the particles' measured
+  // default (a scene's sprays would otherwise switch between float and double with the load).
   const bool probe = options_.gpu == "probe";
+  const ProbedWorkloads probed = probedWorkloads(scene_, options_.gpu);
   const std::string gpu_mode = probe ? "auto" : options_.gpu;
-  const gpu::OffloadThresholds thresholds =
-      agreedThresholds(comm_, probe && offloadable, probeZoneThresholds);
+  const gpu::OffloadThresholds thresholds = agreedThresholds(
+      comm_, probed.any(), [probed](gpu::OffloadThresholds& t) { probeZoneThresholds(t, probed); });
   flocks_ = std::make_unique<FlockMovement>(scene, gpu_mode, thresholds, size_);
   map_ = ZoneMap::load(scene);
   const WorldMap* walls = map_ ? &map_->world() : nullptr;
