@@ -56,6 +56,9 @@ struct Scene {
   TimeDilationSettings time_dilation;  ///< slowing the clock under overload
   InteractionSettings interactions;    ///< hits and gifts between entities, by message
   AdaptationSettings adaptation;       ///< duels against NPCs that adapt to the player
+  /// Where particles and flocks step: off, on, auto or probe (zone_node's --gpu, whose default
+  /// `scene` takes this; the key gpu.mode, absent: auto).
+  std::string gpu_mode = "auto";
 };
 
 /// The halo skin the zones use: `halo.skin`, or by default max(1 m, width / 5), enough that

@@ -283,6 +283,13 @@ void readInterest(const SceneMap& root, Scene& scene) {
   }
 }
 
+// The offload mode is a scene setting too, so that a tuned overlay can choose it.
+void readGpu(const SceneMap& root, Scene& scene) {
+  static constexpr std::string_view kModes[] = {"off", "on", "auto", "probe"};
+  SceneMap gpu = root.section("gpu", {"mode"});
+  scene.gpu_mode = std::string(kModes[gpu.choice("mode", {"off", "on", "auto", "probe"}, 2)]);
+}
+
 // Ghosts come only from neighbouring zones, so the halo may not reach past one zone.
 void readHalo(const SceneMap& root, Scene& scene) {
   SceneMap halo = root.section("halo", {"width", "skin"});
@@ -394,9 +401,10 @@ void readClients(const SceneMap& root, Scene& scene) {
 }
 
 Scene readScene(const SceneNode& document, const std::string& file) {
-  SceneMap root = document.map({"name", "world", "tick", "seed", "zones", "interest", "halo",
-                                "dead_reckoning", "physics", "populations", "clients", "map",
-                                "agents", "lod", "time_dilation", "interactions", "adaptation"});
+  SceneMap root =
+      document.map({"name", "world", "tick", "seed", "zones", "interest", "halo", "dead_reckoning",
+                    "physics", "populations", "clients", "map", "agents", "lod", "time_dilation",
+                    "interactions", "adaptation", "gpu"});
   Scene scene;
   scene.name = std::filesystem::path(file).stem().string();
   if (std::optional<SceneNode> name = root.optional("name")) {
@@ -420,6 +428,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readTimeDilation(root, scene.time_dilation);
   readInteractions(root, scene.world, scene.halo_width, scene.interactions);
   readAdaptation(root, scene.world, scene.adaptation);
+  readGpu(root, scene);
   return scene;
 }
 

@@ -43,8 +43,14 @@ struct Options {
   std::string ledger;  ///< sqlite:PATH or postgres:CONNINFO; empty: no ledger
   std::string record_dir;          ///< empty: no recording
   std::uint32_t record_every = 1;  ///< record one entity id in this many
-  zonesim::zone::ZoneOptions zone;
+  zonesim::zone::ZoneOptions zone = withSceneGpu();  ///< its gpu "scene": the scene's gpu.mode
   zonesim::CommonOptions common;
+
+  static zonesim::zone::ZoneOptions withSceneGpu() {
+    zonesim::zone::ZoneOptions z;
+    z.gpu = "scene";
+    return z;
+  }
 };
 
 /// Sleeps until an absolute CLOCK_MONOTONIC time (fixed-rate ticks without drift).
@@ -80,6 +86,7 @@ int run(const Options& o, MPI_Comm comm) {
   Scene scene = loadScene(o.scene);
   if (o.time_dilation != "scene") scene.time_dilation.enabled = o.time_dilation == "on";
   zone::ZoneOptions zone_options = o.zone;
+  if (zone_options.gpu == "scene") zone_options.gpu = scene.gpu_mode;
   zone_options.epoch = std::uint32_t(o.epoch >= 0 ? o.epoch : o.restart.empty() ? 0 : 1);
   zone_options.orphan_grace_ticks = int(std::lround(o.orphan_grace_s * scene.tick_rate));
   std::unique_ptr<zone::CheckpointImage> image;
@@ -225,8 +232,9 @@ int main(int argc, char** argv) {
   app.add_option("--gpu", o.zone.gpu,
                  "particles and flocks on OpenCL: on, off, auto (particles from a measured "
                  "default, flocks of 1,000 or more from a threshold timed on rank 0 at start and "
-                 "broadcast) or probe (auto with both thresholds timed)")
-      ->check(CLI::IsMember({"on", "off", "auto", "probe"}));
+                 "broadcast), probe (auto with both thresholds timed) or scene (its gpu.mode; "
+                 "absent: auto)")
+      ->check(CLI::IsMember({"on", "off", "auto", "probe", "scene"}));
   app.add_option("--time-dilation", o.time_dilation,
                  "slow the cluster's clock under overload: on, off, or scene (its time_dilation "
                  "key; absent: off)")

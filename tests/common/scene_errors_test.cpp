@@ -134,7 +134,7 @@ const InlineCase kInlineCases[] = {
     {"unknown_top_level", withBase("colour: red\n"),
      "5: colour: unknown key (allowed: name, world, tick, seed, zones, interest, halo, "
      "dead_reckoning, physics, populations, clients, map, agents, lod, time_dilation, "
-     "interactions, adaptation)"},
+     "interactions, adaptation, gpu)"},
     {"hit_reach_past_halo", withBase("interactions: {hit_reach: 12}\n"),
      "5: interactions.hit_reach: 12 m is beyond halo.width (10 m): targets across a zone border "
      "would not be seen"},

@@ -5,7 +5,8 @@ same scene differently).
 - probe on scenes/test_small.yaml (particles): both workloads timed, one particle backend.
 - auto on scenes/flock_large.yaml (a 20,000-agent flock): only the flock is timed, and both
   ranks put it on the backend the broadcast threshold gives for 20,000 agents.
-- auto on scenes/test_small.yaml (no flock): nothing is timed (particles keep their default)."""
+- auto on scenes/test_small.yaml (no flock): nothing is timed (particles keep their default).
+- no --gpu: the scene's gpu.mode decides (overlays of flock_large setting off and on)."""
 import json
 import re
 import tempfile
@@ -17,11 +18,12 @@ PROBE_LINE = re.compile(r"offload probe on rank 0: particles (never|from \d+), z
 FLOCK_LINE = re.compile(r"offload probe on rank 0: zone flocks (never|from (\d+)) \(particles not probed")
 
 
-def run(out, scene, mode, ticks):
+def run(out, scene, mode, ticks, path=None):
     log = out / f"{scene}_{mode}.log"
     metrics = out / f"{scene}_{mode}"
-    h.run(h.mpirun(2, h.bin_dir() / "zone_node", "--scene", h.SOURCE_DIR / f"scenes/{scene}.yaml",
-                   "--ticks", ticks, "--no-dds", "--gpu", mode, "--metrics", metrics),
+    gpu = ["--gpu", mode] if mode != "scene" else []
+    h.run(h.mpirun(2, h.bin_dir() / "zone_node", "--scene", path or h.SOURCE_DIR / f"scenes/{scene}.yaml",
+                   "--ticks", ticks, "--no-dds", *gpu, "--metrics", metrics),
           log, h.base_env(), timeout=300)
     summaries = [json.loads(p.read_text()) for p in sorted(metrics.glob("zone_*_summary.json"))]
     h.check(len(summaries) == 2, f"{scene} --gpu {mode}: both ranks wrote a summary ({len(summaries)})")
@@ -54,4 +56,12 @@ with tempfile.TemporaryDirectory(prefix="zs_probe_") as tmp:
 
     text, _ = run(out, "test_small", "auto", 5)
     h.check("offload probe" not in text, "auto with no flock times nothing")
+
+    for mode, want in (("off", "cpu"), ("on", "opencl")):
+        overlay = out / f"flock_large_{mode}.yaml"
+        overlay.write_text(f"overlay_of: {h.SOURCE_DIR / 'scenes/flock_large.yaml'}\ngpu: {{mode: {mode}}}\n")
+        text, summaries = run(out, f"flock_large_{mode}", "scene", 2, overlay)
+        backends = {s["flock_backend"] for s in summaries}
+        h.check(backends == {want} and "offload probe" not in text,
+                f"gpu.mode {mode} in the scene, no --gpu: the flock on {want} ({sorted(backends)}), nothing probed")
 print("gpu probe agreement passed")
