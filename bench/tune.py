@@ -27,7 +27,10 @@ tick. A budget that limits path_overhead is measured the same way, with agents.p
 every plan of the scene's agents is also planned by A*, and the largest excess over that
 optimum is the figure; its knobs are the planner (map.navigation), landmarks and the HPA*
 cluster size, judged by AI time per tick (planning and following paths; the audit's own
-searches left out).
+searches left out). A budget that limits gpu_error is measured the same way, on a scene with
+flocks: each run's end state against a reference run with everything on the CPU (gpu.mode off,
+double); its knob is gpu.mode (off, on, and the scene's own, auto by default), judged by AI time
+per tick. Zone-only runs of other knobs keep everything on the CPU.
 
 A sweep run that fails or stops short of its end tick is reported and its value skipped; the
 sweep goes on. A budget no measured setting meets is refused (exit 2), naming the limit and
@@ -111,6 +114,8 @@ class Tuner:
         overlay = folder / "candidate.yaml"
         if self.audit_paths:  # a measurement: changes no path, costs an A* search per plan
             settings = {**settings, "agents.paths.audit": True}
+        if self.zones_only:  # on the CPU unless the gpu knob says otherwise: runs repeat exactly
+            settings = {**knob_defs.GPU_REFERENCE, **settings}
         overlay.write_text(knob_defs.overlay_text(self.a.scene, settings, [f"tune candidate: {label}"]))
         started = time.monotonic()
         ref = self.refs.get(seconds, {})
@@ -140,12 +145,13 @@ class Tuner:
             f[key] = pick(r[key] for r in runs)
         return f
 
-    def reference(self, settings, seconds, bodies, crowd):
+    def reference(self, settings, seconds, bodies, crowd, gpu=False):
         """Runs the reference (every physics knob at its most accurate, the crowd level of detail
-        off) for `seconds` and keeps what later runs of that length are compared
-        with: the bodies resting at its end tick (stack_drift) and every flow NPC's arrival tick
-        (arrival_drift). Returns how many bodies rest and how many NPCs arrived."""
-        what = " and ".join(w for w, on in (("physics", bodies), ("crowds", crowd)) if on)
+        off, everything on the CPU) for `seconds` and keeps what later runs of that length are
+        compared with: the bodies resting at its end tick (stack_drift), every flow NPC's arrival
+        tick (arrival_drift) and every entity's end position (gpu_error). Returns how many bodies
+        rest and how many NPCs arrived."""
+        what = " and ".join(w for w, on in (("physics", bodies), ("crowds", crowd), ("offload", gpu)) if on)
         self.measure(settings, f"reference: {what} at their most accurate", seconds)
         run = self.a.work / f"run-{self.count:02d}" / "run"
         ref = {}
@@ -161,6 +167,10 @@ class Tuner:
             print(f"       {len(ref['arrivals'])} flow NPCs arrive within the reference's "
                   f"{measure.zone_ticks(self.scene, seconds)} ticks: arrival_drift is measured against them",
                   flush=True)
+        if gpu:
+            ref["end"] = measure.end_positions(run)
+            print(f"       {len(ref['end'])} entities end the reference on the CPU: gpu_error is measured "
+                  "against them", flush=True)
         self.refs[seconds] = ref
         return len(ref.get("rest", {})), len(ref.get("arrivals", {}))
 
@@ -178,6 +188,8 @@ def figures_line(f):
     if "arrival_drift" in f:
         parts.append(f"arrival drift p99 {f['arrival_drift']:5.2f} s mean {f['arrival_drift_mean']:5.2f} s "
                      f"({f['arrived']} arrived)")
+    if "gpu_error" in f:
+        parts.append(f"gpu error {f['gpu_error'] * 1000:9.4f} mm")
     if f.get("paths_audited"):
         parts.append(f"planner {f['planner_ms']:7.4f} ms  path overhead max {f['path_overhead'] * 100:6.3f} % "
                      f"mean {f['path_overhead_mean'] * 100:6.4f} % ({f['paths_audited']} paths)")
@@ -228,7 +240,7 @@ def print_frontier(knobs, chosen, reasons, limits):
     print("\nfrontier (each knob in turn, those before it at their choices, the rest at the scene's):")
     shown = [m for m in ("shown_error_p99", "kbps_per_client", "tick_ms_p99", "physics_ms", "stack_drift",
                          "ai_ms", "arrival_drift", "arrival_drift_mean", "planner_ms", "path_overhead",
-                         "path_overhead_mean")
+                         "path_overhead_mean", "gpu_error")
              if any(m in f for k in knobs for _, f in k.sweep)
              and (not m.startswith(("planner", "path")) or any(f.get("paths_audited") for k in knobs for _, f in k.sweep))]
     print(f"  {'knob':<22} {'value':<16} " + " ".join(f"{m:>15}" for m in shown))
@@ -257,6 +269,8 @@ def figures_text(f):
         parts.append(f"arrival drift p99 {f['arrival_drift']:.2f} s, mean {f['arrival_drift_mean']:.3f} s, "
                      f"max {f['arrival_drift_max']:.2f} s over {f['arrivals_compared']} NPCs "
                      f"({f['arrived']} arrived)")
+    if "gpu_error" in f:
+        parts.append(f"gpu error {f['gpu_error'] * 1000:.4f} mm over {f['entities_compared']} entities")
     if f.get("paths_audited"):
         parts.append(f"planner {f['planner_ms']:.4f} ms, path overhead max {f['path_overhead'] * 100:.3f} %, "
                      f"mean {f['path_overhead_mean'] * 100:.4f} % over {f['paths_audited']} paths")
@@ -314,12 +328,13 @@ def main(argv):
     limited = {l.metric for l in a.limits}
     crowd_limits = sorted(limited & set(budget.CROWD_METRICS))
     path_limits = sorted(limited & set(budget.PATH_METRICS))
-    zones_only = bool(crowd_limits or path_limits)
+    gpu_limits = sorted(limited & set(budget.GPU_METRICS))
+    zones_only = bool(crowd_limits or path_limits or gpu_limits)
     uses = knob_defs.scene_uses(scene)
     if zones_only:
         players = sorted(limited & set(budget.PLAYER_METRICS))
         if players:
-            print(f"refused: {', '.join(crowd_limits + path_limits)} is measured on runs of the zones alone "
+            print(f"refused: {', '.join(crowd_limits + path_limits + gpu_limits)} is measured on runs of the zones alone "
                   f"and {', '.join(players)} needs players: tune them in two runs of the tuner", file=sys.stderr)
             sys.exit(2)
         if crowd_limits and not uses["flow"]:
@@ -330,6 +345,10 @@ def main(argv):
             print(f"refused: {', '.join(path_limits)} needs agents that plan paths on a map (a type with "
                   f"navigate: true, and map:), and {a.scene.name} has none", file=sys.stderr)
             sys.exit(2)
+        if gpu_limits and not uses["flock"]:
+            print(f"refused: {', '.join(gpu_limits)} needs a flocking population (populations[].flock), the "
+                  f"one workload a scene's knob moves to the device, and {a.scene.name} has none", file=sys.stderr)
+            sys.exit(2)
 
     def unmeasured(k):
         """Why this budget's runs cannot judge knob k, or None."""
@@ -337,6 +356,8 @@ def main(argv):
             return "trades against arrival_drift, which only a budget that limits it measures"
         if k.accuracy in budget.PATH_METRICS and not path_limits:
             return "trades against path_overhead, which only a budget that limits it measures"
+        if k.accuracy in budget.GPU_METRICS and not gpu_limits:
+            return "trades against gpu_error, which only a budget that limits it measures"
         if zones_only and k.cost in budget.PLAYER_METRICS:
             return "needs players, and a crowd or path budget runs the zones alone"
         return None
@@ -356,7 +377,8 @@ def main(argv):
               f"{a.scene.name} has none", file=sys.stderr)
         sys.exit(2)
     wants_crowd = bool(crowd_limits)
-    wants_reference = wants_drift or wants_crowd
+    wants_gpu = bool(gpu_limits)
+    wants_reference = wants_drift or wants_crowd or wants_gpu
     a.work.mkdir(parents=True, exist_ok=True)
     runs = 1 + wants_reference + sum(len(k.values) - 1 for k in knobs)
     how = "the zones alone, as fast as they go" if zones_only else f"{a.players} players"
@@ -368,11 +390,12 @@ def main(argv):
     chosen = {k.name: k.scene_value for k in knobs}
     reference_knobs = knob_defs.physics_knobs(scene) if wants_drift else []
     reference_knobs += knob_defs.crowd_knobs(scene) if wants_crowd else []
+    reference_knobs += [knob_defs.gpu_knob(scene)] if wants_gpu else []
 
     def reference_run(seconds):
         reference = {**settings_of(knobs, chosen), **knob_defs.reference_settings(reference_knobs)}
         try:
-            rest, arrived = t.reference(reference, seconds, wants_drift, wants_crowd)
+            rest, arrived = t.reference(reference, seconds, wants_drift, wants_crowd, wants_gpu)
         except measure.RunError as e:
             sys.exit(f"tune.py: the reference run failed, so nothing can be compared with it: {e}")
         if wants_drift and not rest:

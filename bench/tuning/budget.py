@@ -24,6 +24,9 @@ METRICS = {
                           "planned (agents.paths.audit; 0.01: 1 % longer)"),
     "path_overhead_mean": ("", "the same, the mean over the planned paths"),
     "planner_ms": ("ms", "mean time in the path planner per tick (the audit left out), summed over the zone ranks"),
+    "gpu_error": ("m", "the largest distance between where a run ends an entity and where the same settings "
+                       "on the CPU reference (gpu.mode off: double) end it, over every entity (runs of the "
+                       "zones alone: the particles' and flocks' float error, grown over the run)"),
 }
 
 # The metrics that only a scene with rigid bodies measures (tuning/measure.py's reference run).
@@ -34,6 +37,9 @@ CROWD_METRICS = ("arrival_drift", "arrival_drift_mean")
 # The metrics of the agents' path planner, measured on runs of the zones alone with
 # agents.paths.audit on.
 PATH_METRICS = ("path_overhead", "path_overhead_mean")
+# The metric of the device's float arithmetic, measured on runs of the zones alone against a
+# reference run on the CPU.
+GPU_METRICS = ("gpu_error",)
 # The metrics that need players (a gateway and a fleet), which zone-only runs do not measure.
 PLAYER_METRICS = ("shown_error_p99", "kbps_per_client")
 

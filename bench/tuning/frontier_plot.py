@@ -1,6 +1,7 @@
 """The work-precision plot of a tuning: per knob, its accuracy figure against its cost figure
 (the wire's knobs: shown error against download per player; the physics knobs: stack drift
-against physics time per tick; the crowd's: arrival drift against AI time per tick)."""
+against physics time per tick; the crowd's: arrival drift against AI time per tick; the gpu
+knob: the device's float error against AI time per tick)."""
 import matplotlib
 
 matplotlib.use("Agg")
@@ -9,7 +10,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 AXES = {"shown_error_p99": ("shown error p99, m", 1), "kbps_per_client": ("download per player, kbit/s", 1),
         "stack_drift": ("stack drift, mm", 1000), "physics_ms": ("physics per tick, ms", 1),
         "arrival_drift": ("arrival drift p99, s", 1), "ai_ms": ("AI per tick, ms", 1),
-        "path_overhead": ("path overhead max, %", 100), "planner_ms": ("planner per tick, ms", 1)}
+        "path_overhead": ("path overhead max, %", 100), "planner_ms": ("planner per tick, ms", 1),
+        "gpu_error": ("gpu error, mm", 1000)}
 
 
 def plot(knobs, chosen, limits, together, title, path):

@@ -72,6 +72,7 @@ def scene_uses(scene):
             "flow": any(isinstance(p, dict) and isinstance(p.get("flow"), dict) for p in populations),
             "paths": isinstance(scene.get("map"), dict) and bool(get(scene, "agents.populations", None)) and
             any(isinstance(t, dict) and t.get("navigate") for t in get(scene, "agents.types", []) or []),
+            "flock": any(isinstance(p, dict) and isinstance(p.get("flock"), dict) for p in populations),
             "avatar": True}  # the tuner's runs always have players
 
 
@@ -100,6 +101,8 @@ def knobs_for(scene):
         knobs += crowd_knobs(scene)
     if uses["paths"]:
         knobs += path_knobs(scene)
+    if uses["flock"]:
+        knobs.append(gpu_knob(scene))
     for k in knobs:  # the scene's own value is always a candidate (its run is the baseline)
         if k.scene_value not in k.values:
             k.values.append(k.scene_value)
@@ -200,13 +203,30 @@ def path_knobs(scene):
     return knobs
 
 
+def gpu_knob(scene):
+    """Where the scene's flocks step (docs/scene-format.md, `gpu`), judged by AI time (the flocks
+    step in the AI phase) against gpu_error: how far the device's float run ends from the CPU's
+    double one. Most accurate first; the scene's own (absent: auto, which decides by a probe at
+    start-up) is added after."""
+    return Knob("gpu", ("gpu.mode",), [("off",), ("on",)], (get(scene, "gpu.mode", "auto"),),
+                "where flocks step: the CPU (double) or the OpenCL device (float)", cost="ai_ms",
+                accuracy="gpu_error")
+
+
+# The reference that gpu_error is measured against: every workload on the CPU, in double.
+GPU_REFERENCE = {"gpu.mode": "off"}
+
+
 def reference_settings(knobs):
     """The dotted-key settings of the reference run: every physics knob at its most accurate
-    value, so that the tuner measures stack_drift against the best the engine does, and, where
-    crowd knobs are turned, the crowd level of detail off (CROWD_FULL_DETAIL)."""
+    value, so that the tuner measures stack_drift against the best the engine does; where
+    crowd knobs are turned, the crowd level of detail off (CROWD_FULL_DETAIL); where the gpu
+    knob is, everything on the CPU (GPU_REFERENCE)."""
     settings = {key: v for k in knobs if k.accuracy == "stack_drift" for key, v in zip(k.keys, k.values[0])}
     if any(k.accuracy == "arrival_drift" for k in knobs):
         settings.update(CROWD_FULL_DETAIL)
+    if any(k.accuracy == "gpu_error" for k in knobs):
+        settings.update(GPU_REFERENCE)
     return settings
 
 

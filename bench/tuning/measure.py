@@ -148,16 +148,16 @@ def run_zones(overlay, folder, ranks, ticks, dt, bin_dir, reference=None):
     they go) for `ticks` ticks of `dt` s; returns its figures: the slowest rank's p99 tick
     time, the physics and AI time per tick summed over the ranks (the AI time without the path
     audit's searches), the path planner's figures (path_figures), how many flow NPCs arrived,
-    and against `reference` (a dict that may hold `arrivals`, id -> tick, and `rest`, the
-    bodies resting at the end of a reference run of the same length) the arrival drift and
-    stack drift. Raises RunError when a rank fails or the run stops short of `ticks` (naming
+    and against `reference` (a dict that may hold `arrivals`, id -> tick, `rest`, the bodies
+    resting at the end of a reference run of the same length, and `end`, every entity's end
+    position in it) the arrival drift, stack drift and gpu error. Raises RunError when a rank fails or the run stops short of `ticks` (naming
     the tick it reached)."""
     run = folder / "run"
     if run.exists():  # a repetition: the zones must not read an earlier run's files
         shutil.rmtree(run)
     run.mkdir(parents=True)
     cmd = ["mpirun", "-np", str(ranks), "--oversubscribe", "--bind-to", "none", str(bin_dir / "zone_node"),
-           "--scene", str(overlay), "--ticks", str(ticks), "--no-dds", "--gpu", "off", "--metrics", str(run),
+           "--scene", str(overlay), "--ticks", str(ticks), "--no-dds", "--gpu", "scene", "--metrics", str(run),
            "--arrivals", str(run / ARRIVALS), "--dump-state", str(run / END_STATE)]
     with open(folder / "zones.log", "w") as out:
         p = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, cwd=ROOT)
@@ -186,7 +186,28 @@ def run_zones(overlay, folder, ranks, ticks, dt, bin_dir, reference=None):
     if reference.get("rest"):
         f["stack_drift"], f["stack_drift_body"] = stack_drift(run, reference["rest"])
         f["resting_bodies"] = len(reference["rest"])
+    if "end" in reference:
+        f["gpu_error"], f["gpu_error_entity"] = largest_departure(run, reference["end"])
+        f["entities_compared"] = len(reference["end"])
     return f
+
+
+def end_positions(run):
+    """id -> position of every entity at the end of a finished zone-only run."""
+    if not (run / END_STATE).exists():
+        raise RunError(f"{run}: no {END_STATE}: the zones did not write their end state")
+    return {e["id"]: e["pos"] for e in map(json.loads, (run / END_STATE).read_text().splitlines())}
+
+
+def largest_departure(run, reference):
+    """The largest distance between where this run ends an entity and where the reference run
+    (`reference`, end_positions()) ends it, and which entity; RunError when the two runs do not
+    end with the same entities."""
+    here = end_positions(run)
+    if here.keys() != reference.keys():
+        raise RunError(f"{run}: {len(here.keys() ^ reference.keys())} entities are in only one of this run's "
+                       "and the reference's end states")
+    return max(((math.dist(here[i], pos), i) for i, pos in reference.items()), default=(0.0, None))
 
 
 def figures_of(run, rest=None):

@@ -12,7 +12,9 @@ far-band steering setting reaches is refused naming the limit and the best measu
 mean drift the bands can meet gives an overlay with the chosen bands, confirmed. The planner
 limit on scenes/agents_navmesh.yaml: landmarks, which the loader refuses with a navmesh, make
 their runs fail, reported and skipped while the tune goes on to refuse an overhead below the
-mesh's; on a scene without planning agents it is refused before any run."""
+mesh's; on a scene without planning agents it is refused before any run. The gpu limit on
+scenes/crowd_flock.yaml: the flock on the device is measured against the CPU's double run and
+an overlay choosing gpu.mode is written; on a scene without flocks it is refused."""
 import json
 import re
 import subprocess
@@ -153,4 +155,24 @@ with tempfile.TemporaryDirectory(prefix="zs_tune_") as tmp:
     nowhere = tune(tmp / "nowhere", "path_overhead<=0.01", scene=courtyard, knobs="lod on")
     h.check(nowhere.returncode == 2 and "path_overhead needs agents that plan paths on a map" in nowhere.stderr,
             f"a planner limit on a scene without planning agents is refused: {nowhere.stderr.strip()[-300:]}")
+
+    # The device's float error, on scenes/crowd_flock.yaml's 3000 flockers (zones alone): the
+    # flock on the device ends within a millimetre of the CPU's double run over 2 s, at more AI
+    # time (PoCL on these cores): off, the reference itself, is chosen and written. A gpu limit
+    # on a scene without flocks is refused before any run.
+    flock = h.SOURCE_DIR / "scenes" / "crowd_flock.yaml"
+    offload = tune(tmp / "gpu", "gpu_error<=0.001", "--repeat", "1", scene=flock, knobs="gpu", seconds=2)
+    out = tmp / "gpu" / "crowd_flock.tuned.yaml"
+    h.check(offload.returncode == 0 and out.exists(), f"a gpu budget writes the overlay: {offload.stdout[-800:]} "
+            f"{offload.stderr[-400:]}")
+    if out.exists():
+        report = json.loads((tmp / "gpu" / "tune.json").read_text())
+        errors = {r["label"]: r["figures"].get("gpu_error") for r in report["runs"] if "figures" in r}
+        h.check(errors.get("gpu = off") == 0 and 0 < errors.get("gpu = on", 0) <= 0.001,
+                f"off ends where the reference does, on within the millimetre: {errors}")
+        h.check("mode: " in out.read_text() and report["confirmed"]["entities_compared"] == 3000,
+                f"the overlay sets gpu.mode, confirmed over 3000 entities: {out.read_text()}")
+    gpuless = tune(tmp / "gpuless", "gpu_error<=0.001", scene=courtyard, knobs="lod on")
+    h.check(gpuless.returncode == 2 and "gpu_error needs a flocking population" in gpuless.stderr,
+            f"a gpu limit on a scene without flocks is refused: {gpuless.stderr.strip()[-300:]}")
 print("tune passed")

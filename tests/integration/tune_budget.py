@@ -7,7 +7,9 @@ and names the limit that stopped a cheaper one. The crowd's limits: arrival_drif
 from arrival files as the p99, mean and max of per-NPC differences (an NPC arrived in one run
 only counting up to the run's end), a malformed arrival file is an error naming file and line,
 and a courtyard with a flow crowd and a lod section gets the crowd's level-of-detail knobs with
-a full-detail reference. A sweep run that fails is reported and skipped, and the sweep goes on.
+a full-detail reference. The gpu limit: gpu_error parses, a flock scene gets the gpu knob
+with an all-CPU reference, and the figure is the largest end-position distance. A sweep run
+that fails is reported and skipped, and the sweep goes on.
 Figures here are hand-made inputs to the choice, not measurements."""
 import importlib.util
 import sys
@@ -30,7 +32,7 @@ for text, words in (("stack_drift<=-1", "finite number >= 0"), ("stack_drift<=x"
                     ("stack_wobble<=1", "unknown limit 'stack_wobble' (known: shown_error_p99, kbps_per_client, "
                                         "tick_ms_p99, stack_drift, physics_ms, arrival_drift, "
                                         "arrival_drift_mean, ai_ms, path_overhead, path_overhead_mean, "
-                                        "planner_ms)")):
+                                        "planner_ms, gpu_error)")):
     try:
         budget.parse(text)
         h.check(False, f"'{text}' is refused")
@@ -195,4 +197,27 @@ chosen = {far.name: far.scene_value}
 reasons, baseline = tune.sweep(own, [far], chosen, budget.parse("arrival_drift<=0.5"), Args)
 h.check(baseline is None and [v for v, _ in far.failed] == [(8,)] and len(far.sweep) == 4 and chosen[far.name] == (4,),
         f"the scene's own run stopping short leaves the sweep going: {far.failed} {chosen}")
+
+# The device's float error: gpu_error parses; a scene with flocks gets the gpu knob (off, on and
+# its own, auto), judged by AI time against gpu_error, with everything on the CPU as the
+# reference; a scene without flocks gets none; the figure is the largest end-position distance.
+gpu = budget.parse("gpu_error<=0.001")
+h.check([l.describe() for l in gpu] == ["gpu_error <= 0.001 m"], f"the gpu limit parses: {[l.describe() for l in gpu]}")
+flock_scene = knobs.merged_scene(h.SOURCE_DIR / "scenes" / "crowd_flock.yaml")
+gpu_knobs = [k for k in knobs.knobs_for(flock_scene) if k.accuracy == "gpu_error"]
+h.check([(k.name, k.keys, k.values, k.cost) for k in gpu_knobs] ==
+        [("gpu", ("gpu.mode",), [("off",), ("on",), ("auto",)], "ai_ms")],
+        f"a flock scene gets the gpu knob: {[(k.name, k.values) for k in gpu_knobs]}")
+h.check(knobs.reference_settings(gpu_knobs) == {"gpu.mode": "off"}, "the gpu reference is everything on the CPU")
+h.check(not any(k.accuracy == "gpu_error" for k in knobs.knobs_for(stacks)), "a scene without flocks has no gpu knob")
+with tempfile.TemporaryDirectory(prefix="zs_gpu_error_") as tmp:
+    run = Path(tmp)
+    (run / measure.END_STATE).write_text('{"id": 1, "pos": [0, 0, 0]}\n{"id": 2, "pos": [3, 0, 4]}\n')
+    d = measure.largest_departure(run, {1: [0, 0, 0.001], 2: [3, 0, 4]})
+    h.check(abs(d[0] - 0.001) < 1e-12 and d[1] == 1, f"gpu_error is the largest end-position distance: {d}")
+    try:
+        measure.largest_departure(run, {1: [0, 0, 0]})
+        h.check(False, "runs ending with different entities are refused")
+    except measure.RunError as e:
+        h.check("1 entities are in only one of" in str(e), f"runs ending with different entities are refused: {e}")
 print("tune_budget passed")
