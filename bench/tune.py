@@ -204,7 +204,7 @@ def choose(knob, limits, tie):
     """The cheapest value whose run met every limit (or None), and why nothing cheaper was.
     Costs (the knob's cost figure) within `tie` (a fraction) of the cheapest are run-to-run
     noise, not savings: among those the most accurate (its accuracy figure) wins."""
-    fine = [(v, f) for v, f in knob.sweep if not budget.broken(limits, f)]
+    fine = [(v, f) for v, f in knob.sweep if not budget.broken(limits, f) and v not in knob.unsettled]
     if not fine:
         return None, "no value met every limit: kept the scene's"
     least = min(f[knob.cost] for _, f in fine)
@@ -213,7 +213,9 @@ def choose(knob, limits, tie):
     cheaper = [(v, g) for v, g in knob.sweep if g[knob.cost] < least * (1 - tie)]
     why = f"the most accurate within {tie * 100:g} % of the least {knob.cost} that met the budget"
     held = sorted({l.describe() for _, g in cheaper for l in budget.broken(limits, g)})
-    return value, why + ("; cheaper values broke " + "; ".join(held) if held else "")
+    unsettled = [knob.label(v) for v, _ in knob.sweep if v in knob.unsettled]
+    return value, why + ("; cheaper values broke " + "; ".join(held) if held else "") + \
+        (f"; {', '.join(unsettled)} measured, not chosen: it decides at start-up by the load" if unsettled else "")
 
 
 def refuse_if_impossible(limits, knobs, baseline):

@@ -24,6 +24,9 @@ class Knob:
     accuracy: str = "shown_error_p99"   # the figure it costs, and which wins a tie
     sweep: list = field(default_factory=list)  # (value, figures) once measured
     failed: list = field(default_factory=list)  # (value, why) of the runs that did not finish
+    # Values measured for the frontier but never chosen: what they do depends on the machine's
+    # load at start-up (gpu.mode auto probes), so one run's figures do not hold for the next.
+    unsettled: tuple = ()
 
     def label(self, value):
         return "/".join(fmt(v) for v in value)
@@ -206,11 +209,12 @@ def path_knobs(scene):
 def gpu_knob(scene):
     """Where the scene's flocks step (docs/scene-format.md, `gpu`), judged by AI time (the flocks
     step in the AI phase) against gpu_error: how far the device's float run ends from the CPU's
-    double one. Most accurate first; the scene's own (absent: auto, which decides by a probe at
-    start-up) is added after."""
+    double one. Most accurate first; the scene's own (absent: auto) is added after, measured
+    but never chosen: auto and probe decide by timing both paths at start-up, so they end as
+    off or as on depending on the load."""
     return Knob("gpu", ("gpu.mode",), [("off",), ("on",)], (get(scene, "gpu.mode", "auto"),),
                 "where flocks step: the CPU (double) or the OpenCL device (float)", cost="ai_ms",
-                accuracy="gpu_error")
+                accuracy="gpu_error", unsettled=(("auto",), ("probe",)))
 
 
 # The reference that gpu_error is measured against: every workload on the CPU, in double.

@@ -210,6 +210,13 @@ h.check([(k.name, k.keys, k.values, k.cost) for k in gpu_knobs] ==
         f"a flock scene gets the gpu knob: {[(k.name, k.values) for k in gpu_knobs]}")
 h.check(knobs.reference_settings(gpu_knobs) == {"gpu.mode": "off"}, "the gpu reference is everything on the CPU")
 h.check(not any(k.accuracy == "gpu_error" for k in knobs.knobs_for(stacks)), "a scene without flocks has no gpu knob")
+g = knobs.gpu_knob(flock_scene)
+g.sweep = [(("off",), {"ai_ms": 0.415, "gpu_error": 0.0, "tick_ms_p99": 0.4}),
+           (("on",), {"ai_ms": 1.2, "gpu_error": 4e-4, "tick_ms_p99": 2.3}),
+           (("auto",), {"ai_ms": 0.41, "gpu_error": 0.0, "tick_ms_p99": 0.6})]
+value, why = tune.choose(g, gpu, 0.25)
+h.check(value == ("off",) and "auto measured, not chosen" in why,
+        f"auto, which decides by the load at start-up, is measured but not chosen: {value} {why}")
 with tempfile.TemporaryDirectory(prefix="zs_gpu_error_") as tmp:
     run = Path(tmp)
     (run / measure.END_STATE).write_text('{"id": 1, "pos": [0, 0, 0]}\n{"id": 2, "pos": [3, 0, 4]}\n')
