@@ -187,9 +187,10 @@ NeighbourSums neighbourSums(const NeighbourGrid& g, Vec2 p, double nr, double sr
 //
 // Two passes over the candidates. The first adds the count, velocity and offset terms for
 // every candidate without a branch and notes, in canonical order, the candidates closer than
-// the separation radius to some lane (about one in five). The second adds the separation
-// terms (a square root and two divisions) of the noted ones only. A branch per candidate on
-// "close to any lane" was taken at random and cost more than the arithmetic it skipped.
+// the separation radius to some lane (about one in five) and which lanes. The second adds the
+// separation terms (a square root and two divisions) of the noted (candidate, lane) pairs
+// only. A branch per candidate on "close to any lane" was taken at random and cost more than
+// the arithmetic it skipped.
 struct LaneSums {
   double count[8], vx[8], vy[8], rx[8], ry[8], sx[8], sy[8], coincident[8];
 };
@@ -197,18 +198,63 @@ struct LaneSums {
 // Rows of the union of the discs, at most this many (else the caller takes two pairs).
 constexpr int kGroupRows = 16;
 
+// The separation terms of the noted pairs, four pairs per instruction: a noted candidate is
+// close to 1.1 lanes on average, so the square root and divisions of a lane-wide pass per
+// candidate (as the first pass does) went mostly to lanes that discard them; they took 40% of
+// the neighbour sums. Each pair's term is the same correctly rounded operations as in the
+// one-agent loops, and each lane subtracts its terms one after the other in canonical order
+// (from +0, as the vector loops did): bitwise the lane-wide sums.
+__attribute__((target("avx"))) void separationSums(const NeighbourGrid& g, const Vec2* p, double sr,
+                                                   int close, NotedScratch& noted, LaneSums& out) {
+  const double *xs = g.xs(), *ys = g.ys();
+  double* dx = noted.dx.data();
+  double* dy = noted.dy.data();
+  std::uint8_t* lane = noted.lane.data();
+  int pairs = 0;
+  for (int c = 0; c < close; ++c) {
+    const std::int32_t k = noted.k[c];
+    for (unsigned m = noted.lanes[c]; m != 0; m &= m - 1) {
+      const int l = __builtin_ctz(m);
+      lane[pairs] = static_cast<std::uint8_t>(l);
+      dx[pairs] = xs[k] - p[l].x;
+      dy[pairs] = ys[k] - p[l].y;
+      ++pairs;
+    }
+  }
+  for (int j = pairs; j % 4 != 0; ++j) {  // whole vectors: pad with a harmless distance
+    dx[j] = sr;
+    dy[j] = 0.0;
+  }
+  const __m256d srv = _mm256_set1_pd(sr), one = _mm256_set1_pd(1.0);
+  for (int j = 0; j < pairs; j += 4) {
+    const __m256d x = _mm256_loadu_pd(dx + j), y = _mm256_loadu_pd(dy + j);
+    const __m256d d = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)));
+    const __m256d w = _mm256_div_pd(_mm256_sub_pd(_mm256_div_pd(srv, d), one), d);
+    _mm256_storeu_pd(dx + j, _mm256_mul_pd(x, w));
+    _mm256_storeu_pd(dy + j, _mm256_mul_pd(y, w));
+  }
+  double sx[8] = {}, sy[8] = {};
+  for (int j = 0; j < pairs; ++j) {
+    sx[lane[j]] -= dx[j];
+    sy[lane[j]] -= dy[j];
+  }
+  for (int l = 0; l < 8; ++l) {
+    out.sx[l] = sx[l];
+    out.sy[l] = sy[l];
+  }
+}
+
 __attribute__((target("avx"))) void neighbourSumsQuad(const NeighbourGrid& g, const Vec2* p,
                                                       const std::int32_t* ranges, int rows,
-                                                      double nr, double sr, std::int32_t* noted,
+                                                      double nr, double sr, NotedScratch& noted,
                                                       LaneSums& out) {
   const __m256d px = _mm256_set_pd(p[3].x, p[2].x, p[1].x, p[0].x);
   const __m256d py = _mm256_set_pd(p[3].y, p[2].y, p[1].y, p[0].y);
-  const __m256d nr2 = _mm256_set1_pd(nr * nr), srv = _mm256_set1_pd(sr);
+  const __m256d nr2 = _mm256_set1_pd(nr * nr);
   const __m256d sr2 = _mm256_set1_pd(sr * sr), one = _mm256_set1_pd(1.0);
-  const __m256d tiny = _mm256_set1_pd(1e-18), sign = _mm256_set1_pd(-0.0);
+  const __m256d tiny = _mm256_set1_pd(1e-18);
   __m256d count = _mm256_setzero_pd(), vx = _mm256_setzero_pd(), vy = _mm256_setzero_pd();
-  __m256d rx = _mm256_setzero_pd(), ry = _mm256_setzero_pd(), sx = _mm256_setzero_pd();
-  __m256d sy = _mm256_setzero_pd(), coin = _mm256_setzero_pd();
+  __m256d rx = _mm256_setzero_pd(), ry = _mm256_setzero_pd(), coin = _mm256_setzero_pd();
   const double *xs = g.xs(), *ys = g.ys(), *vxs = g.vxs(), *vys = g.vys();
   int close = 0;
   for (int r = 0; r < rows; ++r) {
@@ -225,47 +271,34 @@ __attribute__((target("avx"))) void neighbourSumsQuad(const NeighbourGrid& g, co
       __m256d near = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
       __m256d zero = _mm256_and_pd(near, _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ));
       coin = _mm256_add_pd(coin, _mm256_and_pd(zero, one));
-      noted[close] = k;
-      close += _mm256_movemask_pd(_mm256_andnot_pd(zero, near)) != 0;
+      const int pushed = _mm256_movemask_pd(_mm256_andnot_pd(zero, near));
+      noted.k[close] = k;
+      noted.lanes[close] = static_cast<std::uint8_t>(pushed);
+      close += pushed != 0;
     }
-  }
-  for (int c = 0; c < close; ++c) {
-    const std::int32_t k = noted[c];
-    __m256d dx = _mm256_sub_pd(_mm256_broadcast_sd(xs + k), px);
-    __m256d dy = _mm256_sub_pd(_mm256_broadcast_sd(ys + k), py);
-    __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-    __m256d near = _mm256_cmp_pd(d2, sr2, _CMP_LT_OQ);
-    __m256d zero = _mm256_cmp_pd(d2, tiny, _CMP_LE_OQ);
-    __m256d push = _mm256_andnot_pd(zero, near);
-    __m256d d = _mm256_sqrt_pd(_mm256_or_pd(d2, _mm256_and_pd(zero, one)));  // no sqrt(0) / 0
-    __m256d w = _mm256_and_pd(push, _mm256_div_pd(_mm256_sub_pd(_mm256_div_pd(srv, d), one), d));
-    sx = _mm256_add_pd(sx, _mm256_xor_pd(_mm256_mul_pd(dx, w), sign));
-    sy = _mm256_add_pd(sy, _mm256_xor_pd(_mm256_mul_pd(dy, w), sign));
   }
   _mm256_storeu_pd(out.count, count);
   _mm256_storeu_pd(out.vx, vx);
   _mm256_storeu_pd(out.vy, vy);
   _mm256_storeu_pd(out.rx, rx);
   _mm256_storeu_pd(out.ry, ry);
-  _mm256_storeu_pd(out.sx, sx);
-  _mm256_storeu_pd(out.sy, sy);
   _mm256_storeu_pd(out.coincident, coin);
+  separationSums(g, p, sr, close, noted, out);
 }
 
 // The eight-lane version. Masked adds leave a lane's sum as it was where the AVX loop adds an
 // exact zero: the same value, since a sum that starts at +0 is never -0.
 __attribute__((target("avx512f"))) void neighbourSumsOcta(const NeighbourGrid& g, const Vec2* p,
                                                           const std::int32_t* ranges, int rows,
-                                                          double nr, double sr, std::int32_t* noted,
+                                                          double nr, double sr, NotedScratch& noted,
                                                           LaneSums& out) {
   const __m512d px = _mm512_set_pd(p[7].x, p[6].x, p[5].x, p[4].x, p[3].x, p[2].x, p[1].x, p[0].x);
   const __m512d py = _mm512_set_pd(p[7].y, p[6].y, p[5].y, p[4].y, p[3].y, p[2].y, p[1].y, p[0].y);
-  const __m512d nr2 = _mm512_set1_pd(nr * nr), srv = _mm512_set1_pd(sr);
+  const __m512d nr2 = _mm512_set1_pd(nr * nr);
   const __m512d sr2 = _mm512_set1_pd(sr * sr), one = _mm512_set1_pd(1.0);
   const __m512d tiny = _mm512_set1_pd(1e-18);
   __m512d count = _mm512_setzero_pd(), vx = _mm512_setzero_pd(), vy = _mm512_setzero_pd();
-  __m512d rx = _mm512_setzero_pd(), ry = _mm512_setzero_pd(), sx = _mm512_setzero_pd();
-  __m512d sy = _mm512_setzero_pd(), coin = _mm512_setzero_pd();
+  __m512d rx = _mm512_setzero_pd(), ry = _mm512_setzero_pd(), coin = _mm512_setzero_pd();
   const double *xs = g.xs(), *ys = g.ys(), *vxs = g.vxs(), *vys = g.vys();
   int close = 0;
   for (int r = 0; r < rows; ++r) {
@@ -282,31 +315,19 @@ __attribute__((target("avx512f"))) void neighbourSumsOcta(const NeighbourGrid& g
       __mmask8 near = _mm512_cmp_pd_mask(d2, sr2, _CMP_LT_OQ);
       __mmask8 zero = _mm512_mask_cmp_pd_mask(near, d2, tiny, _CMP_LE_OQ);
       coin = _mm512_mask_add_pd(coin, zero, coin, one);
-      noted[close] = k;
-      close += (near & ~zero & 0xff) != 0;
+      const __mmask8 pushed = near & ~zero;
+      noted.k[close] = k;
+      noted.lanes[close] = pushed;
+      close += pushed != 0;
     }
-  }
-  for (int c = 0; c < close; ++c) {
-    const std::int32_t k = noted[c];
-    __m512d dx = _mm512_sub_pd(_mm512_set1_pd(xs[k]), px);
-    __m512d dy = _mm512_sub_pd(_mm512_set1_pd(ys[k]), py);
-    __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
-    __mmask8 near = _mm512_cmp_pd_mask(d2, sr2, _CMP_LT_OQ);
-    __mmask8 push = _mm512_mask_cmp_pd_mask(near, d2, tiny, _CMP_GT_OQ);
-    __m512d d = _mm512_mask_sqrt_pd(one, push, d2);  // 1 in the other lanes: no sqrt(0) / 0
-    __m512d w = _mm512_div_pd(_mm512_sub_pd(_mm512_div_pd(srv, d), one), d);
-    // Subtracting dx * w: the sum of the negated terms, as in the other loops.
-    sx = _mm512_mask_sub_pd(sx, push, sx, _mm512_mul_pd(dx, w));
-    sy = _mm512_mask_sub_pd(sy, push, sy, _mm512_mul_pd(dy, w));
   }
   _mm512_storeu_pd(out.count, count);
   _mm512_storeu_pd(out.vx, vx);
   _mm512_storeu_pd(out.vy, vy);
   _mm512_storeu_pd(out.rx, rx);
   _mm512_storeu_pd(out.ry, ry);
-  _mm512_storeu_pd(out.sx, sx);
-  _mm512_storeu_pd(out.sy, sy);
   _mm512_storeu_pd(out.coincident, coin);
+  separationSums(g, p, sr, close, noted, out);
 }
 #endif
 
@@ -435,14 +456,14 @@ void Flock::step(const AgentSpan& agents, const GhostSpan& ghosts, double dt,
       if (rows >= 0) {
         std::size_t candidates = 0;
         for (int r = 0; r < rows; ++r) candidates += std::size_t(ranges[2 * r + 1] - ranges[2 * r]);
-        if (noted_.size() < candidates) noted_.resize(candidates);
+        noted_.reserve(candidates);
         LaneSums sums;
         if (lanes_ == 8)
-          neighbourSumsOcta(grid_, p, ranges, rows, s.neighbour_radius, s.separation_radius,
-                            noted_.data(), sums);
+          neighbourSumsOcta(grid_, p, ranges, rows, s.neighbour_radius, s.separation_radius, noted_,
+                            sums);
         else
-          neighbourSumsQuad(grid_, p, ranges, rows, s.neighbour_radius, s.separation_radius,
-                            noted_.data(), sums);
+          neighbourSumsQuad(grid_, p, ranges, rows, s.neighbour_radius, s.separation_radius, noted_,
+                            sums);
         for (int l = 0; l < held; ++l) {
           NeighbourSums n;
           n.count = sums.count[l];

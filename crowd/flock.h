@@ -37,6 +37,25 @@ struct FlockSettings {
   double sight = 1e9;
 };
 
+/// Scratch of the lane-wide neighbour sums: the candidates closer than the separation radius
+/// to some lane of a group, and their (candidate, lane) pairs.
+struct NotedScratch {
+  std::vector<std::int32_t> k;      ///< noted candidates (entry indices), canonical order
+  std::vector<std::uint8_t> lanes;  ///< per noted candidate: bit l set when close to lane l
+  std::vector<std::uint8_t> lane;   ///< per pair: its lane
+  std::vector<double> dx, dy;       ///< per pair: offset, then separation term
+  /// Room for a group of `candidates` over up to 8 lanes (pairs padded to whole vectors).
+  void reserve(std::size_t candidates) {
+    if (k.size() >= candidates) return;
+    k.resize(candidates);
+    lanes.resize(candidates);
+    const std::size_t pairs = candidates * 8 + 4;
+    lane.resize(pairs);
+    dx.resize(pairs);
+    dy.resize(pairs);
+  }
+};
+
 /// Steps flocks; owns the neighbour grid so that a warm step allocates nothing.
 class Flock {
  public:
@@ -63,8 +82,8 @@ class Flock {
   FlockSettings settings_;
   NeighbourGrid grid_;
   int lanes_ = 1;
-  std::vector<std::int32_t> noted_;  // candidates close enough to separate, per group
-  KeepApart keep_apart_;             // the gaps of the agent being moved
+  NotedScratch noted_;    // candidates close enough to separate, per group
+  KeepApart keep_apart_;  // the gaps of the agent being moved
 };
 
 }  // namespace zonesim::crowd
