@@ -214,8 +214,6 @@ class NeighbourGrid {
   std::vector<std::int32_t> starts_;         // width_*height_ + 1 prefix sums
   std::vector<long long> cellX_, cellY_;     // input order (owned, then ghosts): coordinates
   std::vector<std::int32_t> cell_of_;        // input order: dense cell, -1 when skipped
-  std::vector<std::int32_t> order_;          // cell order: input index
-  std::vector<std::uint64_t> sort_ids_;      // cell order: id
   std::vector<GridEntry> entries_;           // cell order
   std::vector<double> xs_, ys_, vxs_, vys_;  // entries_ as structure of arrays
 };
