@@ -346,6 +346,7 @@ struct LaneAgents {
 __attribute__((target("avx"))) inline void clampLengthFour(__m256d& x, __m256d& y, double max_len) {
   const __m256d l2 = _mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y));
   const __m256d keep = _mm256_cmp_pd(l2, _mm256_set1_pd(max_len * max_len), _CMP_LE_OQ);
+  if (_mm256_movemask_pd(keep) == 0xf) return;
   const __m256d f = _mm256_div_pd(_mm256_set1_pd(max_len), _mm256_sqrt_pd(l2));
   x = _mm256_blendv_pd(_mm256_mul_pd(x, f), x, keep);
   y = _mm256_blendv_pd(_mm256_mul_pd(y, f), y, keep);
