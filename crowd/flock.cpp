@@ -342,7 +342,7 @@ struct LaneAgents {
 };
 
 // `v` shortened to at most `max_len`, four lanes: clampLength's operations, with both of its
-// outcomes computed and the one it returns kept.
+// outcomes computed and the one it returns kept (none computed when every lane keeps `v`).
 __attribute__((target("avx"))) inline void clampLengthFour(__m256d& x, __m256d& y, double max_len) {
   const __m256d l2 = _mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y));
   const __m256d keep = _mm256_cmp_pd(l2, _mm256_set1_pd(max_len * max_len), _CMP_LE_OQ);
