@@ -1,6 +1,7 @@
 #include "crowd/neighbour_grid.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace zonesim::crowd {
@@ -24,21 +25,22 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   // input so that each is computed once; skipped agents get cell -1.
   cellX_.resize(total);
   cellY_.resize(total);
-  bool any = false;
-  long long maxX = 0, maxY = 0;
-  min_x_ = minY_ = 0;
+  long long minX = std::numeric_limits<long long>::max(), minY = minX;
+  long long maxX = std::numeric_limits<long long>::min(), maxY = maxX;
   for (std::size_t i = 0; i < total; ++i) {
     if (i < owned && !skip.empty() && skip[i]) continue;
     Vec2 p = posOf(i);
     long long cx = cellCoord(p.x), cy = cellCoord(p.y);
     cellX_[i] = cx;
     cellY_[i] = cy;
-    if (!any || cx < min_x_) min_x_ = cx;
-    if (!any || cy < minY_) minY_ = cy;
-    if (!any || cx > maxX) maxX = cx;
-    if (!any || cy > maxY) maxY = cy;
-    any = true;
+    minX = std::min(minX, cx);
+    minY = std::min(minY, cy);
+    maxX = std::max(maxX, cx);
+    maxY = std::max(maxY, cy);
   }
+  const bool any = minX <= maxX;
+  min_x_ = any ? minX : 0;
+  minY_ = any ? minY : 0;
   if (!any) {
     entries_.clear();
     width_ = height_ = 0;
@@ -65,8 +67,7 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   // Scatter the entries with a moving cursor per cell, reading the inputs where they lie, in
   // storage order: in random storage order, gathering them in cell order instead read a
   // position and a velocity at random and wrote an index and an id at random per entry (a
-  // third of the build at 100k agents). starts_ is restored afterwards by shifting; the
-  // cells are filled in below.
+  // third of the build at 100k agents). starts_ is restored afterwards by shifting.
   entries_.resize(n);
   constexpr std::size_t kScatterAhead = 16;  // the agents' cells are in storage order: prefetch
   for (std::size_t i = 0; i < total; ++i) {
@@ -78,10 +79,10 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
     if (cell_of_[i] < 0) continue;
     const std::int32_t k = starts_[cell_of_[i]]++;
     if (i < owned)
-      entries_[k] = GridEntry{pos[i], vel[i], ids[i], static_cast<std::int32_t>(i), 0};
+      entries_[k] = GridEntry{pos[i], vel[i], ids[i], static_cast<std::int32_t>(i), cell_of_[i]};
     else
       entries_[k] = GridEntry{ghosts.pos[i - owned], ghosts.vel[i - owned], ghosts.ids[i - owned],
-                              -1 - static_cast<std::int32_t>(i - owned), 0};
+                              -1 - static_cast<std::int32_t>(i - owned), cell_of_[i]};
   }
   for (std::size_t c = starts_.size() - 1; c > 0; --c) starts_[c] = starts_[c - 1];
   starts_[0] = 0;
@@ -106,13 +107,8 @@ void NeighbourGrid::build(std::span<const std::uint64_t> ids, std::span<const Ve
   const bool velocities = columns == Columns::kPositionsAndVelocities;
   vxs_.resize(velocities ? n : 0);
   vys_.resize(velocities ? n : 0);
-  // The cell of entry k is the one whose range holds k: a cursor over starts_ finds it
-  // without reading cell_of_ in storage order (a cache miss per entry).
-  std::int32_t cell = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    while (static_cast<std::size_t>(starts_[cell + 1]) <= k) ++cell;
-    GridEntry& e = entries_[k];
-    e.cell = cell;
+    const GridEntry& e = entries_[k];
     xs_[k] = e.pos.x;
     ys_[k] = e.pos.y;
     if (velocities) {
