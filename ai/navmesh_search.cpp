@@ -30,14 +30,6 @@ Vec2 crossingPoint(const NavPortal& p, Vec2 from, Vec2 goal) {
   return vertical ? Vec2{across, along} : Vec2{along, across};
 }
 
-// The portal's ends as a traveller entering polygon `into` meets them.
-FunnelPortal oriented(const NavPortal& p, std::int32_t into) {
-  const bool forward = into == p.high;  // travelling toward larger x (vertical) or y
-  const Vec2 a{double(p.x0), double(p.y0)}, b{double(p.x1), double(p.y1)};
-  if (p.x0 == p.x1) return forward ? FunnelPortal{b, a} : FunnelPortal{a, b};
-  return forward ? FunnelPortal{a, b} : FunnelPortal{b, a};
-}
-
 [[noreturn]] void offMesh(const char* which, Vec2 p, const NavMesh& mesh) {
   std::ostringstream msg;
   msg << "navmesh: " << which << " (" << p.x << ", " << p.y << ") is off the mesh: ";
@@ -51,6 +43,13 @@ FunnelPortal oriented(const NavPortal& p, std::int32_t into) {
 }
 
 }  // namespace
+
+FunnelPortal orientedPortal(const NavPortal& p, std::int32_t into) {
+  const bool forward = into == p.high;  // travelling toward larger x (vertical) or y
+  const Vec2 a{double(p.x0), double(p.y0)}, b{double(p.x1), double(p.y1)};
+  if (p.x0 == p.x1) return forward ? FunnelPortal{b, a} : FunnelPortal{a, b};
+  return forward ? FunnelPortal{a, b} : FunnelPortal{b, a};
+}
 
 NavMeshSearch::NavMeshSearch(const NavMesh& mesh)
     : mesh_(mesh), nodes_(mesh.portals().size() + 1) {}
@@ -142,7 +141,7 @@ bool NavMeshSearch::findPath(Vec2 from, Vec2 to, NavPath& out) {
     std::reverse(trail_.begin(), trail_.end());
     for (std::int32_t k : trail_) {
       const Node& n = nodes_[std::size_t(k)];
-      corridor.push_back(oriented(mesh_.portals()[std::size_t(k)], n.into));
+      corridor.push_back(orientedPortal(mesh_.portals()[std::size_t(k)], n.into));
       out.corridor.push_back(n.into);
     }
   }

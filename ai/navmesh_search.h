@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "ai/funnel.h"
 #include "ai/navmesh.h"
 #include "ai/octile.h"
 #include "ai/vec2.h"
@@ -28,6 +29,10 @@ struct NavPath {
     length = 0.0;
   }
 };
+
+/// The portal's ends as a traveller entering polygon `into` meets them (the funnel's left and
+/// right).
+FunnelPortal orientedPortal(const NavPortal& p, std::int32_t into);
 
 /// Reusable searcher over one mesh (which must outlive it).
 class NavMeshSearch {

@@ -83,9 +83,8 @@ void readObstacleMap(const SceneMap& root, Scene& scene) {
   map.navigation = m.choice("navigation", {"grid", "hpa", "navmesh", "jps"}, -1);
   if (std::optional<SceneNode> nav = m.optional("navigation")) map.navigation_line = nav->line();
   // What only the navigation mesh honours: refused elsewhere rather than silently ignored.
-  constexpr int kNavMesh = 2;
   for (const char* key : {"agent_radius", "static_bodies"}) {
-    if (map.navigation != kNavMesh && m.optional(key)) {
+    if (map.navigation != ObstacleMap::kNavMesh && m.optional(key)) {
       m.failAt(key, "applies to map.navigation: navmesh only");
     }
   }

@@ -33,6 +33,7 @@ struct ObstacleMap {
   /// `agents.paths.planner` decides (common/scene_loader_agents.cpp).
   int navigation = -1;
   int navigation_line = 0;  ///< its line
+  static constexpr int kNavMesh = 2;  ///< `navigation`'s value for navmesh
   /// `map.agent_radius` (m): the navigation mesh keeps this clearance from walls (navmesh only).
   double agent_radius = 0;
   /// `map.static_bodies`: the navigation mesh also closes the cells under the scene's static

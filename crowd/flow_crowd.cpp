@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "crowd/flow_waypoints.h"
+
 namespace zonesim::crowd {
 
 FlowCrowd::FlowCrowd(const ai::GridMap& map, const MapFrame& frame,
@@ -16,13 +18,29 @@ FlowCrowd::FlowCrowd(const ai::GridMap& map, const MapFrame& frame,
 }
 
 int FlowCrowd::addDestination(ai::Cell goal) {
-  fields_.push_back(std::make_unique<FlowField>(map_, goal));
+  auto field = std::make_unique<FlowField>(map_, goal);
+  aimOnMesh(*field);
+  fields_.push_back(std::move(field));
   return int(fields_.size()) - 1;
 }
 
 int FlowCrowd::addDestination(std::unique_ptr<FlowField> field) {
+  aimOnMesh(*field);
   fields_.push_back(std::move(field));
   return int(fields_.size()) - 1;
+}
+
+void FlowCrowd::aimOnMesh(FlowField& field) {
+  if (!settings_.navmesh) return;
+  if (!mesh_ || mesh_version_ != map_.version()) {
+    // Not eroded: the clearance moves the corners instead (crowd/flow_waypoints.h).
+    mesh_ = std::make_unique<ai::NavMesh>(map_, settings_.navmesh_boxes, ai::NavMeshConfig{});
+    mesh_walls_ = std::make_unique<ai::GridMap>(map_);
+    ai::closeBoxes(*mesh_walls_, settings_.navmesh_boxes);
+    mesh_version_ = map_.version();
+  }
+  field.setWaypoints(
+      navMeshWaypoints(*mesh_, field, settings_.navmesh_config.agent_radius, mesh_walls_.get()));
 }
 
 int FlowCrowd::refreshFields() {
@@ -30,6 +48,7 @@ int FlowCrowd::refreshFields() {
   for (auto& f : fields_)
     if (f->mapVersion() != map_.version()) {
       f = std::make_unique<FlowField>(map_, f->goal());
+      aimOnMesh(*f);
       ++rebuilt;
     }
   return rebuilt;
@@ -78,7 +97,11 @@ Vec2 FlowCrowd::desiredVelocity(Vec2 pos, int d) const {
   }
   const bool onField = f.next(c, next);
   if (!onField && !(!map_.passable(c.x, c.y) && leaveClosedCell(f, c, next))) return {};
-  Vec2 to = frame_.centre(next) - pos;
+  Vec2 aim = frame_.centre(next);
+  double ax, ay;
+  if (f.hasWaypoints() && f.waypoint(c, ax, ay))  // on the mesh: the path's first corner
+    aim = Vec2{frame_.origin.x + ax * frame_.cell_size, frame_.origin.y + ay * frame_.cell_size};
+  Vec2 to = aim - pos;
   double speed = settings_.max_speed;
   // Most agents are far from their goal: where even the lower bound of the distance is past
   // the slow radius the slow-down cannot apply (a product of larger doubles is no smaller),

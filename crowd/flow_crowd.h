@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ai/grid_map.h"
+#include "ai/navmesh.h"
 #include "crowd/agents.h"
 #include "crowd/flow_field.h"
 #include "crowd/keep_apart.h"
@@ -42,6 +43,12 @@ struct FlowCrowdSettings {
   /// keeping its gaps moves at most (sight - 2 body_radius) / 2 a step, so that every
   /// neighbour that could bind it is seen on every rank. Must exceed 2 body_radius.
   double sight = 1e9;
+  /// Aim at the first corner of the funnelled navigation-mesh path to the goal
+  /// (crowd/flow_waypoints.h) instead of the next cell's centre, on a mesh of the map built
+  /// with `navmesh_config` and closing `navmesh_boxes` (map units); false: the grid field alone.
+  bool navmesh = false;
+  ai::NavMeshConfig navmesh_config;
+  std::vector<ai::NavBox> navmesh_boxes;
 };
 
 /// Steps agents along shared flow fields on one map.
@@ -92,11 +99,16 @@ class FlowCrowd {
   // Where an agent at `from` ends when it keeps the gaps gathered in keep_apart_, given where
   // its steering took it (`to`, velocity `vel`, updated to the move it makes).
   Vec2 keepGaps(Vec2 from, Vec2 to, double h, Vec2& vel) const;
+  // With settings_.navmesh: gives `field` its aims on the mesh of the map as it is now.
+  void aimOnMesh(FlowField& field);
 
   const ai::GridMap& map_;
   MapFrame frame_;
   FlowCrowdSettings settings_;
   std::vector<std::unique_ptr<FlowField>> fields_;
+  std::unique_ptr<ai::NavMesh> mesh_;        // settings_.navmesh: the map's mesh at mesh_version_
+  std::unique_ptr<ai::GridMap> mesh_walls_;  // the map with the mesh's boxes closed
+  std::uint64_t mesh_version_ = 0;
   NeighbourGrid grid_;
   KeepApart keep_apart_;  // the gaps of the agent being stepped
 };

@@ -73,8 +73,15 @@ bool FlowField::checkChebyshevBound() const {
   return true;
 }
 
+void FlowField::setWaypoints(std::vector<float> aims) {
+  if (!aims.empty() && aims.size() != 2 * std::size_t(width_) * std::size_t(height_))
+    throw std::invalid_argument("FlowField: waypoints of the wrong size for the map");
+  waypoints_ = std::move(aims);
+}
+
 std::size_t FlowField::bytes() const {
-  return distance_.size() * sizeof(float) + dir_.size() * sizeof(std::int8_t);
+  return distance_.size() * sizeof(float) + dir_.size() * sizeof(std::int8_t) +
+         waypoints_.size() * sizeof(float);
 }
 
 }  // namespace zonesim::crowd

@@ -6,6 +6,7 @@
 // cell is one array read, whatever the number of agents.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <vector>
@@ -63,6 +64,21 @@ class FlowField {
   /// The direction field, row by row (0..7 into the grid steps, -1 at the goal or unreachable).
   const std::vector<std::int8_t>& directions() const { return dir_; }
 
+  /// Any-angle aims for this goal (crowd/flow_waypoints.h: two floats per cell, NaN where
+  /// none); empty: none. Throws std::invalid_argument when the size does not fit the map.
+  void setWaypoints(std::vector<float> aims);
+  /// Whether the field carries aims.
+  bool hasWaypoints() const { return !waypoints_.empty(); }
+  /// The aim of cell `c` in map units (a cell covers [x, x+1)); false where it has none.
+  bool waypoint(ai::Cell c, double& x, double& y) const {
+    if (c.x < 0 || c.y < 0 || c.x >= width_ || c.y >= height_) return false;
+    const std::size_t at = 2 * (std::size_t(c.y) * std::size_t(width_) + std::size_t(c.x));
+    if (std::isnan(waypoints_[at])) return false;
+    x = waypoints_[at];
+    y = waypoints_[at + 1];
+    return true;
+  }
+
  private:
   static constexpr std::size_t kCacheLine = 64;
   int width_ = 0, height_ = 0;
@@ -70,6 +86,7 @@ class FlowField {
   std::uint64_t map_version_ = 0;
   std::vector<float> distance_;   // float: 24 bits cover paths of millions of cells to 0.1
   std::vector<std::int8_t> dir_;  // 0..7 into kNeighbourSteps, -1 at the goal or unreachable
+  std::vector<float> waypoints_;  // x, y per cell (map units), NaN where none; empty: none
   // Every cell with a direction lies at least its Chebyshev distance from the goal (checked
   // once; see nextCellLowerBound).
   bool chebyshev_bound_ = false;

@@ -7,7 +7,8 @@ do the same through the crowd library's Flock, whose sums run in a canonical ord
 through ghosts and decides arrivals from positions alone, and (scenes/courtyard_flow_bodies.yaml)
 keeps its bodies apart from them, as do the flockers of (scenes/crowd_flock_bodies.yaml);
 (scenes/courtyard_flow_lod.yaml) the same under level of detail, with crowded cells counted over agents and ghosts kept at full
-detail; (scenes/flock_lod.yaml) a flock with
+detail; (scenes/courtyard_flow_navmesh.yaml) the same crowd aiming at the corners of funnelled
+navigation-mesh paths, built alike on every rank; (scenes/flock_lod.yaml) a flock with
 a goal under level of detail, whose plan (from ids, positions, the tick and a scripted
 observer) is the same on every rank;
 (scenes/particles.yaml, --gpu off) fountains whose sprays cross zone borders end with the same
@@ -47,7 +48,7 @@ from pathlib import Path
 import harness as h
 
 SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flow": 300,
-          "courtyard_flow_lod": 300,
+          "courtyard_flow_lod": 300, "courtyard_flow_navmesh": 300,
           "courtyard_flow_bodies": 300, "crowd_flock_bodies": 300,
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "agents_navmesh": 600, "agents_jps": 600,
@@ -61,6 +62,7 @@ EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float
          "crowd_flock": ["--gpu", "off"], "crowd_flock_gpu": ["--gpu", "on"],
          "flock_lod": ["--gpu", "off"]}
 GHOST_SCENES = ("crowd", "crowd_flock", "crowd_flock_bodies", "courtyard_flow", "courtyard_flow_lod",
+                "courtyard_flow_navmesh",
                 "courtyard_flow_bodies", "crowd_flock_gpu", "agents", "agents_sliced",
                 "courtyard_formation", "courtyard_groups_lod", "flock_lod", "skirmish")
 MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition

@@ -8,8 +8,7 @@
 
 #include "ai/segment_cells.h"
 #include "common/scene.h"
-#include "physics/aabb.h"
-#include "zone_node/systems/scene_shapes.h"
+#include "zone_node/systems/navmesh_obstacles.h"
 
 namespace zonesim::zone {
 
@@ -24,22 +23,6 @@ bool pathCrosses(const AgentData& a, int x, int y) {
   for (std::size_t k = 0; k + 1 < a.path.size(); k += 2)
     if (a.path[k] == x && a.path[k + 1] == y) return true;
   return false;
-}
-
-// The footprints of the scene's static bodies on the map, in map units (cells): each body's
-// world bounds, so a turned box closes the cells of its bounding rectangle.
-std::vector<ai::NavBox> staticFootprints(const Scene& scene, const crowd::MapFrame& frame) {
-  std::vector<ai::NavBox> boxes;
-  for (const SceneBody& b : scene.physics.bodies) {
-    if (b.motion != SceneBody::Motion::Static) continue;
-    const physics::Aabb a =
-        physics::shapeBounds(sceneShape(b), toVec3(b.position), toQuat(b.orientation));
-    boxes.push_back({(a.lo.x() - frame.origin.x) / frame.cell_size,
-                     (a.lo.z() - frame.origin.y) / frame.cell_size,
-                     (a.hi.x() - frame.origin.x) / frame.cell_size,
-                     (a.hi.z() - frame.origin.y) / frame.cell_size});
-  }
-  return boxes;
 }
 
 ai::PlannerKind plannerOf(AgentPlanner p) {
@@ -77,8 +60,8 @@ AgentNavigation::AgentNavigation(const Scene& scene, ZoneMap* map)
   c.clear_cache_on_close = true;
   c.audit = p.audit;
   // The mesh's clearance and obstacles (map.agent_radius, map.static_bodies): in cells.
-  c.navmesh.agent_radius = scene.map.agent_radius / frame_.cell_size;
-  if (navmesh_ && scene.map.static_bodies) c.navmesh_boxes = staticFootprints(scene, frame_);
+  c.navmesh = navMeshConfig(scene, frame_);
+  if (navmesh_) c.navmesh_boxes = navMeshBoxes(scene, frame_);
   service_ = std::make_unique<ai::PathService>(map->serviceGrid(), c);
 }
 

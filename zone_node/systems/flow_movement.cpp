@@ -13,6 +13,7 @@
 #include "crowd/flow_field_file.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"
+#include "zone_node/systems/navmesh_obstacles.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/tick_profile.h"
 #include "zone_node/world_map.h"
@@ -51,7 +52,8 @@ int flowDestination(std::uint64_t id, int count) {
 
 namespace {
 
-crowd::FlowCrowdSettings settingsOf(const NpcFlow& f, double halo_width) {
+crowd::FlowCrowdSettings settingsOf(const Scene& scene, const NpcFlow& f, const WorldMap& map) {
+  const double halo_width = scene.halo_width;
   crowd::FlowCrowdSettings s;
   s.max_speed = f.max_speed;
   s.max_force = f.max_force;
@@ -63,6 +65,13 @@ crowd::FlowCrowdSettings settingsOf(const NpcFlow& f, double halo_width) {
   s.grid_cell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
   s.body_radius = f.body_radius;
   s.sight = halo_width;  // every neighbour that could bind a body is a ghost on every rank
+  // map.navigation: navmesh: agents aim at the funnelled mesh path's first corner, on the mesh
+  // the agents' planner builds (the same clearance and static bodies).
+  s.navmesh = scene.map.navigation == ObstacleMap::kNavMesh;
+  if (s.navmesh) {
+    s.navmesh_config = navMeshConfig(scene, map.frame);
+    s.navmesh_boxes = navMeshBoxes(scene, map.frame);
+  }
   return s;
 }
 
@@ -88,7 +97,7 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
     if (!f.enabled) continue;
     if (!map) throw SceneError(sceneFile(scene) + ":0: map: a flow population needs a map");
     auto g = std::make_unique<Group>(std::int32_t(p), map->grid, map->frame,
-                                     settingsOf(f, scene.halo_width), lodOf(scene.lod));
+                                     settingsOf(scene, f, *map), lodOf(scene.lod));
     for (std::size_t k = 0; k < f.destinations.size(); ++k) {
       const NpcFlow::Destination& d = f.destinations[k];
       if (!map->walkable(d.x, d.z)) {
@@ -97,8 +106,15 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
                          "]: lies on a blocked cell of the map");
       }
       const ai::Cell goal = map->frame.cellOf({d.x, d.z});
+      const std::string where = sceneFile(scene) + ":" + std::to_string(d.line) + ": populations[" +
+                                std::to_string(p) + "].flow.destinations[" + std::to_string(k) +
+                                "]: ";
       if (scene.map.fields.empty()) {
-        g->crowd.addDestination(goal);
+        try {
+          g->crowd.addDestination(goal);
+        } catch (const std::invalid_argument& e) {  // off the navigation mesh
+          throw SceneError(where + e.what() + " (within map.agent_radius of a wall or body)");
+        }
         continue;
       }
       auto it = std::find_if(baked.begin(), baked.end(), [&](const auto& f) {
@@ -110,7 +126,11 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
                          "] (cell " + std::to_string(goal.x) + ", " + std::to_string(goal.y) +
                          "); build it again with bake_fields");
       }
-      g->crowd.addDestination(std::make_unique<crowd::FlowField>(**it));
+      try {
+        g->crowd.addDestination(std::make_unique<crowd::FlowField>(**it));
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(where + e.what() + " (within map.agent_radius of a wall or body)");
+      }
     }
     groups_.push_back(std::move(g));
     reach_ = std::max(reach_, f.separation_radius);
