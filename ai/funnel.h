@@ -6,6 +6,7 @@
 // from start to goal inside the corridor, as its corner points. Portals are used as given: the
 // mesh's erosion already keeps the agent radius, so nothing is shrunk here.
 
+#include <cstddef>
 #include <vector>
 
 #include "ai/vec2.h"
@@ -22,5 +23,25 @@ struct FunnelPortal {
 /// Corner points of the shortest path from `start` through `portals` (in order) to `goal`:
 /// start first, goal last, no two consecutive points equal.
 std::vector<Vec2> pullString(Vec2 start, const std::vector<FunnelPortal>& portals, Vec2 goal);
+
+/// pullString one portal at a time: the corners are final as soon as they are found (later
+/// portals cannot move them), so a caller that needs only where to head next stops reading the
+/// corridor at the first corner (crowd/flow_waypoints.h).
+class StringPuller {
+ public:
+  explicit StringPuller(Vec2 start);
+  /// The next portal of the corridor; the goal goes last as a degenerate one, {goal, goal}.
+  void add(const FunnelPortal& portal);
+  /// The start and every corner found so far (the goal once added and bent at, or not at all:
+  /// pullString appends it).
+  const std::vector<Vec2>& corners() const { return corners_; }
+
+ private:
+  std::vector<FunnelPortal> gates_;  // the start as a degenerate gate, then every portal
+  std::vector<Vec2> corners_;
+  Vec2 apex_, left_, right_;
+  std::size_t left_at_ = 0, right_at_ = 0;  // the gates the sides last narrowed to
+  std::size_t next_ = 1;                    // the next gate to admit
+};
 
 }  // namespace zonesim::ai

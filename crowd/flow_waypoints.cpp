@@ -32,19 +32,19 @@ bool portalBetween(const ai::NavMesh& mesh, std::int32_t from, std::int32_t into
   return false;
 }
 
-// The portals crossed by the grid field's path from `c` to the goal: its cells' polygons in
-// turn. A diagonal step between polygons that meet only at a corner crosses the polygon of one
-// of the two cells beside it (the field never cuts a blocked corner, so both are open). False
-// when the path leaves the mesh (a static box the grid field does not know).
-bool corridorOf(const ai::NavMesh& mesh, const FlowField& field, ai::Cell c,
-                std::vector<ai::FunnelPortal>& portals) {
-  portals.clear();
+// Feeds `puller` the portals the grid field's path from `c` crosses (its cells' polygons in
+// turn), then the goal, and stops at the first corner. A diagonal step between polygons that
+// meet only at a corner crosses the polygon of one of the two cells beside it (the field never
+// cuts a blocked corner, so both are open). False when the path leaves the mesh (a static box
+// the grid field does not know).
+bool headOf(const ai::NavMesh& mesh, const FlowField& field, ai::Cell c, ai::Vec2 goal,
+            ai::StringPuller& puller) {
   std::int32_t at = mesh.polygonAt(c.x, c.y);
   ai::FunnelPortal portal;
   auto enter = [&](std::int32_t into) {
     if (into == at) return true;
     if (into < 0 || !portalBetween(mesh, at, into, portal)) return false;
-    portals.push_back(portal);
+    puller.add(portal);
     at = into;
     return true;
   };
@@ -54,7 +54,9 @@ bool corridorOf(const ai::NavMesh& mesh, const FlowField& field, ai::Cell c,
       const std::int32_t side_x = mesh.polygonAt(next.x, c.y), side_y = mesh.polygonAt(c.x, next.y);
       if (!(enter(side_x) && enter(into)) && !(enter(side_y) && enter(into))) return false;
     }
+    if (puller.corners().size() > 1) return true;  // the rest cannot move the first corner
   }
+  puller.add({goal, goal});
   return true;
 }
 
@@ -97,7 +99,6 @@ std::vector<float> navMeshWaypoints(const ai::NavMesh& mesh, const FlowField& fi
     aims[at] = float(p.x);
     aims[at + 1] = float(p.y);
   };
-  std::vector<ai::FunnelPortal> portals;
   for (int y = 0; y < mesh.height(); ++y)
     for (int x = 0; x < mesh.width(); ++x) {
       const int p = mesh.polygonAt(x, y);
@@ -106,18 +107,19 @@ std::vector<float> navMeshWaypoints(const ai::NavMesh& mesh, const FlowField& fi
         set(x, y, to);
         continue;
       }
-      if (!corridorOf(mesh, field, ai::Cell{x, y}, portals)) continue;
       const ai::Vec2 from = centreOf(x, y);
-      const std::vector<ai::Vec2> corners = ai::pullString(from, portals, to);
-      if (corners.size() <= 2) {
+      ai::StringPuller puller(from);
+      if (!headOf(mesh, field, ai::Cell{x, y}, to, puller)) continue;
+      if (puller.corners().size() < 2) {  // no corner before the goal
         set(x, y, to);
         continue;
       }
+      const ai::Vec2 bend = puller.corners()[1];
       // A corner moved off one wall may have moved behind another: then the bend itself.
-      const ai::Vec2 clear = clearOfWall(mesh, corners[1], clearance);
+      const ai::Vec2 clear = clearOfWall(mesh, bend, clearance);
       const bool seen =
           !walls || lineOfSight(*walls, MapFrame{}, Vec2{from.x, from.y}, Vec2{clear.x, clear.y});
-      set(x, y, seen ? clear : corners[1]);
+      set(x, y, seen ? clear : bend);
     }
   return aims;
 }

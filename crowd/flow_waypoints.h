@@ -20,7 +20,8 @@ namespace zonesim::crowd {
 /// funnelled path from the cell's centre to the centre of the field's goal, moved `clearance`
 /// (map units) away from the wall it bends round along both axes; NaN where the cell is off
 /// the mesh or the field does not reach the goal from it. The corridor is the polygons the
-/// grid field's own path from the cell crosses (ai::pullString pulls it taut): so the aims
+/// grid field's own path from the cell crosses, pulled taut up to its first corner
+/// (ai::StringPuller: the rest of the corridor is not read): so the aims
 /// choose between routes as the field's exact distances do. Corridors planned over the mesh
 /// (ai::NavMeshSearch, not exact over all corridors) chose differently in neighbouring cells
 /// near a tie, and a crowd gathered on the ridge between them for good. The goal's polygon
