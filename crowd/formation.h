@@ -14,6 +14,10 @@
 #include "ai/grid_search.h"
 #include "crowd/map_frame.h"
 
+namespace zonesim::ai {
+class NavMeshSearch;
+}  // namespace zonesim::ai
+
 namespace zonesim::crowd {
 
 /// Formation parameters; lengths in metres, times in seconds.
@@ -60,6 +64,8 @@ class FormationCentre {
   Vec2 heading() const { return heading_; }
   /// True when the centre has reached the end of its route (or has none).
   bool arrived() const { return done_; }
+  /// The route's points, in order.
+  const std::vector<Vec2>& route() const { return route_; }
   /// World position of a slot with `offset` in the formation frame (x ahead, y to the left).
   Vec2 slotPosition(Vec2 offset) const;
 
@@ -162,5 +168,12 @@ class Formation {
 /// points at the ends and cell centres between. False when a leg is unreachable.
 bool planRoute(ai::GridSearch& search, const MapFrame& frame, std::span<const Vec2> points,
                std::vector<Vec2>& route);
+
+/// The same route on a navigation mesh (map.navigation: navmesh): each leg the funnelled mesh
+/// path between the points (ai/navmesh_search.h), straight from corner to corner, with the
+/// mesh's clearance from walls. False when a leg is unreachable; throws std::invalid_argument
+/// naming the point when one is off the mesh (within its agent radius of a wall).
+bool planMeshRoute(ai::NavMeshSearch& search, const MapFrame& frame, std::span<const Vec2> points,
+                   std::vector<Vec2>& route);
 
 }  // namespace zonesim::crowd

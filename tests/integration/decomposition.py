@@ -8,7 +8,8 @@ through ghosts and decides arrivals from positions alone, and (scenes/courtyard_
 keeps its bodies apart from them, as do the flockers of (scenes/crowd_flock_bodies.yaml);
 (scenes/courtyard_flow_lod.yaml) the same under level of detail, with crowded cells counted over agents and ghosts kept at full
 detail; (scenes/courtyard_flow_navmesh.yaml) the same crowd aiming at the corners of funnelled
-navigation-mesh paths, built alike on every rank; (scenes/flock_lod.yaml) a flock with
+navigation-mesh paths, built alike on every rank, and (scenes/courtyard_formation_navmesh.yaml) a
+formation whose centre walks the mesh path; (scenes/flock_lod.yaml) a flock with
 a goal under level of detail, whose plan (from ids, positions, the tick and a scripted
 observer) is the same on every rank;
 (scenes/particles.yaml, --gpu off) fountains whose sprays cross zone borders end with the same
@@ -53,7 +54,7 @@ SCENES = {"test_npc_only": 300, "crowd": 300, "crowd_flock": 300, "courtyard_flo
           "particles": 300, "crowd_flock_gpu": 300, "agents": 300, "agents_sliced": 300,
           "agents_paths": 600, "agents_paths_budget": 600, "agents_navmesh": 600, "agents_jps": 600,
           "agents_hpa": 600,
-          "courtyard_formation": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
+          "courtyard_formation": 700, "courtyard_formation_navmesh": 700, "courtyard_ants": 1200, "courtyard_groups_lod": 1200,
           "flock_lod": 300, "roads": 1200, "skirmish": 300,
           "duel_adaptive": 1200, "border_pile": 600, "border_pile_recycled": 600,
           "physics_objects": 600}
@@ -64,7 +65,7 @@ EXTRA = {"particles": ["--gpu", "off"],  # double precision on the CPU: no float
 GHOST_SCENES = ("crowd", "crowd_flock", "crowd_flock_bodies", "courtyard_flow", "courtyard_flow_lod",
                 "courtyard_flow_navmesh",
                 "courtyard_flow_bodies", "crowd_flock_gpu", "agents", "agents_sliced",
-                "courtyard_formation", "courtyard_groups_lod", "flock_lod", "skirmish")
+                "courtyard_formation", "courtyard_formation_navmesh", "courtyard_groups_lod", "flock_lod", "skirmish")
 MAIL_SCENES = ("skirmish",)  # entity messages: the same totals on every decomposition
 MAIL_FIGURES = ("hits", "kills", "pickups", "pickups_contested", "pickups_denied", "mail_posted",
                 "mail_applied", "mail_refused")

@@ -1,8 +1,12 @@
 #include "zone_node/systems/formation_movement.h"
 
 #include <algorithm>
+#include <memory>
+#include <stdexcept>
 #include <string>
 
+#include "ai/navmesh.h"
+#include "ai/navmesh_search.h"
 #include "common/scene.h"
 #include "common/scene_source.h"
 #include "crowd/formation.h"
@@ -10,6 +14,7 @@
 #include "zone_node/formation_start.h"
 #include "zone_node/ghost_store.h"
 #include "zone_node/systems/crowd_lod.h"
+#include "zone_node/systems/navmesh_obstacles.h"
 #include "zone_node/systems/planar_crowd.h"
 #include "zone_node/world_map.h"
 
@@ -56,6 +61,20 @@ FormationMovement::FormationMovement(const Scene& scene, const WorldMap* map) : 
     auto g = std::make_unique<Group>(std::int32_t(p), *map, f, lodOf(scene.lod));
     g->first = firstCounter(scene, p);
     g->count = scene.npcs[p].count;
+    // map.navigation: navmesh: the centre walks the funnelled mesh path, straight from corner
+    // to corner, with map.agent_radius from walls and the static bodies closed as the agents'.
+    std::unique_ptr<ai::NavMesh> mesh;
+    std::unique_ptr<ai::NavMeshSearch> mesh_search;
+    if (scene.map.navigation == ObstacleMap::kNavMesh) {
+      mesh = std::make_unique<ai::NavMesh>(map->grid, navMeshBoxes(scene, map->frame),
+                                           navMeshConfig(scene, map->frame));
+      mesh_search = std::make_unique<ai::NavMeshSearch>(*mesh);
+    }
+    ai::GridSearch search(map->grid);
+    auto plan = [&](std::span<const crowd::Vec2> points, std::vector<crowd::Vec2>& route) {
+      return mesh_search ? crowd::planMeshRoute(*mesh_search, map->frame, points, route)
+                         : crowd::planRoute(search, map->frame, points, route);
+    };
     std::vector<crowd::Vec2> points;
     for (std::size_t k = 0; k < f.route.size(); ++k) {
       const ScenePoint& at = f.route[k];
@@ -63,15 +82,16 @@ FormationMovement::FormationMovement(const Scene& scene, const WorldMap* map) : 
                           std::to_string(p) + "].formation.route[" + std::to_string(k) + "]: ";
       if (!map->walkable(at.x, at.z)) throw SceneError(where + "lies on a blocked cell of the map");
       points.push_back({at.x, at.z});
-      ai::GridSearch search(map->grid);
       std::vector<crowd::Vec2> leg;
-      if (k > 0 &&
-          !crowd::planRoute(search, map->frame, std::span<const crowd::Vec2>(points).last(2), leg))
-        throw SceneError(where + "cannot be reached from the point before");
+      try {
+        if (k > 0 && !plan(std::span<const crowd::Vec2>(points).last(2), leg))
+          throw SceneError(where + "cannot be reached from the point before");
+      } catch (const std::invalid_argument& e) {  // off the mesh
+        throw SceneError(where + e.what());
+      }
     }
-    ai::GridSearch search(map->grid);
     std::vector<crowd::Vec2> route;
-    crowd::planRoute(search, map->frame, points, route);
+    plan(points, route);
     g->centre.setRoute(std::move(route));
     groups_.push_back(std::move(g));
     reach_ = std::max(reach_, f.separation_radius);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -14,6 +15,7 @@
 #include "ai/grid_search.h"
 #include "common/scene.h"
 #include "crowd/formation.h"
+#include "crowd/map_frame.h"
 #include "zone_node/population.h"
 #include "zone_node/systems/lone_zone.h"
 #include "zone_node/world_map.h"
@@ -129,6 +131,57 @@ TEST(FormationMovement, TheCourtyardGroupFollowsItsRouteAndEndsInFormation) {
               move.rejoinPlans());
   EXPECT_LT(r.ticks, 6000);
   EXPECT_EQ(r.on_walls, 0);
+  EXPECT_LT(crowd::length(move.centre(0).position() - crowd::Vec2{end.x, end.z}), 1e-9);
+}
+
+double routeLength(const std::vector<crowd::Vec2>& route) {
+  double sum = 0;
+  for (std::size_t k = 1; k < route.size(); ++k) sum += crowd::length(route[k] - route[k - 1]);
+  return sum;
+}
+
+TEST(FormationMovement, OnTheNavMeshTheCentreWalksStraightClearOfWallsAndTheGroupEndsInFormation) {
+  // The same group with map.navigation: navmesh and map.agent_radius 1 m: the centre's route
+  // runs from corner to corner of the funnelled mesh path, every leg in sight and every corner
+  // at least 1 m from a wall, and is shorter than the grid route's cell centres.
+  Scene grid_scene = loadScene(source("scenes/courtyard_formation.yaml"));
+  Scene scene = loadScene(source("scenes/courtyard_formation_navmesh.yaml"));
+  auto map = loadWorldMap(scene);
+  FormationMovement on_grid(grid_scene, map.get());
+  EntityStore store;
+  forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
+  FormationMovement move(scene, map.get());
+  const std::vector<crowd::Vec2>& route = move.centre(0).route();
+  int blind = 0, near_walls = 0;
+  for (std::size_t k = 1; k < route.size(); ++k)
+    blind += !crowd::lineOfSight(map->grid, map->frame, route[k - 1], route[k]);
+  for (const crowd::Vec2 p : route) {
+    for (int y = 0; y < map->grid.height(); ++y)
+      for (int x = 0; x < map->grid.width(); ++x) {
+        if (map->grid.passable(x, y)) continue;
+        const double dx = std::max({x - p.x, 0.0, p.x - (x + 1)});
+        const double dy = std::max({y - p.y, 0.0, p.y - (y + 1)});
+        near_walls += std::hypot(dx, dy) < 1.0 - 1e-9;
+      }
+  }
+  const double grid_length = routeLength(on_grid.centre(0).route()), length = routeLength(route);
+  const FormationRun grid_run = [&] {
+    EntityStore grid_store;
+    forEachInitialEntity(grid_scene, [&](const EntityRecordData& r) { grid_store.add(r); });
+    return runFormation(grid_scene, *map, grid_store, on_grid, 6000, 0.25);
+  }();
+  const FormationRun r = runFormation(scene, *map, store, move, 6000, 0.25);
+  std::printf(
+      "route: grid %zu points %.2f m, navmesh %zu points %.2f m; settled after %.1f s "
+      "(grid %.1f s), %d rejoin plans; worst slot error while moving %.2f m (grid %.2f m)\n",
+      on_grid.centre(0).route().size(), grid_length, route.size(), length, r.ticks * scene.dt,
+      grid_run.ticks * scene.dt, move.rejoinPlans(), r.worst_moving, grid_run.worst_moving);
+  EXPECT_EQ(blind, 0);
+  EXPECT_EQ(near_walls, 0);
+  EXPECT_LT(length, grid_length);
+  EXPECT_LT(r.ticks, 6000);
+  EXPECT_EQ(r.on_walls, 0);
+  const ScenePoint& end = scene.npcs[0].formation.route.back();
   EXPECT_LT(crowd::length(move.centre(0).position() - crowd::Vec2{end.x, end.z}), 1e-9);
 }
 
