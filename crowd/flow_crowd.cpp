@@ -100,7 +100,7 @@ Vec2 FlowCrowd::desiredVelocity(Vec2 pos, int d) const {
   Vec2 aim = frame_.centre(next);
   double ax, ay;
   if (f.hasWaypoints() && f.waypoint(c, ax, ay))  // on the mesh: the path's first corner
-    aim = Vec2{frame_.origin.x + ax * frame_.cell_size, frame_.origin.y + ay * frame_.cell_size};
+    aim = frame_.toWorld(ax, ay);
   Vec2 to = aim - pos;
   double speed = settings_.max_speed;
   // Most agents are far from their goal: where even the lower bound of the distance is past

@@ -30,17 +30,12 @@ bool planMeshRoute(ai::NavMeshSearch& search, const MapFrame& frame, std::span<c
   route.clear();
   if (points.empty()) return true;
   route.push_back(points[0]);
-  auto onMap = [&](Vec2 p) {
-    return ai::Vec2{(p.x - frame.origin.x) / frame.cell_size,
-                    (p.y - frame.origin.y) / frame.cell_size};
-  };
   ai::NavPath leg;
   for (std::size_t p = 1; p < points.size(); ++p) {
-    if (!search.findPath(onMap(points[p - 1]), onMap(points[p]), leg)) return false;
+    if (!search.findPath(frame.toMap(points[p - 1]), frame.toMap(points[p]), leg)) return false;
     // The corners between; the ends are the exact points.
     for (std::size_t k = 1; k + 1 < leg.points.size(); ++k)
-      route.push_back(Vec2{frame.origin.x + leg.points[k].x * frame.cell_size,
-                           frame.origin.y + leg.points[k].y * frame.cell_size});
+      route.push_back(frame.toWorld(leg.points[k].x, leg.points[k].y));
     route.push_back(points[p]);
   }
   return true;

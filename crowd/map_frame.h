@@ -4,6 +4,7 @@
 // cells by sliding along walls (no step ever enters a blocked cell or cuts a blocked corner).
 
 #include "ai/grid_map.h"
+#include "ai/vec2.h"
 #include "crowd/vec2.h"
 
 namespace zonesim::crowd {
@@ -21,6 +22,14 @@ struct MapFrame {
   /// World position of a cell's centre.
   Vec2 centre(ai::Cell c) const {
     return Vec2{origin.x + (c.x + 0.5) * cell_size, origin.y + (c.y + 0.5) * cell_size};
+  }
+  /// A world point in map units (cell (x, y) covers [x, x+1) x [y, y+1): the navigation mesh's).
+  ai::Vec2 toMap(Vec2 p) const {
+    return ai::Vec2{(p.x - origin.x) / cell_size, (p.y - origin.y) / cell_size};
+  }
+  /// A point in map units in the world.
+  Vec2 toWorld(double x, double y) const {
+    return Vec2{origin.x + x * cell_size, origin.y + y * cell_size};
   }
 };
 

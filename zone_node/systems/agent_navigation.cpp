@@ -352,13 +352,11 @@ crowd::Vec2 AgentNavigation::fleeTarget(double x, double z, double ex, double ez
 }
 
 ai::Vec2 AgentNavigation::toMap(double x, double z) const {
-  return ai::Vec2{(x - frame_.origin.x) / frame_.cell_size,
-                  (z - frame_.origin.y) / frame_.cell_size};
+  return frame_.toMap(crowd::Vec2{x, z});
 }
 
 crowd::Vec2 AgentNavigation::cornerOf(std::int32_t x, std::int32_t y) const {
-  return crowd::Vec2{frame_.origin.x + x * frame_.cell_size,
-                     frame_.origin.y + y * frame_.cell_size};
+  return frame_.toWorld(x, y);
 }
 
 bool AgentNavigation::meshPathTouches(const AgentData& a, ai::Cell cell) const {
