@@ -4,6 +4,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/scene.h"
@@ -53,7 +54,6 @@ int flowDestination(std::uint64_t id, int count) {
 namespace {
 
 crowd::FlowCrowdSettings settingsOf(const Scene& scene, const NpcFlow& f, const WorldMap& map) {
-  const double halo_width = scene.halo_width;
   crowd::FlowCrowdSettings s;
   s.max_speed = f.max_speed;
   s.max_force = f.max_force;
@@ -64,7 +64,7 @@ crowd::FlowCrowdSettings settingsOf(const Scene& scene, const NpcFlow& f, const 
   s.slow_radius = f.slow_radius;
   s.grid_cell = std::max(2.0, f.separation_radius);  // the same on every rank: fixes sum order
   s.body_radius = f.body_radius;
-  s.sight = halo_width;  // every neighbour that could bind a body is a ghost on every rank
+  s.sight = scene.halo_width;  // every neighbour that could bind a body is a ghost on every rank
   // map.navigation: navmesh: agents aim at the funnelled mesh path's first corner, on the mesh
   // the agents' planner builds (the same clearance and static bodies).
   s.navmesh = scene.map.navigation == ObstacleMap::kNavMesh;
@@ -109,12 +109,16 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
       const std::string where = sceneFile(scene) + ":" + std::to_string(d.line) + ": populations[" +
                                 std::to_string(p) + "].flow.destinations[" + std::to_string(k) +
                                 "]: ";
-      if (scene.map.fields.empty()) {
+      // With navmesh, a goal off the mesh (under a static body) is refused by name.
+      auto add = [&](auto&& destination) {
         try {
-          g->crowd.addDestination(goal);
-        } catch (const std::invalid_argument& e) {  // off the navigation mesh
-          throw SceneError(where + e.what() + " (within map.agent_radius of a wall or body)");
+          g->crowd.addDestination(std::forward<decltype(destination)>(destination));
+        } catch (const std::invalid_argument& e) {
+          throw SceneError(where + e.what() + " (under a static body: map.static_bodies)");
         }
+      };
+      if (scene.map.fields.empty()) {
+        add(goal);
         continue;
       }
       auto it = std::find_if(baked.begin(), baked.end(), [&](const auto& f) {
@@ -126,11 +130,7 @@ FlowMovement::FlowMovement(const Scene& scene, const ZoneMap* zone_map)
                          "] (cell " + std::to_string(goal.x) + ", " + std::to_string(goal.y) +
                          "); build it again with bake_fields");
       }
-      try {
-        g->crowd.addDestination(std::make_unique<crowd::FlowField>(**it));
-      } catch (const std::invalid_argument& e) {
-        throw SceneError(where + e.what() + " (within map.agent_radius of a wall or body)");
-      }
+      add(std::make_unique<crowd::FlowField>(**it));
     }
     groups_.push_back(std::move(g));
     reach_ = std::max(reach_, f.separation_radius);

@@ -75,23 +75,23 @@ FormationMovement::FormationMovement(const Scene& scene, const WorldMap* map) : 
       return mesh_search ? crowd::planMeshRoute(*mesh_search, map->frame, points, route)
                          : crowd::planRoute(search, map->frame, points, route);
     };
-    std::vector<crowd::Vec2> points;
+    // Leg by leg, so that an unreachable point is named; each leg's first point is the last
+    // leg's end.
+    std::vector<crowd::Vec2> points, route, leg;
     for (std::size_t k = 0; k < f.route.size(); ++k) {
       const ScenePoint& at = f.route[k];
       std::string where = sceneFile(scene) + ":" + std::to_string(at.line) + ": populations[" +
                           std::to_string(p) + "].formation.route[" + std::to_string(k) + "]: ";
       if (!map->walkable(at.x, at.z)) throw SceneError(where + "lies on a blocked cell of the map");
       points.push_back({at.x, at.z});
-      std::vector<crowd::Vec2> leg;
       try {
-        if (k > 0 && !plan(std::span<const crowd::Vec2>(points).last(2), leg))
+        if (!plan(std::span<const crowd::Vec2>(points).last(k > 0 ? 2 : 1), leg))
           throw SceneError(where + "cannot be reached from the point before");
       } catch (const std::invalid_argument& e) {  // off the mesh
         throw SceneError(where + e.what());
       }
+      route.insert(route.end(), leg.begin() + (k > 0 ? 1 : 0), leg.end());
     }
-    std::vector<crowd::Vec2> route;
-    plan(points, route);
     g->centre.setRoute(std::move(route));
     groups_.push_back(std::move(g));
     reach_ = std::max(reach_, f.separation_radius);
