@@ -15,7 +15,8 @@ constexpr int kPoints = 4;
 using Lanes = float[kBlockLanes];
 
 /// One contact point of every lane. Unused points (and lanes) are all zero, which makes their
-/// updates exact no-ops.
+/// updates exact no-ops. prepare writes the anchors, separation, impulses and approach; buildRows
+/// the rest.
 struct alignas(32) PointLanes {
   // Normal row: angular Jacobians ra x n, rb x n and their images under the inverse inertias,
   // computed once per step so the iterations need no 3x3 products for the normal.
@@ -37,7 +38,8 @@ struct alignas(32) BlockLanes {
   Lanes inv_inertia_a[6], inv_inertia_b[6];  // symmetric: xx yy zz xy xz yz
   Lanes normal[3], tangent[2][3];
   Lanes friction, restitution;
-  Lanes fixed;  // 1 where one body is immovable: the static contact spring applies.
+  Lanes fixed;        // 1 where one body is immovable: the static contact spring applies.
+  Lanes point_count;  // the lane's points (0 for an empty lane)
   PointLanes point[kPoints];
   int points;  // Most points of any lane: the same for every width.
 };
@@ -56,6 +58,10 @@ struct SoftPass {
   bool track_pushes;  // keep max_normal_impulse (read only by restitution)
 };
 
+/// Builds each used point's rows from its anchors, the normal, tangents and masses: the angular
+/// Jacobians of the normal and their images under the inverse inertias, and the normal and
+/// tangent effective masses (zero at a lane's unused points), in float, `lanes` at a time.
+void buildRows(int lanes, BlockLanes& block);
 /// Applies the accumulated impulses (warm start), `lanes` at a time (1, 4 or 8).
 void warmStart(int lanes, std::span<const BlockLanes> blocks, SolverBodies& bodies);
 /// One soft pass (normals with the separation moved by the displacements, then friction).

@@ -68,6 +68,13 @@ ZONESIM_WIDE_INLINE V3<F> load3(const Lanes* p, int o) {
   return {load<F>(p[0] + o), load<F>(p[1] + o), load<F>(p[2] + o)};
 }
 
+template <class F>
+ZONESIM_WIDE_INLINE void store3(Lanes* p, int o, const V3<F>& v) {
+  store(p[0] + o, v.x);
+  store(p[1] + o, v.y);
+  store(p[2] + o, v.z);
+}
+
 // As std::max and std::min, lane by lane (the same answer for signed zeros).
 template <class F>
 ZONESIM_WIDE_INLINE F vmax(F a, F b) {
@@ -314,6 +321,46 @@ struct Pair {
   }
 };
 
+// 1 / inv where inv > 0 and the point is used, else 0 (the quotients of other lanes are
+// discarded).
+template <class F, class M>
+ZONESIM_WIDE_INLINE F massOf(F inv, M used) {
+  const F zero = splat<F>(0.0f);
+  return (used & (inv > zero)) ? splat<F>(1.0f) / inv : zero;
+}
+
+template <int W>
+ZONESIM_WIDE_INLINE void buildRowsLanes(BlockLanes& b, int o) {
+  using F = typename Simd<W>::F;
+  const V3<F> n = load3<F>(b.normal, o);
+  const V3<F> t[2] = {load3<F>(b.tangent[0], o), load3<F>(b.tangent[1], o)};
+  const F masses = load<F>(b.inv_mass_a + o) + load<F>(b.inv_mass_b + o);
+  F ia[6], ib[6];
+  for (int k = 0; k < 6; ++k) {
+    ia[k] = load<F>(b.inv_inertia_a[k] + o);
+    ib[k] = load<F>(b.inv_inertia_b[k] + o);
+  }
+  const F count = load<F>(b.point_count + o);
+  for (int i = 0; i < b.points; ++i) {
+    PointLanes& p = b.point[i];
+    const auto used = splat<F>(static_cast<float>(i)) < count;
+    const V3<F> ra = load3<F>(p.ra, o), rb = load3<F>(p.rb, o);
+    const V3<F> ca = cross(ra, n), cb = cross(rb, n);
+    const V3<F> ia_ca = symmetricTimes(ia, ca), ib_cb = symmetricTimes(ib, cb);
+    store3(p.ca, o, ca);
+    store3(p.cb, o, cb);
+    store3(p.ia_ca, o, ia_ca);
+    store3(p.ib_cb, o, ib_cb);
+    store(p.normal_mass + o, massOf(masses + dot(ca, ia_ca) + dot(cb, ib_cb), used));
+    for (int d = 0; d < 2; ++d) {
+      const V3<F> ta = cross(ra, t[d]), tb = cross(rb, t[d]);
+      const F inv = masses + dot(ta, symmetricTimes(ia, ta)) + dot(tb, symmetricTimes(ib, tb));
+      store(p.tangent_mass[d] + o, massOf(inv, used));
+    }
+    store(p.max_normal_impulse + o, splat<F>(0.0f));
+  }
+}
+
 template <int W>
 ZONESIM_WIDE_INLINE void warmStartLanes(const BlockLanes& b, int o, SolverBodies& bodies) {
   using F = typename Simd<W>::F;
@@ -430,6 +477,11 @@ ZONESIM_WIDE_INLINE void restituteLanes(BlockLanes& b, int o, SolverBodies& bodi
 }
 
 template <int W>
+ZONESIM_WIDE_INLINE void buildRowsAll(BlockLanes& b) {
+  for (int o = 0; o < kBlockLanes; o += W) buildRowsLanes<W>(b, o);
+}
+
+template <int W>
 ZONESIM_WIDE_INLINE void warmStartAll(std::span<const BlockLanes> blocks, SolverBodies& bodies) {
   for (const BlockLanes& b : blocks)
     for (int o = 0; o < kBlockLanes; o += W) warmStartLanes<W>(b, o, bodies);
@@ -457,6 +509,9 @@ ZONESIM_WIDE_INLINE void restituteAll(std::span<BlockLanes> blocks, SolverBodies
 // stays baseline x86-64, so it runs where AVX2 is missing).
 #if defined(ZONESIM_WIDE_AVX2)
 
+ZONESIM_WIDE_TARGET_AVX2 void buildRows8(BlockLanes& b) {
+  buildRowsAll<8>(b);
+}
 ZONESIM_WIDE_TARGET_AVX2 void warmStart8(std::span<const BlockLanes> blocks, SolverBodies& bodies) {
   warmStartAll<8>(blocks, bodies);
 }
@@ -478,6 +533,14 @@ int supportedLanes(int wanted) {
   if (wanted >= 8 && kAvx2) return 8;
 #endif
   return wanted >= 4 ? 4 : 1;
+}
+
+void buildRows(int lanes, BlockLanes& block) {
+#if defined(ZONESIM_WIDE_AVX2)
+  if (lanes == 8) return buildRows8(block);
+#endif
+  if (lanes == 4) return buildRowsAll<4>(block);
+  buildRowsAll<1>(block);
 }
 
 void warmStart(int lanes, std::span<const BlockLanes> blocks, SolverBodies& bodies) {

@@ -50,14 +50,24 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
   // Padding lanes read the zero body and write the sink; all their rows stay zero.
   const auto zero_slot = static_cast<std::uint32_t>(n), sink_slot = zero_slot + 1;
   any_restitution_ = false;
+  const bool warm = settings.warm_starting;
   for (std::size_t block = 0; block < blocks_.size(); ++block) {
     wide::BlockLanes& b = blocks_[block];
-    std::memset(static_cast<void*>(&b), 0, sizeof b);
+    const std::uint32_t* lane_of = lanes.data() + block * kBlockLanes;
+    // Every field a pass reads is written here or in buildRows, lane by lane (an empty lane and
+    // a lane's unused points get zeros), so the block needs no clearing first.
+    b.points = 0;
     for (int lane = 0; lane < kBlockLanes; ++lane) {
-      const std::uint32_t c = lanes[block * kBlockLanes + lane];
+      const std::uint32_t c = lane_of[lane];
       if (c == kEmptyLane) {
         b.read_a[lane] = b.read_b[lane] = zero_slot;
         b.write_a[lane] = b.write_b[lane] = sink_slot;
+        b.inv_mass_a[lane] = b.inv_mass_b[lane] = 0.0f;
+        put(b.normal, lane, Vec3::Zero());
+        put(b.tangent[0], lane, Vec3::Zero());
+        put(b.tangent[1], lane, Vec3::Zero());
+        for (int k = 0; k < 6; ++k) b.inv_inertia_a[k][lane] = b.inv_inertia_b[k][lane] = 0.0f;
+        b.friction[lane] = b.restitution[lane] = b.fixed[lane] = b.point_count[lane] = 0.0f;
         continue;
       }
       const BodyContact& bc = contacts[c];
@@ -69,57 +79,54 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
       const double ma = bodies.inv_mass[bc.a], mb = bodies.inv_mass[bc.b];
       b.inv_mass_a[lane] = static_cast<float>(ma);
       b.inv_mass_b[lane] = static_cast<float>(mb);
-      const Eigen::Matrix3d& ia = bodies.inv_inertia_world[bc.a];
-      const Eigen::Matrix3d& ib = bodies.inv_inertia_world[bc.b];
-      putSymmetric(b.inv_inertia_a, lane, ia);
-      putSymmetric(b.inv_inertia_b, lane, ib);
+      putSymmetric(b.inv_inertia_a, lane, bodies.inv_inertia_world[bc.a]);
+      putSymmetric(b.inv_inertia_b, lane, bodies.inv_inertia_world[bc.b]);
       const Vec3 normal = bc.manifold.normal;
       const Vec3 t0 = solver_row::orthogonal(normal);
-      const Vec3 t1 = normal.cross(t0);
       put(b.normal, lane, normal);
       put(b.tangent[0], lane, t0);
-      put(b.tangent[1], lane, t1);
+      put(b.tangent[1], lane, normal.cross(t0));
       b.friction[lane] = static_cast<float>(bc.friction);
       b.restitution[lane] = static_cast<float>(bc.restitution);
       any_restitution_ |= bc.restitution != 0.0;
       b.fixed[lane] = (ma == 0.0 || mb == 0.0) ? 1.0f : 0.0f;
+      b.point_count[lane] = static_cast<float>(bc.manifold.count);
       b.points = std::max(b.points, bc.manifold.count);
-      const Vec3& va = bodies.linear_velocity[bc.a];
-      const Vec3& wa = bodies.angular_velocity[bc.a];
-      const Vec3& vb = bodies.linear_velocity[bc.b];
-      const Vec3& wb = bodies.angular_velocity[bc.b];
-      for (int i = 0; i < bc.manifold.count; ++i) {
+    }
+    for (int lane = 0; lane < kBlockLanes; ++lane) {
+      const std::uint32_t c = lane_of[lane];
+      const int count = c == kEmptyLane ? 0 : contacts[c].manifold.count;
+      for (int i = count; i < b.points; ++i) {
+        wide::PointLanes& p = b.point[i];
+        put(p.ra, lane, Vec3::Zero());
+        put(p.rb, lane, Vec3::Zero());
+        p.separation[lane] = p.approach[lane] = p.normal_impulse[lane] = 0.0f;
+        p.tangent_impulse[0][lane] = p.tangent_impulse[1][lane] = 0.0f;
+      }
+      if (count == 0) continue;
+      const BodyContact& bc = contacts[c];
+      const Vec3& xa = bodies.position[bc.a];
+      const Vec3& xb = bodies.position[bc.b];
+      const bool bouncy = bc.restitution != 0.0;
+      for (int i = 0; i < count; ++i) {
         const ContactPoint& cp = bc.manifold.points[i];
         wide::PointLanes& p = b.point[i];
-        const Vec3 ra = cp.position - bodies.position[bc.a];
-        const Vec3 rb = cp.position - bodies.position[bc.b];
-        // Effective mass along a tangent d: the rows are built in double, then rounded once.
-        const auto mass = [&](const Vec3& d) {
-          const Vec3 ca = ra.cross(d), cb = rb.cross(d);
-          const double inv = ma + mb + ca.dot(ia * ca) + cb.dot(ib * cb);
-          return inv > 0.0 ? 1.0 / inv : 0.0;
-        };
-        const Vec3 ca = ra.cross(normal), cb = rb.cross(normal);
-        const Vec3 ia_ca = ia * ca, ib_cb = ib * cb;
-        put(p.ca, lane, ca);
-        put(p.cb, lane, cb);
-        put(p.ia_ca, lane, ia_ca);
-        put(p.ib_cb, lane, ib_cb);
+        const Vec3 ra = cp.position - xa, rb = cp.position - xb;
         put(p.ra, lane, ra);
         put(p.rb, lane, rb);
-        const double normal_inv = ma + mb + ca.dot(ia_ca) + cb.dot(ib_cb);
-        p.normal_mass[lane] = static_cast<float>(normal_inv > 0.0 ? 1.0 / normal_inv : 0.0);
-        p.tangent_mass[0][lane] = static_cast<float>(mass(t0));
-        p.tangent_mass[1][lane] = static_cast<float>(mass(t1));
         p.separation[lane] = static_cast<float>(-cp.depth);
-        p.approach[lane] = static_cast<float>(normal.dot(vb - va) + cb.dot(wb) - ca.dot(wa));
-        if (settings.warm_starting) {
-          p.normal_impulse[lane] = static_cast<float>(bc.impulse[i][0]);
-          p.tangent_impulse[0][lane] = static_cast<float>(bc.impulse[i][1]);
-          p.tangent_impulse[1][lane] = static_cast<float>(bc.impulse[i][2]);
-        }
+        // Relative normal velocity of the anchors, read only by restitution.
+        p.approach[lane] =
+            bouncy ? static_cast<float>(bc.manifold.normal.dot(
+                         (bodies.linear_velocity[bc.b] + bodies.angular_velocity[bc.b].cross(rb)) -
+                         (bodies.linear_velocity[bc.a] + bodies.angular_velocity[bc.a].cross(ra))))
+                   : 0.0f;
+        p.normal_impulse[lane] = warm ? static_cast<float>(bc.impulse[i][0]) : 0.0f;
+        p.tangent_impulse[0][lane] = warm ? static_cast<float>(bc.impulse[i][1]) : 0.0f;
+        p.tangent_impulse[1][lane] = warm ? static_cast<float>(bc.impulse[i][2]) : 0.0f;
       }
     }
+    wide::buildRows(lanes_, b);
   }
 }
 

@@ -22,6 +22,8 @@
 //   --recycle D (anywhere, pyramid and the Box3D scenes): also runs each of our solvers with
 //     contact recycling at distance D m (WorldSettings::contact_recycle_distance), labelled -rc,
 //     and prints how many contacts a step recycled and computed.
+//   --only LABEL (anywhere, the Box3D scenes): runs only the solver of that label (zs-wide8-rc,
+//     bullet, ...), for profiling one of them.
 
 #include <btBulletDynamicsCommon.h>
 
@@ -261,7 +263,9 @@ struct Box3dSolvers {
 };
 
 // recycle: also each soft step with contact recycling at that distance (m; 0: not).
-int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, double recycle) {
+// only: the one run's label, or empty for all of them and the ratios.
+int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, double recycle,
+                  const std::string& only) {
   std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off\n", name, scene.bodies.size(),
               steps);
   const auto [soft, pgs, wide] = Box3dSolvers();
@@ -278,14 +282,23 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
     runs.emplace_back("zs-soft-rc", soft_rc, &soft_rc_t);
     runs.emplace_back("zs-wide8-rc", wide_rc, &wide_rc_t);
   }
+  if (!only.empty()) {
+    std::erase_if(runs, [&](const auto& run) { return std::get<0>(run) != only; });
+    if (runs.empty() && only != kBullet) {
+      std::fprintf(stderr, "physics_vs_bullet: --only %s: no run of that label\n", only.c_str());
+      return 2;
+    }
+  }
   for (auto [label, settings, timing] : runs) {
     Stages stages;
     const auto p = runOurs(scene, steps, *timing, settings, nullptr, &stages);
     reportHeld(label, name, scene, p, *timing);
     stages.print(label, steps);
   }
+  if (!only.empty() && only != kBullet) return 0;
   const auto q = runBullet(scene, steps, bullet_t, 10);
   reportHeld(kBullet, name, scene, q, bullet_t);
+  if (!only.empty()) return 0;
   std::printf(
       "speed, Bullet mean / ours mean: soft step %.2f, Gauss-Seidel %.2f, wide soft step %.2f "
       "(8 lanes where AVX2, else 4), %.2f (4 lanes)\n",
@@ -370,7 +383,16 @@ int main(int raw_argc, char** raw_argv) {
   // --recycle D may stand anywhere; the rest are positional.
   std::vector<char*> args;
   double recycle = 0.0;
+  std::string only;
   for (int i = 0; i < raw_argc; ++i) {
+    if (std::strcmp(raw_argv[i], "--only") == 0) {
+      if (i + 1 >= raw_argc) {
+        std::fprintf(stderr, "physics_vs_bullet: --only needs a run's label\n");
+        return 2;
+      }
+      only = raw_argv[++i];
+      continue;
+    }
     if (std::strcmp(raw_argv[i], "--recycle") == 0) {
       char* end = nullptr;
       recycle = i + 1 < raw_argc ? std::strtod(raw_argv[i + 1], &end) : 0.0;
@@ -410,7 +432,7 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "large_pyramid: steps and base must be positive\n");
       return 2;
     }
-    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps, recycle);
+    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps, recycle, only);
   }
   if (which == "creep") {
     const int base = argc > 3 ? std::atoi(argv[3]) : 10;
@@ -426,7 +448,8 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "many_pyramids: steps and rows must be positive\n");
       return 2;
     }
-    return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps, recycle);
+    return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps, recycle,
+                         only);
   }
   if (which != "pyramid" && which != "spheres") {
     std::fprintf(stderr,
