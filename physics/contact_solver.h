@@ -86,6 +86,10 @@ struct SolverSettings {
   /// Wide soft step: the most constraints solved at once, 1 (scalar reference), 4 (SSE2) or 8
   /// (AVX2 where the CPU has it, else 4). The result is the same at every width.
   int wide_lanes = 8;
+  /// Wide soft step: friction in the biased pass of each sub-step as well as in the relax
+  /// passes. Off, as Box2D v3.2: friction is solved in the relax passes only, which leaves the
+  /// biased pass half the work.
+  bool friction_in_biased_pass = false;
 };
 
 /// A manifold between two bodies, with the impulses solved for each point (for warm starts).

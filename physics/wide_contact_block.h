@@ -53,6 +53,7 @@ struct SoftLanes {
 struct SoftPass {
   SoftLanes soft, soft_fixed;
   bool use_bias;   // Soft spring pass; else the rigid relax pass.
+  bool friction;   // Solve friction in this pass.
   float inv_h;     // 1 / sub-step
   float max_push;  // m/s
   bool track_pushes;  // keep max_normal_impulse (read only by restitution)

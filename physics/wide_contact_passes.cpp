@@ -492,8 +492,10 @@ ZONESIM_WIDE_INLINE void solveAll(std::span<BlockLanes> blocks, SolverBodies& bo
                                   const SoftPass& pass) {
   // Friction for every contact first, then the normals (as the scalar soft step does, and
   // why: physics/contact_solver_soft.cpp).
-  for (BlockLanes& b : blocks)
-    for (int o = 0; o < kBlockLanes; o += W) frictionLanes<W>(b, o, bodies);
+  if (pass.friction) {
+    for (BlockLanes& b : blocks)
+      for (int o = 0; o < kBlockLanes; o += W) frictionLanes<W>(b, o, bodies);
+  }
   for (BlockLanes& b : blocks)
     for (int o = 0; o < kBlockLanes; o += W) normalLanes<W>(b, o, bodies, pass);
 }

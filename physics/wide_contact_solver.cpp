@@ -139,6 +139,7 @@ void WideContactSolver::solve(SolverBodies& state, const Softness& soft, const S
   const wide::SoftPass pass{lanesOf(soft),
                             lanesOf(soft_fixed),
                             use_bias,
+                            !use_bias || settings_.friction_in_biased_pass,
                             static_cast<float>(inv_h),
                             static_cast<float>(settings_.max_push_velocity),
                             any_restitution_};

@@ -6,7 +6,8 @@
 //   physics_vs_bullet pyramid [steps] [soft|pgs|wide|wide-box3d|both|all]: Jolt's pyramid, 10
 //     velocity iterations (ours: plus 2 split-impulse position iterations; Bullet: split impulse
 //     on); both: soft and pgs; wide-box3d: the wide soft step as Box3D sets its solver (4
-//     sub-steps of one solve and one relax pass); all (the default): every one of them.
+//     sub-steps of one solve and one relax pass; -bf: with friction in the biased pass too, as
+//     before Box2D v3.2); all (the default): every one of them.
 //   physics_vs_bullet large_pyramid [steps] [base]: Box3D's large_pyramid (5,050 boxes at base
 //     100), set as Box3D sets it: soft step with 4 sub-steps of one solve and one relax pass
 //     (and the same solved wide, SoftStepWide); Bullet at 10 iterations.
@@ -84,6 +85,7 @@ struct OurSettings {
   bool sleeping = false;
   int settle = 0;        ///< Untimed steps before the timed ones.
   double recycle = 0.0;  ///< Contact recycling distance (m); 0: off.
+  bool friction_in_biased_pass = false;  ///< Wide soft step: as before Box2D v3.2.
 };
 
 // FNV-1a over the bytes of every body's position, orientation and velocities, in body order:
@@ -137,6 +139,7 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
   settings.solver.velocity_iterations = ours.velocity_iterations;
   settings.solver.position_iterations = ours.position_iterations;
   settings.solver.wide_lanes = ours.wide_lanes;
+  settings.solver.friction_in_biased_pass = ours.friction_in_biased_pass;
   settings.contact_recycle_distance = ours.recycle;
   zp::World world(settings);
   for (const auto& b : scene.bodies) {
@@ -271,7 +274,7 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
   const auto [soft, pgs, wide] = Box3dSolvers();
   OurSettings wide4 = wide;
   wide4.wide_lanes = 4;
-  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t;
+  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t, wide_rc_bf_t;
   std::vector<std::tuple<const char*, OurSettings, Timing*>> runs{{"zs-soft", soft, &soft_t},
                                                                   {"zs-pgs", pgs, &pgs_t},
                                                                   {"zs-wide8", wide, &wide_t},
@@ -281,6 +284,10 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
     soft_rc.recycle = wide_rc.recycle = recycle;
     runs.emplace_back("zs-soft-rc", soft_rc, &soft_rc_t);
     runs.emplace_back("zs-wide8-rc", wide_rc, &wide_rc_t);
+    // The same with friction in the biased pass too, as Box2D before v3.2.
+    OurSettings wide_rc_bf = wide_rc;
+    wide_rc_bf.friction_in_biased_pass = true;
+    runs.emplace_back("zs-wide8-rc-bf", wide_rc_bf, &wide_rc_bf_t);
   }
   if (!only.empty()) {
     std::erase_if(runs, [&](const auto& run) { return std::get<0>(run) != only; });
@@ -306,8 +313,10 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
       bullet_t.mean_ms / wide_t.mean_ms, bullet_t.mean_ms / wide4_t.mean_ms);
   if (recycle > 0.0) {
     std::printf(
-        "speed with recycling, Bullet mean / ours mean: soft step %.2f, wide soft step %.2f\n",
-        bullet_t.mean_ms / soft_rc_t.mean_ms, bullet_t.mean_ms / wide_rc_t.mean_ms);
+        "speed with recycling, Bullet mean / ours mean: soft step %.2f, wide soft step %.2f "
+        "(friction in the biased pass too: %.2f)\n",
+        bullet_t.mean_ms / soft_rc_t.mean_ms, bullet_t.mean_ms / wide_rc_t.mean_ms,
+        bullet_t.mean_ms / wide_rc_bf_t.mean_ms);
   }
   return 0;
 }
@@ -484,6 +493,10 @@ int main(int raw_argc, char** raw_argv) {
     // The wide soft step as Box3D sets its own solver (4 sub-steps of one solve and one relax
     // pass, as on Box3D's scenes) instead of spending Jolt's 10 + 2 iterations.
     kinds.emplace_back("zs-wide-box3d", Box3dSolvers().wide);
+    // And with friction in the biased pass too, as Box2D before v3.2.
+    OurSettings biased_friction = Box3dSolvers().wide;
+    biased_friction.friction_in_biased_pass = true;
+    kinds.emplace_back("zs-wide-box3d-bf", biased_friction);
   }
   std::vector<std::tuple<std::string, OurSettings>> runs;
   for (const auto& [name, settings] : kinds) {

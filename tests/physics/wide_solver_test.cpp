@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 #include <random>
 #include <set>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "physics/constraint_colouring.h"
 #include "physics/joint_scenes.h"
 #include "physics/world.h"
+#include "slope.h"
 
 namespace zonesim::physics {
 namespace {
@@ -176,6 +178,28 @@ TEST(SoftStepWide, TwentyBoxStackStandsSixtySeconds) {
               d.vertical);
   EXPECT_LT(d.horizontal, 5e-3);
   EXPECT_LT(d.vertical, 0.025);
+}
+
+// Friction solved in the relax passes only (the default, as Box2D v3.2) and in the biased pass
+// too: a cube on a 30-degree slope holds where mu > tan 30 and slides by the analytic distance
+// where it is less, with Box3D's 4 sub-steps of one solve and one relax pass.
+TEST(SoftStepWide, FrictionHoldsAndSlidesOnASlopeInEitherPassOrder) {
+  const double tan30 = std::tan(std::numbers::pi / 6.0), g = 9.81;
+  const double mu = tan30 - 0.2;
+  const double a = g * (std::sin(std::numbers::pi / 6.0) - mu * std::cos(std::numbers::pi / 6.0));
+  for (bool biased : {false, true}) {
+    WorldSettings settings = wideSettings(8, 8);
+    settings.solver.position_iterations = 1;
+    settings.solver.friction_in_biased_pass = biased;
+    const double stuck = testing::slideOnSlope(settings, tan30 + 0.05);
+    const double slid = testing::slideOnSlope(settings, mu);
+    std::printf(
+        "wide soft step, friction in the biased pass %s: mu = tan + 0.05 moved %.3e m in 2 s; "
+        "mu = tan - 0.2 slid %.4f m, analytic %.4f m\n",
+        biased ? "too" : "not", stuck, slid, 0.5 * a * 4.0);
+    EXPECT_LT(stuck, 1e-3) << biased;
+    EXPECT_NEAR(slid / (0.5 * a * 4.0), 1.0, 0.03) << biased;
+  }
 }
 
 // A resting box and a 3-box column for 10 s, with the soft step's bounds in

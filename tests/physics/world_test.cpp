@@ -10,6 +10,7 @@
 
 #include "physics/box_column.h"
 #include "rebound.h"
+#include "slope.h"
 
 namespace zonesim::physics {
 namespace {
@@ -63,36 +64,15 @@ TEST(World, RestitutionGivesTheExpectedReboundHeight) {
   EXPECT_NEAR(apex / (e * e * h), 1.0, 0.01);
 }
 
-/// Distance a cube travels along a 30-degree slope in 2 s with friction mu.
-double slideOnSlope(double mu) {
-  const Quat tilt = about(Vec3::UnitZ(), 30);
-  const Vec3 n = tilt * Vec3::UnitY();
-  World world;
-  BodyDesc slope;
-  slope.type = BodyType::Static;
-  slope.shape = Shape::plane();
-  slope.orientation = tilt;
-  slope.friction = mu;
-  world.addBody(slope);
-  BodyDesc box;
-  box.shape = Shape::box(Vec3(0.5, 0.5, 0.5));
-  box.orientation = tilt;
-  box.position = 0.5 * n;
-  box.friction = mu;
-  const BodyIndex i = world.addBody(box);
-  for (int step = 0; step < 120; ++step) world.step(1.0 / 60.0);
-  return (world.bodies().position[i] - 0.5 * n).norm();
-}
-
 TEST(World, BoxOnSlopeHoldsAboveTanAngleAndSlidesBelow) {
   const double tan30 = std::tan(std::numbers::pi / 6.0), g = 9.81;
-  const double stuck = slideOnSlope(tan30 + 0.05);
+  const double stuck = testing::slideOnSlope(WorldSettings{}, tan30 + 0.05);
   std::printf("slope: mu = tan + 0.05 moved %.3e m in 2 s\n", stuck);
   EXPECT_LT(stuck, 1e-3);
   // Sliding: s = a t^2 / 2 with a = g (sin - mu cos).
   const double mu = tan30 - 0.2;
   const double a = g * (std::sin(std::numbers::pi / 6.0) - mu * std::cos(std::numbers::pi / 6.0));
-  const double slid = slideOnSlope(mu);
+  const double slid = testing::slideOnSlope(WorldSettings{}, mu);
   std::printf("slope: mu = tan - 0.2 slid %.4f m, analytic %.4f m\n", slid, 0.5 * a * 4.0);
   EXPECT_NEAR(slid / (0.5 * a * 4.0), 1.0, 0.03);
 }
