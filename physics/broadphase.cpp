@@ -9,6 +9,8 @@ namespace {
 // A proxy covering more grid cells than this is tested against all others instead: one huge
 // floor would otherwise fill thousands of cells.
 constexpr std::int64_t kMaxCellsPerProxy = 64;
+// Kept pairs: the most boxes looked at again alone in one call before all are found anew.
+constexpr std::size_t kMaxRegrown = 32;
 
 bool wanted(std::span<const std::uint8_t> moving, std::uint32_t i, std::uint32_t j) {
   return moving[i] || moving[j];
@@ -65,10 +67,74 @@ void sortPairs(std::vector<ProxyPair>& pairs, std::size_t n, std::vector<std::ui
 }
 }  // namespace
 
-Broadphase::Broadphase(BroadphaseKind kind, double grid_cell) : kind_(kind), cell_(grid_cell) {}
+Broadphase::Broadphase(BroadphaseKind kind, double grid_cell, double keep_margin)
+    : kind_(kind), cell_(grid_cell), keep_margin_(keep_margin) {}
 
 void Broadphase::findPairs(std::span<const Aabb> boxes, std::span<const std::uint8_t> moving,
                            std::vector<ProxyPair>& out) {
+  out.clear();
+  if (keep_margin_ > 0.0) {
+    findFromKept(boxes, moving, out);
+  } else {
+    findAll(boxes, moving, out);
+  }
+}
+
+void Broadphase::findFromKept(std::span<const Aabb> boxes, std::span<const std::uint8_t> moving,
+                              std::vector<ProxyPair>& out) {
+  const std::size_t n = boxes.size();
+  escaped_.clear();
+  bool rebuild = grown_.size() != n;
+  for (std::size_t i = 0; !rebuild && i < n; ++i) {
+    if (!grown_[i].contains(boxes[i])) escaped_.push_back(static_cast<std::uint32_t>(i));
+    // Each escaped box is compared with every other; past this many, one sweep is cheaper.
+    rebuild = escaped_.size() > kMaxRegrown;
+  }
+  if (rebuild) {
+    grown_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) grown_[i] = boxes[i].expanded(keep_margin_);
+    // Kept pairs do not depend on who moves now: a body may wake or fall asleep in place.
+    all_moving_.assign(n, 1);
+    findAll(grown_, all_moving_, kept_);
+    ++rebuilds_;
+  } else if (!escaped_.empty()) {
+    regrow(boxes);
+  }
+  // A pair whose boxes overlap has overlapping grown boxes, so it is among the kept ones.
+  for (const ProxyPair& p : kept_) {
+    if (wanted(moving, p.first, p.second) && boxes[p.first].overlaps(boxes[p.second])) {
+      out.push_back(p);
+    }
+  }
+}
+
+void Broadphase::regrow(std::span<const Aabb> boxes) {
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  is_escaped_.assign(n, 0);
+  for (std::uint32_t e : escaped_) {
+    is_escaped_[e] = 1;
+    grown_[e] = boxes[e].expanded(keep_margin_);
+  }
+  std::erase_if(kept_, [&](const ProxyPair& p) {
+    return is_escaped_[p.first] != 0 || is_escaped_[p.second] != 0;
+  });
+  fresh_.clear();
+  for (std::uint32_t e : escaped_) {
+    for (std::uint32_t j = 0; j < n; ++j) {
+      // A pair of two escaped boxes is found once, from the lower index.
+      if (j == e || (is_escaped_[j] && j < e) || !grown_[e].overlaps(grown_[j])) continue;
+      fresh_.push_back(e < j ? ProxyPair{e, j} : ProxyPair{j, e});
+    }
+  }
+  std::sort(fresh_.begin(), fresh_.end());
+  pair_scratch_.resize(kept_.size() + fresh_.size());
+  std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), pair_scratch_.begin());
+  kept_.swap(pair_scratch_);
+  regrown_ += escaped_.size();
+}
+
+void Broadphase::findAll(std::span<const Aabb> boxes, std::span<const std::uint8_t> moving,
+                         std::vector<ProxyPair>& out) {
   out.clear();
   switch (kind_) {
     case BroadphaseKind::BruteForce:

@@ -35,7 +35,7 @@ std::uint64_t pairKey(BodyIndex a, BodyIndex b) {
 }  // namespace
 
 World::World(const WorldSettings& settings)
-    : settings_(settings), broadphase_(settings.broadphase) {}
+    : settings_(settings), broadphase_(settings.broadphase, 2.0, settings.broadphase_keep_margin) {}
 
 BodyIndex World::addBody(const BodyDesc& desc) {
   if (!(desc.rolling_resistance >= 0.0) || !std::isfinite(desc.rolling_resistance)) {

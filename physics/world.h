@@ -26,6 +26,10 @@ namespace zonesim::physics {
 struct WorldSettings {
   Integrator integrator = Integrator::SemiImplicitEuler;
   BroadphaseKind broadphase = BroadphaseKind::SweepAndPrune;
+  /// m: the broadphase keeps the pairs of boxes grown by this much between steps and looks
+  /// again only at bodies that left their grown box (0: all pairs anew every step). The pairs
+  /// found are the same either way.
+  double broadphase_keep_margin = 0.1;
   SolverSettings solver;
   int substeps = 1;
   double contact_margin = 0.02;  ///< m: contacts are kept this far before touching.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 
 namespace zonesim::physics {
@@ -56,6 +57,46 @@ TEST(Broadphase, AllAlgorithmsReturnTheBruteForcePairSet) {
         s.boxes[i].hi += d;
       }
     }
+  }
+}
+
+// Kept pairs (a keep margin) against every algorithm finding all pairs anew, frame after
+// frame: small moves (a few boxes leave their grown ones), large ones (all found anew), bodies
+// waking and falling asleep, and a box added.
+TEST(Broadphase, KeptPairsAreThePairsFoundAnewEveryFrame) {
+  for (auto kind : {BroadphaseKind::BruteForce, BroadphaseKind::SweepAndPrune,
+                    BroadphaseKind::UniformGrid, BroadphaseKind::AabbTree}) {
+    Scene s = randomScene(7, 400);
+    Broadphase fresh(BroadphaseKind::BruteForce), kept(kind, 1.5, 0.1);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> coin(0.0, 1.0);
+    std::normal_distribution<double> jitter(0.0, 1.0);
+    for (int frame = 0; frame < 40; ++frame) {
+      std::vector<ProxyPair> expected, got;
+      fresh.findPairs(s.boxes, s.moving, expected);
+      kept.findPairs(s.boxes, s.moving, got);
+      ASSERT_EQ(got, expected) << "kind " << int(kind) << " frame " << frame;
+      // Most frames move a few boxes a little; every tenth moves them all far.
+      const bool far = frame % 10 == 9;
+      for (std::size_t i = 0; i < s.boxes.size(); ++i) {
+        if (!s.moving[i] || (!far && coin(rng) > 0.05)) continue;
+        const Vec3 d = (far ? 1.0 : 0.08) * Vec3(jitter(rng), jitter(rng), jitter(rng));
+        s.boxes[i].lo += d;
+        s.boxes[i].hi += d;
+      }
+      for (std::size_t i = 0; i + 3 < s.boxes.size(); ++i) {
+        if (coin(rng) < 0.02) s.moving[i] = !s.moving[i];
+      }
+      if (frame == 20) {
+        s.boxes.push_back(s.boxes[5].expanded(0.2));
+        s.moving.push_back(1);
+      }
+    }
+    std::printf("kind %d: %zu rebuilds, %zu boxes looked at again alone in 40 frames\n", int(kind),
+                kept.rebuilds(), kept.regrown());
+    EXPECT_GT(kept.regrown(), 0u);
+    EXPECT_GE(kept.rebuilds(), 3u);
+    EXPECT_LT(kept.rebuilds(), 40u);
   }
 }
 
