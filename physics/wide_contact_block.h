@@ -16,13 +16,12 @@ using Lanes = float[kBlockLanes];
 
 /// One contact point of every lane. Unused points (and lanes) are all zero, which makes their
 /// updates exact no-ops. prepare writes the anchors, separation, impulses and approach; buildRows
-/// the rest.
+/// the masses. The passes compute the normal's angular Jacobians ra x n, rb x n and their images
+/// under the inverse inertias from the anchors each time, with the operations buildRows uses:
+/// the solve is bound by memory, and those 12 floats a point would more than double its bytes.
 struct alignas(32) PointLanes {
-  // Normal row: angular Jacobians ra x n, rb x n and their images under the inverse inertias,
-  // computed once per step so the iterations need no 3x3 products for the normal.
-  Lanes ca[3], cb[3], ia_ca[3], ib_cb[3];
+  Lanes ra[3], rb[3];  // Anchors from the centres of mass.
   Lanes normal_mass;
-  Lanes ra[3], rb[3];  // Anchors from the centres of mass (friction).
   Lanes tangent_mass[2];
   Lanes separation;  // -depth at prepare; the soft passes move it with the bodies.
   Lanes normal_impulse, tangent_impulse[2];
@@ -59,9 +58,9 @@ struct SoftPass {
   bool track_pushes;  // keep max_normal_impulse (read only by restitution)
 };
 
-/// Builds each used point's rows from its anchors, the normal, tangents and masses: the angular
-/// Jacobians of the normal and their images under the inverse inertias, and the normal and
-/// tangent effective masses (zero at a lane's unused points), in float, `lanes` at a time.
+/// Builds each used point's effective masses along the normal and the tangents (zero at a lane's
+/// unused points) from its anchors, the normal, tangents and the bodies' masses, in float,
+/// `lanes` at a time.
 void buildRows(int lanes, BlockLanes& block);
 /// Applies the accumulated impulses (warm start), `lanes` at a time (1, 4 or 8).
 void warmStart(int lanes, std::span<const BlockLanes> blocks, SolverBodies& bodies);

@@ -68,13 +68,6 @@ ZONESIM_WIDE_INLINE V3<F> load3(const Lanes* p, int o) {
   return {load<F>(p[0] + o), load<F>(p[1] + o), load<F>(p[2] + o)};
 }
 
-template <class F>
-ZONESIM_WIDE_INLINE void store3(Lanes* p, int o, const V3<F>& v) {
-  store(p[0] + o, v.x);
-  store(p[1] + o, v.y);
-  store(p[2] + o, v.z);
-}
-
 // As std::max and std::min, lane by lane (the same answer for signed zeros).
 template <class F>
 ZONESIM_WIDE_INLINE F vmax(F a, F b) {
@@ -321,6 +314,19 @@ struct Pair {
   }
 };
 
+// A point's normal row: the angular Jacobians ra x n, rb x n and their images under the inverse
+// inertias, computed from the anchors wherever they are needed (wide_contact_block.h).
+template <class F>
+struct NormalRow {
+  V3<F> ca, cb, ia_ca, ib_cb;
+  ZONESIM_WIDE_INLINE NormalRow(const V3<F>& ra, const V3<F>& rb, const V3<F>& n, const F* ia,
+                                const F* ib)
+      : ca(cross(ra, n)),
+        cb(cross(rb, n)),
+        ia_ca(symmetricTimes(ia, ca)),
+        ib_cb(symmetricTimes(ib, cb)) {}
+};
+
 // 1 / inv where inv > 0 and the point is used, else 0 (the quotients of other lanes are
 // discarded).
 template <class F, class M>
@@ -345,13 +351,9 @@ ZONESIM_WIDE_INLINE void buildRowsLanes(BlockLanes& b, int o) {
     PointLanes& p = b.point[i];
     const auto used = splat<F>(static_cast<float>(i)) < count;
     const V3<F> ra = load3<F>(p.ra, o), rb = load3<F>(p.rb, o);
-    const V3<F> ca = cross(ra, n), cb = cross(rb, n);
-    const V3<F> ia_ca = symmetricTimes(ia, ca), ib_cb = symmetricTimes(ib, cb);
-    store3(p.ca, o, ca);
-    store3(p.cb, o, cb);
-    store3(p.ia_ca, o, ia_ca);
-    store3(p.ib_cb, o, ib_cb);
-    store(p.normal_mass + o, massOf(masses + dot(ca, ia_ca) + dot(cb, ib_cb), used));
+    const NormalRow<F> row(ra, rb, n, ia, ib);
+    store(p.normal_mass + o,
+          massOf(masses + dot(row.ca, row.ia_ca) + dot(row.cb, row.ib_cb), used));
     for (int d = 0; d < 2; ++d) {
       const V3<F> ta = cross(ra, t[d]), tb = cross(rb, t[d]);
       const F inv = masses + dot(ta, symmetricTimes(ia, ta)) + dot(tb, symmetricTimes(ib, tb));
@@ -427,8 +429,8 @@ ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, int o, SolverBodies& bodies,
   const F moved = dot(n, pb - pa);
   for (int i = 0; i < b.points; ++i) {
     PointLanes& p = b.point[i];
-    const V3<F> ca = load3<F>(p.ca, o), cb = load3<F>(p.cb, o);
-    const F s = load<F>(p.separation + o) + moved + dot(cb, qb) - dot(ca, qa);
+    const NormalRow<F> row(load3<F>(p.ra, o), load3<F>(p.rb, o), n, v.ia, v.ib);
+    const F s = load<F>(p.separation + o) + moved + dot(row.cb, qb) - dot(row.ca, qa);
     // Speculative (s > 0): may close the gap within this sub-step. Else the soft spring with
     // the bias, or the rigid relax pass without.
     const auto gap = s > zero;
@@ -439,14 +441,14 @@ ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, int o, SolverBodies& bodies,
       ms = gap ? one : mass_scale;
       is = gap ? zero : impulse_scale;
     }
-    const F vn = v.normalVelocity(n, ca, cb);
+    const F vn = v.normalVelocity(n, row.ca, row.cb);
     const F old = load<F>(p.normal_impulse + o);
     const F delta = -(load<F>(p.normal_mass + o) * ms) * (vn + bias) - is * old;
     const F impulse = vmax(zero, old + delta);
     store(p.normal_impulse + o, impulse);
     if (pass.track_pushes)
       store(p.max_normal_impulse + o, vmax(load<F>(p.max_normal_impulse + o), impulse));
-    v.applyNormal(n, load3<F>(p.ia_ca, o), load3<F>(p.ib_cb, o), impulse - old);
+    v.applyNormal(n, row.ia_ca, row.ib_cb, impulse - old);
   }
   v.write(b, o, bodies);
 }
@@ -465,13 +467,13 @@ ZONESIM_WIDE_INLINE void restituteLanes(BlockLanes& b, int o, SolverBodies& bodi
     // Only points that were approaching fast and actually pushed this step bounce.
     const auto bounce =
         bouncy & (approach <= splat<F>(-threshold)) & (load<F>(p.max_normal_impulse + o) != zero);
-    const V3<F> ca = load3<F>(p.ca, o), cb = load3<F>(p.cb, o);
-    const F vn = v.normalVelocity(n, ca, cb);
+    const NormalRow<F> row(load3<F>(p.ra, o), load3<F>(p.rb, o), n, v.ia, v.ib);
+    const F vn = v.normalVelocity(n, row.ca, row.cb);
     const F old = load<F>(p.normal_impulse + o);
     const F bounced = vmax(zero, old - load<F>(p.normal_mass + o) * (vn + e * approach));
     const F impulse = bounce ? bounced : old;
     store(p.normal_impulse + o, impulse);
-    v.applyNormal(n, load3<F>(p.ia_ca, o), load3<F>(p.ib_cb, o), impulse - old);
+    v.applyNormal(n, row.ia_ca, row.ib_cb, impulse - old);
   }
   v.write(b, o, bodies);
 }

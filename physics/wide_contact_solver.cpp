@@ -71,12 +71,12 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
         continue;
       }
       const BodyContact& bc = contacts[c];
-      const ConstraintBodies& k = constraint_bodies_[c];
+      const double ma = bodies.inv_mass[bc.a], mb = bodies.inv_mass[bc.b];
       b.read_a[lane] = bc.a;
       b.read_b[lane] = bc.b;
-      b.write_a[lane] = k.a_moves ? bc.a : sink_slot;
-      b.write_b[lane] = k.b_moves ? bc.b : sink_slot;
-      const double ma = bodies.inv_mass[bc.a], mb = bodies.inv_mass[bc.b];
+      // As constraint_bodies_[c] says, without reading it again.
+      b.write_a[lane] = ma > 0.0 ? bc.a : sink_slot;
+      b.write_b[lane] = mb > 0.0 ? bc.b : sink_slot;
       b.inv_mass_a[lane] = static_cast<float>(ma);
       b.inv_mass_b[lane] = static_cast<float>(mb);
       putSymmetric(b.inv_inertia_a, lane, bodies.inv_inertia_world[bc.a]);
