@@ -359,7 +359,6 @@ ZONESIM_WIDE_INLINE void buildRowsLanes(BlockLanes& b, int o) {
       const F inv = masses + dot(ta, symmetricTimes(ia, ta)) + dot(tb, symmetricTimes(ib, tb));
       store(p.tangent_mass[d] + o, massOf(inv, used));
     }
-    store(p.max_normal_impulse + o, splat<F>(0.0f));
   }
 }
 
@@ -409,8 +408,8 @@ ZONESIM_WIDE_INLINE void frictionLanes(BlockLanes& b, int o, SolverBodies& bodie
 }
 
 template <int W>
-ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, int o, SolverBodies& bodies,
-                                     const SoftPass& pass) {
+ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, BounceLanes* bounce, int o,
+                                     SolverBodies& bodies, const SoftPass& pass) {
   using F = typename Simd<W>::F;
   Pair<W> v(b, o, bodies);
   V3<F> pa, qa, pb, qb;
@@ -446,16 +445,18 @@ ZONESIM_WIDE_INLINE void normalLanes(BlockLanes& b, int o, SolverBodies& bodies,
     const F delta = -(load<F>(p.normal_mass + o) * ms) * (vn + bias) - is * old;
     const F impulse = vmax(zero, old + delta);
     store(p.normal_impulse + o, impulse);
-    if (pass.track_pushes)
-      store(p.max_normal_impulse + o, vmax(load<F>(p.max_normal_impulse + o), impulse));
+    if (bounce) {
+      float* most = bounce->max_normal_impulse[i] + o;
+      store(most, vmax(load<F>(most), impulse));
+    }
     v.applyNormal(n, row.ia_ca, row.ib_cb, impulse - old);
   }
   v.write(b, o, bodies);
 }
 
 template <int W>
-ZONESIM_WIDE_INLINE void restituteLanes(BlockLanes& b, int o, SolverBodies& bodies,
-                                        float threshold) {
+ZONESIM_WIDE_INLINE void restituteLanes(BlockLanes& b, const BounceLanes& bounce, int o,
+                                        SolverBodies& bodies, float threshold) {
   using F = typename Simd<W>::F;
   Pair<W> v(b, o, bodies);
   const V3<F> n = load3<F>(b.normal, o);
@@ -463,15 +464,15 @@ ZONESIM_WIDE_INLINE void restituteLanes(BlockLanes& b, int o, SolverBodies& bodi
   const auto bouncy = e != zero;
   for (int i = 0; i < b.points; ++i) {
     PointLanes& p = b.point[i];
-    const F approach = load<F>(p.approach + o);
+    const F approach = load<F>(bounce.approach[i] + o);
     // Only points that were approaching fast and actually pushed this step bounce.
-    const auto bounce =
-        bouncy & (approach <= splat<F>(-threshold)) & (load<F>(p.max_normal_impulse + o) != zero);
+    const auto bounces = bouncy & (approach <= splat<F>(-threshold)) &
+                         (load<F>(bounce.max_normal_impulse[i] + o) != zero);
     const NormalRow<F> row(load3<F>(p.ra, o), load3<F>(p.rb, o), n, v.ia, v.ib);
     const F vn = v.normalVelocity(n, row.ca, row.cb);
     const F old = load<F>(p.normal_impulse + o);
     const F bounced = vmax(zero, old - load<F>(p.normal_mass + o) * (vn + e * approach));
-    const F impulse = bounce ? bounced : old;
+    const F impulse = bounces ? bounced : old;
     store(p.normal_impulse + o, impulse);
     v.applyNormal(n, row.ia_ca, row.ib_cb, impulse - old);
   }
@@ -490,23 +491,27 @@ ZONESIM_WIDE_INLINE void warmStartAll(std::span<const BlockLanes> blocks, Solver
 }
 
 template <int W>
-ZONESIM_WIDE_INLINE void solveAll(std::span<BlockLanes> blocks, SolverBodies& bodies,
-                                  const SoftPass& pass) {
+ZONESIM_WIDE_INLINE void solveAll(std::span<BlockLanes> blocks, std::span<BounceLanes> bounces,
+                                  SolverBodies& bodies, const SoftPass& pass) {
   // Friction for every contact first, then the normals (as the scalar soft step does, and
   // why: physics/contact_solver_soft.cpp).
   if (pass.friction) {
     for (BlockLanes& b : blocks)
       for (int o = 0; o < kBlockLanes; o += W) frictionLanes<W>(b, o, bodies);
   }
-  for (BlockLanes& b : blocks)
-    for (int o = 0; o < kBlockLanes; o += W) normalLanes<W>(b, o, bodies, pass);
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    BounceLanes* bounce = bounces.empty() ? nullptr : &bounces[k];
+    for (int o = 0; o < kBlockLanes; o += W) normalLanes<W>(blocks[k], bounce, o, bodies, pass);
+  }
 }
 
 template <int W>
-ZONESIM_WIDE_INLINE void restituteAll(std::span<BlockLanes> blocks, SolverBodies& bodies,
+ZONESIM_WIDE_INLINE void restituteAll(std::span<BlockLanes> blocks,
+                                      std::span<const BounceLanes> bounces, SolverBodies& bodies,
                                       float threshold) {
-  for (BlockLanes& b : blocks)
-    for (int o = 0; o < kBlockLanes; o += W) restituteLanes<W>(b, o, bodies, threshold);
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    for (int o = 0; o < kBlockLanes; o += W)
+      restituteLanes<W>(blocks[k], bounces[k], o, bodies, threshold);
 }
 
 // One function per width; the 8-lane ones alone are compiled for AVX2 (the rest of the library
@@ -519,13 +524,14 @@ ZONESIM_WIDE_TARGET_AVX2 void buildRows8(BlockLanes& b) {
 ZONESIM_WIDE_TARGET_AVX2 void warmStart8(std::span<const BlockLanes> blocks, SolverBodies& bodies) {
   warmStartAll<8>(blocks, bodies);
 }
-ZONESIM_WIDE_TARGET_AVX2 void solve8(std::span<BlockLanes> blocks, SolverBodies& bodies,
-                                     const SoftPass& pass) {
-  solveAll<8>(blocks, bodies, pass);
+ZONESIM_WIDE_TARGET_AVX2 void solve8(std::span<BlockLanes> blocks, std::span<BounceLanes> bounces,
+                                     SolverBodies& bodies, const SoftPass& pass) {
+  solveAll<8>(blocks, bounces, bodies, pass);
 }
-ZONESIM_WIDE_TARGET_AVX2 void restitute8(std::span<BlockLanes> blocks, SolverBodies& bodies,
+ZONESIM_WIDE_TARGET_AVX2 void restitute8(std::span<BlockLanes> blocks,
+                                         std::span<const BounceLanes> bounces, SolverBodies& bodies,
                                          float threshold) {
-  restituteAll<8>(blocks, bodies, threshold);
+  restituteAll<8>(blocks, bounces, bodies, threshold);
 }
 #endif
 
@@ -555,20 +561,22 @@ void warmStart(int lanes, std::span<const BlockLanes> blocks, SolverBodies& bodi
   warmStartAll<1>(blocks, bodies);
 }
 
-void solve(int lanes, std::span<BlockLanes> blocks, SolverBodies& bodies, const SoftPass& pass) {
+void solve(int lanes, std::span<BlockLanes> blocks, std::span<BounceLanes> bounces,
+           SolverBodies& bodies, const SoftPass& pass) {
 #if defined(ZONESIM_WIDE_AVX2)
-  if (lanes == 8) return solve8(blocks, bodies, pass);
+  if (lanes == 8) return solve8(blocks, bounces, bodies, pass);
 #endif
-  if (lanes == 4) return solveAll<4>(blocks, bodies, pass);
-  solveAll<1>(blocks, bodies, pass);
+  if (lanes == 4) return solveAll<4>(blocks, bounces, bodies, pass);
+  solveAll<1>(blocks, bounces, bodies, pass);
 }
 
-void restitute(int lanes, std::span<BlockLanes> blocks, SolverBodies& bodies, float threshold) {
+void restitute(int lanes, std::span<BlockLanes> blocks, std::span<const BounceLanes> bounces,
+               SolverBodies& bodies, float threshold) {
 #if defined(ZONESIM_WIDE_AVX2)
-  if (lanes == 8) return restitute8(blocks, bodies, threshold);
+  if (lanes == 8) return restitute8(blocks, bounces, bodies, threshold);
 #endif
-  if (lanes == 4) return restituteAll<4>(blocks, bodies, threshold);
-  restituteAll<1>(blocks, bodies, threshold);
+  if (lanes == 4) return restituteAll<4>(blocks, bounces, bodies, threshold);
+  restituteAll<1>(blocks, bounces, bodies, threshold);
 }
 
 }  // namespace zonesim::physics::wide

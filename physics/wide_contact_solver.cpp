@@ -100,14 +100,13 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
         wide::PointLanes& p = b.point[i];
         put(p.ra, lane, Vec3::Zero());
         put(p.rb, lane, Vec3::Zero());
-        p.separation[lane] = p.approach[lane] = p.normal_impulse[lane] = 0.0f;
+        p.separation[lane] = p.normal_impulse[lane] = 0.0f;
         p.tangent_impulse[0][lane] = p.tangent_impulse[1][lane] = 0.0f;
       }
       if (count == 0) continue;
       const BodyContact& bc = contacts[c];
       const Vec3& xa = bodies.position[bc.a];
       const Vec3& xb = bodies.position[bc.b];
-      const bool bouncy = bc.restitution != 0.0;
       for (int i = 0; i < count; ++i) {
         const ContactPoint& cp = bc.manifold.points[i];
         wide::PointLanes& p = b.point[i];
@@ -115,18 +114,36 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
         put(p.ra, lane, ra);
         put(p.rb, lane, rb);
         p.separation[lane] = static_cast<float>(-cp.depth);
-        // Relative normal velocity of the anchors, read only by restitution.
-        p.approach[lane] =
-            bouncy ? static_cast<float>(bc.manifold.normal.dot(
-                         (bodies.linear_velocity[bc.b] + bodies.angular_velocity[bc.b].cross(rb)) -
-                         (bodies.linear_velocity[bc.a] + bodies.angular_velocity[bc.a].cross(ra))))
-                   : 0.0f;
         p.normal_impulse[lane] = warm ? static_cast<float>(bc.impulse[i][0]) : 0.0f;
         p.tangent_impulse[0][lane] = warm ? static_cast<float>(bc.impulse[i][1]) : 0.0f;
         p.tangent_impulse[1][lane] = warm ? static_cast<float>(bc.impulse[i][2]) : 0.0f;
       }
     }
     wide::buildRows(lanes_, b);
+  }
+  bounces_.clear();
+  if (any_restitution_) prepareBounces(bodies, contacts);
+}
+
+void WideContactSolver::prepareBounces(const BodyStorage& bodies,
+                                       std::span<const BodyContact> contacts) {
+  const std::span<const std::uint32_t> lanes = colouring_.lanes();
+  bounces_.assign(blocks_.size(), wide::BounceLanes{});
+  for (std::size_t block = 0; block < blocks_.size(); ++block) {
+    for (int lane = 0; lane < kBlockLanes; ++lane) {
+      const std::uint32_t c = lanes[block * kBlockLanes + lane];
+      if (c == kEmptyLane || contacts[c].restitution == 0.0) continue;
+      const BodyContact& bc = contacts[c];
+      for (int i = 0; i < bc.manifold.count; ++i) {
+        const ContactPoint& cp = bc.manifold.points[i];
+        const Vec3 ra = cp.position - bodies.position[bc.a];
+        const Vec3 rb = cp.position - bodies.position[bc.b];
+        // The relative normal velocity of the anchors.
+        bounces_[block].approach[i][lane] = static_cast<float>(bc.manifold.normal.dot(
+            (bodies.linear_velocity[bc.b] + bodies.angular_velocity[bc.b].cross(rb)) -
+            (bodies.linear_velocity[bc.a] + bodies.angular_velocity[bc.a].cross(ra))));
+      }
+    }
   }
 }
 
@@ -141,15 +158,15 @@ void WideContactSolver::solve(SolverBodies& state, const Softness& soft, const S
                             use_bias,
                             !use_bias || settings_.friction_in_biased_pass,
                             static_cast<float>(inv_h),
-                            static_cast<float>(settings_.max_push_velocity),
-                            any_restitution_};
-  wide::solve(lanes_, blocks_, state, pass);
+                            static_cast<float>(settings_.max_push_velocity)};
+  wide::solve(lanes_, blocks_, bounces_, state, pass);
 }
 
 void WideContactSolver::applyRestitution(SolverBodies& state) {
   // Every lane's update would be masked off: skip the pass (the pyramids have none).
   if (!any_restitution_) return;
-  wide::restitute(lanes_, blocks_, state, static_cast<float>(settings_.restitution_threshold));
+  wide::restitute(lanes_, blocks_, bounces_, state,
+                  static_cast<float>(settings_.restitution_threshold));
 }
 
 void WideContactSolver::storeImpulses(std::span<BodyContact> contacts) const {

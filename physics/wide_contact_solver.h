@@ -20,6 +20,7 @@ namespace zonesim::physics {
 
 namespace wide {
 struct BlockLanes;
+struct BounceLanes;
 }
 
 /// Contacts of one step as coloured blocks, and the passes of the wide soft step over them.
@@ -51,7 +52,11 @@ class WideContactSolver {
   const ConstraintColouring& colouring() const { return colouring_; }
 
  private:
+  // Each point's approach speed for restitution, in a world with a bouncy contact.
+  void prepareBounces(const BodyStorage& bodies, std::span<const BodyContact> contacts);
+
   std::vector<wide::BlockLanes> blocks_;
+  std::vector<wide::BounceLanes> bounces_;  // one per block, or none
   std::vector<ConstraintBodies> constraint_bodies_;
   ConstraintColouring colouring_;
   SolverSettings settings_;
