@@ -1,6 +1,6 @@
 #include "physics/wide_contact_solver.h"
 
-#include <cstring>
+#include <algorithm>
 
 #include "physics/solver_row.h"
 #include "physics/wide_contact_block.h"
