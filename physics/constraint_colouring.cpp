@@ -57,4 +57,43 @@ void ConstraintColouring::build(std::span<const ConstraintBodies> constraints,
   }
 }
 
+void ConstraintColouring::buildInOrder(std::span<const ConstraintBodies> constraints,
+                                       std::size_t body_count) {
+  // last_block_[body] + 1: the first block the body's next constraint may go to (0: none yet).
+  last_block_.assign(body_count, 0);
+  used_lanes_.clear();
+  // free_after_[k]: a block at or after k that may have a free lane (a union-find "next" link
+  // over full blocks, so the search skips them).
+  free_after_.clear();
+  lanes_.clear();
+  const auto findFree = [&](std::uint32_t k) {
+    std::uint32_t root = k;
+    while (root < free_after_.size() && free_after_[root] != root) root = free_after_[root];
+    while (k < free_after_.size() && free_after_[k] != k) {
+      const std::uint32_t next = free_after_[k];
+      free_after_[k] = root;
+      k = next;
+    }
+    return root;
+  };
+  for (std::size_t c = 0; c < constraints.size(); ++c) {
+    const ConstraintBodies& k = constraints[c];
+    std::uint32_t first = 0;
+    if (k.a_moves) first = std::max(first, last_block_[k.a]);
+    if (k.b_moves) first = std::max(first, last_block_[k.b]);
+    const std::uint32_t block = findFree(first);
+    if (block == used_lanes_.size()) {
+      used_lanes_.push_back(0);
+      free_after_.push_back(block);
+      lanes_.resize(lanes_.size() + kBlockLanes, kEmptyLane);
+    }
+    lanes_[block * kBlockLanes + used_lanes_[block]] = static_cast<std::uint32_t>(c);
+    if (++used_lanes_[block] == kBlockLanes) free_after_[block] = block + 1;
+    if (k.a_moves) last_block_[k.a] = block + 1;
+    if (k.b_moves) last_block_[k.b] = block + 1;
+  }
+  colour_first_block_.clear();
+  overflow_ = 0;
+}
+
 }  // namespace zonesim::physics

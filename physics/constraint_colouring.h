@@ -36,6 +36,12 @@ class ConstraintColouring {
   /// touching more than 64 others) overflows into a block of its own, solved alone after the
   /// coloured blocks.
   void build(std::span<const ConstraintBodies> constraints, std::size_t body_count);
+  /// Packs instead of colouring, keeping the order: each constraint goes to the first block
+  /// with a free lane after the last block holding either of its movable bodies. Constraints
+  /// that share no body commute, so solving the blocks in order is solving the constraints one
+  /// by one in their own order, bit for bit, with every lane of a block in use where the
+  /// constraints allow it. No colours (colourCount() is 0) and no overflow.
+  void buildInOrder(std::span<const ConstraintBodies> constraints, std::size_t body_count);
   /// The constraint index of every lane, block after block (kEmptyLane pads a colour's last
   /// block).
   std::span<const std::uint32_t> lanes() const { return lanes_; }
@@ -54,6 +60,8 @@ class ConstraintColouring {
   std::vector<std::uint64_t> body_colours_;  // bit c: the body has a constraint of colour c
   std::vector<std::uint8_t> colour_of_;      // kMaxColours: overflow
   std::vector<std::uint32_t> lanes_, colour_first_block_, next_lane_;
+  std::vector<std::uint32_t> last_block_, free_after_;  // buildInOrder
+  std::vector<std::uint8_t> used_lanes_;
   std::size_t overflow_ = 0;
 };
 

@@ -90,6 +90,12 @@ struct SolverSettings {
   /// passes. Off, as Box2D v3.2: friction is solved in the relax passes only, which leaves the
   /// biased pass half the work.
   bool friction_in_biased_pass = false;
+  /// Wide soft step: pack the contacts into blocks in their own order
+  /// (ConstraintColouring::buildInOrder), which solves them exactly as one by one in contact
+  /// order, instead of graph-colouring them (ConstraintColouring::build). Neither order is the
+  /// steadier everywhere (docs/benchmarks.md): contact order holds Box3D's many_pyramids (the
+  /// colour order lets their boxes drift out of the pyramids' plane) but not Jolt's pyramid.
+  bool wide_in_order = false;
 };
 
 /// A manifold between two bodies, with the impulses solved for each point (for warm starts).

@@ -44,7 +44,11 @@ void WideContactSolver::prepare(const BodyStorage& bodies, std::span<const BodyC
     const BodyContact& bc = contacts[c];
     constraint_bodies_[c] = {bc.a, bc.b, bodies.inv_mass[bc.a] > 0.0, bodies.inv_mass[bc.b] > 0.0};
   }
-  colouring_.build(constraint_bodies_, n);
+  if (settings.wide_in_order) {
+    colouring_.buildInOrder(constraint_bodies_, n);
+  } else {
+    colouring_.build(constraint_bodies_, n);
+  }
   const std::span<const std::uint32_t> lanes = colouring_.lanes();
   blocks_.resize(colouring_.blockCount());
   // Padding lanes read the zero body and write the sink; all their rows stay zero.

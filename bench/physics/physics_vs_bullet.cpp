@@ -7,7 +7,8 @@
 //     velocity iterations (ours: plus 2 split-impulse position iterations; Bullet: split impulse
 //     on); both: soft and pgs; wide-box3d: the wide soft step as Box3D sets its solver (4
 //     sub-steps of one solve and one relax pass; -bf: with friction in the biased pass too, as
-//     before Box2D v3.2); all (the default): every one of them.
+//     before Box2D v3.2; -ord: blocks packed in contact order, not coloured); all (the
+//     default): every one of them.
 //   physics_vs_bullet large_pyramid [steps] [base]: Box3D's large_pyramid (5,050 boxes at base
 //     100), set as Box3D sets it: soft step with 4 sub-steps of one solve and one relax pass
 //     (and the same solved wide, SoftStepWide); Bullet at 10 iterations.
@@ -86,6 +87,7 @@ struct OurSettings {
   int settle = 0;        ///< Untimed steps before the timed ones.
   double recycle = 0.0;  ///< Contact recycling distance (m); 0: off.
   bool friction_in_biased_pass = false;  ///< Wide soft step: as before Box2D v3.2.
+  bool in_order = false;  ///< Wide soft step: blocks packed in contact order, not coloured.
 };
 
 // FNV-1a over the bytes of every body's position, orientation and velocities, in body order:
@@ -140,6 +142,7 @@ std::vector<Vec3> runOurs(const zp::bench::Scene& scene, int steps, Timing& timi
   settings.solver.position_iterations = ours.position_iterations;
   settings.solver.wide_lanes = ours.wide_lanes;
   settings.solver.friction_in_biased_pass = ours.friction_in_biased_pass;
+  settings.solver.wide_in_order = ours.in_order;
   settings.contact_recycle_distance = ours.recycle;
   zp::World world(settings);
   for (const auto& b : scene.bodies) {
@@ -274,7 +277,8 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
   const auto [soft, pgs, wide] = Box3dSolvers();
   OurSettings wide4 = wide;
   wide4.wide_lanes = 4;
-  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t, wide_rc_bf_t;
+  Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t, wide_rc_bf_t,
+      wide_rc_ord_t;
   std::vector<std::tuple<const char*, OurSettings, Timing*>> runs{{"zs-soft", soft, &soft_t},
                                                                   {"zs-pgs", pgs, &pgs_t},
                                                                   {"zs-wide8", wide, &wide_t},
@@ -288,6 +292,10 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
     OurSettings wide_rc_bf = wide_rc;
     wide_rc_bf.friction_in_biased_pass = true;
     runs.emplace_back("zs-wide8-rc-bf", wide_rc_bf, &wide_rc_bf_t);
+    // And with the blocks packed in contact order instead of coloured.
+    OurSettings wide_rc_ord = wide_rc;
+    wide_rc_ord.in_order = true;
+    runs.emplace_back("zs-wide8-rc-ord", wide_rc_ord, &wide_rc_ord_t);
   }
   if (!only.empty()) {
     std::erase_if(runs, [&](const auto& run) { return std::get<0>(run) != only; });
@@ -314,9 +322,9 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
   if (recycle > 0.0) {
     std::printf(
         "speed with recycling, Bullet mean / ours mean: soft step %.2f, wide soft step %.2f "
-        "(friction in the biased pass too: %.2f)\n",
+        "(friction in the biased pass too: %.2f; packed in contact order: %.2f)\n",
         bullet_t.mean_ms / soft_rc_t.mean_ms, bullet_t.mean_ms / wide_rc_t.mean_ms,
-        bullet_t.mean_ms / wide_rc_bf_t.mean_ms);
+        bullet_t.mean_ms / wide_rc_bf_t.mean_ms, bullet_t.mean_ms / wide_rc_ord_t.mean_ms);
   }
   return 0;
 }
@@ -497,6 +505,10 @@ int main(int raw_argc, char** raw_argv) {
     OurSettings biased_friction = Box3dSolvers().wide;
     biased_friction.friction_in_biased_pass = true;
     kinds.emplace_back("zs-wide-box3d-bf", biased_friction);
+    // And with the blocks packed in contact order instead of coloured.
+    OurSettings in_order = Box3dSolvers().wide;
+    in_order.in_order = true;
+    kinds.emplace_back("zs-wide-box3d-ord", in_order);
   }
   std::vector<std::tuple<std::string, OurSettings>> runs;
   for (const auto& [name, settings] : kinds) {

@@ -72,30 +72,39 @@ bool sameBits(const double& x, const double& y) {
 }
 
 TEST(SoftStepWide, EveryWidthGivesTheSameStateBitwise) {
-  // 1 (scalar reference), 4 (SSE2) and 8 (AVX2 where the CPU has it; else 4 again).
-  std::vector<Vec3> start;
-  World reference = pyramid(wideSettings(1), 10, start);
-  for (int s = 0; s < 180; ++s) reference.step(1.0 / 60);
-  for (int lanes : {4, 8}) {
-    World world = pyramid(wideSettings(lanes), 10, start);
-    for (int s = 0; s < 180; ++s) world.step(1.0 / 60);
-    const BodyStorage& a = reference.bodies();
-    const BodyStorage& b = world.bodies();
-    int differ = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      for (int k = 0; k < 3; ++k) {
-        differ += !sameBits(a.position[i][k], b.position[i][k]);
-        differ += !sameBits(a.linear_velocity[i][k], b.linear_velocity[i][k]);
-        differ += !sameBits(a.angular_velocity[i][k], b.angular_velocity[i][k]);
+  // 1 (scalar reference), 4 (SSE2) and 8 (AVX2 where the CPU has it; else 4 again), with the
+  // blocks coloured and packed in contact order.
+  for (bool in_order : {false, true}) {
+    const auto settingsOf = [in_order](int lanes) {
+      WorldSettings settings = wideSettings(lanes);
+      settings.solver.wide_in_order = in_order;
+      return settings;
+    };
+    std::vector<Vec3> start;
+    World reference = pyramid(settingsOf(1), 10, start);
+    for (int s = 0; s < 180; ++s) reference.step(1.0 / 60);
+    for (int lanes : {4, 8}) {
+      World world = pyramid(settingsOf(lanes), 10, start);
+      for (int s = 0; s < 180; ++s) world.step(1.0 / 60);
+      const BodyStorage& a = reference.bodies();
+      const BodyStorage& b = world.bodies();
+      int differ = 0;
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+          differ += !sameBits(a.position[i][k], b.position[i][k]);
+          differ += !sameBits(a.linear_velocity[i][k], b.linear_velocity[i][k]);
+          differ += !sameBits(a.angular_velocity[i][k], b.angular_velocity[i][k]);
+        }
+        for (int k = 0; k < 4; ++k) {
+          differ += !sameBits(a.orientation[i].coeffs()[k], b.orientation[i].coeffs()[k]);
+        }
       }
-      for (int k = 0; k < 4; ++k) {
-        differ += !sameBits(a.orientation[i].coeffs()[k], b.orientation[i].coeffs()[k]);
-      }
+      std::printf("wide soft step, %s, %d lanes asked: %d in use\n",
+                  in_order ? "in contact order" : "coloured", lanes, lanes == 4 ? 4 : 8);
+      EXPECT_EQ(differ, 0) << lanes << " lanes, in order " << in_order;
+      // The ball bounced and the spinner landed: the comparison covers moving bodies.
+      EXPECT_GT(reference.contacts().size(), 50u);
     }
-    std::printf("wide soft step, %d lanes asked: %d in use\n", lanes, lanes == 4 ? 4 : 8);
-    EXPECT_EQ(differ, 0) << lanes << " lanes";
-    // The ball bounced and the spinner landed: the comparison covers moving bodies.
-    EXPECT_GT(reference.contacts().size(), 50u);
   }
 }
 
@@ -165,6 +174,82 @@ TEST(ConstraintColouring, PyramidContactsColourValidly) {
               colouring.colourCount(), colouring.blockCount());
   EXPECT_EQ(colouring.overflowCount(), 0u);
   expectValidColouring(colouring, constraints);
+}
+
+// Packing in order: valid blocks, and any two constraints on one movable body keep their order
+// (the earlier in an earlier block), which is what makes the blocks solve as one by one.
+TEST(ConstraintColouring, InOrderPackingKeepsTheOrderOfConstraintsThatShareABody) {
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<std::uint32_t> body(0, 299);
+  std::vector<ConstraintBodies> random;
+  for (int c = 0; c < 2000; ++c) {
+    std::uint32_t a = body(rng), b = body(rng);
+    if (a == b) continue;
+    random.push_back({std::min(a, b), std::max(a, b), std::min(a, b) >= 20, std::max(a, b) >= 20});
+  }
+  std::vector<Vec3> start;
+  World world = pyramid(wideSettings(8), 20, start);
+  for (int s = 0; s < 5; ++s) world.step(1.0 / 60);
+  std::vector<ConstraintBodies> pyramid_contacts;
+  for (const BodyContact& c : world.contacts()) {
+    pyramid_contacts.push_back(
+        {c.a, c.b, world.bodies().inv_mass[c.a] > 0, world.bodies().inv_mass[c.b] > 0});
+  }
+  for (const auto* constraints : {&random, &pyramid_contacts}) {
+    ConstraintColouring packing;
+    packing.buildInOrder(*constraints, 400);
+    expectValidColouring(packing, *constraints);
+    std::vector<std::size_t> block_of(constraints->size());
+    const auto lanes = packing.lanes();
+    for (std::size_t l = 0; l < lanes.size(); ++l) {
+      if (lanes[l] != kEmptyLane) block_of[lanes[l]] = l / kBlockLanes;
+    }
+    // The last constraint seen on each movable body, and how many pairs were out of order.
+    std::vector<std::int64_t> last(400, -1);
+    int swapped = 0;
+    for (std::size_t c = 0; c < constraints->size(); ++c) {
+      const ConstraintBodies& k = (*constraints)[c];
+      for (auto [body, moves] : {std::pair{k.a, k.a_moves}, std::pair{k.b, k.b_moves}}) {
+        if (!moves) continue;
+        if (last[body] >= 0) swapped += block_of[std::size_t(last[body])] >= block_of[c];
+        last[body] = std::int64_t(c);
+      }
+    }
+    const double fill = double(constraints->size()) / double(lanes.size());
+    std::printf("%zu constraints in order: %zu blocks, lanes %.0f %% used, %d out of order\n",
+                constraints->size(), packing.blockCount(), 100.0 * fill, swapped);
+    EXPECT_EQ(swapped, 0);
+    EXPECT_EQ(packing.overflowCount(), 0u);
+    // A pyramid of 20 is one long chain of dependencies (measured: 62 % of the lanes used,
+    // against 96 % coloured); independent constraints fill every lane.
+    if (constraints == &random) {
+      EXPECT_GT(fill, 0.99);
+    } else {
+      EXPECT_GT(fill, 0.5);
+    }
+  }
+}
+
+// Box3D's pyramid at base 10 and its settings for 300 steps: packed in contact order, the boxes
+// stay in the pyramid's plane (measured 0.05 mm along z, the double soft step's figure);
+// coloured, the order lets them drift out of it (measured 3.9 cm), which this test reports.
+TEST(SoftStepWide, InOrderPackingKeepsAPyramidInItsPlane) {
+  double drift[2] = {0.0, 0.0};
+  for (bool in_order : {false, true}) {
+    WorldSettings settings = wideSettings(8, 8);
+    settings.solver.position_iterations = 1;
+    settings.solver.wide_in_order = in_order;
+    std::vector<Vec3> start;
+    World world = pyramid(settings, 10, start, false);
+    for (int s = 0; s < 300; ++s) world.step(1.0 / 60);
+    for (std::size_t k = 0; k < start.size(); ++k) {
+      drift[in_order] =
+          std::max(drift[in_order], std::abs(world.bodies().position[k + 1].z() - start[k].z()));
+    }
+  }
+  std::printf("pyramid of 10, 300 steps, largest |dz|: coloured %.3e m, in contact order %.3e m\n",
+              drift[0], drift[1]);
+  EXPECT_LT(drift[1], 1e-3);
 }
 
 // The soft step's bounds (solver_kind_test.cpp) hold for the wide one: a 20-box column for
