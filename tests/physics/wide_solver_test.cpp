@@ -138,10 +138,9 @@ void expectValidColouring(const ConstraintColouring& colouring,
   }
 }
 
-TEST(ConstraintColouring, NoBlockSharesAMovableBodyAndEveryConstraintAppearsOnce) {
-  // Random pairs among 300 bodies, 20 of them static (shared freely), and one movable hub
-  // touching 100 others: 36 of its constraints overflow the 64 colours.
-  std::mt19937 rng(7);
+// Up to 2,000 random pairs among 300 bodies, the first 20 static (shared freely).
+std::vector<ConstraintBodies> randomConstraints(std::uint32_t seed) {
+  std::mt19937 rng(seed);
   std::uniform_int_distribution<std::uint32_t> body(0, 299);
   std::vector<ConstraintBodies> constraints;
   for (int c = 0; c < 2000; ++c) {
@@ -150,6 +149,27 @@ TEST(ConstraintColouring, NoBlockSharesAMovableBodyAndEveryConstraintAppearsOnce
     if (a > b) std::swap(a, b);
     constraints.push_back({a, b, a >= 20, b >= 20});
   }
+  return constraints;
+}
+
+// The contacts of a pyramid of 20 (with the ball and spinner) after 5 steps.
+std::vector<ConstraintBodies> pyramidConstraints(std::size_t& body_count) {
+  std::vector<Vec3> start;
+  World world = pyramid(wideSettings(8), 20, start);
+  for (int s = 0; s < 5; ++s) world.step(1.0 / 60);
+  std::vector<ConstraintBodies> constraints;
+  for (const BodyContact& c : world.contacts()) {
+    constraints.push_back(
+        {c.a, c.b, world.bodies().inv_mass[c.a] > 0, world.bodies().inv_mass[c.b] > 0});
+  }
+  body_count = world.bodies().size();
+  return constraints;
+}
+
+TEST(ConstraintColouring, NoBlockSharesAMovableBodyAndEveryConstraintAppearsOnce) {
+  // Random pairs, and one movable hub touching 100 others: 36 of its constraints overflow the
+  // 64 colours.
+  std::vector<ConstraintBodies> constraints = randomConstraints(7);
   for (std::uint32_t k = 0; k < 100; ++k) constraints.push_back({300, 301 + k, true, true});
   ConstraintColouring colouring;
   colouring.build(constraints, 401);
@@ -160,16 +180,10 @@ TEST(ConstraintColouring, NoBlockSharesAMovableBodyAndEveryConstraintAppearsOnce
 }
 
 TEST(ConstraintColouring, PyramidContactsColourValidly) {
-  std::vector<Vec3> start;
-  World world = pyramid(wideSettings(8), 20, start);
-  for (int s = 0; s < 5; ++s) world.step(1.0 / 60);
-  std::vector<ConstraintBodies> constraints;
-  for (const BodyContact& c : world.contacts()) {
-    constraints.push_back(
-        {c.a, c.b, world.bodies().inv_mass[c.a] > 0, world.bodies().inv_mass[c.b] > 0});
-  }
+  std::size_t bodies = 0;
+  const std::vector<ConstraintBodies> constraints = pyramidConstraints(bodies);
   ConstraintColouring colouring;
-  colouring.build(constraints, world.bodies().size());
+  colouring.build(constraints, bodies);
   std::printf("pyramid of 20: %zu contacts, %zu colours, %zu blocks\n", constraints.size(),
               colouring.colourCount(), colouring.blockCount());
   EXPECT_EQ(colouring.overflowCount(), 0u);
@@ -179,25 +193,13 @@ TEST(ConstraintColouring, PyramidContactsColourValidly) {
 // Packing in order: valid blocks, and any two constraints on one movable body keep their order
 // (the earlier in an earlier block), which is what makes the blocks solve as one by one.
 TEST(ConstraintColouring, InOrderPackingKeepsTheOrderOfConstraintsThatShareABody) {
-  std::mt19937 rng(9);
-  std::uniform_int_distribution<std::uint32_t> body(0, 299);
-  std::vector<ConstraintBodies> random;
-  for (int c = 0; c < 2000; ++c) {
-    std::uint32_t a = body(rng), b = body(rng);
-    if (a == b) continue;
-    random.push_back({std::min(a, b), std::max(a, b), std::min(a, b) >= 20, std::max(a, b) >= 20});
-  }
-  std::vector<Vec3> start;
-  World world = pyramid(wideSettings(8), 20, start);
-  for (int s = 0; s < 5; ++s) world.step(1.0 / 60);
-  std::vector<ConstraintBodies> pyramid_contacts;
-  for (const BodyContact& c : world.contacts()) {
-    pyramid_contacts.push_back(
-        {c.a, c.b, world.bodies().inv_mass[c.a] > 0, world.bodies().inv_mass[c.b] > 0});
-  }
+  const std::vector<ConstraintBodies> random = randomConstraints(9);
+  std::size_t pyramid_bodies = 0;
+  const std::vector<ConstraintBodies> pyramid_contacts = pyramidConstraints(pyramid_bodies);
+  const std::size_t bodies = std::max<std::size_t>(300, pyramid_bodies);
   for (const auto* constraints : {&random, &pyramid_contacts}) {
     ConstraintColouring packing;
-    packing.buildInOrder(*constraints, 400);
+    packing.buildInOrder(*constraints, bodies);
     expectValidColouring(packing, *constraints);
     std::vector<std::size_t> block_of(constraints->size());
     const auto lanes = packing.lanes();
@@ -205,7 +207,7 @@ TEST(ConstraintColouring, InOrderPackingKeepsTheOrderOfConstraintsThatShareABody
       if (lanes[l] != kEmptyLane) block_of[lanes[l]] = l / kBlockLanes;
     }
     // The last constraint seen on each movable body, and how many pairs were out of order.
-    std::vector<std::int64_t> last(400, -1);
+    std::vector<std::int64_t> last(bodies, -1);
     int swapped = 0;
     for (std::size_t c = 0; c < constraints->size(); ++c) {
       const ConstraintBodies& k = (*constraints)[c];
