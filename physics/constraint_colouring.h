@@ -2,7 +2,9 @@
 // Graph colouring of contact constraints for the wide solver (Box2D v3's constraint graph):
 // constraints of one colour share no movable body, so a block of them can be solved in SIMD
 // lanes at once, each lane reading and writing its own bodies. Immovable bodies (static,
-// kinematic, held) are only read, so any number of lanes may share one.
+// kinematic, held) are only read, so any number of lanes may share one. The same blocks can
+// instead be packed in constraint order (buildInOrder), which solves as one constraint at a
+// time.
 //
 // The layout is fixed at kBlockLanes lanes whatever width solves it: a 4-wide solve takes each
 // block as two halves, a scalar one lane by lane, and since the lanes of a block touch

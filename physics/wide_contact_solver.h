@@ -33,8 +33,9 @@ class WideContactSolver {
   WideContactSolver& operator=(const WideContactSolver&);
   WideContactSolver& operator=(WideContactSolver&&) noexcept;
 
-  /// Colours the contacts and builds their rows (anchors, effective masses, warm-start
-  /// impulses, approach speeds) from the bodies' state, in float.
+  /// Colours the contacts (or packs them in contact order: SolverSettings::wide_in_order) and
+  /// builds their rows (anchors, effective masses, warm-start impulses, approach speeds) from
+  /// the bodies' state, in float.
   void prepare(const BodyStorage& bodies, std::span<const BodyContact> contacts,
                const SolverSettings& settings);
   /// Applies the accumulated impulses to the solver bodies.
@@ -48,7 +49,7 @@ class WideContactSolver {
   void storeImpulses(std::span<BodyContact> contacts) const;
   /// Lanes solved at once (1, 4 or 8), after what the CPU allows.
   int lanes() const { return lanes_; }
-  /// The colouring of the last prepare.
+  /// The colouring (or in-order packing) of the last prepare.
   const ConstraintColouring& colouring() const { return colouring_; }
 
  private:

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "ai/grid_map.h"
 #include "common/rng.h"
 #include "crowd/agents.h"
 
@@ -22,6 +23,15 @@ struct AgentArrays {
     vel.push_back(v);
   }
 };
+
+/// 48 x 48 cells with two long walls whose gaps lie at opposite ends (a zig-zag): the base of
+/// the flow tests' maps.
+inline ai::GridMap zigZagMap() {
+  ai::GridMap map(48, 48);
+  for (int x = 0; x < 40; ++x) map.setPassable(x, 16, false);
+  for (int x = 8; x < 48; ++x) map.setPassable(x, 32, false);
+  return map;
+}
 
 /// Smallest distance between two agents (brute force).
 inline double minPairDistance(const std::vector<Vec2>& pos) {

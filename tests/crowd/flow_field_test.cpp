@@ -20,11 +20,9 @@
 namespace zonesim::crowd {
 namespace {
 
-// 48x48: two long walls with gaps at opposite ends (a zig-zag) and 8% random blocks.
+// The zig-zag and 8% random blocks.
 ai::GridMap obstacleMap() {
-  ai::GridMap map(48, 48);
-  for (int x = 0; x < 40; ++x) map.setPassable(x, 16, false);
-  for (int x = 8; x < 48; ++x) map.setPassable(x, 32, false);
+  ai::GridMap map = test::zigZagMap();
   Pcg32 rng(77, 1);
   for (int i = 0; i < 48 * 48 * 8 / 100; ++i) {
     int x = int(rng.next() % 48), y = int(rng.next() % 48);

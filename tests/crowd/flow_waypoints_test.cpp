@@ -20,11 +20,9 @@
 namespace zonesim::crowd {
 namespace {
 
-// 48x48: two long walls with gaps at opposite ends (a zig-zag) and a few pillars.
+// The zig-zag and a few pillars.
 ai::GridMap wallsMap() {
-  ai::GridMap map(48, 48);
-  for (int x = 0; x < 40; ++x) map.setPassable(x, 16, false);
-  for (int x = 8; x < 48; ++x) map.setPassable(x, 32, false);
+  ai::GridMap map = test::zigZagMap();
   for (int k = 0; k < 6; ++k) {
     map.setPassable(6 + 7 * k, 8, false);
     map.setPassable(4 + 7 * k, 24, false);
