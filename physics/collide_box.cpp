@@ -99,19 +99,32 @@ bool collidePlaneBox(const Pose& plane, const Vec3& half, const Pose& box, doubl
                      Manifold& out) {
   const Vec3 n = plane.orientation * Vec3::UnitY();
   const Eigen::Matrix3d r = box.orientation.toRotationMatrix();
-  Vec3 points[8];
-  double sep[8];
-  std::uint32_t feature[8];
+  // The plane is the reference surface; the incident points are the corners of the box face
+  // most anti-parallel to it, which holds the deepest corner. Not all eight: a speculative
+  // margin grows with speed, and once it passed a thin box's thickness (a plank 10 cm thick
+  // sliding at 6 m/s) the far face's corners came in, and the reduction to four kept two of
+  // them, which carry nothing, in place of two resting corners: the plank rode on one end and
+  // sank (3.9 cm under Gauss-Seidel; 1.7 cm under the soft steps, which stopped it 18 % short).
+  const Vec3 local_n = r.transpose() * n;
+  int axis = 0;
+  local_n.cwiseAbs().maxCoeff(&axis);
+  const std::uint32_t face_bit = 1u << axis;
+  const bool positive_face = local_n[axis] < 0.0;
+  Vec3 points[4];
+  double sep[4];
+  std::uint32_t feature[4];
+  int count = 0;
   for (std::uint32_t c = 0; c < 8; ++c) {
+    if (((c & face_bit) != 0) != positive_face) continue;
     const Vec3 corner((c & 1) ? half.x() : -half.x(), (c & 2) ? half.y() : -half.y(),
                       (c & 4) ? half.z() : -half.z());
-    points[c] = box.position + r * corner;
-    sep[c] = n.dot(points[c] - plane.position);
-    feature[c] = c;
+    points[count] = box.position + r * corner;
+    sep[count] = n.dot(points[count] - plane.position);
+    feature[count] = c;
+    ++count;
   }
   out.normal = n;
-  // The plane is the reference surface; the box corners are the incident points.
-  emit(points, sep, feature, 8, n, margin, out);
+  emit(points, sep, feature, count, n, margin, out);
   return out.count > 0;
 }
 

@@ -86,6 +86,19 @@ TEST(Narrowphase, BoxRestingOnPlaneGivesFourCorners) {
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(m.points[i].depth, 0.1, kEps);
 }
 
+// A speculative margin wider than a thin box (a plank sliding fast gets one) must not let its
+// far face in: the manifold is the near face's four corners, all touching.
+TEST(Narrowphase, ThinBoxWithinAWideMarginGivesItsNearFaceOnly) {
+  Manifold m;
+  ASSERT_TRUE(collideShapes(Shape::plane(), at(Vec3::Zero()), Shape::box(Vec3(1, 0.05, 0.5)),
+                            at(Vec3(0, 0.05, 0), about(Vec3::UnitX(), 0.1)), 0.2, m));
+  ASSERT_EQ(m.count, 4);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_LT(std::abs(m.points[i].depth), 1e-3) << i;
+    EXPECT_NEAR(std::abs(m.points[i].position.x()), 1.0, 1e-3) << i;
+  }
+}
+
 TEST(Narrowphase, BoxBoxFaceContactClipsToTheOverlap) {
   Manifold m;
   const Shape big = Shape::box(Vec3(1, 1, 1));

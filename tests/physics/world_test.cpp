@@ -7,6 +7,7 @@
 #include <cstring>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "physics/box_column.h"
 #include "rebound.h"
@@ -75,6 +76,49 @@ TEST(World, BoxOnSlopeHoldsAboveTanAngleAndSlidesBelow) {
   const double slid = testing::slideOnSlope(WorldSettings{}, mu);
   std::printf("slope: mu = tan - 0.2 slid %.4f m, analytic %.4f m\n", slid, 0.5 * a * 4.0);
   EXPECT_NEAR(slid / (0.5 * a * 4.0), 1.0, 0.03);
+}
+
+// A plank 10 cm thick sliding at 6 m/s stops where Coulomb friction stops it, flat on the
+// ground, under every velocity solver. Its speculative margin (6 m/s x dt = 0.1 m) is wider
+// than the plank, which once let the plank's top face into its manifold: it rode on one end
+// and sank (3.9 cm under Gauss-Seidel, 1.7 cm under the soft steps, which stopped it at 4.98
+// against 6.07 m). Measured now: 6.0663 m (Gauss-Seidel) and 6.1098 m (the soft steps, whose
+// sub-steps of dt / 5 put the stop v0 (dt - dt / 5) / 2 = 4 cm further), 0.08 mm of sinking.
+TEST(World, PlankSlidingFastStopsWhereCoulombFrictionStopsIt) {
+  const double v0 = 6.0, mu = 0.3, g = 9.81, dt = 1.0 / 60.0, half_height = 0.05;
+  // Semi-implicit Euler stops a body decelerating at a after v0^2 / (2a) - v0 dt / 2.
+  const double stop = v0 * v0 / (2.0 * mu * g) - v0 * dt / 2.0;
+  const std::pair<const char*, SolverKind> solvers[] = {
+      {"Gauss-Seidel", SolverKind::GaussSeidel},
+      {"soft step", SolverKind::SoftStep},
+      {"wide soft step", SolverKind::SoftStepWide}};
+  for (const auto& [name, kind] : solvers) {
+    WorldSettings settings;
+    settings.solver.kind = kind;
+    World world(settings);
+    BodyDesc ground;
+    ground.type = BodyType::Static;
+    ground.shape = Shape::plane();
+    ground.friction = mu;
+    world.addBody(ground);
+    BodyDesc plank;
+    plank.shape = Shape::box(Vec3(1.0, half_height, 0.5));
+    plank.position = Vec3(0.0, half_height, 0.0);
+    plank.linear_velocity = Vec3(v0, 0.0, 0.0);
+    plank.friction = mu;
+    const BodyIndex i = world.addBody(plank);
+    double lowest = half_height;
+    for (int step = 0; step < 300; ++step) {
+      world.step(dt);
+      lowest = std::min(lowest, world.bodies().position[i].y());
+    }
+    const double x = world.bodies().position[i].x();
+    std::printf("plank, %s: stopped at %.4f m (Coulomb: %.4f m), sank at most %.2e m\n", name, x,
+                stop, half_height - lowest);
+    EXPECT_NEAR(x / stop, 1.0, 0.01) << name;
+    EXPECT_LT(half_height - lowest, 2e-3) << name;
+    EXPECT_LT(world.bodies().linear_velocity[i].norm(), 1e-3) << name;
+  }
 }
 
 /// The shared column of unit cubes (BoxColumn); returns the largest drift of any box after
