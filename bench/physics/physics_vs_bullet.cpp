@@ -24,8 +24,10 @@
 //   --recycle D (anywhere, pyramid and the Box3D scenes): also runs each of our solvers with
 //     contact recycling at distance D m (WorldSettings::contact_recycle_distance), labelled -rc,
 //     and prints how many contacts a step recycled and computed.
-//   --only LABEL (anywhere, the Box3D scenes): runs only the solver of that label (zs-wide8-rc,
-//     bullet, ...), for profiling one of them.
+//   --only LABEL (anywhere, the Box3D scenes and creep): runs only the solver of that label
+//     (zs-wide8-rc, bullet, ...; creep: zs-soft, zs-pgs, zs-wide8), for profiling one of them.
+//   --substeps N (anywhere, the Box3D scenes and creep): our soft steps take N sub-steps of one
+//     solve and one relax pass instead of Box3D's 4 (stiffer contact springs: less sag).
 
 #include <btBulletDynamicsCommon.h>
 
@@ -84,8 +86,8 @@ struct OurSettings {
   int wide_lanes = 8;            ///< Wide soft step: the widest the CPU allows.
   int position_iterations = 2;   ///< Soft step: relax passes per sub-step.
   bool sleeping = false;
-  int settle = 0;        ///< Untimed steps before the timed ones.
-  double recycle = 0.0;  ///< Contact recycling distance (m); 0: off.
+  int settle = 0;                        ///< Untimed steps before the timed ones.
+  double recycle = 0.0;                  ///< Contact recycling distance (m); 0: off.
   bool friction_in_biased_pass = false;  ///< Wide soft step: as before Box2D v3.2.
   bool in_order = false;  ///< Wide soft step: blocks packed in contact order, not coloured.
 };
@@ -255,12 +257,12 @@ void reportHeld(const char* engine, const char* name, const zp::bench::Scene& sc
 // Box3D's scenes: ours as Box3D sets its solver (soft step, 4 sub-steps of one solve and one
 // relax pass), ours with Gauss-Seidel as the Jolt pyramid sets it (10 + 2 iterations), then
 // Bullet at 10 iterations, in one run; the ratios of mean step times are printed last.
-// The solvers of the Box3D scenes: the soft step as Box3D sets it (scalar and wide) and
-// Gauss-Seidel as the Jolt pyramid sets it.
+// The solvers of the Box3D scenes: the soft step as Box3D sets it (scalar and wide; 4
+// sub-steps unless --substeps says otherwise) and Gauss-Seidel as the Jolt pyramid sets it.
 struct Box3dSolvers {
   OurSettings soft, pgs, wide;
-  Box3dSolvers() {
-    soft.velocity_iterations = 8;
+  explicit Box3dSolvers(int substeps = 4) {
+    soft.velocity_iterations = 2 * substeps;  // one solve and one relax pass each
     soft.position_iterations = 1;
     pgs.kind = zp::SolverKind::GaussSeidel;
     wide = soft;
@@ -271,10 +273,10 @@ struct Box3dSolvers {
 // recycle: also each soft step with contact recycling at that distance (m; 0: not).
 // only: the one run's label, or empty for all of them and the ratios.
 int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, double recycle,
-                  const std::string& only) {
-  std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off\n", name, scene.bodies.size(),
-              steps);
-  const auto [soft, pgs, wide] = Box3dSolvers();
+                  const std::string& only, int substeps) {
+  std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off, soft steps at %d sub-steps\n",
+              name, scene.bodies.size(), steps, substeps);
+  const auto [soft, pgs, wide] = Box3dSolvers(substeps);
   OurSettings wide4 = wide;
   wide4.wide_lanes = 4;
   Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t, wide_rc_bf_t,
@@ -329,22 +331,49 @@ int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, do
   return 0;
 }
 
+// The place of body i (1 .. boxes) in a large_pyramid of that base: its level (0 at the bottom)
+// and its place in the level from the left.
+std::pair<int, int> pyramidPlace(std::size_t i, int base) {
+  std::size_t index = i - 1;
+  int level = 0;
+  while (level < base && index >= static_cast<std::size_t>(base - level)) {
+    index -= static_cast<std::size_t>(base - level);
+    ++level;
+  }
+  return {level, static_cast<int>(index)};
+}
+
 // Box3D's large_pyramid at `base`, watched as it stands: at every tenth of the run, the largest
 // displacement of any box along each axis and the outermost boxes of the bottom row's sideways
 // move, for the soft step as Box3D sets it (scalar and wide) and Gauss-Seidel. The pyramid lies
 // in the x-y plane and is symmetric in z, so motion along z is drift the solver made up.
-int runCreep(int base, int steps) {
+// The farthest box along x at the end is named by level and place (the creep is at the edges).
+// only: the label of one solver (zs-soft, zs-pgs, zs-wide8), or empty for all three.
+int runCreep(int base, int steps, int substeps, const std::string& only) {
+  const auto [soft, pgs, wide] = Box3dSolvers(substeps);
+  const std::string soft_name = "soft step (" + std::to_string(substeps) + " sub-steps)";
+  const std::string wide_name = "wide soft step (" + std::to_string(substeps) + " sub-steps)";
+  const std::tuple<const char*, std::string, OurSettings> solvers[] = {
+      {"zs-soft", soft_name, soft},
+      {"zs-pgs", "Gauss-Seidel (10 + 2)", pgs},
+      {"zs-wide8", wide_name, wide}};
+  if (!only.empty() && std::none_of(std::begin(solvers), std::end(solvers),
+                                    [&](const auto& s) { return std::get<0>(s) == only; })) {
+    std::fprintf(stderr, "creep: --only %s: no solver of that label (zs-soft, zs-pgs, zs-wide8)\n",
+                 only.c_str());
+    return 2;
+  }
   const zp::bench::Scene scene = zp::bench::largePyramidScene(base);
   std::printf("creep: large_pyramid of base %d (%zu boxes), %d steps of 1/60 s, sleeping off\n",
               base, scene.bodies.size() - 1, steps);
   std::printf(
       "| solver | step | max abs dx m | max abs dy m | max abs dz m | bottom row: left dx, "
       "right dx m |\n|---|---|---|---|---|---|\n");
-  const auto [soft, pgs, wide] = Box3dSolvers();
-  for (const auto& [name, settings] :
-       {std::pair{"soft step (4 sub-steps)", soft}, std::pair{"Gauss-Seidel (10 + 2)", pgs},
-        std::pair{"wide soft step (4 sub-steps)", wide}}) {
-    const auto observe = [&, name = name](int step, const zp::World& world) {
+  for (const auto& [label, solver_name, settings] : solvers) {
+    if (!only.empty() && only != label) continue;
+    const char* name = solver_name.c_str();
+    std::size_t farthest = 1;  // the box farthest along x at the end
+    const auto observe = [&](int step, const zp::World& world) {
       if (step % std::max(1, steps / 10) != 0 && step != steps) return;
       const auto& p = world.bodies().position;
       Vec3 most = Vec3::Zero();
@@ -355,9 +384,20 @@ int runCreep(int base, int steps) {
       const double right = p[std::size_t(base)].x() - scene.bodies[std::size_t(base)].position.x();
       std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f |\n", name, step, most.x(), most.y(),
                   most.z(), left, right);
+      for (std::size_t i = 1; i < p.size(); ++i) {
+        if (std::abs(p[i].x() - scene.bodies[i].position.x()) >
+            std::abs(p[farthest].x() - scene.bodies[farthest].position.x()))
+          farthest = i;
+      }
     };
     Timing t;
-    runOurs(scene, steps, t, settings, nullptr, nullptr, observe);
+    const auto end = runOurs(scene, steps, t, settings, nullptr, nullptr, observe);
+    const auto [level, place] = pyramidPlace(farthest, base);
+    std::printf(
+        "%s: farthest along x at the end: level %d (0 at the bottom), place %d of %d, dx "
+        "%.4f m, dy %.4f m\n",
+        name, level, place, base - level, end[farthest].x() - scene.bodies[farthest].position.x(),
+        end[farthest].y() - scene.bodies[farthest].position.y());
   }
   return 0;
 }
@@ -401,6 +441,7 @@ int main(int raw_argc, char** raw_argv) {
   std::vector<char*> args;
   double recycle = 0.0;
   std::string only;
+  int substeps = 4;
   for (int i = 0; i < raw_argc; ++i) {
     if (std::strcmp(raw_argv[i], "--only") == 0) {
       if (i + 1 >= raw_argc) {
@@ -408,6 +449,15 @@ int main(int raw_argc, char** raw_argv) {
         return 2;
       }
       only = raw_argv[++i];
+      continue;
+    }
+    if (std::strcmp(raw_argv[i], "--substeps") == 0) {
+      substeps = i + 1 < raw_argc ? std::atoi(raw_argv[i + 1]) : 0;
+      if (substeps < 1 || substeps > 256) {
+        std::fprintf(stderr, "physics_vs_bullet: --substeps needs a count from 1 to 256\n");
+        return 2;
+      }
+      ++i;
       continue;
     }
     if (std::strcmp(raw_argv[i], "--recycle") == 0) {
@@ -449,7 +499,8 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "large_pyramid: steps and base must be positive\n");
       return 2;
     }
-    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps, recycle, only);
+    return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps, recycle, only,
+                         substeps);
   }
   if (which == "creep") {
     const int base = argc > 3 ? std::atoi(argv[3]) : 10;
@@ -457,7 +508,7 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "creep: steps and base must be positive\n");
       return 2;
     }
-    return runCreep(base, steps);
+    return runCreep(base, steps, substeps, only);
   }
   if (which == "many_pyramids") {
     const int rows = argc > 3 ? std::atoi(argv[3]) : 14;
@@ -466,7 +517,7 @@ int main(int raw_argc, char** raw_argv) {
       return 2;
     }
     return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps, recycle,
-                         only);
+                         only, substeps);
   }
   if (which != "pyramid" && which != "spheres") {
     std::fprintf(stderr,
