@@ -372,7 +372,6 @@ int runCreep(int base, int steps, int substeps, const std::string& only) {
   for (const auto& [label, solver_name, settings] : solvers) {
     if (!only.empty() && only != label) continue;
     const char* name = solver_name.c_str();
-    std::size_t farthest = 1;  // the box farthest along x at the end
     const auto observe = [&](int step, const zp::World& world) {
       if (step % std::max(1, steps / 10) != 0 && step != steps) return;
       const auto& p = world.bodies().position;
@@ -384,19 +383,18 @@ int runCreep(int base, int steps, int substeps, const std::string& only) {
       const double right = p[std::size_t(base)].x() - scene.bodies[std::size_t(base)].position.x();
       std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f |\n", name, step, most.x(), most.y(),
                   most.z(), left, right);
-      for (std::size_t i = 1; i < p.size(); ++i) {
-        if (std::abs(p[i].x() - scene.bodies[i].position.x()) >
-            std::abs(p[farthest].x() - scene.bodies[farthest].position.x()))
-          farthest = i;
-      }
     };
     Timing t;
     const auto end = runOurs(scene, steps, t, settings, nullptr, nullptr, observe);
+    const auto dx = [&](std::size_t i) { return end[i].x() - scene.bodies[i].position.x(); };
+    std::size_t farthest = 1;  // the box farthest along x at the end
+    for (std::size_t i = 2; i < end.size(); ++i)
+      if (std::abs(dx(i)) > std::abs(dx(farthest))) farthest = i;
     const auto [level, place] = pyramidPlace(farthest, base);
     std::printf(
         "%s: farthest along x at the end: level %d (0 at the bottom), place %d of %d, dx "
         "%.4f m, dy %.4f m\n",
-        name, level, place, base - level, end[farthest].x() - scene.bodies[farthest].position.x(),
+        name, level, place, base - level, dx(farthest),
         end[farthest].y() - scene.bodies[farthest].position.y());
   }
   return 0;
