@@ -181,10 +181,7 @@ void readRigidBodies(const SceneNode& node, Scene& scene) {
   m.read("length", p.length, Limit::above(0));
   m.read("friction", p.friction, Limit::atLeast(0));
   m.read("rolling_resistance", p.rolling_resistance, Limit::atLeast(0));
-  if (p.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::Projection)
-    m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
-  if (p.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::SoftStepWide)
-    m.failAt("rolling_resistance", "is not solved by physics.solver soft_step_wide");
+  checkRollingSolver(m, p.rolling_resistance, scene.physics);
   m.read("mass", p.mass, Limit::above(0));
   m.read("restitution", p.restitution, Limit::between(0, 1));
   m.read("linear_damping", p.linear_damping, Limit::atLeast(0));
@@ -334,6 +331,7 @@ void readPhysics(const SceneMap& root, PhysicsSettings& ps) {
   m.read("position_iterations", ps.position_iterations, Limit::between(0, 1000));
   m.read("sleep", ps.sleep);
   m.read("gyroscopic", ps.gyroscopic);
+  ps.solver_named = m.optional("solver").has_value();
   ps.solver =
       PhysicsSettings::Solver(m.choice("solver",
                                        {"soft_step", "gauss_seidel", "sor", "jacobi", "penalty",
@@ -429,6 +427,7 @@ Scene readScene(const SceneNode& document, const std::string& file) {
   readInteractions(root, scene.world, scene.halo_width, scene.interactions);
   readAdaptation(root, scene.world, scene.adaptation);
   readGpu(root, scene);
+  resolveDefaultSolver(scene);
   return scene;
 }
 

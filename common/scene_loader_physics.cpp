@@ -4,6 +4,7 @@
 
 #include "common/scene_loader_physics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -113,10 +114,7 @@ SceneBody readBody(const SceneNode& node, const Scene& scene,
   m.read("mass", b.mass, Limit::above(0));
   m.read("friction", b.friction, Limit::atLeast(0));
   m.read("rolling_resistance", b.rolling_resistance, Limit::atLeast(0));
-  if (b.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::Projection)
-    m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
-  if (b.rolling_resistance > 0 && scene.physics.solver == PhysicsSettings::Solver::SoftStepWide)
-    m.failAt("rolling_resistance", "is not solved by physics.solver soft_step_wide");
+  checkRollingSolver(m, b.rolling_resistance, scene.physics);
   m.read("restitution", b.restitution, Limit::between(0, 1));
   m.read("linear_damping", b.linear_damping, Limit::atLeast(0));
   m.read("angular_damping", b.angular_damping, Limit::atLeast(0));
@@ -258,6 +256,23 @@ void readPhysicsObjects(const SceneMap& root, Scene& scene) {
   }
   if (auto list = physics.optional("explosions"))
     for (const SceneNode& item : list->items()) ps.explosions.push_back(readExplosion(item, scene));
+}
+
+void checkRollingSolver(const SceneMap& m, double rolling_resistance, const PhysicsSettings& ps) {
+  if (rolling_resistance <= 0) return;
+  if (ps.solver == PhysicsSettings::Solver::Projection)
+    m.failAt("rolling_resistance", "needs a velocity solver; physics.solver projection has none");
+  if (ps.solver == PhysicsSettings::Solver::SoftStepWide && ps.solver_named)
+    m.failAt("rolling_resistance", "is not solved by physics.solver soft_step_wide");
+}
+
+void resolveDefaultSolver(Scene& scene) {
+  PhysicsSettings& ps = scene.physics;
+  if (ps.solver_named) return;
+  const auto rolls = [](const auto& b) { return b.rolling_resistance > 0; };
+  if (std::any_of(ps.bodies.begin(), ps.bodies.end(), rolls) ||
+      std::any_of(scene.rigid_bodies.begin(), scene.rigid_bodies.end(), rolls))
+    ps.solver = PhysicsSettings::Solver::SoftStep;
 }
 
 }  // namespace zonesim

@@ -147,7 +147,10 @@ struct PhysicsSettings {
   bool sleep = true;  ///< resting islands sleep and cost (almost) nothing
   /// Euler's gyroscopic term (physics::WorldSettings::gyroscopic): off-axis spins precess.
   bool gyroscopic = false;
-  Solver solver = Solver::GaussSeidel;
+  /// Scenes that name none get the wide soft step, or the soft step where a body has rolling
+  /// resistance, which the wide step does not solve (resolveDefaultSolver).
+  Solver solver = Solver::SoftStepWide;
+  bool solver_named = false;  ///< the scene file names `solver`: the loader keeps it
   double sor_omega = 1.3;                  ///< over-relaxation factor of the sor solver
   double joint_hertz = 60;                 ///< soft_step: joint spring frequency
   double joint_damping_ratio = 2;          ///< soft_step: joint spring damping ratio

@@ -124,14 +124,20 @@ def physics_knobs(scene):
         return Knob(name, (key,), [(v,) for v in values], (own,), why,
                     cost="physics_ms", accuracy="stack_drift")
 
-    # No solver kind is the more accurate as such: the reference keeps the scene's own.
-    own_solver = get(scene, ph + "solver", "gauss_seidel")
-    solvers = [own_solver] + [s for s in ("gauss_seidel", "soft_step", "soft_step_wide") if s != own_solver]
+    # No solver kind is the more accurate as such: the reference keeps the scene's own. The wide
+    # soft step does not solve rolling resistance: the loader's default gives way to the soft
+    # step in a scene with some, and naming the wide step there is refused.
+    rolls = any((b or {}).get("rolling_resistance", 0) > 0
+                for b in (get(scene, ph + "bodies", []) or []) + (scene.get("populations", []) or []))
+    default_solver = "soft_step" if rolls else "soft_step_wide"
+    kinds = ("gauss_seidel", "soft_step") if rolls else ("gauss_seidel", "soft_step", "soft_step_wide")
+    own_solver = get(scene, ph + "solver", default_solver)
+    solvers = [own_solver] + [s for s in kinds if s != own_solver]
 
     knobs = [knob("velocity iterations", ph + "velocity_iterations", [40, 20, 10, 5, 2], 10,
                   "sequential-impulse iterations per substep"),
              knob("substeps", ph + "substeps", [4, 2, 1], 1, "engine steps per tick"),
-             knob("solver", ph + "solver", solvers, "gauss_seidel", "the contact solver")]
+             knob("solver", ph + "solver", solvers, default_solver, "the contact solver")]
     if isinstance(scene.get("lod"), dict):
         knobs.append(knob("physics lod period", "lod.physics_every", [1, 2, 4], 1,
                           "ticks between steps of islands no player is near"))

@@ -384,6 +384,28 @@ populations:
   EXPECT_DOUBLE_EQ(s.npcs[0].gather.end_s, 9);
 }
 
+// The scenes' default solver is the wide soft step; it gives way to the soft step, which solves
+// rolling resistance, only where the scene names no solver and some population rolls.
+TEST(SceneLoader, TheDefaultSolverIsTheWideSoftStepUnlessABodyRollsWithResistance) {
+  const std::string head =
+      "world: {min: [0, 0, 0], max: [100, 20, 100]}\ntick: {dt: 0.02}\nseed: 1\n"
+      "zones: {columns: 1, rows: 1}\n";
+  const std::string rolling =
+      "populations:\n  - {kind: rigid_body, count: 2, rolling_resistance: 0.02}\n";
+  Scene plain = parseScene(head + "populations:\n  - {kind: rigid_body, count: 2}\n", "x");
+  EXPECT_EQ(plain.physics.solver, PhysicsSettings::Solver::SoftStepWide);
+  EXPECT_FALSE(plain.physics.solver_named);
+  Scene rolls = parseScene(head + rolling, "x");
+  EXPECT_EQ(rolls.physics.solver, PhysicsSettings::Solver::SoftStep);
+  Scene named = parseScene(head + "physics: {solver: gauss_seidel}\n" + rolling, "x");
+  EXPECT_EQ(named.physics.solver, PhysicsSettings::Solver::GaussSeidel);
+  EXPECT_TRUE(named.physics.solver_named);
+  EXPECT_EQ(
+      sceneError([&] { parseScene(head + "physics: {solver: soft_step_wide}\n" + rolling, "x"); }),
+      "x:7: populations[0].rolling_resistance: is not solved by physics.solver "
+      "soft_step_wide");
+}
+
 TEST(SceneLoader, ReadsJointSpringsAndCollideFlag) {
   Scene s = parseScene(std::string("world: {min: [0, 0, 0], max: [10, 10, 10]}\n"
                                    "tick: {dt: 0.025}\nseed: 1\nzones: {columns: 1, rows: 1}\n") +

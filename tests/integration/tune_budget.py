@@ -52,6 +52,16 @@ h.check(knobs.reference_settings(knobs.physics_knobs(stacks)) ==
 soft = {**stacks, "physics": {**stacks["physics"], "solver": "soft_step"}}
 h.check(knobs.reference_settings(knobs.physics_knobs(soft))["physics.solver"] == "soft_step",
         "the reference keeps the scene's own solver kind")
+unnamed = {**stacks, "physics": {k: v for k, v in stacks["physics"].items() if k != "solver"}}
+h.check(knobs.reference_settings(knobs.physics_knobs(unnamed))["physics.solver"] == "soft_step_wide",
+        "a scene that names no solver keeps the loader's default, the wide soft step")
+rolling = {**unnamed, "physics": {**unnamed["physics"], "bodies": [
+    {**b, "rolling_resistance": 0.01} for b in unnamed["physics"]["bodies"]]}}
+rolling_solvers = {k.name: k for k in knobs.physics_knobs(rolling)}["solver"]
+h.check(rolling_solvers.scene_value == ("soft_step",) and
+        ("soft_step_wide",) not in rolling_solvers.values,
+        "with rolling resistance the default is the soft step and the wide one, which does not "
+        f"solve it, is not tried: {rolling_solvers.scene_value} {rolling_solvers.values}")
 no_lod = {k: v for k, v in stacks.items() if k != "lod"}
 h.check("physics lod period" not in [k.name for k in knobs.knobs_for(no_lod)],
         "without a lod section the physics level of detail is not turned (it would switch on the crowds')")

@@ -140,12 +140,15 @@ TEST(BorderContact, TwoZonesEndBitForBitAsOneWorld) {
   // Bit for bit one world's end, wherever each body ended.
   expectAsOneWorld(store, one);
 
-  // Sideways momentum is untouched by gravity: conserved to round-off across the exchange.
-  EXPECT_NEAR(after.momentum.x(), before.momentum.x(), 1e-12 * (kA + kB) * kSpeed);
-  EXPECT_NEAR(after.momentum.z(), before.momentum.z(), 1e-12 * (kA + kB) * kSpeed);
+  // Sideways momentum is untouched by gravity: conserved to round-off across the exchange. The
+  // scene's solver, the default wide soft step, solves velocities in float: round-off is float's
+  // (7e-7 of 16 kg m/s measured; Gauss-Seidel in double holds 1e-12).
+  const double round_off = 1e-6;
+  EXPECT_NEAR(after.momentum.x(), before.momentum.x(), round_off * (kA + kB) * kSpeed);
+  EXPECT_NEAR(after.momentum.z(), before.momentum.z(), round_off * (kA + kB) * kSpeed);
   // Vertically only gravity acts: -(mA + mB) g t.
-  EXPECT_NEAR(after.momentum.y() - before.momentum.y(), -(kA + kB) * 9.81 * kTicks * scene.dt,
-              1e-9);
+  const double fallen = (kA + kB) * 9.81 * kTicks * scene.dt;
+  EXPECT_NEAR(after.momentum.y() - before.momentum.y(), -fallen, round_off * fallen);
   // Elastic, 1 kg at +4 against 3 kg at -4: A leaves at -8, B stops (analytic).
   EXPECT_NEAR(after.va, -8.0, 0.05 * 8.0);
   EXPECT_NEAR(after.vb, 0.0, 0.05 * 8.0);

@@ -28,6 +28,9 @@ physics:
 TEST(BodyRolling, ASceneBodysRollingResistanceSlowsItAtTheAnalyticRate) {
   const Scene scene = parseScene(kScene, "rolling.yaml");
   ASSERT_EQ(scene.physics.bodies[0].rolling_resistance, 0.05);
+  // The scene names no solver: the default, the wide soft step, which does not solve rolling
+  // resistance, gives way to the soft step.
+  ASSERT_EQ(scene.physics.solver, PhysicsSettings::Solver::SoftStep);
   EntityStore store;
   forEachInitialEntity(scene, [&](const EntityRecordData& r) { store.add(r); });
   RigidBodySystem bodies(scene, 0);

@@ -19,6 +19,7 @@ std::string bodiesScene(const std::string& lod) {
 tick: {dt: 0.05}
 seed: 5
 zones: {columns: 1, rows: 1}
+physics: {sleep: false}
 populations:
   - {kind: rigid_body, count: 8, shape: box, size: [1, 1, 1], drop_height: [2, 4],
      region: {min: [2, 0, 2], max: [8, 0, 8]}}
