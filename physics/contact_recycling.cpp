@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "physics/aabb.h"
 
@@ -64,6 +65,19 @@ void carryManifold(const ManifoldOrigin& then, const Vec3& normal, int count, co
     const Vec3 on_b = b.position + turn_b * (then.point[i] - then.b.position);
     out.points[i].position = 0.5 * (on_a + on_b);
     out.points[i].depth = then.depth[i] - normal.dot(on_b - on_a);
+  }
+}
+
+void sortDeepestFirst(Manifold& m, ManifoldOrigin& origin,
+                      std::array<std::array<double, 3>, 4>& impulse) {
+  // Insertion sort of at most four points: stable, and no work when already in order.
+  for (int i = 1; i < m.count; ++i) {
+    for (int k = i; k > 0 && m.points[k].depth > m.points[k - 1].depth; --k) {
+      std::swap(m.points[k], m.points[k - 1]);
+      std::swap(origin.point[k], origin.point[k - 1]);
+      std::swap(origin.depth[k], origin.depth[k - 1]);
+      std::swap(impulse[k], impulse[k - 1]);
+    }
   }
 }
 

@@ -508,6 +508,7 @@ bool World::recycleContact(BodyIndex a, BodyIndex b, const Pose& pa, const Pose&
   carryManifold(origin, c.manifold.normal, c.manifold.count, pa, pb, c.manifold);
   c.origin = static_cast<std::uint32_t>(origins_.size());
   origins_.push_back(origin);
+  sortDeepestFirst(c.manifold, origins_.back(), c.impulse);
   c.recycled = true;
   ++recycled_;
   return true;

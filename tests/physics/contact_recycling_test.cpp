@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -15,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "physics/box_column.h"
 #include "physics/world.h"
 
 namespace zonesim::physics {
@@ -75,6 +77,54 @@ TEST(ContactRecycling, CarriedPointsMoveWithBothBodies) {
   // The pair turned as a whole past the kept normal's limit: not to be recycled.
   EXPECT_TRUE(turnedLittle(o, a, b2, 0.98));
   EXPECT_FALSE(turnedLittle(o, a, Pose{b.position, turnAboutY(0.25)}, 0.98));
+}
+
+TEST(ContactRecycling, CarriedPointsAreSortedDeepestFirstWithTheirOriginsAndImpulses) {
+  Manifold m;
+  m.add(Vec3(1, 0, 0), 0.01, 1);
+  m.add(Vec3(2, 0, 0), 0.03, 2);
+  m.add(Vec3(3, 0, 0), 0.01, 3);
+  m.add(Vec3(4, 0, 0), 0.02, 4);
+  ManifoldOrigin o = originOf(m, Pose{}, Pose{});
+  std::array<std::array<double, 3>, 4> impulse{};
+  for (int i = 0; i < 4; ++i) impulse[i] = {double(i + 1), 0, 0};
+  sortDeepestFirst(m, o, impulse);
+  const std::uint32_t order[] = {2, 4, 1, 3};  // equal depths keep their order
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(m.points[i].feature, order[i]);
+    EXPECT_EQ(o.point[i], m.points[i].position);
+    EXPECT_EQ(o.depth[i], m.points[i].depth);
+    EXPECT_EQ(impulse[i][0], double(order[i]));
+  }
+}
+
+// The solvers visit a manifold's points in order and the narrowphase hands the deepest first.
+// Carried points that kept the order they were found in let a 20-box column rock and walk
+// 3.7 cm (soft step) and 3.4 cm (wide) in 60 s; sorted, it stands as still as without recycling.
+TEST(ContactRecycling, ARecycledColumnStandsAsStillAsAComputedOne) {
+  const std::vector<double> densities(20, 1000.0);
+  for (SolverKind kind : {SolverKind::SoftStep, SolverKind::SoftStepWide}) {
+    double drift[2] = {0, 0};
+    for (int recycling = 0; recycling < 2; ++recycling) {
+      WorldSettings settings;
+      settings.solver.kind = kind;
+      settings.solver.velocity_iterations = 20;
+      settings.solver.position_iterations = 1;
+      settings.contact_recycle_distance = recycling ? 0.01 : 0.0;
+      BoxColumn column(settings, densities);
+      column.run(60);
+      drift[recycling] = column.drift().horizontal;
+      if (recycling) {
+        EXPECT_GT(column.world().recycledContacts(), 0u);
+      }
+    }
+    std::printf(
+        "%s: 20-box column's largest sideways drift in 60 s: %.2e m computed, %.2e m "
+        "recycled at 0.01 m\n",
+        kind == SolverKind::SoftStep ? "soft step" : "wide soft step", drift[0], drift[1]);
+    EXPECT_LT(drift[1], 1e-3);
+    EXPECT_LT(drift[1], 2 * drift[0] + 1e-4);
+  }
 }
 
 /// A floor plane, a static platform, and boxes and spheres dropped onto both and each other
