@@ -48,11 +48,11 @@ bool turnedLittle(const ManifoldOrigin& then, const Pose& a, const Pose& b, doub
 void carryManifold(const ManifoldOrigin& then, const Vec3& normal, int count, const Pose& a,
                    const Pose& b, Manifold& out);
 
-/// Puts a carried manifold's points deepest first, as the narrowphase hands them, each with its
-/// origin and impulses (stable among equal depths). The solvers visit a manifold's points in
-/// order, and the first takes the most of the load: a rocking box's sinking side must come
-/// first. Kept in their first order, the points of a 20-box column pumped its rocking until it
-/// walked 3.4 cm in 60 s (recycling at 0.01 m), against 7.6 um without recycling.
+/// Puts a carried manifold's points deepest first, each with its origin and impulses (stable
+/// among equal depths). The solvers visit a manifold's points in order, and the first takes the
+/// most of the load: a rocking box's sinking side must come first. Kept in their first order, the
+/// points of a 20-box column pumped its rocking until it walked 3.4 cm in 60 s (recycling at 0.01
+/// m), against 7.6 um without recycling.
 void sortDeepestFirst(Manifold& m, ManifoldOrigin& origin,
                       std::array<std::array<double, 3>, 4>& impulse);
 

@@ -98,9 +98,9 @@ TEST(ContactRecycling, CarriedPointsAreSortedDeepestFirstWithTheirOriginsAndImpu
   }
 }
 
-// The solvers visit a manifold's points in order and the narrowphase hands the deepest first.
-// Carried points that kept the order they were found in let a 20-box column rock and walk
-// 3.7 cm (soft step) and 3.4 cm (wide) in 60 s; sorted, it stands as still as without recycling.
+// The solvers visit a manifold's points in order, the first taking the most load. Carried points
+// that kept the order they were found in let a 20-box column rock and walk 3.7 cm (soft step)
+// and 3.4 cm (wide) in 60 s; sorted, it stands as still as without recycling.
 TEST(ContactRecycling, ARecycledColumnStandsAsStillAsAComputedOne) {
   const std::vector<double> densities(20, 1000.0);
   for (SolverKind kind : {SolverKind::SoftStep, SolverKind::SoftStepWide}) {
