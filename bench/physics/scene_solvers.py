@@ -2,9 +2,10 @@
 """What the scenes' contact solver costs in the shipped scenes (issue 17: the wide soft step is
 the default for scenes that name no solver).
 
-Each scene with rigid bodies runs on one rank for TICKS ticks (--no-dds, --gpu off) under each
-solver, set by an overlay (overlay_of the shipped scene, physics.solver changed); the solvers
-alternate, REPEATS rounds, and the median of each is reported: the zone's physics time per tick
+Each scene with rigid bodies runs on one rank for TICKS ticks under each solver, as the tuner
+runs a scene (bench/tuning/measure.py run_zones: --no-dds, no players), set by an overlay
+(overlay_of the shipped scene, physics.solver changed); the solvers alternate, REPEATS rounds,
+and the median of each is reported: the zone's physics time per tick
 (`physics_ms_mean` of its --metrics summary) and the solve stage's share of it
 (`physics.solve_ms_mean`), and the ratio of each to the default's. The scenes that name their
 solver (physics_objects, stacks) are not in the default list.
@@ -15,30 +16,31 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench"))
+from tuning import knobs, measure  # noqa: E402  (the tuner's overlay and zone runs)
+
 SOLVERS = ("soft_step_wide", "soft_step", "gauss_seidel")  # the default first
 SCENES = ("demo", "border_pile", "world_eighth", "compounds", "set_pieces", "duel_arena_16")
 
 
 def run(build, scene, solver, ticks, work):
+    """(physics, solve) ms per tick of one zone-only run of the scene under `solver`."""
+    base = ROOT / "scenes" / f"{scene}.yaml"
     overlay = work / f"{scene}.{solver}.yaml"
-    overlay.write_text(f"overlay_of: {ROOT / 'scenes' / (scene + '.yaml')}\n"
-                       f"physics:\n  solver: {solver}\n")
-    metrics = work / f"metrics.{scene}.{solver}"
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    done = subprocess.run(["mpirun", "--oversubscribe", "-np", "1", str(build / "bin/zone_node"),
-                           "--scene", str(overlay), "--ticks", str(ticks), "--no-dds", "--gpu",
-                           "off", "--metrics", str(metrics)],
-                          env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        sys.exit(f"{scene} with {solver} failed:\n{done.stderr[-2000:]}")
-    summary = json.loads(next(metrics.glob("zone_*_summary.json")).read_text())
-    return summary["physics_ms_mean"], summary["physics.solve_ms_mean"]
+    overlay.write_text(knobs.overlay_text(base, {"physics.solver": solver}, []))
+    folder = work / f"{scene}.{solver}"
+    dt = measure.tick_seconds(knobs.merged_scene(base))
+    try:
+        figures = measure.run_zones(overlay, folder, 1, ticks, dt, build / "bin")
+    except measure.RunError as e:
+        sys.exit(f"{scene} with {solver}: {e}")
+    summary = json.loads(next((folder / "run").glob("zone_*_summary.json")).read_text())
+    return figures["physics_ms"], summary["physics.solve_ms_mean"]
 
 
 def main():
@@ -48,6 +50,8 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--scenes", default=",".join(SCENES))
     args = ap.parse_args()
+    os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+    os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     if args.ticks < 1 or args.repeats < 1:
         sys.exit("--ticks and --repeats must be at least 1")
     scenes = [s for s in args.scenes.split(",") if s]
