@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "physics/aabb.h"
+#include "physics/manifold_order.h"
 
 namespace zonesim::physics {
 
@@ -70,15 +71,11 @@ void carryManifold(const ManifoldOrigin& then, const Vec3& normal, int count, co
 
 void sortDeepestFirst(Manifold& m, ManifoldOrigin& origin,
                       std::array<std::array<double, 3>, 4>& impulse) {
-  // Insertion sort of at most four points: stable, and no work when already in order.
-  for (int i = 1; i < m.count; ++i) {
-    for (int k = i; k > 0 && m.points[k].depth > m.points[k - 1].depth; --k) {
-      std::swap(m.points[k], m.points[k - 1]);
-      std::swap(origin.point[k], origin.point[k - 1]);
-      std::swap(origin.depth[k], origin.depth[k - 1]);
-      std::swap(impulse[k], impulse[k - 1]);
-    }
-  }
+  sortDeepestFirst(m, [&](int k) {
+    std::swap(origin.point[k], origin.point[k - 1]);
+    std::swap(origin.depth[k], origin.depth[k - 1]);
+    std::swap(impulse[k], impulse[k - 1]);
+  });
 }
 
 ManifoldOrigin originOf(const Manifold& m, const Pose& a, const Pose& b) {

@@ -11,6 +11,7 @@
 
 #include "common/timer.h"
 #include "physics/compound.h"
+#include "physics/manifold_order.h"
 #include "physics/mass_properties.h"
 #include "physics/narrowphase.h"
 #include "physics/soft_joint_anchor.h"
@@ -463,6 +464,7 @@ void World::addContact(BodyIndex a, BodyIndex b, double margin) {
       contact.piece_b = static_cast<std::uint16_t>(kb);
       if (!collideShapes(sa, qa, sb, qb, margin, contact.manifold)) return;
       if (contact.manifold.count == 0) return;
+      sortDeepestFirst(contact.manifold, [](int) {});
       contact.friction = friction;
       contact.restitution = restitution;
       contact.rolling = rolling * std::max(rollingRadius(sa), rollingRadius(sb));
