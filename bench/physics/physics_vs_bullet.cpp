@@ -28,6 +28,8 @@
 //     (zs-wide8-rc, bullet, ...; creep: zs-soft, zs-pgs, zs-wide8), for profiling one of them.
 //   --substeps N (anywhere, the Box3D scenes and creep): our soft steps take N sub-steps of one
 //     solve and one relax pass instead of Box3D's 4 (stiffer contact springs: less sag).
+//   --relax N (anywhere, the Box3D scenes and creep): N relax passes per sub-step instead of
+//     Box3D's one (the velocities a tall stack is left with settle: less shaking and creep).
 
 #include <btBulletDynamicsCommon.h>
 
@@ -259,11 +261,16 @@ void reportHeld(const char* engine, const char* name, const zp::bench::Scene& sc
 // Bullet at 10 iterations, in one run; the ratios of mean step times are printed last.
 // The solvers of the Box3D scenes: the soft step as Box3D sets it (scalar and wide; 4
 // sub-steps unless --substeps says otherwise) and Gauss-Seidel as the Jolt pyramid sets it.
+struct SubStepping {
+  int substeps = 4;  ///< sub-steps per 1/60 s
+  int relax = 1;     ///< relax passes per sub-step
+};
+
 struct Box3dSolvers {
   OurSettings soft, pgs, wide;
-  explicit Box3dSolvers(int substeps = 4) {
-    soft.velocity_iterations = 2 * substeps;  // one solve and one relax pass each
-    soft.position_iterations = 1;
+  explicit Box3dSolvers(SubStepping sub = {}) {
+    soft.velocity_iterations = 2 * sub.substeps;  // two per sub-step: its solve and relax
+    soft.position_iterations = sub.relax;
     pgs.kind = zp::SolverKind::GaussSeidel;
     wide = soft;
     wide.kind = zp::SolverKind::SoftStepWide;
@@ -273,10 +280,12 @@ struct Box3dSolvers {
 // recycle: also each soft step with contact recycling at that distance (m; 0: not).
 // only: the one run's label, or empty for all of them and the ratios.
 int runBox3dScene(const char* name, const zp::bench::Scene& scene, int steps, double recycle,
-                  const std::string& only, int substeps) {
-  std::printf("%s: %zu bodies, %d steps of 1/60 s, sleeping off, soft steps at %d sub-steps\n",
-              name, scene.bodies.size(), steps, substeps);
-  const auto [soft, pgs, wide] = Box3dSolvers(substeps);
+                  const std::string& only, SubStepping sub) {
+  std::printf(
+      "%s: %zu bodies, %d steps of 1/60 s, sleeping off, soft steps at %d sub-steps of %d relax "
+      "pass(es)\n",
+      name, scene.bodies.size(), steps, sub.substeps, sub.relax);
+  const auto [soft, pgs, wide] = Box3dSolvers(sub);
   OurSettings wide4 = wide;
   wide4.wide_lanes = 4;
   Timing soft_t, pgs_t, wide_t, wide4_t, bullet_t, soft_rc_t, wide_rc_t, wide_rc_bf_t,
@@ -349,10 +358,12 @@ std::pair<int, int> pyramidPlace(std::size_t i, int base) {
 // in the x-y plane and is symmetric in z, so motion along z is drift the solver made up.
 // The farthest box along x at the end is named by level and place (the creep is at the edges).
 // only: the label of one solver (zs-soft, zs-pgs, zs-wide8), or empty for all three.
-int runCreep(int base, int steps, int substeps, const std::string& only) {
-  const auto [soft, pgs, wide] = Box3dSolvers(substeps);
-  const std::string soft_name = "soft step (" + std::to_string(substeps) + " sub-steps)";
-  const std::string wide_name = "wide soft step (" + std::to_string(substeps) + " sub-steps)";
+int runCreep(int base, int steps, SubStepping sub, const std::string& only) {
+  const auto [soft, pgs, wide] = Box3dSolvers(sub);
+  const std::string sub_name = std::to_string(sub.substeps) + " sub-steps" +
+                               (sub.relax > 1 ? " x " + std::to_string(sub.relax) + " relax" : "");
+  const std::string soft_name = "soft step (" + sub_name + ")";
+  const std::string wide_name = "wide soft step (" + sub_name + ")";
   const std::tuple<const char*, std::string, OurSettings> solvers[] = {
       {"zs-soft", soft_name, soft},
       {"zs-pgs", "Gauss-Seidel (10 + 2)", pgs},
@@ -368,7 +379,7 @@ int runCreep(int base, int steps, int substeps, const std::string& only) {
               base, scene.bodies.size() - 1, steps);
   std::printf(
       "| solver | step | max abs dx m | max abs dy m | max abs dz m | bottom row: left dx, "
-      "right dx m |\n|---|---|---|---|---|---|\n");
+      "right dx m | fastest box m/s |\n|---|---|---|---|---|---|---|\n");
   for (const auto& [label, solver_name, settings] : solvers) {
     if (!only.empty() && only != label) continue;
     const char* name = solver_name.c_str();
@@ -376,13 +387,16 @@ int runCreep(int base, int steps, int substeps, const std::string& only) {
       if (step % std::max(1, steps / 10) != 0 && step != steps) return;
       const auto& p = world.bodies().position;
       Vec3 most = Vec3::Zero();
-      for (std::size_t i = 1; i < p.size(); ++i)
+      double fastest = 0.0;  // a standing pyramid's boxes should not move: this is its shaking
+      for (std::size_t i = 1; i < p.size(); ++i) {
         most = most.cwiseMax((p[i] - scene.bodies[i].position).cwiseAbs());
+        fastest = std::max(fastest, world.bodies().linear_velocity[i].norm());
+      }
       // Body 0 is the ground; the bottom row is bodies 1 .. base.
       const double left = p[1].x() - scene.bodies[1].position.x();
       const double right = p[std::size_t(base)].x() - scene.bodies[std::size_t(base)].position.x();
-      std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f |\n", name, step, most.x(), most.y(),
-                  most.z(), left, right);
+      std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f | %.2e |\n", name, step, most.x(),
+                  most.y(), most.z(), left, right, fastest);
     };
     Timing t;
     const auto end = runOurs(scene, steps, t, settings, nullptr, nullptr, observe);
@@ -439,7 +453,7 @@ int main(int raw_argc, char** raw_argv) {
   std::vector<char*> args;
   double recycle = 0.0;
   std::string only;
-  int substeps = 4;
+  SubStepping sub;
   for (int i = 0; i < raw_argc; ++i) {
     if (std::strcmp(raw_argv[i], "--only") == 0) {
       if (i + 1 >= raw_argc) {
@@ -449,12 +463,14 @@ int main(int raw_argc, char** raw_argv) {
       only = raw_argv[++i];
       continue;
     }
-    if (std::strcmp(raw_argv[i], "--substeps") == 0) {
-      substeps = i + 1 < raw_argc ? std::atoi(raw_argv[i + 1]) : 0;
-      if (substeps < 1 || substeps > 256) {
-        std::fprintf(stderr, "physics_vs_bullet: --substeps needs a count from 1 to 256\n");
+    if (std::strcmp(raw_argv[i], "--substeps") == 0 || std::strcmp(raw_argv[i], "--relax") == 0) {
+      const bool relax = raw_argv[i][2] == 'r';
+      const int count = i + 1 < raw_argc ? std::atoi(raw_argv[i + 1]) : 0;
+      if (count < 1 || count > 256) {
+        std::fprintf(stderr, "physics_vs_bullet: %s needs a count from 1 to 256\n", raw_argv[i]);
         return 2;
       }
+      (relax ? sub.relax : sub.substeps) = count;
       ++i;
       continue;
     }
@@ -498,7 +514,7 @@ int main(int raw_argc, char** raw_argv) {
       return 2;
     }
     return runBox3dScene("large_pyramid", zp::bench::largePyramidScene(base), steps, recycle, only,
-                         substeps);
+                         sub);
   }
   if (which == "creep") {
     const int base = argc > 3 ? std::atoi(argv[3]) : 10;
@@ -506,7 +522,7 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "creep: steps and base must be positive\n");
       return 2;
     }
-    return runCreep(base, steps, substeps, only);
+    return runCreep(base, steps, sub, only);
   }
   if (which == "many_pyramids") {
     const int rows = argc > 3 ? std::atoi(argv[3]) : 14;
@@ -515,7 +531,7 @@ int main(int raw_argc, char** raw_argv) {
       return 2;
     }
     return runBox3dScene("many_pyramids", zp::bench::manyPyramidsScene(rows, rows), steps, recycle,
-                         only, substeps);
+                         only, sub);
   }
   if (which != "pyramid" && which != "spheres") {
     std::fprintf(stderr,
