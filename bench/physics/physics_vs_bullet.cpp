@@ -260,7 +260,8 @@ void reportHeld(const char* engine, const char* name, const zp::bench::Scene& sc
 // relax pass), ours with Gauss-Seidel as the Jolt pyramid sets it (10 + 2 iterations), then
 // Bullet at 10 iterations, in one run; the ratios of mean step times are printed last.
 // The solvers of the Box3D scenes: the soft step as Box3D sets it (scalar and wide; 4
-// sub-steps unless --substeps says otherwise) and Gauss-Seidel as the Jolt pyramid sets it.
+// sub-steps of one relax pass unless --substeps and --relax say otherwise) and Gauss-Seidel as
+// the Jolt pyramid sets it.
 struct SubStepping {
   int substeps = 4;  ///< sub-steps per 1/60 s
   int relax = 1;     ///< relax passes per sub-step
@@ -464,7 +465,7 @@ int main(int raw_argc, char** raw_argv) {
       continue;
     }
     if (std::strcmp(raw_argv[i], "--substeps") == 0 || std::strcmp(raw_argv[i], "--relax") == 0) {
-      const bool relax = raw_argv[i][2] == 'r';
+      const bool relax = std::strcmp(raw_argv[i], "--relax") == 0;
       const int count = i + 1 < raw_argc ? std::atoi(raw_argv[i + 1]) : 0;
       if (count < 1 || count > 256) {
         std::fprintf(stderr, "physics_vs_bullet: %s needs a count from 1 to 256\n", raw_argv[i]);

@@ -61,7 +61,7 @@ TEST(StabilityRecords, ThreeHundredToOneMassRatioStacksHoldSixtySeconds) {
 // and its boxes shake (fastest 3.4 cm/s after 300 steps at 24 sub-steps); at base 100 that
 // shaking walks the edge boxes outward, 2.5 cm in 200 steps at 32 sub-steps. Four relax passes
 // settle it. Measured: fastest 3.6e-5 m/s, every box within 0.94 mm of its start (the springs'
-// sag at 24 sub-steps). docs/benchmarks.md, "large_pyramid stands 2,000 steps".
+// sag at 24 sub-steps). docs/benchmarks.md, "large_pyramid stands 2,000 steps within 1 cm".
 TEST(StabilityRecords, TallPyramidStandsStillWithFourRelaxPasses) {
   for (const int relax : {1, 4}) {
     WorldSettings settings;
