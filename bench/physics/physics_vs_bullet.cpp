@@ -21,7 +21,8 @@
 //     (default 10) drifts as it stands, at every tenth of the run, per axis.
 //   Each of our runs ends with a digest of every body's final state, so that two builds can be
 //   shown to step a scene bitwise alike.
-//   --recycle D (anywhere, pyramid and the Box3D scenes): also runs each of our solvers with
+//   --recycle D (anywhere, pyramid and the Box3D scenes; creep: its runs recycle at D): also runs
+//   each of our solvers with
 //     contact recycling at distance D m (WorldSettings::contact_recycle_distance), labelled -rc,
 //     and prints how many contacts a step recycled and computed.
 //   --only LABEL (anywhere, the Box3D scenes and creep): runs only the solver of that label
@@ -359,8 +360,9 @@ std::pair<int, int> pyramidPlace(std::size_t i, int base) {
 // in the x-y plane and is symmetric in z, so motion along z is drift the solver made up.
 // The farthest box along x at the end is named by level and place (the creep is at the edges).
 // only: the label of one solver (zs-soft, zs-pgs, zs-wide8), or empty for all three.
-int runCreep(int base, int steps, SubStepping sub, const std::string& only) {
-  const auto [soft, pgs, wide] = Box3dSolvers(sub);
+int runCreep(int base, int steps, SubStepping sub, double recycle, const std::string& only) {
+  auto [soft, pgs, wide] = Box3dSolvers(sub);
+  soft.recycle = pgs.recycle = wide.recycle = recycle;
   const std::string sub_name = std::to_string(sub.substeps) + " sub-steps" +
                                (sub.relax > 1 ? " x " + std::to_string(sub.relax) + " relax" : "");
   const std::string soft_name = "soft step (" + sub_name + ")";
@@ -380,7 +382,7 @@ int runCreep(int base, int steps, SubStepping sub, const std::string& only) {
               base, scene.bodies.size() - 1, steps);
   std::printf(
       "| solver | step | max abs dx m | max abs dy m | max abs dz m | bottom row: left dx, "
-      "right dx m | fastest box m/s |\n|---|---|---|---|---|---|---|\n");
+      "right dx m | fastest box m/s | kinetic energy J |\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& [label, solver_name, settings] : solvers) {
     if (!only.empty() && only != label) continue;
     const char* name = solver_name.c_str();
@@ -388,19 +390,23 @@ int runCreep(int base, int steps, SubStepping sub, const std::string& only) {
       if (step % std::max(1, steps / 10) != 0 && step != steps) return;
       const auto& p = world.bodies().position;
       Vec3 most = Vec3::Zero();
-      double fastest = 0.0;  // a standing pyramid's boxes should not move: this is its shaking
+      // A standing pyramid's boxes should not move: speed and energy are its shaking.
+      double fastest = 0.0, energy = 0.0;
       for (std::size_t i = 1; i < p.size(); ++i) {
         most = most.cwiseMax((p[i] - scene.bodies[i].position).cwiseAbs());
-        fastest = std::max(fastest, world.bodies().linear_velocity[i].norm());
+        const Vec3& v = world.bodies().linear_velocity[i];
+        fastest = std::max(fastest, v.norm());
+        energy += 0.5 * v.squaredNorm() / world.bodies().inv_mass[i];
       }
       // Body 0 is the ground; the bottom row is bodies 1 .. base.
       const double left = p[1].x() - scene.bodies[1].position.x();
       const double right = p[std::size_t(base)].x() - scene.bodies[std::size_t(base)].position.x();
-      std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f | %.2e |\n", name, step, most.x(),
-                  most.y(), most.z(), left, right, fastest);
+      std::printf("| %s | %d | %.4f | %.4f | %.4f | %.4f, %.4f | %.2e | %.2e |\n", name, step,
+                  most.x(), most.y(), most.z(), left, right, fastest, energy);
     };
     Timing t;
     const auto end = runOurs(scene, steps, t, settings, nullptr, nullptr, observe);
+    reportHeld(label, "large_pyramid", scene, end, t);
     const auto dx = [&](std::size_t i) { return end[i].x() - scene.bodies[i].position.x(); };
     std::size_t farthest = 1;  // the box farthest along x at the end
     for (std::size_t i = 2; i < end.size(); ++i)
@@ -523,7 +529,7 @@ int main(int raw_argc, char** raw_argv) {
       std::fprintf(stderr, "creep: steps and base must be positive\n");
       return 2;
     }
-    return runCreep(base, steps, sub, only);
+    return runCreep(base, steps, sub, recycle, only);
   }
   if (which == "many_pyramids") {
     const int rows = argc > 3 ? std::atoi(argv[3]) : 14;
